@@ -1,0 +1,153 @@
+//! The only motif crate that touches files.
+//!
+//! Engines are pure; everything that reads or writes a file goes through here, so that every error
+//! names its file and every write is atomic (a temporary file in the target's directory, then a
+//! rename, so a crash never leaves a half-written output and an output never replaces an input by
+//! accident halfway).
+//!
+//! - [`raster`]: PNG (8-bit RGBA/RGB/grey/grey-alpha, 16-bit read) and JPEG (read) via `image`.
+//! - [`svg`]: SVG read through `usvg` (paths as `kurbo` paths in document coordinates, transforms
+//!   applied, with stroke and fill), SVG write ([`SvgWriter`]) and rasterization via `resvg`.
+//! - [`points`]: point tables as PLY (ascii or binary, via `ply-rs-bw`) or CSV (via `csv`).
+//! - [`json`]: reports and piece lists via `serde_json`.
+
+pub mod json;
+pub mod points;
+pub mod raster;
+pub mod svg;
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+pub use json::{read_json, write_json};
+pub use points::{Column, ColumnKind, PointFormat, PointTable, read_points, write_points};
+pub use raster::{read_image, write_png};
+pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};
+
+/// A file could not be read or written; always names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum IoError {
+    /// The operating system refused (missing file, permissions, full disk...).
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        source: std::io::Error,
+    },
+    /// The file exists but its content is not what was expected.
+    #[error("{path}: {message}")]
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it, and what is expected.
+        message: String,
+    },
+}
+
+impl IoError {
+    /// A format error for `path`.
+    pub fn format(path: &Path, message: impl Into<String>) -> Self {
+        IoError::Format { path: path.to_path_buf(), message: message.into() }
+    }
+
+    fn io(path: &Path, source: std::io::Error) -> Self {
+        IoError::Io { path: path.to_path_buf(), source }
+    }
+}
+
+/// Result alias for this crate.
+pub type Result<T> = std::result::Result<T, IoError>;
+
+/// Reads a whole file.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| IoError::io(path, source))
+}
+
+/// Reads a whole UTF-8 text file.
+pub fn read_text(path: &Path) -> Result<String> {
+    let bytes = read_bytes(path)?;
+    String::from_utf8(bytes).map_err(|_| IoError::format(path, "is not UTF-8 text"))
+}
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same directory, flushed, then
+/// renamed over `path`.
+pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_with(path, |file| file.write_all(bytes))
+}
+
+/// Writes UTF-8 text atomically.
+pub fn write_text(path: &Path, text: &str) -> Result<()> {
+    write_bytes(path, text.as_bytes())
+}
+
+/// Runs `fill` on a temporary file beside `path`, then renames it onto `path`.
+pub(crate) fn write_with(path: &Path, fill: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>) -> Result<()> {
+    let directory = match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let mut temporary = tempfile::Builder::new()
+        .prefix(".motif-")
+        .suffix(".tmp")
+        .tempfile_in(directory)
+        .map_err(|source| IoError::io(path, source))?;
+    fill(temporary.as_file_mut()).map_err(|source| IoError::io(path, source))?;
+    temporary.as_file_mut().sync_all().map_err(|source| IoError::io(path, source))?;
+    temporary.persist(path).map_err(|error| IoError::io(path, error.error))?;
+    Ok(())
+}
+
+/// True when `a` and `b` name the same file (or would, once `b` is created): compares canonical
+/// paths, canonicalizing the parent directory for a file that does not exist yet.
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    fn canonical(path: &Path) -> Option<PathBuf> {
+        if let Ok(full) = path.canonicalize() {
+            return Some(full);
+        }
+        let name = path.file_name()?;
+        let parent = match path.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent,
+            _ => Path::new("."),
+        };
+        Some(parent.canonicalize().ok()?.join(name))
+    }
+    match (canonical(a), canonical(b)) {
+        (Some(a), Some(b)) => a == b,
+        _ => a == b,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atomic_write_replaces_content_and_leaves_no_temporary() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("out.txt");
+        write_text(&path, "first").unwrap();
+        write_text(&path, "second").unwrap();
+        assert_eq!(read_text(&path).unwrap(), "second");
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names.len(), 1);
+    }
+
+    #[test]
+    fn errors_name_the_file() {
+        let error = read_bytes(Path::new("/nonexistent/motif/file.png")).unwrap_err();
+        assert!(error.to_string().contains("/nonexistent/motif/file.png"), "{error}");
+        let error = write_text(Path::new("/nonexistent/motif/out.txt"), "x").unwrap_err();
+        assert!(error.to_string().contains("out.txt"), "{error}");
+    }
+
+    #[test]
+    fn same_file_sees_through_relative_paths() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.png");
+        std::fs::write(&a, b"x").unwrap();
+        assert!(same_file(&a, &dir.path().join(".").join("a.png")));
+        assert!(!same_file(&a, &dir.path().join("b.png")));
+        assert!(same_file(&dir.path().join("new.png"), &dir.path().join("new.png")));
+    }
+}
