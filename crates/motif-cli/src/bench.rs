@@ -1,0 +1,57 @@
+//! `motif bench`: fixed, seeded, generated workloads for every engine, printed as one JSON object.
+//!
+//! This is the single entry point for performance figures; tests never time anything.
+
+use std::path::PathBuf;
+
+use clap::Args;
+use serde_json::{Value, json};
+
+use crate::GlobalArgs;
+use crate::engines::ENGINE_NAMES;
+
+/// Options of `motif bench`.
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Run only this engine (repeat for several): curve, stylize, points or strokes.
+    #[arg(long = "engine", value_name = "NAME", value_parser = clap::builder::PossibleValuesParser::new(ENGINE_NAMES))]
+    pub engines: Vec<String>,
+    /// Tiny workloads that finish in seconds (for smoke tests; the figures are not comparable).
+    #[arg(long)]
+    pub quick: bool,
+    /// Also write the JSON object to this file.
+    #[arg(long, value_name = "FILE.json")]
+    pub out: Option<PathBuf>,
+}
+
+/// What an engine's benchmark gets.
+pub struct Bench {
+    /// Seed of the generated workloads.
+    pub seed: u64,
+    /// True for tiny workloads (smoke tests).
+    pub quick: bool,
+    /// Worker threads in use.
+    pub threads: usize,
+}
+
+/// Runs `motif bench` and prints the figures on stdout.
+#[allow(clippy::print_stdout)]
+pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
+    let bench = Bench { seed: global.seed, quick: args.quick, threads };
+    let start = std::time::Instant::now();
+    let engines = crate::engines::benches(&bench, &args.engines)?;
+    let figures = json!({
+        "motif_version": env!("CARGO_PKG_VERSION"),
+        "seed": global.seed,
+        "threads": threads,
+        "quick": args.quick,
+        "profile": if cfg!(debug_assertions) { "debug" } else { "release" },
+        "total_s": start.elapsed().as_secs_f64(),
+        "engines": Value::Object(engines),
+    });
+    println!("{}", serde_json::to_string_pretty(&figures)?);
+    for path in args.out.iter().chain(&global.report) {
+        motif_io::write_json(path, &figures)?;
+    }
+    Ok(())
+}

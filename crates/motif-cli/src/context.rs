@@ -1,0 +1,99 @@
+//! What a running command gets from the CLI, and the report it leaves behind.
+
+use std::io::IsTerminal;
+use std::path::Path;
+
+use anyhow::{Context as _, bail};
+use motif_core::Progress;
+use serde::Serialize;
+use serde_json::{Map, Value};
+
+use crate::GlobalArgs;
+use crate::engines::EngineCommand;
+use crate::progress::CliProgress;
+
+/// The environment of one engine run: seed, threads, progress and the figures for the report.
+pub struct Context {
+    /// The run's seed (`--seed`).
+    pub seed: u64,
+    /// Worker threads in use.
+    pub threads: usize,
+    /// True with `--quiet`: engines print no summary.
+    pub quiet: bool,
+    progress: CliProgress,
+    figures: Map<String, Value>,
+}
+
+impl Context {
+    /// A context for one run.
+    pub fn new(seed: u64, threads: usize, quiet: bool) -> Self {
+        let visible = !quiet && std::io::stderr().is_terminal();
+        Self { seed, threads, quiet, progress: CliProgress::new(visible), figures: Map::new() }
+    }
+
+    /// The progress sink to hand to an engine.
+    pub fn progress(&mut self) -> &mut dyn Progress {
+        &mut self.progress
+    }
+
+    /// Records a figure for the report (later values replace earlier ones under the same key).
+    pub fn figure(&mut self, key: &str, value: impl Serialize) {
+        let value =
+            serde_json::to_value(value).unwrap_or_else(|error| Value::String(format!("unserializable: {error}")));
+        self.figures.insert(key.to_string(), value);
+    }
+
+    /// Refuses an output path that names one of the inputs: motif never overwrites its input.
+    pub fn check_output(&self, output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+        for input in inputs {
+            if motif_io::same_file(output, input) {
+                bail!(
+                    "output {} is also an input; choose another output path (motif never overwrites an input)",
+                    output.display()
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// Prints a one-line summary on stderr unless quiet.
+    #[allow(clippy::print_stderr)]
+    pub fn summary(&self, line: &str) {
+        if !self.quiet {
+            eprintln!("{line}");
+        }
+    }
+
+    /// Ends the run: the figures, with `stages_ms` from progress unless the engine gave its own.
+    pub fn into_figures(mut self) -> Map<String, Value> {
+        let stages = self.progress.finish();
+        if !self.figures.contains_key("stages_ms") {
+            let stages: Map<String, Value> = stages.into_iter().map(|(name, ms)| (name, Value::from(ms))).collect();
+            self.figures.insert("stages_ms".to_string(), Value::Object(stages));
+        }
+        self.figures
+    }
+}
+
+/// Runs an engine subcommand and writes `--report` if asked.
+pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
+    let start = std::time::Instant::now();
+    let mut context = Context::new(global.seed, threads, global.quiet);
+    let result = command.run(&mut context);
+    let mut report = Map::new();
+    report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
+    report.insert("command".into(), Value::from(command.name()));
+    report.insert("arguments".into(), Value::from(std::env::args().skip(1).collect::<Vec<_>>()));
+    report.insert("seed".into(), Value::from(global.seed));
+    report.insert("threads".into(), Value::from(threads));
+    report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
+    if let Err(error) = &result {
+        report.insert("error".into(), Value::from(format!("{error:#}")));
+    }
+    report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
+    report.extend(context.into_figures());
+    if let Some(path) = &global.report {
+        motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report")?;
+    }
+    result
+}

@@ -1,0 +1,69 @@
+//! The command line frame: help, usage errors and exit codes, demo and bench entry points.
+
+use std::process::Command;
+
+fn motif() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_motif"))
+}
+
+#[test]
+fn help_lists_every_subcommand_and_global_option() {
+    let output = motif().arg("--help").output().unwrap();
+    assert!(output.status.success());
+    let help = String::from_utf8(output.stdout).unwrap();
+    for name in ["demo", "bench", "--seed", "--threads", "--quiet", "--report"] {
+        assert!(help.contains(name), "`motif --help` does not mention {name}:\n{help}");
+    }
+    for engine in ["curve", "stylize", "texture", "points", "strokes"] {
+        if help.contains(&format!("  {engine} ")) {
+            let sub = motif().args([engine, "--help"]).output().unwrap();
+            assert!(sub.status.success(), "`motif {engine} --help` failed");
+        }
+    }
+}
+
+#[test]
+fn bad_usage_exits_2_with_a_message() {
+    let output = motif().arg("no-such-command").output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no-such-command"));
+    let output = motif().args(["--threads", "0", "demo"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let output = motif().args(["--seed", "minus-one", "bench"]).output().unwrap();
+    assert_eq!(output.status.code(), Some(2));
+}
+
+#[test]
+fn a_failed_run_exits_1_and_names_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    let blocker = dir.path().join("file");
+    std::fs::write(&blocker, "x").unwrap();
+    let output = motif().args(["--quiet", "demo", "--out"]).arg(blocker.join("inside")).output().unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.starts_with("error: ") && stderr.contains("demo folder"), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
+
+#[test]
+fn demo_writes_a_gallery_and_bench_prints_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("demo");
+    let report = dir.path().join("demo.json");
+    let status = motif().args(["--quiet", "--report"]).arg(&report).args(["demo", "--out"]).arg(&out).status().unwrap();
+    assert!(status.success());
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.starts_with("<!DOCTYPE html>"));
+    let figures: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(figures["command"], "demo");
+    // Every case of the gallery shows its command and at least one output that exists.
+    for (title, case) in figures["cases"].as_object().unwrap() {
+        assert!(case["command"].as_str().unwrap().starts_with("motif "), "{title}");
+        assert!(html.contains(title.as_str()), "{title} missing from the gallery");
+    }
+    let output = motif().args(["bench", "--quick"]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let bench: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(bench["quick"], true);
+    assert!(bench["engines"].is_object());
+}
