@@ -43,7 +43,7 @@ pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Res
     let figures = json!({
         "motif_version": env!("CARGO_PKG_VERSION"),
         "seed": global.seed,
-        "threads": threads,
+        "threads": bench.threads,
         "quick": args.quick,
         "profile": if cfg!(debug_assertions) { "debug" } else { "release" },
         "total_s": start.elapsed().as_secs_f64(),

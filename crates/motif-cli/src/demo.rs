@@ -6,7 +6,7 @@
 //! that made the output.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{Context as _, bail};
 use clap::{Args, Parser};
@@ -81,6 +81,14 @@ impl Demo {
         let ms = start.elapsed().as_secs_f64() * 1000.0;
         if !self.quiet {
             eprintln!("  {:<48} {:>8.0} ms", case.title, ms);
+        }
+        // Show the command as run inside the demo folder, whichever way the engine spelled paths.
+        let prefix = format!("{}{}", self.dir.display(), std::path::MAIN_SEPARATOR);
+        let mut case = case;
+        for arg in &mut case.args {
+            if let Some(relative) = arg.strip_prefix(&prefix) {
+                *arg = relative.to_string();
+            }
         }
         self.records.push(CaseRecord { case, figures: context.into_figures(), ms });
         Ok(())
@@ -218,11 +226,6 @@ fn gallery(records: &[CaseRecord], seed: u64, total_ms: f64) -> String {
 
 /// Exposed for engine demos that need the folder itself.
 impl Demo {
-    /// The demo folder.
-    pub fn dir(&self) -> &Path {
-        &self.dir
-    }
-
     /// The run's seed.
     pub fn seed(&self) -> u64 {
         self.seed

@@ -7,9 +7,6 @@
 //! - [`demo`]: `motif demo`, built-in examples and an HTML gallery.
 //! - [`bench`]: `motif bench`, the single entry point for performance figures.
 
-// Until the first engine is wired in, the demo and bench frames have no callers.
-#![allow(dead_code, unreachable_code, unused_mut, unused_variables, clippy::match_single_binding)]
-
 mod bench;
 mod context;
 mod demo;
@@ -56,7 +53,7 @@ pub struct GlobalArgs {
 pub enum Command {
     #[command(flatten)]
     /// Engine subcommands.
-    Engine(engines::EngineCommand),
+    Engine(Box<engines::EngineCommand>),
     /// Run every engine on built-in examples and write an HTML gallery of inputs and outputs.
     Demo(demo::DemoArgs),
     /// Run fixed, seeded, generated workloads for every engine and print their figures as JSON.

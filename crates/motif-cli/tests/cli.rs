@@ -67,3 +67,58 @@ fn demo_writes_a_gallery_and_bench_prints_json() {
     assert_eq!(bench["quick"], true);
     assert!(bench["engines"].is_object());
 }
+
+/// Every file the demo writes, except the gallery and report (they hold timings).
+fn demo_outputs(dir: &std::path::Path) -> Vec<(String, Vec<u8>)> {
+    let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.is_file())
+        .map(|path| (path.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read(&path).unwrap()))
+        .filter(|(name, _)| name != "index.html" && !name.ends_with(".json"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn the_same_seed_gives_identical_bytes_with_one_and_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    for threads in ["1", "2"] {
+        let status = motif()
+            .args(["--quiet", "--seed", "7", "--threads", threads, "demo", "--out"])
+            .arg(dir.path().join(threads))
+            .status()
+            .unwrap();
+        assert!(status.success());
+    }
+    let one = demo_outputs(&dir.path().join("1"));
+    let two = demo_outputs(&dir.path().join("2"));
+    assert_eq!(one.len(), two.len());
+    for ((name, a), (_, b)) in one.iter().zip(&two) {
+        assert!(a == b, "{name} differs between --threads 1 and --threads 2");
+    }
+}
+
+#[test]
+fn an_output_equal_to_an_input_is_refused_and_the_input_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let reference = dir.path().join("reference.svg");
+    let text = r#"<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40">
+        <path d="M5 5 L9 9" stroke="black" stroke-width="1"/><path d="M20 5 L24 9" stroke="black" stroke-width="1"/>
+        <path d="M5 20 L9 24" stroke="black" stroke-width="1"/><path d="M20 20 L24 24" stroke="black" stroke-width="1"/></svg>"#;
+    std::fs::write(&reference, text).unwrap();
+    // Spelled differently (through `.`), the output still names the input file.
+    let same = dir.path().join(".").join("reference.svg");
+    let output = motif()
+        .args(["--quiet", "strokes", "--scale", "2", "--rect", "80,80", "--reference"])
+        .arg(&reference)
+        .arg("--out")
+        .arg(&same)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("also an input"), "{stderr}");
+    assert_eq!(std::fs::read_to_string(&reference).unwrap(), text);
+}

@@ -13,24 +13,68 @@ use crate::bench::Bench;
 use crate::context::Context;
 use crate::demo::Demo;
 
+pub mod curve;
+pub mod points;
+pub mod strokes;
+pub mod stylize;
+
 /// The engine subcommands.
 #[derive(Subcommand, Debug)]
-pub enum EngineCommand {}
+pub enum EngineCommand {
+    /// Grow a structured raster pattern (chain, lace, frieze) along a curve
+    ///
+    /// Undistorted pieces of the exemplar placed by a globally optimal dynamic program
+    /// (Zhou, Lasram, Lefebvre 2013).
+    Curve(curve::CurveArgs),
+    /// Grow a repetitive structure of points with attributes, in 2D or 3D
+    ///
+    /// Discrete elements, continuous structures and mixtures, in boxes, regions or brush strokes
+    /// (Roveri et al. 2015).
+    Points(points::PointsArgs),
+    /// Grow a vector stroke pattern along a path or inside a region
+    ///
+    /// Hatching, stippling, brush marks and small figures analysed into elements and synthesized
+    /// by neighbourhood matching (Barla et al. 2006).
+    Strokes(strokes::StrokesArgs),
+    /// Paint a target guide in the style of an exemplar (A : A' :: B : B')
+    ///
+    /// Guided patch-based synthesis with occurrence penalty, segments and pre-synthesized
+    /// textures (Texler et al.); options mirror ebsynth's.
+    Stylize(stylize::StylizeArgs),
+    /// Grow a texture of any size from an exemplar image, optionally tileable
+    Texture(stylize::TextureArgs),
+}
 
 impl EngineCommand {
     /// The subcommand's name, as typed.
     pub fn name(&self) -> &'static str {
-        match *self {}
+        match self {
+            EngineCommand::Curve(_) => "curve",
+            EngineCommand::Points(_) => "points",
+            EngineCommand::Strokes(_) => "strokes",
+            EngineCommand::Stylize(_) => "stylize",
+            EngineCommand::Texture(_) => "texture",
+        }
     }
 
     /// Runs the subcommand.
-    pub fn run(&self, _context: &mut Context) -> anyhow::Result<()> {
-        match *self {}
+    pub fn run(&self, context: &mut Context) -> anyhow::Result<()> {
+        match self {
+            EngineCommand::Curve(args) => curve::run(args, context),
+            EngineCommand::Points(args) => points::run(args, context),
+            EngineCommand::Strokes(args) => strokes::run(args, context),
+            EngineCommand::Stylize(args) => stylize::run_stylize(args, context),
+            EngineCommand::Texture(args) => stylize::run_texture(args, context),
+        }
     }
 }
 
 /// Adds every engine's built-in examples to the gallery.
-pub fn demos(_demo: &mut Demo) -> anyhow::Result<()> {
+pub fn demos(demo: &mut Demo) -> anyhow::Result<()> {
+    curve::demo(demo)?;
+    points::demo(demo)?;
+    strokes::demo(demo)?;
+    stylize::demo(demo)?;
     Ok(())
 }
 
@@ -42,11 +86,14 @@ pub fn benches(bench: &Bench, only: &[String]) -> anyhow::Result<Map<String, Val
             continue;
         }
         let value = match name {
+            "curve" => curve::bench(bench)?,
+            "points" => points::bench(bench)?,
+            "strokes" => strokes::bench(bench)?,
+            "stylize" => stylize::bench(bench)?,
             _ => continue,
         };
         figures.insert(name.to_string(), value);
     }
-    let _ = bench;
     Ok(figures)
 }
 

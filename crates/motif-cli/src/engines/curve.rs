@@ -1,0 +1,527 @@
+//! `motif curve`: structured patterns along curves (Zhou, Lasram, Lefebvre 2013), wired to PNG,
+//! SVG and JSON files.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use clap::{Args, ValueEnum};
+use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+use motif_curve::{AlphaMode, Canvas, ClosedMode, CurveInput, CurveOutput, CurveParams, Method, Solver};
+use serde_json::{Value, json};
+
+use crate::bench::Bench;
+use crate::context::Context;
+use crate::demo::{Demo, DemoCase};
+
+/// How a closed curve is handled.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ClosedArg {
+    /// Closed paths (ending in Z) are closed, others open.
+    Auto,
+    /// The paper's single-DP approximation for closed curves.
+    Approx,
+    /// Exact optimum over start positions, with a certificate in the report.
+    Exact,
+    /// Treat the path as open even if it is closed.
+    No,
+}
+
+/// Which generator draws the pattern.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MethodArg {
+    /// Undistorted exemplar pieces placed by dynamic programming (the paper).
+    Synth,
+    /// The classic baseline: the exemplar repeated along the arc length and bent with the curve.
+    Repeat,
+}
+
+/// Which DP solver runs.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SolverArg {
+    /// Fast exact solver (merged identical edges, branch and bound over a profile tree, lower bounds, early exit).
+    Exact,
+    /// The plain O(V²C) dynamic program (same optimum, slower).
+    Reference,
+}
+
+/// How alpha enters the matching cost.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AlphaArg {
+    /// Alpha blended continuously (for anti-aliased exemplars).
+    Continuous,
+    /// The paper's cost: alpha thresholded at 128.
+    Binary,
+}
+
+/// Options of `motif curve`.
+#[derive(Args, Debug)]
+pub struct CurveArgs {
+    /// Exemplar image (PNG/JPEG) with alpha: opaque pixels are the pattern, on a transparent
+    /// background.
+    #[arg(long, value_name = "EX.png")]
+    pub exemplar: PathBuf,
+    /// The curve: an SVG file (its first path's first subpath; closed if it ends with Z), or a CSV
+    /// or PLY point list with x and y columns (closed if its last point repeats the first).
+    #[arg(long, value_name = "CURVE.svg")]
+    pub path: PathBuf,
+    /// Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece
+    /// edge (C) and should exceed the pattern's height in the exemplar.
+    #[arg(long, value_name = "B", allow_negative_numbers = true)]
+    pub width: f64,
+    /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    pub piece_length: f64,
+    /// Scale s: exemplar pixels per canvas pixel, 0.05–20 (2 draws the pattern at half size).
+    #[arg(long, value_name = "S", default_value_t = 1.0, allow_negative_numbers = true)]
+    pub scale: f64,
+    /// Closed-curve handling.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub closed: ClosedArg,
+    /// Avoidance map over the canvas (PNG): opaque white pixels are forbidden to the pattern. It
+    /// sets the canvas size (canvas origin = document origin).
+    #[arg(long, value_name = "MASK.png")]
+    pub avoid: Option<PathBuf>,
+    /// Do not detect fold-overs and overlaps of the ribbon (by default the pattern avoids them).
+    #[arg(long)]
+    pub no_foldover_avoidance: bool,
+    /// Stitch piece boundaries (edge alignment with penalty P, propagated inside the pieces).
+    #[arg(long)]
+    pub stitch: bool,
+    /// Stitching penalty P for moving opaque samples, 0–100000.
+    #[arg(long, value_name = "P", default_value_t = 32.0)]
+    pub stitch_penalty: f64,
+    /// Pattern generator.
+    #[arg(long, value_enum, default_value = "synth")]
+    pub method: MethodArg,
+    /// Dynamic-programming solver.
+    #[arg(long, value_enum, default_value = "exact")]
+    pub solver: SolverArg,
+    /// Alpha in the matching cost.
+    #[arg(long, value_enum, default_value = "continuous")]
+    pub alpha: AlphaArg,
+    /// γ, the matching cost of an opaque against a transparent pixel, 1–100000.
+    #[arg(long, value_name = "GAMMA", default_value_t = 1024.0)]
+    pub gamma: f64,
+    /// Pin the first piece's exemplar position (top-left corner, pixels; must be a valid position).
+    #[arg(long, value_name = "X,Y", value_parser = parse_pin, allow_hyphen_values = true)]
+    pub pin_first: Option<[i32; 2]>,
+    /// Canvas size in pixels (document origin at the top-left); default: fitted to the ribbon.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub canvas: Option<[usize; 2]>,
+    /// Margin around the ribbon when the canvas is fitted, pixels, 0–4096.
+    #[arg(long, value_name = "PX", default_value_t = 4.0)]
+    pub margin: f64,
+    /// Anti-aliasing: render samples per pixel along each axis, 1–8.
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    pub samples: usize,
+    /// Alpha (0–254) at or below which a pixel counts as transparent when checking that a piece
+    /// slices the pattern completely.
+    #[arg(long, value_name = "A", default_value_t = 8)]
+    pub cut_alpha: u8,
+    /// Exact closed mode: start positions tried at most before giving up the certificate.
+    #[arg(long, value_name = "N", default_value_t = 64)]
+    pub closed_max_starts: usize,
+    /// Curve flattening tolerance for SVG paths, pixels, > 0.
+    #[arg(long, value_name = "T", default_value_t = 0.1)]
+    pub tolerance: f64,
+    /// Also write the result with the ribbon, piece borders, forbidden areas and per-seam cost
+    /// (heat colour, green = cheap, red = expensive) drawn on top (PNG).
+    #[arg(long, value_name = "OUT.png")]
+    pub debug_overlay: Option<PathBuf>,
+    /// Rendered pattern (PNG, transparent background).
+    #[arg(long, value_name = "OUT.png")]
+    pub out: PathBuf,
+    /// Piece list (JSON): per piece its canvas quad, exemplar position u, rotation, seam cost and
+    /// stitch remapping T.
+    #[arg(long, value_name = "OUT.json")]
+    pub pieces: Option<PathBuf>,
+}
+
+fn parse_pin(text: &str) -> Result<[i32; 2], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    match parts.as_slice() {
+        [x, y] => Ok([
+            x.parse().map_err(|_| format!("`{x}` is not an integer"))?,
+            y.parse().map_err(|_| format!("`{y}` is not an integer"))?,
+        ]),
+        _ => Err("expected X,Y (two integers)".into()),
+    }
+}
+
+fn parse_size(text: &str) -> Result<[usize; 2], String> {
+    let (w, h) = text.split_once(['x', 'X']).ok_or("expected WxH, for example 800x600")?;
+    let parse = |v: &str| v.trim().parse::<usize>().map_err(|_| format!("`{v}` is not a positive integer"));
+    Ok([parse(w)?, parse(h)?])
+}
+
+/// Reads the curve: an SVG path or a point list.
+fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    if extension == "svg" {
+        let document = motif_io::read_svg(path)?;
+        for svg_path in &document.paths {
+            let polylines = Polyline::from_bez_path(&svg_path.path, tolerance)
+                .with_context(|| format!("{}: bad curve", path.display()))?;
+            if let Some(first) = polylines.into_iter().next() {
+                return Ok(first);
+            }
+        }
+        bail!("{}: the path has zero length (every subpath collapses to a point)", path.display());
+    }
+    let table = motif_io::read_points(path)?;
+    let (Some(x), Some(y)) = (table.column("x"), table.column("y")) else {
+        bail!("{}: a point list needs columns named x and y", path.display());
+    };
+    let mut points: Vec<Point> = (0..table.rows).map(|r| Point::new(table.row(r)[x], table.row(r)[y])).collect();
+    let closed = points.len() > 2 && points.first() == points.last();
+    if closed {
+        points.pop();
+    }
+    Polyline::new(points, closed).with_context(|| format!("{}: bad curve", path.display()))
+}
+
+fn params_of(args: &CurveArgs) -> CurveParams {
+    let mut params = CurveParams::default();
+    params.width = args.width;
+    params.piece_length = args.piece_length;
+    params.scale = args.scale;
+    params.closed = match args.closed {
+        ClosedArg::Auto => ClosedMode::Auto,
+        ClosedArg::Approx => ClosedMode::Approximate,
+        ClosedArg::Exact => ClosedMode::Exact,
+        ClosedArg::No => ClosedMode::Open,
+    };
+    params.method = match args.method {
+        MethodArg::Synth => Method::Synthesis,
+        MethodArg::Repeat => Method::Repeat,
+    };
+    params.solver = match args.solver {
+        SolverArg::Exact => Solver::Exact,
+        SolverArg::Reference => Solver::Reference,
+    };
+    params.alpha_mode = match args.alpha {
+        AlphaArg::Continuous => AlphaMode::Continuous,
+        AlphaArg::Binary => AlphaMode::Binary,
+    };
+    params.mismatch_penalty = args.gamma;
+    params.stitch = args.stitch;
+    params.stitch_penalty = args.stitch_penalty;
+    params.foldover_avoidance = !args.no_foldover_avoidance;
+    params.pin_first = args.pin_first;
+    params.canvas = match args.canvas {
+        Some([width, height]) => Canvas::Size { width, height },
+        None => Canvas::Fit { margin: args.margin },
+    };
+    params.samples_per_axis = args.samples;
+    params.cut_alpha = args.cut_alpha;
+    params.closed_max_starts = args.closed_max_starts;
+    params
+}
+
+/// Records the report figures of a run.
+fn record(context: &mut Context, output: &CurveOutput) {
+    let report = &output.report;
+    context.figure("method", report.method);
+    context.figure("solver", report.solver);
+    context.figure("pieces", report.pieces);
+    context.figure("samples_per_edge", report.samples_per_edge);
+    context.figure("canvas", report.canvas);
+    context.figure("canvas_origin", report.canvas_origin);
+    context.figure("total_cost", report.total_cost);
+    context.figure("total_cost_unstitched", report.total_cost_unstitched);
+    context.figure("mean_seam_cost", report.mean_seam_cost);
+    context.figure("valid_fraction", report.valid_fraction);
+    context.figure(
+        "dp_row_ms",
+        json!({ "median": report.dp_row_ms_median, "max": report.dp_row_ms_max, "rows": report.dp_row_ms.len() }),
+    );
+    let stages: serde_json::Map<String, Value> =
+        report.stages_ms.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect();
+    context.figure("stages_ms", Value::Object(stages));
+    context.figure("closed", report.closed);
+    if report.closed {
+        context.figure("closed_certified", report.closed_certified);
+        context.figure("closed_starts_tried", report.closed_starts_tried);
+        context.figure("closed_directly", report.closed_directly);
+    }
+    context.figure("empty_pieces", report.empty_pieces);
+    context.figure("forbidden_pixels", report.forbidden_pixels);
+    context.figure("foldover_pixels", report.foldover_pixels);
+    context.figure("columns_skipped_fraction", report.columns_skipped_fraction);
+    context.figure("dp_counters", report.dp_counters);
+    context.figure("stitched_seams", report.stitched_seams);
+    context.figure("distortion_mean", report.distortion_mean);
+    context.figure("distortion_max", report.distortion_max);
+    if report.method == Method::Repeat {
+        context.figure("wrap_seams", report.wrap_seams);
+    }
+}
+
+/// Runs `motif curve`.
+pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
+    let mut inputs: Vec<&Path> = vec![&args.exemplar, &args.path];
+    inputs.extend(args.avoid.as_deref());
+    for output in std::iter::once(&args.out).chain(&args.pieces).chain(&args.debug_overlay) {
+        context.check_output(output, &inputs)?;
+    }
+    let exemplar = motif_io::read_image(&args.exemplar)?;
+    if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
+        bail!("invalid tolerance = {}: must be a finite number > 0", args.tolerance);
+    }
+    let curve = read_curve(&args.path, args.tolerance)?;
+    let avoidance = args.avoid.as_deref().map(motif_io::read_image).transpose()?;
+    let params = params_of(args);
+    let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: avoidance.as_ref() };
+    let output = motif_curve::synthesize(&input, &params, context.progress())?;
+    motif_io::write_png(&args.out, &output.image)?;
+    if let Some(path) = &args.pieces {
+        let document = json!({
+            "canvas": output.report.canvas,
+            "canvas_origin": output.report.canvas_origin,
+            "exemplar": [exemplar.width(), exemplar.height()],
+            "samples_per_edge": output.report.samples_per_edge,
+            "closed": output.report.closed,
+            "total_cost": output.report.total_cost,
+            "pieces": output.pieces,
+        });
+        motif_io::write_json(path, &document)?;
+    }
+    if let Some(path) = &args.debug_overlay {
+        motif_io::write_png(path, &motif_curve::debug_overlay(&output))?;
+    }
+    record(context, &output);
+    context.summary(&format!(
+        "curve: {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, DP {:.1} ms/row (median) -> {}",
+        output.report.pieces,
+        output.report.total_cost,
+        output.report.mean_seam_cost,
+        100.0 * output.report.valid_fraction,
+        output.report.dp_row_ms_median,
+        args.out.display()
+    ));
+    Ok(())
+}
+
+/// A procedural gold chain: face-on oval links alternating with edge-on links (thick bars), with
+/// anti-aliased alpha and simple shading, `period` pixels per link pair, in a strip whose rows
+/// above and below the chain are transparent.
+pub fn chain_exemplar(width: usize, height: usize, period: f64, chain_height: f64) -> RgbaImage {
+    let cy = height as f64 / 2.0;
+    let ring_rx = period * 0.36;
+    let ring_ry = chain_height / 2.0 - 1.0;
+    let thickness = (chain_height * 0.16).max(2.0);
+    RgbaImage::from_fn(width, height, |x, y| {
+        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+        let phase = px.rem_euclid(period);
+        // Face-on oval link centred at period / 2 + jitter-free; edge-on link around 0 / period.
+        let dx = phase - period * 0.5;
+        let dy = py - cy;
+        // Distance to the ellipse, to first order: (e − 1) / |∇e|.
+        let ellipse = ((dx / ring_rx).powi(2) + (dy / ring_ry).powi(2)).sqrt();
+        let gradient = (dx / (ring_rx * ring_rx)).hypot(dy / (ring_ry * ring_ry)) / ellipse.max(1e-9);
+        let ring_distance = (ellipse - 1.0).abs() / gradient.max(1e-9);
+        let ring = (thickness / 2.0 + 0.5 - ring_distance).clamp(0.0, 1.0);
+        let edge_dx = if phase < period * 0.5 { phase } else { period - phase };
+        let bar_half_length = period * 0.3;
+        let bar_distance = (edge_dx - bar_half_length).max(0.0).hypot((dy.abs() - thickness * 0.45).max(0.0));
+        let bar = (1.0 - bar_distance).clamp(0.0, 1.0) * if dy.abs() < thickness { 1.0 } else { 0.0 };
+        let coverage = ring.max(bar);
+        if coverage <= 0.0 {
+            return [0, 0, 0, 0];
+        }
+        let light = 0.75 + 0.25 * (-dy / ring_ry).clamp(-1.0, 1.0);
+        let shade = |c: f64| (c * light).clamp(0.0, 255.0) as u8;
+        if bar >= ring {
+            [shade(170.0), shade(120.0), shade(30.0), (coverage * 255.0).round() as u8]
+        } else {
+            [shade(235.0), shade(185.0), shade(60.0), (coverage * 255.0).round() as u8]
+        }
+    })
+}
+
+/// A heart as a closed SVG path centred at `(cx, cy)`, about `size` pixels wide: the classic
+/// parametric heart, sampled and smoothed (circular moving averages) so that its dip and tip are
+/// rounded rather than cusps.
+fn heart_svg(cx: f64, cy: f64, size: f64) -> String {
+    let count = 480;
+    let mut points: Vec<(f64, f64)> = (0..count)
+        .map(|i| {
+            let t = i as f64 / count as f64 * std::f64::consts::TAU;
+            let x = 16.0 * t.sin().powi(3);
+            let y = -(13.0 * t.cos() - 5.0 * (2.0 * t).cos() - 2.0 * (3.0 * t).cos() - (4.0 * t).cos());
+            (x, y)
+        })
+        .collect();
+    for _ in 0..8 {
+        let window = 12_i64;
+        points = (0..count as i64)
+            .map(|i| {
+                let (mut x, mut y) = (0.0, 0.0);
+                for k in -window..=window {
+                    let p = points[(i + k).rem_euclid(count as i64) as usize];
+                    x += p.0;
+                    y += p.1;
+                }
+                let n = (2 * window + 1) as f64;
+                (x / n, y / n)
+            })
+            .collect();
+    }
+    let scale = size / 32.0;
+    let mut d = String::new();
+    for (i, (x, y)) in points.iter().enumerate() {
+        let command = if i == 0 { "M" } else { "L" };
+        d.push_str(&format!("{command} {:.2} {:.2} ", cx + x * scale, cy + y * scale));
+    }
+    d.push('Z');
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:.0}\" height=\"{:.0}\">\
+         <path d=\"{d}\" fill=\"none\" stroke=\"black\"/></svg>",
+        cx * 2.0,
+        cy * 2.0
+    )
+}
+
+/// Built-in examples for `motif demo`.
+pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    let chain = chain_exemplar(160, 44, 32.0, 28.0);
+    motif_io::write_png(&demo.path("curve-chain.png"), &chain)?;
+    motif_io::write_text(&demo.path("curve-heart.svg"), &heart_svg(200.0, 190.0, 330.0))?;
+    demo.case(DemoCase {
+        title: "curve: a chain along a heart (closed, exact)".into(),
+        description: "A procedural chain strip with anti-aliased alpha is synthesized along a closed heart: \
+                      undistorted rotated pieces of the exemplar, placed by a globally optimal dynamic program, \
+                      the cycle certified optimal (closed_certified), fold-overs at the dip and the tip kept \
+                      empty, seams stitched. The \
+                      debug overlay shows the ribbon, the pieces, the forbidden areas and each seam's cost \
+                      (green = cheap, red = expensive)."
+            .into(),
+        inputs: vec![("exemplar".into(), "curve-chain.png".into()), ("curve".into(), "curve-heart.svg".into())],
+        outputs: vec![
+            ("pattern".into(), "curve-heart-chain.png".into()),
+            ("debug overlay".into(), "curve-heart-debug.png".into()),
+            ("pieces".into(), "curve-heart-pieces.json".into()),
+        ],
+        args: [
+            "curve",
+            "--exemplar",
+            "curve-chain.png",
+            "--path",
+            "curve-heart.svg",
+            "--width",
+            "48",
+            "--piece-length",
+            "16",
+            "--closed",
+            "exact",
+            "--stitch",
+            "--out",
+            "curve-heart-chain.png",
+            "--pieces",
+            "curve-heart-pieces.json",
+            "--debug-overlay",
+            "curve-heart-debug.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    demo.case(DemoCase {
+        title: "curve: the classic repeat baseline on the same heart".into(),
+        description: "The same exemplar mapped along the arc length and repeated, as pattern brushes do: links \
+                      are stretched outside bends, squeezed inside and cut where the tile wraps (see \
+                      distortion_max and wrap_seams)."
+            .into(),
+        inputs: vec![("exemplar".into(), "curve-chain.png".into()), ("curve".into(), "curve-heart.svg".into())],
+        outputs: vec![("pattern".into(), "curve-heart-repeat.png".into())],
+        args: [
+            "curve",
+            "--exemplar",
+            "curve-chain.png",
+            "--path",
+            "curve-heart.svg",
+            "--width",
+            "48",
+            "--piece-length",
+            "16",
+            "--method",
+            "repeat",
+            "--out",
+            "curve-heart-repeat.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    Ok(())
+}
+
+/// One measured workload: a generated chain exemplar, a gentle wave, DP rows of both solvers.
+fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value> {
+    let chain_height = (height as f64 * 0.55).round();
+    let exemplar = chain_exemplar(width, height, (width as f64 / 5.3).round(), chain_height);
+    let piece_length = 24.0;
+    let mut params = CurveParams::default();
+    params.width = height as f64; // C = H, as in the paper's timings.
+    params.piece_length = piece_length;
+    params.samples_per_axis = 1;
+    // A gentle arc (radius 300 px): every piece is tilted by about 4.6° against the previous one.
+    let wave = |pieces: usize| -> anyhow::Result<Polyline> {
+        let length = piece_length * pieces as f64;
+        let radius = 300.0;
+        let points = (0..=200)
+            .map(|i| {
+                let angle = i as f64 / 200.0 * length / radius;
+                Point::new(radius * angle.sin(), 400.0 - radius * angle.cos())
+            })
+            .collect();
+        Ok(Polyline::new(points, false)?)
+    };
+    let mut figures = serde_json::Map::new();
+    let mut medians = [0.0; 2];
+    // Both solvers run on the same curve, so they fill the same rows.
+    let curve = wave(rows + 1)?;
+    for (slot, solver) in [Solver::Exact, Solver::Reference].into_iter().enumerate() {
+        params.solver = solver;
+        let output = motif_curve::synthesize(
+            &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None },
+            &params,
+            &mut NoProgress,
+        )?;
+        let report = &output.report;
+        medians[slot] = report.dp_row_ms_median;
+        let name = if solver == Solver::Exact { "exact" } else { "reference" };
+        figures.insert(
+            name.into(),
+            json!({
+                "dp_row_ms": report.dp_row_ms,
+                "dp_row_ms_median": report.dp_row_ms_median,
+                "dp_row_ms_max": report.dp_row_ms_max,
+                "valid_ms_per_piece": report.stages_ms.iter().find(|(s, _)| s == "valid positions").map(|(_, ms)| *ms / report.pieces as f64),
+                "valid_fraction": report.valid_fraction,
+                "columns_skipped_fraction": report.columns_skipped_fraction,
+                "columns_compared_to_completion_fraction": report.dp_counters.completed as f64 / report.dp_counters.pairs.max(1) as f64,
+                "pairs_per_row": report.dp_counters.pairs as f64 / report.dp_row_ms.len().max(1) as f64,
+                "columns_visited_fraction": report.dp_counters.visited as f64 / report.dp_counters.pairs.max(1) as f64,
+                "columns_compared_fraction": report.dp_counters.compared as f64 / report.dp_counters.pairs.max(1) as f64,
+                "total_cost": report.total_cost,
+            }),
+        );
+    }
+    figures.insert("exemplar".into(), json!([width, height]));
+    figures.insert("samples_per_edge".into(), json!(height));
+    figures.insert("speedup_reference_over_exact".into(), json!(medians[1] / medians[0].max(1e-9)));
+    Ok(Value::Object(figures))
+}
+
+/// Figures for `motif bench`: DP milliseconds per row of both solvers on generated exemplars of
+/// the paper's two sizes (199×82 and 325×64), with C equal to the exemplar height.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    if bench.quick {
+        return Ok(json!({ "quick_48x24": bench_case(48, 24, 3)? }));
+    }
+    Ok(json!({
+        "exemplar_199x82": bench_case(199, 82, 4)?,
+        "exemplar_325x64": bench_case(325, 64, 4)?,
+        "paper_gpu_ms_per_row": { "199x82": 30.0, "325x64": 650.0 },
+        "target_ms_per_row": { "199x82": 15.0, "325x64": 130.0 },
+    }))
+}

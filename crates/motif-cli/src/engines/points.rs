@@ -1,0 +1,798 @@
+//! `motif points`: repetitive structure synthesis from point samples in 2D and 3D (Roveri et al.
+//! 2015), wired to PLY/CSV point files, SVG regions and strokes, JSON polylines and PNG previews.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use clap::{Args, ValueEnum};
+use motif_core::random::Rng;
+use motif_core::{Point, Polygon, Polyline, SeedStreams};
+use motif_io::{Column, ColumnKind, PointFormat, PointTable, SvgWriter};
+use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Stroke, Window};
+use serde_json::{Value, json};
+
+use crate::bench::Bench;
+use crate::context::Context;
+use crate::demo::{Demo, DemoCase};
+
+/// How the output starts (§5.2).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InitArg {
+    /// Uniformly random points at the exemplar's density.
+    Random,
+    /// Copies of random exemplar patches tiled over the domain.
+    Patches,
+}
+
+/// Window shape (§4.3).
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WindowArg {
+    /// Gaussian window of width δ, truncated at 3δ (smooth).
+    Gaussian,
+    /// Box window of radius δ (Eq. 5).
+    Box,
+}
+
+/// Options of `motif points`.
+#[derive(Args, Debug)]
+pub struct PointsArgs {
+    /// Exemplar points: PLY (ascii or binary) or CSV with columns x, y [, z], an optional integer
+    /// `element` column (points sharing an id form a rigid element) and any float attributes.
+    #[arg(long, value_name = "EX.ply")]
+    pub exemplar: PathBuf,
+    /// Neighbourhood size δ in exemplar units, > 0: the width of the Gaussian window (truncated at
+    /// 3δ) or the radius of the box window. Larger keeps larger structures; it shrinks to δ/2 during
+    /// the synthesis.
+    #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
+    pub neighbourhood: f64,
+    /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, or an SVG file whose first
+    /// path's outline is the region (2D).
+    #[arg(long, value_name = "box:W,H[,D]|REGION.svg", required_unless_present = "along", conflicts_with = "along")]
+    pub domain: Option<String>,
+    /// Brush stroke: an SVG path (2D; its first subpath) or a JSON polyline `[[x,y(,z)],...]`
+    /// (2D or 3D). The exemplar's x axis follows the stroke's tangent.
+    #[arg(long, value_name = "PATH.svg|PATH.json")]
+    pub along: Option<PathBuf>,
+    /// Brush width (output units, > 0) for --along: the tube of this diameter around the stroke is
+    /// filled.
+    #[arg(long, value_name = "W", requires = "along")]
+    pub brush_width: Option<f64>,
+    /// Exemplar scale at the start and end of the stroke, varying linearly along it (each > 0).
+    #[arg(long, value_name = "A,B", requires = "along")]
+    pub scale_along: Option<String>,
+    /// Progressive synthesis: a previous result (PLY/CSV) to extend. Its points stay fixed except
+    /// within --keep-margin of the new domain.
+    #[arg(long, value_name = "PREVIOUS.ply")]
+    pub existing: Option<PathBuf>,
+    /// Existing points farther than this from the new domain stay fixed (output units, ≥ 0;
+    /// default 3δ).
+    #[arg(long, value_name = "M", requires = "existing")]
+    pub keep_margin: Option<f64>,
+    /// Initialization.
+    #[arg(long, value_enum, default_value = "random")]
+    pub init: InitArg,
+    /// Attributes to synthesize, comma-separated (default: every float column other than x, y, z,
+    /// element, plus integer columns).
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub attributes: Option<Vec<String>>,
+    /// Attributes with discrete values (snapped to the exemplar's values after each step),
+    /// comma-separated. Integer columns are always discrete.
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub discrete: Vec<String>,
+    /// Window shape.
+    #[arg(long, value_enum, default_value = "gaussian")]
+    pub window: WindowArg,
+    /// Gaussian width σ (exemplar units, > 0). Default: half the exemplar's mean nearest-neighbour
+    /// spacing.
+    #[arg(long, value_name = "SIGMA")]
+    pub sigma: Option<f64>,
+    /// Uniform rotation field in degrees (counter-clockwise in the xy-plane), added to a stroke's
+    /// tangent orientation.
+    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
+    pub rotation: f64,
+    /// Uniform scale field (> 0), multiplied with --scale-along.
+    #[arg(long, value_name = "S", default_value_t = 1.0)]
+    pub scale: f64,
+    /// Quadrature grid spacing in units of σ (0.25–4; 2 = the exemplar's point spacing).
+    #[arg(long, value_name = "H", default_value_t = 2.0)]
+    pub quadrature_spacing: f64,
+    /// Sampling-control rounds per window size (1–20).
+    #[arg(long, value_name = "N", default_value_t = 1)]
+    pub sampling_rounds: usize,
+    /// Gradient iterations of each position merging step (1–1000; §7.1 uses 30).
+    #[arg(long, value_name = "N", default_value_t = 30)]
+    pub merge_iterations: usize,
+    /// Window shrink factor per scale α (0.5–0.99; §7.1 uses 0.9).
+    #[arg(long, value_name = "ALPHA", default_value_t = 0.9)]
+    pub shrink: f64,
+    /// Turn sampling control (adding/removing points, Eq. 7) off.
+    #[arg(long)]
+    pub no_sampling_control: bool,
+    /// Use the plain reference implementation of the energy (slow; for comparisons).
+    #[arg(long)]
+    pub reference: bool,
+    /// Output points (PLY binary unless the name ends in .csv).
+    #[arg(long, value_name = "OUT.ply")]
+    pub out: PathBuf,
+    /// Write PLY as ascii instead of binary.
+    #[arg(long)]
+    pub ascii: bool,
+    /// Preview PNG: exemplar (left) and output (right); 2D as discs, 3D as an orthographic view.
+    #[arg(long, value_name = "OUT.png")]
+    pub preview: Option<PathBuf>,
+    /// Attribute that colours the preview (default: red/green/blue columns if present, else the
+    /// first attribute, else element ids).
+    #[arg(long, value_name = "NAME")]
+    pub colour_by: Option<String>,
+}
+
+/// Converts a point table into a point set: x, y [, z], `element`, attributes. Integer columns
+/// other than `element` are attributes that are always discrete (returned second).
+pub fn table_to_points(table: &PointTable, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
+    let (Some(x), Some(y)) = (table.column("x"), table.column("y")) else {
+        let names: Vec<&str> = table.columns.iter().map(|c| c.name.as_str()).collect();
+        bail!("the {what} has no x and y columns (it has: {}); points need x, y and optionally z", names.join(", "));
+    };
+    let z = table.column("z");
+    let element = table.column("element");
+    let dimension = if z.is_some() { 3 } else { 2 };
+    let attribute_columns: Vec<usize> =
+        (0..table.columns.len()).filter(|&c| Some(c) != z && c != x && c != y && Some(c) != element).collect();
+    let mut positions = Vec::with_capacity(table.rows * dimension);
+    let mut attributes = Vec::with_capacity(table.rows * attribute_columns.len());
+    let mut elements = Vec::new();
+    for row in 0..table.rows {
+        let values = table.row(row);
+        positions.push(values[x]);
+        positions.push(values[y]);
+        if let Some(z) = z {
+            positions.push(values[z]);
+        }
+        for &c in &attribute_columns {
+            attributes.push(values[c]);
+        }
+        if let Some(e) = element {
+            elements.push(values[e] as i64);
+        }
+    }
+    let discrete = attribute_columns
+        .iter()
+        .filter(|&&c| table.columns[c].kind == ColumnKind::Int)
+        .map(|&c| table.columns[c].name.clone())
+        .collect();
+    let set = PointSet {
+        dimension,
+        positions,
+        attribute_names: attribute_columns.iter().map(|&c| table.columns[c].name.clone()).collect(),
+        attributes,
+        elements: element.map(|_| elements),
+    };
+    Ok((set, discrete))
+}
+
+/// Converts a point set into a point table (attributes listed in `integer` are written as ints).
+pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
+    let mut columns = vec![
+        Column { name: "x".into(), kind: ColumnKind::Float },
+        Column { name: "y".into(), kind: ColumnKind::Float },
+    ];
+    if set.dimension == 3 {
+        columns.push(Column { name: "z".into(), kind: ColumnKind::Float });
+    }
+    for name in &set.attribute_names {
+        let kind = if integer.contains(name) { ColumnKind::Int } else { ColumnKind::Float };
+        columns.push(Column { name: name.clone(), kind });
+    }
+    if set.elements.is_some() {
+        columns.push(Column { name: "element".into(), kind: ColumnKind::Int });
+    }
+    let mut values = Vec::with_capacity(set.len() * columns.len());
+    for i in 0..set.len() {
+        values.extend_from_slice(set.position(i));
+        for (c, &value) in set.attributes_of(i).iter().enumerate() {
+            values.push(if integer.contains(&set.attribute_names[c]) { value.round() } else { value });
+        }
+        if let Some(elements) = &set.elements {
+            values.push(elements[i] as f64);
+        }
+    }
+    PointTable { columns, rows: set.len(), values }
+}
+
+fn parse_box(spec: &str) -> anyhow::Result<Domain> {
+    let sizes: Vec<f64> = spec
+        .split(',')
+        .map(|s| s.trim().parse::<f64>().with_context(|| format!("--domain box:{spec}: {s:?} is not a number")))
+        .collect::<anyhow::Result<_>>()?;
+    if sizes.len() != 2 && sizes.len() != 3 {
+        bail!("--domain box:{spec}: give 2 sizes (W,H) or 3 (W,H,D)");
+    }
+    Ok(Domain::Box { min: vec![0.0; sizes.len()], max: sizes })
+}
+
+fn read_polygon(path: &Path) -> anyhow::Result<Polygon> {
+    let document = motif_io::read_svg(path)?;
+    let first = &document.paths[0];
+    let polylines = Polyline::from_bez_path(&first.path, 0.05)
+        .with_context(|| format!("{}: cannot flatten the first path", path.display()))?;
+    let outline =
+        polylines.into_iter().next().with_context(|| format!("{}: the first path is empty", path.display()))?;
+    Polygon::new(outline.points().to_vec())
+        .with_context(|| format!("{}: the region is not a usable polygon", path.display()))
+}
+
+fn read_stroke_points(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
+    let is_json = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("json"));
+    if is_json {
+        let value: Value = motif_io::read_json(path)?;
+        let list = match &value {
+            Value::Array(_) => &value,
+            Value::Object(map) => map
+                .get("points")
+                .with_context(|| format!("{}: expected a list of points or {{\"points\": [...]}}", path.display()))?,
+            _ => bail!("{}: expected a list of points [[x, y(, z)], ...]", path.display()),
+        };
+        let points: Vec<Vec<f64>> = serde_json::from_value(list.clone())
+            .with_context(|| format!("{}: expected a list of points [[x, y(, z)], ...]", path.display()))?;
+        return Ok(points);
+    }
+    let document = motif_io::read_svg(path)?;
+    let polylines = Polyline::from_bez_path(&document.paths[0].path, 0.05)
+        .with_context(|| format!("{}: cannot flatten the first path", path.display()))?;
+    let line = polylines.into_iter().next().with_context(|| format!("{}: the first path is empty", path.display()))?;
+    Ok(line.points().iter().map(|p| vec![p.x, p.y]).collect())
+}
+
+/// Reads a point file into a point set.
+fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
+    let table = motif_io::read_points(path)?;
+    table_to_points(&table, what).with_context(|| format!("{}", path.display()))
+}
+
+/// Runs `motif points`.
+pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
+    let mut inputs: Vec<&Path> = vec![&args.exemplar];
+    if let Some(existing) = &args.existing {
+        inputs.push(existing);
+    }
+    context.check_output(&args.out, &inputs)?;
+    if let Some(preview) = &args.preview {
+        context.check_output(preview, &inputs)?;
+    }
+    let (exemplar, integer) = read_set(&args.exemplar, "exemplar")?;
+    let existing = match &args.existing {
+        Some(path) => Some(read_set(path, "existing points")?.0),
+        None => None,
+    };
+    let domain = if let Some(along) = &args.along {
+        let Some(width) = args.brush_width else { bail!("--along needs --brush-width W") };
+        let (scale_start, scale_end) = match &args.scale_along {
+            None => (1.0, 1.0),
+            Some(spec) => {
+                let values: Vec<f64> = spec
+                    .split(',')
+                    .map(|s| {
+                        s.trim().parse::<f64>().with_context(|| format!("--scale-along {spec}: {s:?} is not a number"))
+                    })
+                    .collect::<anyhow::Result<_>>()?;
+                match values[..] {
+                    [a, b] => (a, b),
+                    [a] => (a, a),
+                    _ => bail!("--scale-along {spec}: give A,B"),
+                }
+            }
+        };
+        Domain::Stroke(Stroke { points: read_stroke_points(along)?, width, scale_start, scale_end })
+    } else {
+        match args.domain.as_deref() {
+            Some(spec) if spec.starts_with("box:") => parse_box(&spec[4..])?,
+            Some(spec) => Domain::Polygon(read_polygon(Path::new(spec))?),
+            None => bail!("give --domain box:W,H[,D] | REGION.svg, or --along PATH with --brush-width"),
+        }
+    };
+    let mut discrete = args.discrete.clone();
+    for name in &integer {
+        let used = args.attributes.as_ref().is_none_or(|list| list.contains(name));
+        if used && !discrete.contains(name) {
+            discrete.push(name.clone());
+        }
+    }
+    let mut params = Params::default();
+    params.neighbourhood = Some(args.neighbourhood);
+    params.window = match args.window {
+        WindowArg::Gaussian => Window::Gaussian,
+        WindowArg::Box => Window::Box,
+    };
+    params.sigma = args.sigma;
+    params.domain = Some(domain);
+    params.rotation = if args.rotation != 0.0 { Field::Uniform(args.rotation) } else { Field::None };
+    params.scale = if args.scale != 1.0 { Field::Uniform(args.scale) } else { Field::None };
+    params.quadrature_spacing = args.quadrature_spacing;
+    params.sampling_rounds = args.sampling_rounds;
+    params.merge_iterations = args.merge_iterations;
+    params.shrink = args.shrink;
+    params.sampling_control = !args.no_sampling_control;
+    params.evaluator = if args.reference { Evaluator::Reference } else { Evaluator::Fast };
+    params.initialization = match args.init {
+        InitArg::Random => Initialization::Random,
+        InitArg::Patches => Initialization::Patches,
+    };
+    params.attributes = args.attributes.clone();
+    params.discrete_attributes = discrete;
+    params.keep_margin = args.keep_margin;
+    params.seed = context.seed;
+    let input = Input { exemplar, existing };
+    let output = motif_points::synthesize(&input, &params, context.progress())?;
+    let format = match PointFormat::from_path(&args.out) {
+        PointFormat::PlyBinary if args.ascii => PointFormat::PlyAscii,
+        format => format,
+    };
+    motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
+    if let Some(preview) = &args.preview {
+        let image = preview_image(&input.exemplar, &output.points, args.colour_by.as_deref())?;
+        motif_io::write_png(preview, &image)?;
+    }
+    record_figures(context, &output);
+    context.summary(&format!(
+        "motif points: {} points ({} added, {} removed), T = {:.4}, nearest-neighbour histogram distance {:.3}",
+        output.points.len(),
+        output.report.added,
+        output.report.removed,
+        output.report.final_energy,
+        output.report.fidelity.nearest_histogram_distance
+    ));
+    Ok(())
+}
+
+fn record_figures(context: &mut Context, output: &Output) {
+    let report = &output.report;
+    let stages: serde_json::Map<String, Value> =
+        report.stages_ms.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect();
+    context.figure("stages_ms", Value::Object(stages));
+    context.figure("energy_per_iteration", &report.energy);
+    context.figure("final_energy", report.final_energy);
+    context.figure("points_added", report.added);
+    context.figure("points_removed", report.removed);
+    context.figure("proposals_rejected", report.rejected);
+    context.figure("initial_points", report.initial_points);
+    context.figure("output_points", report.final_points);
+    context.figure("fixed_points", report.fixed_points);
+    context.figure("sigma", report.sigma);
+    context.figure("neighbourhood", report.neighbourhood);
+    context.figure("quadrature_points", report.quadrature_points);
+    context.figure(
+        "fidelity",
+        json!({
+            "nearest_neighbour_histogram_distance": report.fidelity.nearest_histogram_distance,
+            "radial_distribution_distance": report.fidelity.radial_distribution_distance,
+            "exemplar_mean_nearest_sigma": report.fidelity.exemplar.mean_nearest,
+            "output_mean_nearest_sigma": report.fidelity.output.mean_nearest,
+            "interior_points": report.fidelity.output.interior_points,
+        }),
+    );
+}
+
+/// A colour for `t` in [0, 1] (dark blue → teal → yellow).
+fn ramp(t: f64) -> [u8; 4] {
+    let t = t.clamp(0.0, 1.0);
+    let stops = [[40.0, 30.0, 110.0], [30.0, 150.0, 140.0], [250.0, 220.0, 40.0]];
+    let (a, b, f) = if t < 0.5 { (stops[0], stops[1], t * 2.0) } else { (stops[1], stops[2], t * 2.0 - 1.0) };
+    [(a[0] + (b[0] - a[0]) * f) as u8, (a[1] + (b[1] - a[1]) * f) as u8, (a[2] + (b[2] - a[2]) * f) as u8, 255]
+}
+
+/// Per-point colours, and the value range an attribute was mapped from (to colour the output
+/// like the exemplar).
+type Colours = (Vec<[u8; 4]>, Option<(f64, f64)>);
+
+/// Per-point colours of a set.
+fn colours(set: &PointSet, colour_by: Option<&str>, range: Option<(f64, f64)>) -> anyhow::Result<Colours> {
+    let names = &set.attribute_names;
+    let find = |name: &str| names.iter().position(|n| n == name);
+    if colour_by.is_none()
+        && let (Some(r), Some(g), Some(b)) = (find("red"), find("green"), find("blue"))
+    {
+        let max = (0..set.len()).flat_map(|i| [r, g, b].map(|c| set.attributes_of(i)[c])).fold(0.0, f64::max);
+        let scale = if max > 1.0 { 1.0 } else { 255.0 };
+        let list = (0..set.len())
+            .map(|i| {
+                let a = set.attributes_of(i);
+                [a[r], a[g], a[b]].map(|v| (v * scale).clamp(0.0, 255.0) as u8)
+            })
+            .map(|[r, g, b]| [r, g, b, 255])
+            .collect();
+        return Ok((list, None));
+    }
+    let column = match colour_by {
+        Some(name) => Some(find(name).with_context(|| format!("--colour-by {name}: no such attribute"))?),
+        None => (!names.is_empty()).then_some(0),
+    };
+    if let Some(c) = column {
+        let values: Vec<f64> = (0..set.len()).map(|i| set.attributes_of(i)[c]).collect();
+        let (low, high) = range.unwrap_or_else(|| {
+            (
+                values.iter().copied().fold(f64::INFINITY, f64::min),
+                values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            )
+        });
+        let span = (high - low).max(1e-12);
+        return Ok((values.iter().map(|v| ramp((v - low) / span)).collect(), Some((low, high))));
+    }
+    if let Some(elements) = &set.elements {
+        return Ok((
+            elements
+                .iter()
+                .map(|&e| {
+                    if e < 0 {
+                        [60, 60, 60, 255]
+                    } else {
+                        ramp(((e as u64).wrapping_mul(2654435761) % 1000) as f64 / 1000.0)
+                    }
+                })
+                .collect(),
+            None,
+        ));
+    }
+    Ok((vec![[40, 40, 60, 255]; set.len()], None))
+}
+
+/// Projects a set for drawing: 2D as is, 3D by an orthographic view (turned 35° about z and
+/// tilted 30°), returning screen points and depth shades.
+fn project(set: &PointSet) -> Vec<(f64, f64, f64)> {
+    (0..set.len())
+        .map(|i| {
+            let p = set.position(i);
+            if set.dimension == 2 {
+                (p[0], p[1], 1.0)
+            } else {
+                let (sa, ca) = 35f64.to_radians().sin_cos();
+                let (sb, cb) = 30f64.to_radians().sin_cos();
+                let x = ca * p[0] - sa * p[1];
+                let y1 = sa * p[0] + ca * p[1];
+                let depth = cb * y1 + sb * p[2];
+                let up = -sb * y1 + cb * p[2];
+                (x, -up, depth)
+            }
+        })
+        .collect()
+}
+
+fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f64, size: f64, title: &str) {
+    let projected = project(set);
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    let (mut d0, mut d1) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &(x, y, d) in &projected {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+        d0 = d0.min(d);
+        d1 = d1.max(d);
+    }
+    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    let margin = 16.0;
+    let scale = (size - 2.0 * margin) / extent;
+    let spacing = (extent * extent / set.len().max(1) as f64).sqrt();
+    let radius = (0.3 * spacing * scale).clamp(1.0, 8.0);
+    let mut order: Vec<usize> = (0..projected.len()).collect();
+    // Far points first (painter's order); 2D points all have the same depth.
+    order.sort_by(|&a, &b| projected[b].2.total_cmp(&projected[a].2).then(a.cmp(&b)));
+    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
+    for i in order {
+        let (x, y, d) = projected[i];
+        let shade = if set.dimension == 3 { 1.0 - 0.5 * (d - d0) / (d1 - d0).max(1e-12) } else { 1.0 };
+        let c = colours[i];
+        let fill = [(c[0] as f64 * shade) as u8, (c[1] as f64 * shade) as u8, (c[2] as f64 * shade) as u8, 255];
+        let centre = Point::new(left + margin + (x - x0) * scale, margin + (y - y0) * scale);
+        svg.circle(centre, radius, None, Some(fill));
+    }
+    svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
+}
+
+/// The preview image: exemplar and output side by side.
+pub fn preview_image(
+    exemplar: &PointSet,
+    output: &PointSet,
+    colour_by: Option<&str>,
+) -> anyhow::Result<motif_core::RgbaImage> {
+    let size = 420.0;
+    let mut svg = SvgWriter::new(2.0 * size + 10.0, size);
+    let (exemplar_colours, range) = colours(exemplar, colour_by, None)?;
+    let (output_colours, _) = colours(output, colour_by, range)?;
+    draw_panel(&mut svg, exemplar, &exemplar_colours, 0.0, size, &format!("exemplar ({} points)", exemplar.len()));
+    draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &format!("output ({} points)", output.len()));
+    Ok(motif_io::render_svg(&svg.finish(), 1.0, Path::new("preview"))?)
+}
+
+/// A jittered hexagonal arrangement with a `shade` attribute that follows rows: the "grid"
+/// exemplar of Fig. 7.
+pub fn hex_exemplar(columns: usize, rows: usize, jitter: f64, seed: u64) -> PointSet {
+    let mut stream = SeedStreams::new(seed).stream("hex exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for row in 0..rows {
+        for column in 0..columns {
+            let x = column as f64 + if row % 2 == 1 { 0.5 } else { 0.0 };
+            let y = row as f64 * 0.866;
+            positions.push(x + jitter * (stream.random::<f64>() - 0.5));
+            positions.push(y + jitter * (stream.random::<f64>() - 0.5));
+            attributes.push(if row % 3 == 0 { 1.0 } else { 0.0 });
+        }
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec!["shade".into()], attributes, elements: None }
+}
+
+/// Wavy "sand ripple" points: rows of points whose height follows a sine, with a height attribute.
+pub fn ripple_exemplar(count: usize, seed: u64) -> PointSet {
+    let side = (count as f64).sqrt().ceil() as usize;
+    let mut stream = SeedStreams::new(seed).stream("ripple exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for i in 0..count {
+        let (row, column) = (i / side, i % side);
+        let x = column as f64 + 0.15 * (stream.random::<f64>() - 0.5);
+        let y = row as f64 + 0.35 * (2.0 * std::f64::consts::PI * x / 6.0).sin() + 0.1 * (stream.random::<f64>() - 0.5);
+        positions.push(x);
+        positions.push(y);
+        attributes.push((2.0 * std::f64::consts::PI * (x + y) / 5.0).sin());
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec!["height".into()], attributes, elements: None }
+}
+
+/// A 3D lattice-like organic structure: points on jittered cubic cells with a `radius` attribute.
+pub fn lattice_exemplar(count: usize, seed: u64) -> PointSet {
+    let side = (count as f64).cbrt().ceil() as usize;
+    let mut stream = SeedStreams::new(seed).stream("lattice exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for i in 0..count {
+        let (x, y, z) = (i % side, (i / side) % side, i / (side * side));
+        let shift = if (x + y + z) % 2 == 0 { 0.15 } else { -0.15 };
+        positions.push(x as f64 + shift + 0.1 * (stream.random::<f64>() - 0.5));
+        positions.push(y as f64 + 0.1 * (stream.random::<f64>() - 0.5));
+        positions.push(z as f64 - shift + 0.1 * (stream.random::<f64>() - 0.5));
+        attributes.push(if z % 2 == 0 { 1.0 } else { 0.5 });
+    }
+    PointSet { dimension: 3, positions, attribute_names: vec!["radius".into()], attributes, elements: None }
+}
+
+/// Small rigid "leaves" (three points each) on a jittered grid, with a free-point background.
+pub fn leaf_exemplar(seed: u64) -> PointSet {
+    let mut stream = SeedStreams::new(seed).stream("leaf exemplar", 0);
+    let mut positions = Vec::new();
+    let mut elements = Vec::new();
+    let mut id = 0;
+    for row in 0..6 {
+        for column in 0..6 {
+            let cx = column as f64 * 3.0 + 0.3 * (stream.random::<f64>() - 0.5);
+            let cy = row as f64 * 3.0 + 0.3 * (stream.random::<f64>() - 0.5);
+            let angle = 0.5 * (stream.random::<f64>() - 0.5);
+            for t in [-0.6, 0.0, 0.6] {
+                positions.push(cx + t * angle.cos() - 0.25 * t * t * angle.sin());
+                positions.push(cy + t * angle.sin() + 0.25 * t * t * angle.cos());
+                elements.push(id);
+            }
+            id += 1;
+            // A free background point between leaves.
+            positions.push(cx + 1.5);
+            positions.push(cy + 1.5);
+            elements.push(-1);
+        }
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec![], attributes: vec![], elements: Some(elements) }
+}
+
+fn write_set(path: &Path, set: &PointSet) -> anyhow::Result<()> {
+    motif_io::write_points(path, &points_to_table(set, &[]), PointFormat::PlyAscii)?;
+    Ok(())
+}
+
+/// Built-in examples for `motif demo`.
+pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    write_set(&demo.path("points-hex.ply"), &hex_exemplar(16, 16, 0.12, 3))?;
+    demo.case(DemoCase {
+        title: "points: a jittered hexagonal grid in a box".into(),
+        description: "A 256-point hexagonal exemplar with a striped `shade` attribute is synthesized into a 14×10 box \
+                      from random points: matching by gradient descent from 5 random starts per quadrature point, \
+                      merging of positions then attributes, multi-scale window shrinking and sampling control."
+            .into(),
+        inputs: vec![("exemplar".into(), "points-hex.ply".into())],
+        outputs: vec![("preview".into(), "points-hex-box.png".into()), ("points".into(), "points-hex-box.ply".into())],
+        args: [
+            "points",
+            "--exemplar",
+            "points-hex.ply",
+            "--neighbourhood",
+            "1.2",
+            "--domain",
+            "box:14,10",
+            "--out",
+            "points-hex-box.ply",
+            "--preview",
+            "points-hex-box.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    motif_io::write_text(
+        &demo.path("points-stroke.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"40\" height=\"20\" viewBox=\"0 0 40 20\">\
+         <path d=\"M2 14 C 12 0, 26 22, 38 6\" fill=\"none\" stroke=\"black\"/></svg>\n",
+    )?;
+    demo.case(DemoCase {
+        title: "points: a brush stroke with growing scale".into(),
+        description: "The same exemplar brushed along a curve 3 units wide: the exemplar's rows follow the stroke's \
+                      tangent and its scale grows from 0.8 to 1.3 along the stroke."
+            .into(),
+        inputs: vec![("exemplar".into(), "points-hex.ply".into()), ("stroke".into(), "points-stroke.svg".into())],
+        outputs: vec![
+            ("preview".into(), "points-hex-stroke.png".into()),
+            ("points".into(), "points-hex-stroke.ply".into()),
+        ],
+        args: [
+            "points",
+            "--exemplar",
+            "points-hex.ply",
+            "--neighbourhood",
+            "1.2",
+            "--along",
+            "points-stroke.svg",
+            "--brush-width",
+            "3",
+            "--scale-along",
+            "0.8,1.3",
+            "--out",
+            "points-hex-stroke.ply",
+            "--preview",
+            "points-hex-stroke.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    write_set(&demo.path("points-leaves.ply"), &leaf_exemplar(5))?;
+    demo.case(DemoCase {
+        title: "points: rigid elements mixed with free points".into(),
+        description: "Three-point leaves (discrete elements, moved rigidly: translation and rotation) mixed with free \
+                      background points, synthesized into a box from patch initialization. Colours are element ids."
+            .into(),
+        inputs: vec![("exemplar".into(), "points-leaves.ply".into())],
+        outputs: vec![
+            ("preview".into(), "points-leaves-box.png".into()),
+            ("points".into(), "points-leaves-box.ply".into()),
+        ],
+        args: [
+            "points",
+            "--exemplar",
+            "points-leaves.ply",
+            "--neighbourhood",
+            "2.5",
+            "--domain",
+            "box:15,12",
+            "--init",
+            "patches",
+            "--out",
+            "points-leaves-box.ply",
+            "--preview",
+            "points-leaves-box.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    write_set(&demo.path("points-lattice.ply"), &lattice_exemplar(216, 7))?;
+    demo.case(DemoCase {
+        title: "points: a 3D lattice in a box".into(),
+        description: "A 216-point 3D exemplar (alternating shifted cells, with a radius attribute) synthesized into a \
+                      5×5×4 box; the preview is an orthographic view, darker points are farther."
+            .into(),
+        inputs: vec![("exemplar".into(), "points-lattice.ply".into())],
+        outputs: vec![
+            ("preview".into(), "points-lattice-box.png".into()),
+            ("points".into(), "points-lattice-box.ply".into()),
+        ],
+        args: [
+            "points",
+            "--exemplar",
+            "points-lattice.ply",
+            "--neighbourhood",
+            "1.0",
+            "--domain",
+            "box:5,5,4",
+            "--quadrature-spacing",
+            "1.5",
+            "--out",
+            "points-lattice-box.ply",
+            "--preview",
+            "points-lattice-box.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    Ok(())
+}
+
+/// One benchmark case: seconds, final T, fidelity.
+fn bench_case(
+    exemplar: &PointSet,
+    domain: Domain,
+    neighbourhood: f64,
+    quadrature: f64,
+    seed: u64,
+    with_reference: bool,
+) -> anyhow::Result<Value> {
+    let mut params = Params::default();
+    params.neighbourhood = Some(neighbourhood);
+    params.domain = Some(domain);
+    params.quadrature_spacing = quadrature;
+    params.seed = seed;
+    let input = Input { exemplar: exemplar.clone(), existing: None };
+    let start = std::time::Instant::now();
+    let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let comparison = motif_points::compare_evaluators(&input, &params)?;
+    // The whole synthesis again with the plain reference energy (small cases only): the fast path
+    // must give the same structure fidelity.
+    let reference = if with_reference {
+        params.evaluator = Evaluator::Reference;
+        let start = std::time::Instant::now();
+        let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+        json!({
+            "seconds": start.elapsed().as_secs_f64(),
+            "final_energy": output.report.final_energy,
+            "output_points": output.points.len(),
+            "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
+            "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
+        })
+    } else {
+        Value::Null
+    };
+    Ok(json!({
+        "reference_synthesis": reference,
+        "exemplar_points": exemplar.len(),
+        "output_points": output.points.len(),
+        "neighbourhood": neighbourhood,
+        "quadrature_spacing_sigma": quadrature,
+        "quadrature_points": output.report.quadrature_points,
+        "seconds": seconds,
+        "final_energy": output.report.final_energy,
+        "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
+        "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
+        "stages_ms": output.report.stages_ms.iter().map(|(n, ms)| (n.clone(), Value::from(*ms))).collect::<serde_json::Map<_, _>>(),
+        "energy_evaluation": {
+            "fast_ms": comparison.fast_ms,
+            "reference_ms": comparison.reference_ms,
+            "speedup": comparison.reference_ms / comparison.fast_ms.max(1e-9),
+            "relative_difference": (comparison.fast_energy - comparison.reference_energy).abs() / comparison.reference_energy.abs().max(1e-300),
+        },
+    }))
+}
+
+/// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    if bench.quick {
+        let exemplar = hex_exemplar(8, 8, 0.1, bench.seed);
+        let box2 = Domain::Box { min: vec![0.0; 2], max: vec![4.0, 4.0] };
+        return Ok(json!({ "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)? }));
+    }
+    // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box).
+    // MOTIF_BENCH_POINTS_CASE=helix|sand|chair times one case alone (default: all three).
+    let only = std::env::var("MOTIF_BENCH_POINTS_CASE").ok();
+    let selected = |name: &str| only.as_deref().is_none_or(|o| o.split(',').any(|c| c.trim() == name));
+    let mut figures = serde_json::Map::new();
+    if selected("helix") {
+        let helix = hex_exemplar(30, 20, 0.1, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 2], max: vec![11.5, 7.5] };
+        figures.insert("helix_600_to_100".into(), bench_case(&helix, domain, 1.0, 2.0, bench.seed, true)?);
+    }
+    if selected("sand") {
+        let sand = ripple_exemplar(1600, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 2], max: vec![90.0, 80.0] };
+        figures.insert("sand_1600_to_7200".into(), bench_case(&sand, domain, 1.0, 2.0, bench.seed, false)?);
+    }
+    if selected("chair") {
+        let chair = lattice_exemplar(1100, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 3], max: vec![31.0, 31.0, 26.8] };
+        figures.insert("chair_1100_to_23000".into(), bench_case(&chair, domain, 0.75, 2.0, bench.seed, false)?);
+    }
+    figures.insert("paper_seconds".into(), json!({ "helix": 4.0, "sand": 120.0, "chair": 360.0 }));
+    figures.insert("target_seconds".into(), json!({ "helix": 0.3, "sand": 10.0, "chair": 60.0 }));
+    Ok(Value::Object(figures))
+}

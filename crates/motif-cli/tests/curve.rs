@@ -1,0 +1,331 @@
+//! `motif curve` end to end: files in, files out, report figures, and clear errors.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use motif_core::RgbaImage;
+
+fn motif() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_motif"))
+}
+
+/// A small chain strip: rings every 10 pixels with anti-aliased alpha, transparent above and below.
+fn chain(width: usize, height: usize) -> RgbaImage {
+    RgbaImage::from_fn(width, height, |x, y| {
+        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+        let cx = ((px / 10.0).floor() + 0.5) * 10.0;
+        let ring = ((px - cx).hypot((py - height as f64 / 2.0) * 1.2) - 3.2).abs();
+        let alpha = ((1.6 - ring).clamp(0.0, 1.0) * 255.0).round() as u8;
+        if alpha == 0 { [0; 4] } else { [220, 170, 50, alpha] }
+    })
+}
+
+struct Files {
+    _dir: tempfile::TempDir,
+    root: PathBuf,
+}
+
+impl Files {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().unwrap();
+        let root = dir.path().to_path_buf();
+        motif_io::write_png(&root.join("chain.png"), &chain(60, 18)).unwrap();
+        std::fs::write(
+            root.join("loop.svg"),
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"160\" height=\"120\">\
+             <path d=\"M 20 60 C 20 10 140 10 140 60 C 140 110 20 110 20 60 Z\"/></svg>",
+        )
+        .unwrap();
+        std::fs::write(
+            root.join("line.svg"),
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"200\" height=\"60\"><path d=\"M 10 30 L 190 30\"/></svg>",
+        )
+        .unwrap();
+        Self { _dir: dir, root }
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.root.join(name)
+    }
+}
+
+fn run(args: &[&str], files: &Files) -> Output {
+    let resolved: Vec<String> = args
+        .iter()
+        .map(|arg| {
+            let candidate = files.path(arg);
+            if arg.contains('.') && !arg.starts_with('-') && arg.parse::<f64>().is_err() {
+                candidate.to_string_lossy().into_owned()
+            } else {
+                (*arg).to_string()
+            }
+        })
+        .collect();
+    motif().arg("--quiet").args(resolved).output().unwrap()
+}
+
+fn report(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+#[test]
+fn closed_exact_run_writes_pattern_pieces_overlay_and_report() {
+    let files = Files::new();
+    let output = run(
+        &[
+            "--report",
+            "report.json",
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "loop.svg",
+            "--width",
+            "20",
+            "--piece-length",
+            "12",
+            "--closed",
+            "exact",
+            "--stitch",
+            "--out",
+            "out.png",
+            "--pieces",
+            "pieces.json",
+            "--debug-overlay",
+            "debug.png",
+        ],
+        &files,
+    );
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let image = motif_io::read_image(&files.path("out.png")).unwrap();
+    assert!(image.count_alpha_at_least(128) > 200, "the chain is drawn");
+    assert!(image.count_alpha_at_least(1) < image.width() * image.height(), "the background stays transparent");
+    let overlay = motif_io::read_image(&files.path("debug.png")).unwrap();
+    assert_eq!((overlay.width(), overlay.height()), (image.width(), image.height()));
+    assert_ne!(overlay, image);
+
+    let figures = report(&files.path("report.json"));
+    assert_eq!(figures["status"], "ok");
+    for key in ["pieces", "total_cost", "mean_seam_cost", "valid_fraction", "stages_ms", "closed_certified"] {
+        assert!(!figures[key].is_null(), "report lacks {key}: {figures}");
+    }
+    assert!(figures["dp_row_ms"]["median"].as_f64().unwrap() >= 0.0);
+    assert!(figures["dp_row_ms"]["max"].as_f64().unwrap() >= figures["dp_row_ms"]["median"].as_f64().unwrap());
+    assert_eq!(figures["closed"], true);
+    let valid = figures["valid_fraction"].as_f64().unwrap();
+    assert!(valid > 0.0 && valid < 1.0);
+
+    let pieces = report(&files.path("pieces.json"));
+    let list = pieces["pieces"].as_array().unwrap();
+    assert_eq!(list.len() as u64, figures["pieces"].as_u64().unwrap());
+    let samples = pieces["samples_per_edge"].as_u64().unwrap() as usize;
+    for piece in list {
+        assert_eq!(piece["quad"].as_array().unwrap().len(), 4);
+        assert!(piece["rotation"].is_number());
+        assert_eq!(piece["stitch"].as_array().unwrap().len(), samples);
+        assert!(piece["position"].is_array() || piece["position"].is_null());
+    }
+    let seams: f64 = list.iter().map(|p| p["seam_cost"].as_f64().unwrap()).sum();
+    assert!((seams - figures["total_cost"].as_f64().unwrap()).abs() < 1e-6);
+}
+
+#[test]
+fn both_solvers_agree_and_repeat_baseline_runs() {
+    let files = Files::new();
+    let mut totals = Vec::new();
+    for solver in ["exact", "reference"] {
+        let name = format!("{solver}.json");
+        let output = run(
+            &[
+                "--report",
+                &name,
+                "curve",
+                "--exemplar",
+                "chain.png",
+                "--path",
+                "loop.svg",
+                "--width",
+                "20",
+                "--piece-length",
+                "14",
+                "--solver",
+                solver,
+                "--out",
+                "out.png",
+            ],
+            &files,
+        );
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        totals.push(report(&files.path(&name))["total_cost"].as_f64().unwrap());
+    }
+    assert_eq!(totals[0], totals[1]);
+    let output = run(
+        &[
+            "--report",
+            "repeat.json",
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "loop.svg",
+            "--width",
+            "20",
+            "--piece-length",
+            "14",
+            "--method",
+            "repeat",
+            "--out",
+            "repeat.png",
+        ],
+        &files,
+    );
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let figures = report(&files.path("repeat.json"));
+    assert!(figures["distortion_max"].as_f64().unwrap() > 0.1);
+    assert!(figures["wrap_seams"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn the_avoidance_map_is_respected() {
+    let files = Files::new();
+    let mask = RgbaImage::from_fn(200, 60, |x, y| {
+        if (90..130).contains(&x) && y >= 30 { [255, 255, 255, 255] } else { [0, 0, 0, 255] }
+    });
+    motif_io::write_png(&files.path("mask.png"), &mask).unwrap();
+    let output = run(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "line.svg",
+            "--width",
+            "30",
+            "--piece-length",
+            "12",
+            "--avoid",
+            "mask.png",
+            "--out",
+            "out.png",
+        ],
+        &files,
+    );
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let image = motif_io::read_image(&files.path("out.png")).unwrap();
+    assert_eq!((image.width(), image.height()), (200, 60));
+    for y in 30..60 {
+        for x in 90..130 {
+            assert_eq!(image.get(x, y)[3], 0, "pattern at forbidden ({x}, {y})");
+        }
+    }
+    assert!(image.count_alpha_at_least(128) > 100);
+}
+
+fn failure(args: &[&str], files: &Files) -> String {
+    let output = run(args, files);
+    assert_eq!(output.status.code(), Some(1), "{args:?}: {}", String::from_utf8_lossy(&output.stderr));
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(stderr.starts_with("error: ") && !stderr.contains("panicked"), "{stderr}");
+    stderr
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    let files = Files::new();
+    let base = ["curve", "--exemplar", "chain.png", "--path", "line.svg", "--out", "out.png"];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        let mut args: Vec<&'static str> = base.to_vec();
+        args.extend_from_slice(extra);
+        args
+    };
+    let e = failure(&with(&["--width", "0", "--piece-length", "10"]), &files);
+    assert!(e.contains("invalid width"), "{e}");
+    let e = failure(&with(&["--width", "-4", "--piece-length", "10"]), &files);
+    assert!(e.contains("invalid width"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "500"]), &files);
+    assert!(e.contains("piece-length") && e.contains("curve's length"), "{e}");
+    let e = failure(&with(&["--width", "NaN", "--piece-length", "10"]), &files);
+    assert!(e.contains("invalid width"), "{e}");
+
+    motif_io::write_png(&files.path("clear.png"), &RgbaImage::new(20, 10)).unwrap();
+    motif_io::write_png(&files.path("solid.png"), &RgbaImage::filled(20, 10, [9, 9, 9, 255])).unwrap();
+    for (file, words) in [("clear.png", "fully transparent"), ("solid.png", "fully opaque")] {
+        let e = failure(
+            &[
+                "curve",
+                "--exemplar",
+                file,
+                "--path",
+                "line.svg",
+                "--width",
+                "20",
+                "--piece-length",
+                "10",
+                "--out",
+                "o.png",
+            ],
+            &files,
+        );
+        assert!(e.contains(words), "{e}");
+    }
+
+    std::fs::write(
+        files.path("dot.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><path d=\"M 5 5 L 5 5\" stroke=\"black\"/></svg>",
+    )
+    .unwrap();
+    let e = failure(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "dot.svg",
+            "--width",
+            "20",
+            "--piece-length",
+            "10",
+            "--out",
+            "o.png",
+        ],
+        &files,
+    );
+    assert!(e.contains("zero length") || e.contains("no path"), "{e}");
+
+    std::fs::write(files.path("nan.csv"), "x,y\n0,0\nNaN,4\n50,0\n").unwrap();
+    let e = failure(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "nan.csv",
+            "--width",
+            "20",
+            "--piece-length",
+            "10",
+            "--out",
+            "o.png",
+        ],
+        &files,
+    );
+    assert!(e.contains("finite"), "{e}");
+
+    let e = failure(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "line.svg",
+            "--width",
+            "20",
+            "--piece-length",
+            "10",
+            "--out",
+            "chain.png",
+        ],
+        &files,
+    );
+    assert!(e.contains("also an input"), "{e}");
+}

@@ -1,0 +1,271 @@
+//! `motif points` end to end: files in, files out, reports, determinism, guidance and bad input.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn motif(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_motif")).current_dir(dir).args(args).output().unwrap()
+}
+
+fn ok(output: &Output) {
+    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
+}
+
+fn error_of(output: &Output) -> String {
+    assert!(!output.status.success(), "expected a failure");
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
+/// A jittered 12 × 12 grid (spacing 1) with a `shade` attribute striped along y, as CSV.
+fn grid_csv() -> String {
+    let mut text = String::from("x,y,shade\n");
+    for y in 0..12 {
+        for x in 0..12 {
+            let jitter = ((x * 7 + y * 13) % 10) as f64 * 0.01;
+            let _ = writeln!(text, "{},{},{}", x as f64 + jitter, y as f64 - jitter, y % 2);
+        }
+    }
+    text
+}
+
+/// A 5 × 5 × 5 lattice with elements of two points each along x (ascii PLY).
+fn lattice_ply() -> String {
+    let mut rows = Vec::new();
+    let mut id = 0;
+    for z in 0..5 {
+        for y in 0..5 {
+            for x in 0..5 {
+                let (cx, cy, cz) = (x as f64 * 1.5, y as f64 * 1.5, z as f64 * 1.5);
+                rows.push(format!("{} {cy} {cz} {id}", cx - 0.3));
+                rows.push(format!("{} {cy} {cz} {id}", cx + 0.3));
+                id += 1;
+            }
+        }
+    }
+    format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\nproperty int element\nend_header\n{}\n",
+        rows.len(),
+        rows.join("\n")
+    )
+}
+
+#[test]
+fn a_2d_box_synthesis_writes_points_preview_and_report() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let output = motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "grid.csv",
+            "--neighbourhood",
+            "1.2",
+            "--domain",
+            "box:6,5",
+            "--out",
+            "out.ply",
+            "--preview",
+            "preview.png",
+            "--report",
+            "report.json",
+            "--discrete",
+            "shade",
+        ],
+    );
+    ok(&output);
+    let table = motif_io::read_points(&dir.path().join("out.ply")).unwrap();
+    assert!(table.rows > 20 && table.rows < 60, "{} points", table.rows);
+    let (x, y, shade) = (table.column("x").unwrap(), table.column("y").unwrap(), table.column("shade").unwrap());
+    for row in 0..table.rows {
+        let values = table.row(row);
+        assert!(values[x] >= 0.0 && values[x] <= 6.0 && values[y] >= 0.0 && values[y] <= 5.0);
+        assert!(values[shade] == 0.0 || values[shade] == 1.0, "discrete shade {}", values[shade]);
+    }
+    let preview = motif_io::read_image(&dir.path().join("preview.png")).unwrap();
+    assert!(preview.width() > 800 && preview.height() > 300);
+    let report: serde_json::Value = motif_io::read_json(&dir.path().join("report.json")).unwrap();
+    let energies = report["energy_per_iteration"].as_array().unwrap();
+    assert!(energies.len() >= 4);
+    assert!(energies.iter().all(|e| e["after_merging"].as_f64().unwrap() <= e["after_matching"].as_f64().unwrap()));
+    for key in ["points_added", "points_removed", "stages_ms", "final_energy"] {
+        assert!(!report[key].is_null(), "report lacks {key}");
+    }
+    assert!(report["stages_ms"]["matching"].as_f64().unwrap() > 0.0);
+    let fidelity = report["fidelity"]["nearest_neighbour_histogram_distance"].as_f64().unwrap();
+    assert!((0.0..=1.0).contains(&fidelity));
+}
+
+#[test]
+fn the_same_seed_gives_the_same_bytes_for_any_thread_count() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let run = |threads: &str, out: &str| {
+        ok(&motif(
+            dir.path(),
+            &[
+                "points",
+                "--exemplar",
+                "grid.csv",
+                "--neighbourhood",
+                "1",
+                "--domain",
+                "box:5,4",
+                "--threads",
+                threads,
+                "--seed",
+                "4",
+                "--out",
+                out,
+            ],
+        ));
+        std::fs::read(dir.path().join(out)).unwrap()
+    };
+    let one = run("1", "one.ply");
+    let two = run("2", "two.ply");
+    assert_eq!(one, two);
+}
+
+#[test]
+fn elements_in_3d_come_out_rigid_with_their_ids() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("lattice.ply"), lattice_ply()).unwrap();
+    ok(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "lattice.ply",
+            "--neighbourhood",
+            "1.5",
+            "--domain",
+            "box:4,4,3",
+            "--merge-iterations",
+            "10",
+            "--shrink",
+            "0.7",
+            "--out",
+            "out.csv",
+            "--preview",
+            "view.png",
+        ],
+    ));
+    let table = motif_io::read_points(&dir.path().join("out.csv")).unwrap();
+    let (x, y, z, element) = (
+        table.column("x").unwrap(),
+        table.column("y").unwrap(),
+        table.column("z").unwrap(),
+        table.column("element").unwrap(),
+    );
+    let mut members: std::collections::BTreeMap<i64, Vec<[f64; 3]>> = std::collections::BTreeMap::new();
+    for row in 0..table.rows {
+        let v = table.row(row);
+        members.entry(v[element] as i64).or_default().push([v[x], v[y], v[z]]);
+    }
+    assert!(members.len() >= 5, "{} elements", members.len());
+    for points in members.values() {
+        assert_eq!(points.len(), 2);
+        let d = ((points[0][0] - points[1][0]).powi(2)
+            + (points[0][1] - points[1][1]).powi(2)
+            + (points[0][2] - points[1][2]).powi(2))
+        .sqrt();
+        // CSV keeps full precision; PLY floats would round to single precision.
+        assert!((d - 0.6).abs() < 1e-6, "element length {d}");
+    }
+}
+
+#[test]
+fn brush_strokes_and_progressive_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    std::fs::write(
+        dir.path().join("stroke.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"20\" height=\"10\"><path d=\"M1 5 L 12 5\" stroke=\"black\"/></svg>",
+    )
+    .unwrap();
+    ok(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "grid.csv",
+            "--neighbourhood",
+            "1",
+            "--along",
+            "stroke.svg",
+            "--brush-width",
+            "3",
+            "--scale-along",
+            "1,1.5",
+            "--out",
+            "first.csv",
+        ],
+    ));
+    let first = motif_io::read_points(&dir.path().join("first.csv")).unwrap();
+    assert!(first.rows > 15);
+    std::fs::write(dir.path().join("second.json"), "[[12, 5], [12, 12]]").unwrap();
+    ok(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "grid.csv",
+            "--neighbourhood",
+            "1",
+            "--along",
+            "second.json",
+            "--brush-width",
+            "3",
+            "--existing",
+            "first.csv",
+            "--keep-margin",
+            "1.5",
+            "--out",
+            "second.csv",
+            "--report",
+            "second.json.report",
+        ],
+    ));
+    let second = motif_io::read_points(&dir.path().join("second.csv")).unwrap();
+    assert!(second.rows > first.rows + 10, "{} then {}", first.rows, second.rows);
+    // Points of the first stroke far from the second one are kept exactly.
+    let (x, y) = (first.column("x").unwrap(), first.column("y").unwrap());
+    let kept: Vec<(f64, f64)> = (0..second.rows).map(|r| (second.row(r)[x], second.row(r)[y])).collect();
+    let far: Vec<(f64, f64)> =
+        (0..first.rows).map(|r| (first.row(r)[x], first.row(r)[y])).filter(|p| p.0 < 12.0 - 1.5 - 1.5 - 1.0).collect();
+    assert!(!far.is_empty());
+    for p in far {
+        assert!(kept.contains(&p), "{p:?} moved");
+    }
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    write("two.csv", "x,y\n0,0\n1,1\n");
+    write("nan.csv", "x,y\n0,0\n1,nan\n2,2\n3,3\n");
+    write("noxy.csv", "a,b\n0,0\n1,1\n2,2\n");
+    write("grid.csv", &grid_csv());
+    let run = |exemplar: &str, delta: &str, domain: &str| {
+        error_of(&motif(
+            dir.path(),
+            &["points", "--exemplar", exemplar, "--neighbourhood", delta, "--domain", domain, "--out", "out.ply"],
+        ))
+    };
+    assert!(run("two.csv", "1", "box:5,5").contains("at least 3"));
+    assert!(run("nan.csv", "1", "box:5,5").contains("non-finite coordinate"));
+    assert!(run("noxy.csv", "1", "box:5,5").contains("no x and y columns"));
+    assert!(run("grid.csv", "0", "box:5,5").contains("invalid neighbourhood"));
+    assert!(run("grid.csv", "-1", "box:5,5").contains("invalid neighbourhood"));
+    assert!(run("grid.csv", "1", "box:0,5").contains("empty domain"));
+    assert!(run("grid.csv", "1", "box:0.1,0.1").contains("empty domain"));
+    assert!(run("grid.csv", "1", "box:a,5").contains("not a number"));
+    assert!(run("missing.csv", "1", "box:5,5").contains("missing.csv"));
+    let error = error_of(&motif(
+        dir.path(),
+        &["points", "--exemplar", "grid.csv", "--neighbourhood", "1", "--domain", "box:5,5", "--out", "grid.csv"],
+    ));
+    assert!(error.contains("also an input"), "{error}");
+}

@@ -1,0 +1,808 @@
+//! The dynamic program over valid positions (§1.4, §2), with two solvers and a brute-force check.
+//!
+//! `P[i, u] = min_v P[i−1, v] + D(v + R_{i−1}, u + L_i)` over valid `u` of row `i` and valid `v`
+//! of row `i−1`; `P[0, u] = 0` (the first piece is unconstrained unless pinned). Both solvers
+//! work on compacted valid positions (the paper's `compactValidPositions`).
+//!
+//! - [`Solver::Reference`]: the plain `O(V²C)` loop of Eq. 1, every pair compared in full.
+//! - [`Solver::Exact`]: the same optimum, found faster, without ever skipping a predecessor that
+//!   could win. Identical edges are merged first (periodic exemplars and empty regions repeat
+//!   columns exactly: the generated 199×82 chain has 5 000 positions but about 1 100 distinct right
+//!   edges and 550 distinct left edges); only the cheapest of identical predecessors can win, and
+//!   identical successors share their answer. The distinct predecessors go into a k-d tree over
+//!   their alpha block sums whose nodes know their lowest `P`; since `D ≥ 8γ·|Δalpha|/255` per
+//!   sample and block sums only shrink the alpha L1 distance, a node's box distance to `u` bounds
+//!   `D` for all its predecessors. For each `u`, a few likely predecessors are tried first (the one
+//!   continuing the exemplar, the best one of the neighbouring positions, the cheapest overall) so
+//!   that the best total is tight early; then the tree is searched branch-and-bound, nearer child
+//!   first, dropping nodes whose lowest `P` plus bound cannot win. Each remaining pair passes
+//!   through the block-sum profile bounds and the solid-vs-clear mask bound (see `cost`) before its
+//!   pixels are read, and the column comparison runs in chunks of 16 samples and exits as soon as
+//!   the partial sum is too large. Ties are broken by the smaller predecessor index in both
+//!   solvers, so they return the same path.
+//!
+//! Each `u` is independent, so rows are computed in parallel with rayon; every figure is an
+//! integer sum, so results do not depend on the thread count.
+
+use motif_core::timing::{Clock, elapsed_ms};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::cost::{
+    CostModel, EdgeSet, edge_distance, edge_distance_bounded, left_edges, mask_bound, profile_alpha_bound,
+    profile_bound, right_edges,
+};
+use crate::exemplar::Exemplar;
+use crate::piece::{PieceFrame, Position};
+
+/// Which dynamic-programming solver to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Solver {
+    /// Merged identical edges, branch-and-bound over a profile tree, lower bounds and early
+    /// exit; exact optimum.
+    Exact,
+    /// The plain `O(V²C)` dynamic program.
+    Reference,
+}
+
+/// One row of the DP table: a piece and its candidate positions.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RowSpec<'a> {
+    pub frame: &'a PieceFrame,
+    pub positions: &'a [Position],
+}
+
+/// Work counters of the DP.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct DpCounters {
+    /// Predecessor/position pairs of all rows (`Σ V_{i−1} V_i`).
+    pub pairs: u64,
+    /// Pairs of distinct edges reached by the tree search (their lower bounds were evaluated).
+    pub visited: u64,
+    /// Pairs whose pixels were compared (fully or until early exit).
+    pub compared: u64,
+    /// Pairs whose comparison ran to the end.
+    pub completed: u64,
+}
+
+impl DpCounters {
+    /// The sum of two sets of counters.
+    pub fn plus(self, other: Self) -> Self {
+        Self {
+            pairs: self.pairs + other.pairs,
+            visited: self.visited + other.visited,
+            compared: self.compared + other.compared,
+            completed: self.completed + other.completed,
+        }
+    }
+
+    /// Fraction of pairs never compared pixel by pixel.
+    pub fn skipped_fraction(&self) -> f64 {
+        if self.pairs == 0 { 0.0 } else { 1.0 - self.compared as f64 / self.pairs as f64 }
+    }
+}
+
+/// The filled DP table: last row costs and the argmin predecessors of every row.
+#[derive(Debug, Clone)]
+pub(crate) struct DpTable {
+    /// `P` of the last row.
+    pub last_costs: Vec<u64>,
+    /// For rows `1..`, the index of the best predecessor of each position.
+    pub predecessors: Vec<Vec<u32>>,
+    /// Milliseconds per row (edge extraction, cost comparison and table update), rows `1..`.
+    pub row_ms: Vec<f64>,
+    /// Work counters.
+    pub counters: DpCounters,
+}
+
+impl DpTable {
+    /// Position indices of every row on the optimal path ending at `last` in the last row.
+    pub fn backtrack(&self, last: usize) -> Vec<usize> {
+        let mut path = vec![last];
+        let mut index = last;
+        for row in self.predecessors.iter().rev() {
+            index = row[index] as usize;
+            path.push(index);
+        }
+        path.reverse();
+        path
+    }
+
+    /// Index of the first position in row 0 reached from `last` (the start of its path).
+    pub fn start_of(&self, last: usize) -> usize {
+        self.predecessors.iter().rev().fold(last, |index, row| row[index] as usize)
+    }
+}
+
+/// Runs the DP over `rows` (row 0 costs 0 everywhere). `on_row` is called after each row.
+pub(crate) fn solve(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    rows: &[RowSpec<'_>],
+    solver: Solver,
+    on_row: &mut dyn FnMut(usize),
+) -> DpTable {
+    let mut costs = vec![0_u64; rows[0].positions.len()];
+    let mut predecessors = Vec::with_capacity(rows.len().saturating_sub(1));
+    let mut row_ms = Vec::with_capacity(rows.len().saturating_sub(1));
+    let mut counters = DpCounters::default();
+    for r in 1..rows.len() {
+        let start = Clock::now();
+        let (next, row_predecessors, row_counters) = step(exemplar, model, &rows[r - 1], &costs, &rows[r], solver);
+        row_ms.push(elapsed_ms(start));
+        counters = counters.plus(row_counters);
+        costs = next;
+        predecessors.push(row_predecessors);
+        on_row(r);
+    }
+    DpTable { last_costs: costs, predecessors, row_ms, counters }
+}
+
+/// One row update of Eq. 1: the best `P` of every position of `current` given the costs
+/// `previous` of the positions of `before`, with the index of the best predecessor.
+pub(crate) fn step(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    before: &RowSpec<'_>,
+    previous: &[u64],
+    current: &RowSpec<'_>,
+    solver: Solver,
+) -> RowResult {
+    let rights = right_edges(exemplar, model, before.frame, before.positions);
+    let lefts = left_edges(exemplar, model, current.positions, current.frame.samples);
+    match solver {
+        Solver::Reference => reference_row(model, previous, &rights, &lefts),
+        Solver::Exact => {
+            let top_right = before.frame.top_right;
+            let shift = [top_right.x.round() as i32, top_right.y.round() as i32];
+            distinct_row(model, previous, &rights, &lefts, |predecessors, successors| {
+                Seeds::new(before.positions, current.positions, shift, predecessors, successors)
+            })
+        }
+    }
+}
+
+/// The backward table: `Q[r][u]`, the cheapest cost from position `u` of row `r` to the end of
+/// the rows (any last position). `D` is symmetric in its two edges (ξ is), so a backward row is
+/// the forward update with the roles of the edges swapped: the next row's left edges play the
+/// predecessors and this row's right edges the positions.
+pub(crate) fn solve_backward(exemplar: &Exemplar, model: &CostModel, rows: &[RowSpec<'_>]) -> Vec<Vec<u64>> {
+    let mut tables = vec![Vec::new(); rows.len()];
+    tables[rows.len() - 1] = vec![0_u64; rows[rows.len() - 1].positions.len()];
+    for r in (0..rows.len() - 1).rev() {
+        let next_lefts = left_edges(exemplar, model, rows[r + 1].positions, rows[r + 1].frame.samples);
+        let rights = right_edges(exemplar, model, rows[r].frame, rows[r].positions);
+        let (costs, _, _) =
+            distinct_row(model, &tables[r + 1], &next_lefts, &rights, |_, successors| Seeds::none(successors.len()));
+        tables[r] = costs;
+    }
+    tables
+}
+
+/// Costs, best predecessors and work counters of one row.
+pub(crate) type RowResult = (Vec<u64>, Vec<u32>, DpCounters);
+
+/// Eq. 1 as written: every predecessor, every sample.
+fn reference_row(model: &CostModel, previous: &[u64], rights: &EdgeSet, lefts: &EdgeSet) -> RowResult {
+    let results: Vec<(u64, u32)> = (0..lefts.len())
+        .into_par_iter()
+        .map(|u| {
+            let mut best = (u64::MAX, u32::MAX);
+            for (v, &cost) in previous.iter().enumerate() {
+                let total = cost + u64::from(edge_distance(model, rights, v, lefts, u));
+                if total < best.0 {
+                    best = (total, v as u32);
+                }
+            }
+            best
+        })
+        .collect();
+    let pairs = (previous.len() * lefts.len()) as u64;
+    let counters = DpCounters { pairs, visited: pairs, compared: pairs, completed: pairs };
+    let (costs, predecessors) = results.into_iter().unzip();
+    (costs, predecessors, counters)
+}
+
+/// Good first guesses of the best predecessor of each position, so that the cost-ordered scan
+/// starts with a tight bound: the predecessor that continues the exemplar (`v = u − t`, with `t`
+/// the rounded top-right corner of the previous piece), and the best predecessor of the position
+/// just above `u` moved down by one pixel. Guesses only change how fast the optimum is found, never
+/// which one: every predecessor is still considered.
+pub(crate) struct Seeds {
+    previous: Vec<Position>,
+    origin: [i32; 2],
+    size: [i32; 2],
+    index: Vec<u32>,
+    continuation: Vec<u32>,
+    above: Vec<u32>,
+}
+
+impl Seeds {
+    /// Guesses for the distinct edges: predecessor and position indices are those of
+    /// `predecessors` and `successors` (every original position maps to its group).
+    fn new(
+        previous: &[Position],
+        current: &[Position],
+        shift: [i32; 2],
+        predecessors: &DistinctEdges,
+        successors: &DistinctEdges,
+    ) -> Self {
+        let (mut lo, mut hi) = ([i32::MAX; 2], [i32::MIN; 2]);
+        for p in previous.iter().chain(current) {
+            for axis in 0..2 {
+                lo[axis] = lo[axis].min(p[axis]);
+                hi[axis] = hi[axis].max(p[axis]);
+            }
+        }
+        let size = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1];
+        let mut seeds = Self {
+            previous: predecessors.representatives.iter().map(|&v| previous[v as usize]).collect(),
+            origin: lo,
+            size,
+            index: Vec::new(),
+            continuation: Vec::new(),
+            above: Vec::new(),
+        };
+        let cells = size[0] as usize * size[1] as usize;
+        if cells > 1 << 24 {
+            // Too sparse to index densely (only with far-apart empty positions): no guesses.
+            seeds.continuation = vec![u32::MAX; successors.len()];
+            seeds.above = vec![u32::MAX; successors.len()];
+            return seeds;
+        }
+        seeds.index = vec![u32::MAX; cells];
+        for (i, &p) in previous.iter().enumerate() {
+            let cell = seeds.cell(p).expect("inside the box");
+            seeds.index[cell] = predecessors.group_of[i];
+        }
+        let mut current_index = vec![u32::MAX; cells];
+        for (i, &p) in current.iter().enumerate() {
+            current_index[seeds.cell(p).expect("inside the box")] = successors.group_of[i];
+        }
+        let representatives = successors.representatives.iter().map(|&u| current[u as usize]);
+        seeds.continuation = representatives
+            .clone()
+            .map(|[x, y]| seeds.cell([x - shift[0], y - shift[1]]).map_or(u32::MAX, |cell| seeds.index[cell]))
+            .collect();
+        seeds.above =
+            representatives.map(|[x, y]| seeds.cell([x, y - 1]).map_or(u32::MAX, |cell| current_index[cell])).collect();
+        seeds
+    }
+
+    /// No guesses at all (for the backward table, where positions and edges swap roles).
+    fn none(count: usize) -> Self {
+        Self {
+            previous: Vec::new(),
+            origin: [0, 0],
+            size: [0, 0],
+            index: Vec::new(),
+            continuation: vec![u32::MAX; count],
+            above: vec![u32::MAX; count],
+        }
+    }
+
+    fn cell(&self, p: Position) -> Option<usize> {
+        let (x, y) = (p[0] - self.origin[0], p[1] - self.origin[1]);
+        if x < 0 || y < 0 || x >= self.size[0] || y >= self.size[1] {
+            return None;
+        }
+        Some(y as usize * self.size[0] as usize + x as usize)
+    }
+
+    /// Group (distinct-predecessor index) of position `p` of the previous row, if it is there.
+    fn previous_index(&self, p: Position) -> Option<u32> {
+        self.cell(p).map(|cell| self.index[cell]).filter(|&i| i != u32::MAX)
+    }
+}
+
+/// Edges grouped by identical content. Two edges with the same four planes have the same `D`
+/// to any other edge, so only one of each group needs to enter the search: periodic exemplars,
+/// flat or empty regions and repeated motifs give thousands of positions but a few hundred
+/// distinct columns.
+struct DistinctEdges {
+    /// One original index per group, its lowest by priority then index; ascending, so comparing group
+    /// indices compares original indices (the solvers' tie-break).
+    representatives: Vec<u32>,
+    /// Group (index into `representatives`) of each original edge.
+    group_of: Vec<u32>,
+}
+
+impl DistinctEdges {
+    /// Groups the edges of `set`; each group's representative is its member of lowest
+    /// `(priority, index)`.
+    fn new(set: &EdgeSet, priority: impl Fn(usize) -> u64 + Sync) -> Self {
+        // Sorting by a 64-bit digest (then priority and index) brings identical edges together, lowest priority
+        // first, without comparing planes; the planes are compared only within a run of equal
+        // digests, so a collision cannot merge different edges.
+        let mut order: Vec<(u64, u64, usize)> = (0..set.len())
+            .into_par_iter()
+            .map(|i| {
+                // Four independent lanes, so the multiplications overlap.
+                let mut lanes = [0x243f_6a88_85a3_08d3_u64, 0x1319_8a2e_0370_7344, 0xa409_3822_299f_31d0, 0x082e_fa98];
+                for words in set.planes_of(i).chunks_exact(32) {
+                    for (lane, word) in lanes.iter_mut().zip(words.chunks_exact(8)) {
+                        let word = u64::from_le_bytes(word.try_into().expect("8 bytes"));
+                        *lane = (*lane ^ word).wrapping_mul(0x9e37_79b9_7f4a_7c15).rotate_left(29);
+                    }
+                }
+                let digest = lanes.iter().fold(0_u64, |d, &lane| (d ^ lane).wrapping_mul(0xff51_afd7_ed55_8ccd));
+                (digest, priority(i), i)
+            })
+            .collect();
+        order.par_sort_unstable();
+        let mut representatives: Vec<u32> = Vec::new();
+        let mut members = vec![0_u32; set.len()];
+        let mut run_start = 0;
+        for (k, &(digest, _, i)) in order.iter().enumerate() {
+            if k > 0 && order[k - 1].0 != digest {
+                run_start = representatives.len();
+            }
+            // Groups of this digest run; almost always one.
+            let group = (run_start..representatives.len())
+                .find(|&g| set.planes_of(representatives[g] as usize) == set.planes_of(i))
+                .unwrap_or_else(|| {
+                    representatives.push(i as u32);
+                    representatives.len() - 1
+                });
+            members[i] = group as u32;
+        }
+        // Renumber the groups by ascending representative.
+        let mut renumber: Vec<u32> = (0..representatives.len() as u32).collect();
+        renumber.sort_unstable_by_key(|&g| representatives[g as usize]);
+        let mut new_index = vec![0_u32; representatives.len()];
+        for (new, &old) in renumber.iter().enumerate() {
+            new_index[old as usize] = new as u32;
+        }
+        let group_of = members.iter().map(|&g| new_index[g as usize]).collect();
+        let representatives = renumber.iter().map(|&g| representatives[g as usize]).collect();
+        Self { representatives, group_of }
+    }
+
+    /// Number of groups.
+    fn len(&self) -> usize {
+        self.representatives.len()
+    }
+
+    /// The representatives' edges (borrowed when every edge is distinct).
+    fn edges<'a>(&self, set: &'a EdgeSet) -> std::borrow::Cow<'a, EdgeSet> {
+        if self.len() == set.len() {
+            std::borrow::Cow::Borrowed(set)
+        } else {
+            std::borrow::Cow::Owned(set.permuted(&self.representatives))
+        }
+    }
+}
+
+/// [`exact_row`] on distinct edges only, expanded back to every position. Within a group of
+/// identical right edges only the representative (lowest `P`, then lowest index) can be the
+/// reference's argmin, since every member has the same `D`; identical left edges pose the same
+/// minimisation, so they share its answer.
+fn distinct_row(
+    model: &CostModel,
+    previous: &[u64],
+    rights: &EdgeSet,
+    lefts: &EdgeSet,
+    seeds: impl FnOnce(&DistinctEdges, &DistinctEdges) -> Seeds,
+) -> RowResult {
+    let predecessors = DistinctEdges::new(rights, |v| previous[v]);
+    let successors = DistinctEdges::new(lefts, |_| 0);
+    let seeds = seeds(&predecessors, &successors);
+    let distinct_previous: Vec<u64> = predecessors.representatives.iter().map(|&v| previous[v as usize]).collect();
+    let (costs, best, mut counters) =
+        exact_row(model, &distinct_previous, &predecessors.edges(rights), &successors.edges(lefts), &seeds);
+    counters.pairs = (previous.len() * lefts.len()) as u64;
+    let original = |g: u32| predecessors.representatives.get(g as usize).copied().unwrap_or(u32::MAX);
+    let (costs, best) = successors.group_of.iter().map(|&g| (costs[g as usize], original(best[g as usize]))).unzip();
+    (costs, best, counters)
+}
+
+/// Predecessors per leaf of the profile tree (small under test, so that the tiny property-test
+/// problems exercise deep trees too).
+const LEAF_SIZE: usize = if cfg!(test) { 2 } else { 16 };
+
+/// The alpha block sums of edge `index` (the last quarter of its profile).
+#[inline]
+fn alpha_profile(set: &EdgeSet, index: usize) -> &[u16] {
+    &set.profile_of(index)[3 * set.profile_len..]
+}
+
+/// L1 distance from the alpha profile `point` to the box `low..=high` (0 inside). Every profile
+/// inside the box is at least this far from `point`, and the profile distance never exceeds the
+/// per-sample alpha distance, so [`alpha_bound`] of it bounds `D` for every edge of the box.
+#[inline]
+fn box_gap(point: &[u16], low: &[u16], high: &[u16]) -> u32 {
+    let mut lanes = [0_u32; 8];
+    for ((p, l), h) in point.chunks_exact(8).zip(low.chunks_exact(8)).zip(high.chunks_exact(8)) {
+        for i in 0..8 {
+            lanes[i] += u32::from(l[i].saturating_sub(p[i]) | p[i].saturating_sub(h[i]));
+        }
+    }
+    lanes.iter().sum()
+}
+
+/// `D ≥ alpha_bound(L1)` for an alpha L1 distance (per sample or between block sums): per sample
+/// ξ ≥ 8γ·|a − b|/255 − 1 (one unit for rounding), so `D ≥ L1·⌊8γ⌋/255 − C`. The fixed-point factor
+/// is rounded down, so the product never exceeds the exact floor.
+#[derive(Debug, Clone, Copy)]
+struct AlphaBound {
+    per_unit: u64,
+    samples: u64,
+}
+
+impl AlphaBound {
+    fn new(model: &CostModel, samples: usize) -> Self {
+        Self { per_unit: (model.gamma_floor() << 16) / 255, samples: samples as u64 }
+    }
+
+    #[inline]
+    fn of(&self, l1: u32) -> u64 {
+        ((u64::from(l1) * self.per_unit) >> 16).saturating_sub(self.samples)
+    }
+}
+
+/// A node of the profile tree: arranged predecessors `start..end`, their lowest `P`, and the
+/// children (`None` for a leaf, whose predecessors are sorted by ascending `P`).
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    start: usize,
+    end: usize,
+    lowest_cost: u64,
+    children: Option<[u32; 2]>,
+}
+
+/// Predecessors in a k-d tree over their alpha profiles, each node with the bounding box of its
+/// profiles and its lowest `P`, for a branch-and-bound search: a node whose lowest `P` plus the
+/// alpha bound of its box distance cannot beat the best total is skipped whole. (The index has to
+/// carry the lowest `P` of every subtree, which no k-d tree crate offers.)
+struct ProfileTree {
+    /// Predecessor edges in leaf order.
+    edges: EdgeSet,
+    /// `P` in leaf order.
+    costs: Vec<u64>,
+    /// Original predecessor index in leaf order.
+    original: Vec<u32>,
+    /// Leaf-order position of each original predecessor.
+    position_of: Vec<u32>,
+    /// Nodes; the root is 0.
+    nodes: Vec<Node>,
+    /// Per node: the box's lows, then its highs (`dims` each).
+    boxes: Vec<u16>,
+    /// Entries of an alpha profile.
+    dims: usize,
+}
+
+impl ProfileTree {
+    fn new(previous: &[u64], rights: &EdgeSet) -> Self {
+        let mut tree = Self {
+            edges: EdgeSet::default(),
+            costs: Vec::with_capacity(previous.len()),
+            original: Vec::with_capacity(previous.len()),
+            position_of: vec![0; previous.len()],
+            nodes: Vec::new(),
+            boxes: Vec::new(),
+            dims: rights.profile_len,
+        };
+        let mut members: Vec<u32> = (0..previous.len() as u32).collect();
+        tree.build(&mut members, previous, rights);
+        for (position, &v) in tree.original.iter().enumerate() {
+            tree.position_of[v as usize] = position as u32;
+        }
+        tree.edges = rights.permuted(&tree.original);
+        tree
+    }
+
+    /// Adds the subtree of `members` (split at the median of the widest profile entry) and
+    /// returns its node index.
+    fn build(&mut self, members: &mut [u32], previous: &[u64], rights: &EdgeSet) -> u32 {
+        let dims = self.dims;
+        let (mut low, mut high) = (vec![u16::MAX; dims], vec![0_u16; dims]);
+        for &v in members.iter() {
+            for (d, &value) in alpha_profile(rights, v as usize).iter().enumerate() {
+                low[d] = low[d].min(value);
+                high[d] = high[d].max(value);
+            }
+        }
+        let index = self.nodes.len();
+        let lowest_cost = members.iter().map(|&v| previous[v as usize]).min().unwrap_or(u64::MAX);
+        self.nodes.push(Node { start: self.original.len(), end: 0, lowest_cost, children: None });
+        self.boxes.extend_from_slice(&low);
+        self.boxes.extend_from_slice(&high);
+        let widest = (0..dims).max_by_key(|&d| (high[d] - low[d], std::cmp::Reverse(d)));
+        match widest {
+            Some(dimension) if members.len() > LEAF_SIZE && high[dimension] > low[dimension] => {
+                let middle = members.len() / 2;
+                members.select_nth_unstable_by_key(middle, |&v| (alpha_profile(rights, v as usize)[dimension], v));
+                let (near, far) = members.split_at_mut(middle);
+                let first = self.build(near, previous, rights);
+                let second = self.build(far, previous, rights);
+                self.nodes[index].children = Some([first, second]);
+            }
+            _ => {
+                // A leaf (or identical profiles): ascending `P`, so its scan can stop early.
+                members.sort_unstable_by_key(|&v| (previous[v as usize], v));
+                self.costs.extend(members.iter().map(|&v| previous[v as usize]));
+                self.original.extend_from_slice(members);
+            }
+        }
+        self.nodes[index].end = self.original.len();
+        index as u32
+    }
+
+    /// The box distance from `point` to node `node`.
+    #[inline]
+    fn gap(&self, node: u32, point: &[u16]) -> u32 {
+        let at = node as usize * 2 * self.dims;
+        box_gap(point, &self.boxes[at..at + self.dims], &self.boxes[at + self.dims..at + 2 * self.dims])
+    }
+}
+
+/// The exact fast row update (see the module comment).
+///
+/// For a position `u`, the tree is searched best-first along its depth: the child whose box is
+/// nearer to `u`'s alpha profile is opened first, a node is dropped when its lowest `P` plus the
+/// alpha bound of its box distance exceeds the best total so far, and a leaf (ascending `P`) is
+/// scanned until `P` plus that bound exceeds it. Survivors go through the profile and mask
+/// bounds before any pixel is read.
+fn exact_row(model: &CostModel, previous: &[u64], rights: &EdgeSet, lefts: &EdgeSet, seeds: &Seeds) -> RowResult {
+    let tree = ProfileTree::new(previous, rights);
+    let ProfileTree { edges, costs, original, position_of, nodes, .. } = &tree;
+    let cheapest = (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0);
+    let weight = model.mask_weight();
+    let samples = lefts.samples;
+    let alpha_bound = AlphaBound::new(model, samples);
+    let chunk = 64;
+    let results: Vec<(Vec<(u64, u32)>, DpCounters)> = (0..lefts.len().div_ceil(chunk))
+        .into_par_iter()
+        .map(|block| {
+            let mut counters = DpCounters::default();
+            let range = block * chunk..((block + 1) * chunk).min(lefts.len());
+            let first = range.start;
+            let mut out: Vec<(u64, u32)> = Vec::with_capacity(range.len());
+            let mut stack: Vec<(u64, u32)> = Vec::new();
+            for u in range {
+                let left_masks = lefts.masks_of(u);
+                let left_profile = lefts.profile_of(u);
+                let left_alpha = alpha_profile(lefts, u);
+                // (total, original predecessor index); compare lexicographically for ties.
+                let mut best = (u64::MAX, u32::MAX);
+                let consider = |position: usize, best: &mut (u64, u32), counters: &mut DpCounters| {
+                    let cost = costs[position];
+                    let v = original[position];
+                    counters.visited += 1;
+                    let right_profile = edges.profile_of(position);
+                    if (cost + profile_alpha_bound(model, right_profile, left_profile, samples), v) >= *best {
+                        return;
+                    }
+                    if (cost + profile_bound(model, right_profile, left_profile, samples), v) >= *best {
+                        return;
+                    }
+                    if (cost + mask_bound(weight, edges.masks_of(position), left_masks), v) >= *best {
+                        return;
+                    }
+                    counters.compared += 1;
+                    let limit = best.0.saturating_sub(cost);
+                    if let Some(distance) = edge_distance_bounded(model, edges, position, lefts, u, limit) {
+                        counters.completed += 1;
+                        let total = cost + u64::from(distance);
+                        if (total, v) < *best {
+                            *best = (total, v);
+                        }
+                    }
+                };
+                let continuation = seeds.continuation[u];
+                if continuation != u32::MAX {
+                    consider(position_of[continuation as usize] as usize, &mut best, &mut counters);
+                }
+                let above = seeds.above[u] as usize;
+                if above != u32::MAX as usize && above >= first && above < u {
+                    let above_predecessor = out[above - first].1;
+                    if above_predecessor != u32::MAX {
+                        let [x, y] = seeds.previous[above_predecessor as usize];
+                        if let Some(v) = seeds.previous_index([x, y + 1]) {
+                            consider(position_of[v as usize] as usize, &mut best, &mut counters);
+                        }
+                    }
+                }
+                // The predecessor of the previous position (similar u, low P) and the cheapest
+                // predecessor overall.
+                if let Some(&(_, previous_best)) = out.last() {
+                    if previous_best != u32::MAX {
+                        consider(position_of[previous_best as usize] as usize, &mut best, &mut counters);
+                    }
+                }
+                consider(position_of[cheapest] as usize, &mut best, &mut counters);
+                // Branch and bound; the stack holds (alpha bound of the box distance, node).
+                // Pruning is strict (`>`), so a tie with a lower index is still found.
+                stack.clear();
+                stack.push((alpha_bound.of(tree.gap(0, left_alpha)), 0));
+                while let Some((bound, index)) = stack.pop() {
+                    let node = nodes[index as usize];
+                    if node.lowest_cost.saturating_add(bound) > best.0 {
+                        continue;
+                    }
+                    match node.children {
+                        Some(children) => {
+                            let [near, far] =
+                                children.map(|child| (alpha_bound.of(tree.gap(child, left_alpha)), child));
+                            let (near, far) = if far.0 < near.0 { (far, near) } else { (near, far) };
+                            // Pushed last, popped first: the nearer child.
+                            for (bound, child) in [far, near] {
+                                if nodes[child as usize].lowest_cost.saturating_add(bound) <= best.0 {
+                                    stack.push((bound, child));
+                                }
+                            }
+                        }
+                        None => {
+                            for (position, &cost) in costs.iter().enumerate().take(node.end).skip(node.start) {
+                                if cost + bound > best.0 {
+                                    break;
+                                }
+                                consider(position, &mut best, &mut counters);
+                            }
+                        }
+                    }
+                }
+                out.push(best);
+            }
+            (out, counters)
+        })
+        .collect();
+    let mut counters = DpCounters { pairs: (previous.len() * lefts.len()) as u64, ..DpCounters::default() };
+    let mut costs = Vec::with_capacity(lefts.len());
+    let mut predecessors = Vec::with_capacity(lefts.len());
+    for (block, block_counters) in results {
+        counters.visited += block_counters.visited;
+        counters.compared += block_counters.compared;
+        counters.completed += block_counters.completed;
+        for (cost, v) in block {
+            costs.push(cost);
+            predecessors.push(v);
+        }
+    }
+    (costs, predecessors, counters)
+}
+
+/// The cost `Ω` of a given choice of positions (one index per row), summing `D` over all seams.
+#[cfg(test)]
+pub(crate) fn path_cost(exemplar: &Exemplar, model: &CostModel, rows: &[RowSpec<'_>], path: &[usize]) -> u64 {
+    (1..rows.len())
+        .map(|r| {
+            let rights = right_edges(exemplar, model, rows[r - 1].frame, &[rows[r - 1].positions[path[r - 1]]]);
+            let lefts = left_edges(exemplar, model, &[rows[r].positions[path[r]]], rows[r].frame.samples);
+            u64::from(edge_distance(model, &rights, 0, &lefts, 0))
+        })
+        .sum()
+}
+
+/// Brute force for tests: the minimum of `Ω` over every combination of positions, optionally
+/// only over cycles (last position equal to the first). `None` when no combination qualifies.
+#[cfg(test)]
+pub(crate) fn brute_force(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    rows: &[RowSpec<'_>],
+    cycle: bool,
+) -> Option<(u64, Vec<usize>)> {
+    let rights: Vec<EdgeSet> = rows.iter().map(|row| right_edges(exemplar, model, row.frame, row.positions)).collect();
+    let lefts: Vec<EdgeSet> =
+        rows.iter().map(|row| left_edges(exemplar, model, row.positions, row.frame.samples)).collect();
+    let mut best: Option<(u64, Vec<usize>)> = None;
+    let mut path = vec![0_usize; rows.len()];
+    fn visit(
+        r: usize,
+        cost: u64,
+        path: &mut Vec<usize>,
+        best: &mut Option<(u64, Vec<usize>)>,
+        context: (&CostModel, &[RowSpec<'_>], &[EdgeSet], &[EdgeSet], bool),
+    ) {
+        let (model, rows, rights, lefts, cycle) = context;
+        if r == rows.len() {
+            if cycle && rows[r - 1].positions[path[r - 1]] != rows[0].positions[path[0]] {
+                return;
+            }
+            if best.as_ref().is_none_or(|(b, _)| cost < *b) {
+                *best = Some((cost, path.clone()));
+            }
+            return;
+        }
+        for i in 0..rows[r].positions.len() {
+            let step =
+                if r == 0 { 0 } else { u64::from(edge_distance(model, &rights[r - 1], path[r - 1], &lefts[r], i)) };
+            path[r] = i;
+            visit(r + 1, cost + step, path, best, context);
+        }
+    }
+    visit(0, 0, &mut path, &mut best, (model, rows, &rights, &lefts, cycle));
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cost::AlphaMode;
+    use proptest::prelude::*;
+
+    /// Edges of `samples` samples whose alphas come from a small alphabet (so that distances
+    /// are often small and bounds matter) and whose colours are free.
+    fn edge_set(samples: usize, columns: &[Vec<(u8, u8)>]) -> EdgeSet {
+        let mut set = EdgeSet::with_capacity(samples, columns.len());
+        for column in columns {
+            set.push(column.iter().map(|&(alpha, colour)| {
+                let alpha = [0, 255, 128, colour][usize::from(alpha % 4)];
+                [colour, colour.wrapping_mul(3), 40, alpha]
+            }));
+        }
+        set
+    }
+
+    proptest! {
+        /// Every node's box bound is a true lower bound of `D` for all its predecessors, its
+        /// lowest `P` is theirs, and the tree holds every predecessor once, leaves by ascending `P`.
+        #[test]
+        fn tree_bounds_never_exceed_the_distance(
+            samples in 1_usize..70,
+            columns in proptest::collection::vec(proptest::collection::vec(any::<(u8, u8)>(), 70), 1..40),
+            costs in proptest::collection::vec(0_u64..50_000, 40),
+            left in proptest::collection::vec(any::<(u8, u8)>(), 70),
+            gamma in 1.0_f64..3000.0,
+            binary in any::<bool>(),
+        ) {
+            let model = CostModel::new(if binary { AlphaMode::Binary } else { AlphaMode::Continuous }, gamma);
+            let rights = edge_set(samples, &columns);
+            let lefts = edge_set(samples, &[left]);
+            let previous = &costs[..columns.len()];
+            let tree = ProfileTree::new(previous, &rights);
+            let alpha_bound = AlphaBound::new(&model, samples);
+            let mut seen = tree.original.clone();
+            seen.sort_unstable();
+            prop_assert_eq!(seen, (0..columns.len() as u32).collect::<Vec<_>>());
+            for (position, &v) in tree.original.iter().enumerate() {
+                prop_assert_eq!(tree.position_of[v as usize] as usize, position);
+                prop_assert_eq!(tree.costs[position], previous[v as usize]);
+            }
+            let gap_of_left = |node: u32| alpha_bound.of(tree.gap(node, alpha_profile(&lefts, 0)));
+            for (index, node) in tree.nodes.iter().enumerate() {
+                let range = node.start..node.end;
+                prop_assert_eq!(node.lowest_cost, tree.costs[range.clone()].iter().copied().min().unwrap());
+                let bound = gap_of_left(index as u32);
+                for position in range.clone() {
+                    let distance = u64::from(edge_distance(&model, &tree.edges, position, &lefts, 0));
+                    prop_assert!(bound <= distance, "node {} bound {} > D {}", index, bound, distance);
+                }
+                match node.children {
+                    Some([a, b]) => {
+                        let (a, b) = (tree.nodes[a as usize], tree.nodes[b as usize]);
+                        prop_assert_eq!((a.start, a.end, b.end), (node.start, b.start, node.end));
+                    }
+                    None => prop_assert!(tree.costs[range].is_sorted()),
+                }
+            }
+        }
+
+        /// Identical edges, and only they, share a group; representatives are the lowest
+        /// (priority, index) of their group and ascend.
+        #[test]
+        fn distinct_edges_group_exactly_the_identical_ones(
+            samples in 1_usize..40,
+            kinds in proptest::collection::vec(0_usize..5, 1..60),
+            patterns in proptest::collection::vec(proptest::collection::vec(any::<(u8, u8)>(), 40), 5),
+            priorities in proptest::collection::vec(0_u64..4, 60),
+        ) {
+            let columns: Vec<Vec<(u8, u8)>> = kinds.iter().map(|&k| patterns[k].clone()).collect();
+            let set = edge_set(samples, &columns);
+            let distinct = DistinctEdges::new(&set, |i| priorities[i]);
+            prop_assert!(distinct.representatives.is_sorted());
+            for i in 0..set.len() {
+                let group = distinct.group_of[i] as usize;
+                let representative = distinct.representatives[group] as usize;
+                prop_assert_eq!(set.planes_of(i), set.planes_of(representative));
+                prop_assert!((priorities[representative], representative) <= (priorities[i], i));
+                for j in 0..set.len() {
+                    let same = set.planes_of(i) == set.planes_of(j);
+                    prop_assert_eq!(same, distinct.group_of[j] as usize == group);
+                }
+            }
+        }
+    }
+}

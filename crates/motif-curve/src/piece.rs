@@ -1,0 +1,308 @@
+//! A piece seen from the exemplar (§1.3) and its valid positions (§1.3, §3.1).
+//!
+//! Each piece is copied rigidly: its left edge is kept vertical in the exemplar, so the canvas →
+//! exemplar map is a rotation `M` (taking the left edge `l_i` to the exemplar's downward vertical)
+//! and the scale `s`. In exemplar coordinates relative to the top-left corner the piece is
+//! `(0, s·M l_i = (0, h), s·M d_i, s·M t_i)` with `h = s·b`, and its right edge `R_i` runs from
+//! `s·M t_i` to `s·M d_i`. The top-left corner of a piece placed at integer position `u` sits at
+//! `(u.x + 0.5, u.y)`, so the left edge runs through the centres of column `u.x` and the left
+//! edge samples are plain pixels; every other lookup has a fractional offset that is the same
+//! for all positions, which lets us precompute pixel offsets and bilinear weights once per piece.
+
+use motif_core::{Point, Vec2};
+
+use crate::exemplar::{Exemplar, Run, runs_from_offsets};
+use crate::ribbon::PieceQuad;
+
+/// An integer exemplar position `u` of a piece's top-left corner (before the half-pixel shift).
+pub type Position = [i32; 2];
+
+/// One bilinear tap of a right-edge sample: the top-left pixel offset and the four weights.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Tap {
+    pub dx: i32,
+    pub dy: i32,
+    pub weights: [f32; 4],
+}
+
+/// A piece in exemplar space, with everything the validity test and the edge extraction need.
+#[derive(Debug, Clone)]
+pub(crate) struct PieceFrame {
+    /// `T(x_i)`, the canvas position of the top-left corner.
+    pub origin: Point,
+    /// Rotation canvas → exemplar (cosine, sine).
+    pub rotation: (f64, f64),
+    /// Scale `s` (exemplar pixels per canvas unit).
+    pub scale: f64,
+    /// Left edge length in the exemplar, `h = s·b`.
+    pub height: f64,
+    /// `s·M t_i`: the top-right corner relative to the top-left corner.
+    pub top_right: Vec2,
+    /// `s·M d_i`: the bottom-right corner relative to the top-left corner.
+    pub bottom_right: Vec2,
+    /// Unit direction of the right edge, top to bottom.
+    pub right_direction: Vec2,
+    /// `C`, samples per edge.
+    pub samples: usize,
+    /// Bilinear taps of the right edge samples, one per `k < C`.
+    pub right_taps: Vec<Tap>,
+    /// Pixel offsets read when sampling the top and bottom edges.
+    pub edge_runs: Vec<Run>,
+    /// Pixel offsets whose centres lie inside the piece.
+    pub interior_runs: Vec<Run>,
+    /// Local x extent of the piece.
+    pub x_range: (f64, f64),
+    /// Local y extent of the piece.
+    pub y_range: (f64, f64),
+}
+
+impl PieceFrame {
+    /// The frame of `quad` at scale `scale`, with `samples` = C samples per edge.
+    pub fn new(quad: &PieceQuad, scale: f64, samples: usize) -> Self {
+        let [top_left, bottom_left, bottom_right, top_right] = quad.corners;
+        let left = bottom_left - top_left;
+        // Rotate so that the left edge points down the exemplar (+y).
+        let angle = std::f64::consts::FRAC_PI_2 - left.y.atan2(left.x);
+        let rotation = (angle.cos(), angle.sin());
+        let mut frame = Self {
+            origin: top_left,
+            rotation,
+            scale,
+            height: scale * left.hypot(),
+            top_right: Vec2::ZERO,
+            bottom_right: Vec2::ZERO,
+            right_direction: Vec2::new(0.0, 1.0),
+            samples,
+            right_taps: Vec::new(),
+            edge_runs: Vec::new(),
+            interior_runs: Vec::new(),
+            x_range: (0.0, 0.0),
+            y_range: (0.0, 0.0),
+        };
+        frame.top_right = frame.to_local(top_right);
+        frame.bottom_right = frame.to_local(bottom_right);
+        let right = frame.bottom_right - frame.top_right;
+        frame.right_direction = if right.hypot() > 1e-12 { right.normalize() } else { Vec2::new(0.0, 1.0) };
+        frame.right_taps = (0..samples)
+            .map(|k| {
+                let p = frame.top_right + frame.right_direction * (k as f64 + 0.5);
+                let (fx, fy) = (p.x, p.y - 0.5);
+                let (ix, iy) = (fx.floor(), fy.floor());
+                let (tx, ty) = ((fx - ix) as f32, (fy - iy) as f32);
+                Tap {
+                    dx: ix as i32,
+                    dy: iy as i32,
+                    weights: [(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty],
+                }
+            })
+            .collect();
+        let corners = frame.local_corners();
+        frame.x_range = corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c.x), b.max(c.x)));
+        frame.y_range = corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| (a.min(c.y), b.max(c.y)));
+        frame.edge_runs = frame.compute_edge_runs();
+        frame.interior_runs = frame.compute_interior_runs();
+        frame
+    }
+
+    /// The piece corners relative to the top-left corner: top-left, bottom-left, bottom-right, top-right.
+    pub fn local_corners(&self) -> [Vec2; 4] {
+        [Vec2::ZERO, Vec2::new(0.0, self.height), self.bottom_right, self.top_right]
+    }
+
+    /// Canvas point → exemplar offset from the top-left corner: `s·M (p − T(x_i))`.
+    pub fn to_local(&self, p: Point) -> Vec2 {
+        let v = p - self.origin;
+        let (c, s) = self.rotation;
+        Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y) * self.scale
+    }
+
+    /// Exemplar offset from the top-left corner → canvas point.
+    pub fn to_canvas(&self, local: Vec2) -> Point {
+        let v = local / self.scale;
+        let (c, s) = self.rotation;
+        self.origin + Vec2::new(c * v.x + s * v.y, -s * v.x + c * v.y)
+    }
+
+    /// The rotation canvas → exemplar, in radians.
+    pub fn angle(&self) -> f64 {
+        self.rotation.1.atan2(self.rotation.0)
+    }
+
+    /// Continuous exemplar coordinates of local point `local` for a piece at `u`.
+    pub fn exemplar_point(u: Position, local: Vec2) -> (f64, f64) {
+        (f64::from(u[0]) + 0.5 + local.x, f64::from(u[1]) + local.y)
+    }
+
+    fn compute_edge_runs(&self) -> Vec<Run> {
+        let mut offsets = Vec::new();
+        for (start, end) in [(Vec2::ZERO, self.top_right), (Vec2::new(0.0, self.height), self.bottom_right)] {
+            let steps = ((end - start).hypot() * 2.0).ceil().max(1.0) as usize;
+            for step in 0..=steps {
+                let p = start.lerp(end, step as f64 / steps as f64);
+                let (ix, iy) = (p.x.floor() as i32, (p.y - 0.5).floor() as i32);
+                offsets.extend([(ix, iy), (ix + 1, iy), (ix, iy + 1), (ix + 1, iy + 1)]);
+            }
+        }
+        runs_from_offsets(offsets)
+    }
+
+    fn compute_interior_runs(&self) -> Vec<Run> {
+        let corners = self.local_corners();
+        let mut runs = Vec::new();
+        let (y0, y1) = (self.y_range.0.floor() as i32 - 1, self.y_range.1.ceil() as i32 + 1);
+        let mut crossings = Vec::with_capacity(4);
+        for dy in y0..=y1 {
+            let y = f64::from(dy) + 0.5;
+            crossings.clear();
+            for i in 0..4 {
+                let (a, b) = (corners[i], corners[(i + 1) % 4]);
+                if (a.y > y) != (b.y > y) {
+                    crossings.push(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+                }
+            }
+            crossings.sort_by(f64::total_cmp);
+            for pair in crossings.chunks_exact(2) {
+                let (x0, x1) = (pair[0].ceil() as i32, pair[1].ceil() as i32);
+                if x1 > x0 {
+                    runs.push(Run { dy, x0, x1 });
+                }
+            }
+        }
+        runs
+    }
+
+    /// True when `p` (local exemplar coordinates) lies inside the piece (even-odd rule).
+    pub fn contains_local(&self, p: Vec2) -> bool {
+        let corners = self.local_corners();
+        let mut inside = false;
+        for i in 0..4 {
+            let (a, b) = (corners[i], corners[(i + 1) % 4]);
+            if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+                inside = !inside;
+            }
+        }
+        inside
+    }
+
+    /// A position where the piece covers only the transparent margin above the exemplar: the one
+    /// "empty" placement used when avoidance leaves a piece no valid position at all.
+    pub fn empty_position(&self) -> Position {
+        [0, -(self.y_range.1.ceil() as i32 + 3)]
+    }
+
+    /// Margin (pixels) the exemplar storage needs around the exemplar for this piece's lookups,
+    /// including the empty position.
+    pub fn required_margin(&self) -> i32 {
+        let extent = self.x_range.0.abs().max(self.x_range.1.abs()).max(self.y_range.0.abs()).max(self.y_range.1.abs());
+        2 * (extent.ceil() as i32 + self.samples as i32) + 8
+    }
+
+    /// The validity test of §1.3 and §3.1 at `u`: the piece stays inside the exemplar horizontally
+    /// (the exemplar is cut at its left and right borders), its top and bottom edges stay in
+    /// transparent pixels, it is not empty, and none of its visible pixels falls in a forbidden
+    /// canvas area (`forbidden`: offsets whose exemplar pixels must have alpha 0).
+    pub fn is_valid(&self, exemplar: &Exemplar, u: Position, forbidden: &[Run]) -> bool {
+        let left = f64::from(u[0]) + 0.5;
+        if left + self.x_range.0 < -1e-9 || left + self.x_range.1 > f64::from(exemplar.width) + 1e-9 {
+            return false;
+        }
+        let [x, y] = u;
+        if !self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, x, y)) {
+            return false;
+        }
+        if self.interior_runs.iter().all(|run| exemplar.run_is_clear(run, x, y)) {
+            return false;
+        }
+        forbidden.iter().all(|run| exemplar.run_is_invisible(run, x, y))
+    }
+
+    /// Every position `u ∈ [0, W) × [−C, H)` (the paper's `U = W × (H + C)`) passing
+    /// [`is_valid`](Self::is_valid), in row-major order.
+    pub fn valid_positions(&self, exemplar: &Exemplar, forbidden: &[Run]) -> Vec<Position> {
+        let c = self.samples as i32;
+        let mut positions = Vec::new();
+        for y in -c..exemplar.height {
+            for x in 0..exemplar.width {
+                if self.is_valid(exemplar, [x, y], forbidden) {
+                    positions.push([x, y]);
+                }
+            }
+        }
+        positions
+    }
+}
+
+/// `U = W × (H + C)`, the number of candidate positions of a piece (§1.4).
+pub fn candidate_count(width: usize, height: usize, samples: usize) -> usize {
+    width * (height + samples)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use motif_core::RgbaImage;
+
+    fn straight_quad(width: f64, length: f64) -> PieceQuad {
+        PieceQuad {
+            start: 0.0,
+            end: length,
+            corners: [
+                Point::new(10.0, 10.0),
+                Point::new(10.0, 10.0 + width),
+                Point::new(10.0 + length, 10.0 + width),
+                Point::new(10.0 + length, 10.0),
+            ],
+        }
+    }
+
+    #[test]
+    fn straight_piece_maps_to_an_upright_rectangle() {
+        let frame = PieceFrame::new(&straight_quad(8.0, 5.0), 2.0, 16);
+        assert!((frame.height - 16.0).abs() < 1e-12);
+        assert!((frame.top_right - Vec2::new(10.0, 0.0)).hypot() < 1e-9);
+        assert!((frame.bottom_right - Vec2::new(10.0, 16.0)).hypot() < 1e-9);
+        assert!(frame.angle().abs() < 1e-12);
+        let back = frame.to_canvas(frame.to_local(Point::new(12.0, 13.0)));
+        assert!(back.distance(Point::new(12.0, 13.0)) < 1e-12);
+        // Right samples sit exactly on pixel centres of column 9 (offset 10 − 0.5 → dx 10 from the anchor).
+        assert_eq!(frame.right_taps[0].dx, 10);
+        assert_eq!(frame.right_taps[0].dy, 0);
+        assert_eq!(frame.right_taps[0].weights, [1.0, 0.0, 0.0, 0.0]);
+        let pixels: i32 = frame.interior_runs.iter().map(|run| run.x1 - run.x0).sum();
+        assert_eq!(pixels, 10 * 16);
+    }
+
+    #[test]
+    fn tilted_piece_rotates_the_left_edge_to_vertical() {
+        let quad = PieceQuad {
+            start: 0.0,
+            end: 1.0,
+            corners: [Point::new(0.0, 0.0), Point::new(6.0, 8.0), Point::new(14.0, 2.0), Point::new(8.0, -6.0)],
+        };
+        let frame = PieceFrame::new(&quad, 1.0, 10);
+        let bottom_left = frame.to_local(Point::new(6.0, 8.0));
+        assert!((bottom_left - Vec2::new(0.0, 10.0)).hypot() < 1e-9, "{bottom_left:?}");
+        assert!((frame.top_right - Vec2::new(10.0, 0.0)).hypot() < 1e-9, "{:?}", frame.top_right);
+    }
+
+    #[test]
+    fn validity_requires_a_complete_slice() {
+        // A horizontal bar in rows 4..8 of a 20×12 exemplar.
+        let image = RgbaImage::from_fn(20, 12, |_, y| if (4..8).contains(&y) { [200, 10, 10, 255] } else { [0; 4] });
+        let frame = PieceFrame::new(&straight_quad(8.0, 3.0), 1.0, 8);
+        let exemplar = Exemplar::new(&image, frame.required_margin() as usize, 0);
+        // Top edge at y = u.y must be clear with its 2×2 footprint: rows u.y − 1 .. and bottom rows.
+        assert!(frame.is_valid(&exemplar, [2, 2], &[]));
+        assert!(!frame.is_valid(&exemplar, [2, 4], &[]), "top edge inside the bar");
+        assert!(!frame.is_valid(&exemplar, [2, -4], &[]), "bottom edge inside the bar");
+        assert!(!frame.is_valid(&exemplar, [2, -8], &[]), "empty piece");
+        assert!(!frame.is_valid(&exemplar, [18, 2], &[]), "crosses the right border");
+        let forbidden = [Run { dy: 3, x0: 1, x1: 2 }];
+        assert!(!frame.is_valid(&exemplar, [2, 2], &forbidden));
+        let positions = frame.valid_positions(&exemplar, &[]);
+        assert!(positions.iter().all(|p| p[1] == 1 || p[1] == 2 || p[1] == 3), "{positions:?}");
+        assert!(!positions.is_empty());
+        let empty = frame.empty_position();
+        assert!(frame.interior_runs.iter().all(|run| exemplar.run_is_invisible(run, empty[0], empty[1])));
+    }
+}

@@ -1,0 +1,117 @@
+//! Rasterization of the result: anti-aliased, transparent background.
+//!
+//! Every canvas pixel is covered by `n × n` samples; a sample takes its colour from each shape
+//! (a placed piece, or a triangle of the repeat baseline) that contains it, composited "over" in
+//! shape order with premultiplied alpha, and the pixel is the mean of its samples. The canvas is
+//! cut into tiles rendered in parallel; each tile only looks at the shapes whose box meets it.
+
+use motif_core::{Point, RgbaImage};
+use rayon::prelude::*;
+
+const TILE: usize = 32;
+
+/// A shape to draw: its canvas pixel box and a sampler returning a premultiplied colour for the
+/// canvas points it covers (`None` outside).
+pub(crate) struct Shape<'a> {
+    pub bounds: (usize, usize, usize, usize),
+    pub sampler: Box<dyn Fn(Point) -> Option<[f32; 4]> + Sync + 'a>,
+}
+
+/// Renders `shapes` onto a `width × height` transparent canvas with `n × n` samples per pixel.
+pub(crate) fn render(width: usize, height: usize, samples_per_axis: usize, shapes: &[Shape<'_>]) -> RgbaImage {
+    let n = samples_per_axis;
+    let tiles_x = width.div_ceil(TILE);
+    let tiles_y = height.div_ceil(TILE);
+    let tiles: Vec<Vec<[u8; 4]>> = (0..tiles_x * tiles_y)
+        .into_par_iter()
+        .map(|tile| {
+            let (tx, ty) = (tile % tiles_x, tile / tiles_x);
+            let (x0, y0) = (tx * TILE, ty * TILE);
+            let (x1, y1) = ((x0 + TILE).min(width), (y0 + TILE).min(height));
+            let relevant: Vec<&Shape<'_>> = shapes
+                .iter()
+                .filter(|shape| {
+                    let (sx0, sy0, sx1, sy1) = shape.bounds;
+                    sx0 < x1 && sx1 > x0 && sy0 < y1 && sy1 > y0
+                })
+                .collect();
+            let mut pixels = vec![[0_u8; 4]; (x1 - x0) * (y1 - y0)];
+            if relevant.is_empty() {
+                return pixels;
+            }
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let mut sum = [0.0_f32; 4];
+                    let covering: Vec<&&Shape<'_>> = relevant
+                        .iter()
+                        .filter(|shape| {
+                            let (sx0, sy0, sx1, sy1) = shape.bounds;
+                            x >= sx0 && x < sx1 && y >= sy0 && y < sy1
+                        })
+                        .collect();
+                    if covering.is_empty() {
+                        continue;
+                    }
+                    for p in crate::avoidance::sample_points(x, y, n) {
+                        let mut colour = [0.0_f32; 4];
+                        for shape in &covering {
+                            if let Some(src) = (shape.sampler)(p) {
+                                let keep = 1.0 - src[3];
+                                for c in 0..4 {
+                                    colour[c] = src[c] + colour[c] * keep;
+                                }
+                            }
+                        }
+                        for c in 0..4 {
+                            sum[c] += colour[c];
+                        }
+                    }
+                    pixels[(y - y0) * (x1 - x0) + x - x0] = to_straight(sum, (n * n) as f32);
+                }
+            }
+            pixels
+        })
+        .collect();
+    let mut image = RgbaImage::new(width, height);
+    for (tile, pixels) in tiles.into_iter().enumerate() {
+        let (tx, ty) = (tile % tiles_x, tile / tiles_x);
+        let (x0, y0) = (tx * TILE, ty * TILE);
+        let tile_width = (x0 + TILE).min(width) - x0;
+        for (i, pixel) in pixels.into_iter().enumerate() {
+            image.set(x0 + i % tile_width, y0 + i / tile_width, pixel);
+        }
+    }
+    image
+}
+
+/// Mean premultiplied colour → straight 8-bit RGBA.
+fn to_straight(sum: [f32; 4], count: f32) -> [u8; 4] {
+    let alpha = sum[3] / count;
+    if alpha <= 0.0 {
+        return [0, 0, 0, 0];
+    }
+    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    [byte(sum[0] / sum[3]), byte(sum[1] / sum[3]), byte(sum[2] / sum[3]), byte(alpha)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_covered_pixels_are_half_transparent() {
+        let shapes = [Shape {
+            bounds: (0, 0, 4, 4),
+            sampler: Box::new(|p: Point| if p.x < 2.0 { Some([1.0, 0.0, 0.0, 1.0]) } else { None }),
+        }];
+        let image = render(4, 4, 4, &shapes);
+        assert_eq!(image.get(0, 0), [255, 0, 0, 255]);
+        assert_eq!(image.get(3, 3), [0, 0, 0, 0]);
+        let shapes = [Shape {
+            bounds: (0, 0, 4, 4),
+            sampler: Box::new(|p: Point| if p.x < 1.5 { Some([0.0, 1.0, 0.0, 1.0]) } else { None }),
+        }];
+        let image = render(4, 4, 4, &shapes);
+        assert_eq!(image.get(1, 2), [0, 255, 0, 128]);
+    }
+}

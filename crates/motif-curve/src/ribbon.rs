@@ -1,0 +1,157 @@
+//! The ribbon around the curve and its slicing into pieces (§1.1, §1.3).
+//!
+//! The ribbon's top and bottom curves are `T(x) = C(x) + b/2 · up(x)` and
+//! `B(x) = C(x) - b/2 · up(x)`, where `up(x)` is the curve's unit normal on the side that shows the
+//! top of the exemplar. With y pointing down on screen, a curve drawn left to right has `up`
+//! pointing to the top of the screen, so the pattern appears upright. Normals are interpolated
+//! smoothly along a finely resampled copy of the curve, so `‖B(x) − T(x)‖ = b` exactly at every
+//! slice and every left edge has the same length (hence one `C` for all pieces).
+
+use motif_core::{InvalidParameter, Point, Polyline, Vec2};
+
+/// The ribbon: a finely resampled centre curve with smooth normals, and a width.
+#[derive(Debug, Clone)]
+pub struct Ribbon {
+    centre: Polyline,
+    up: Vec<Vec2>,
+    width: f64,
+}
+
+impl Ribbon {
+    /// Builds the ribbon of `width` around `curve`.
+    pub fn new(curve: &Polyline, width: f64) -> Result<Self, InvalidParameter> {
+        let length = curve.length();
+        let step = (length / 64.0).min(1.0);
+        let centre = curve.resample(step)?;
+        // up = −(core normal) = (t.y, −t.x): the top of a left-to-right curve is the top of the screen.
+        let up = centre.vertex_tangents().into_iter().map(|t| Vec2::new(t.y, -t.x)).collect();
+        Ok(Self { centre, up, width })
+    }
+
+    /// Arc length of the curve.
+    pub fn length(&self) -> f64 {
+        self.centre.length()
+    }
+
+    /// True for a closed curve.
+    pub fn is_closed(&self) -> bool {
+        self.centre.is_closed()
+    }
+
+    /// Ribbon width `b`.
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// The point `C(x)` on the curve.
+    pub fn point(&self, x: f64) -> Point {
+        self.centre.point_at(x)
+    }
+
+    /// The unit normal towards the top of the pattern at `x`, interpolated between vertices.
+    pub fn up(&self, x: f64) -> Vec2 {
+        let (segment, t) = self.centre.locate(x);
+        let n = self.up.len();
+        let a = self.up[segment % n];
+        let b = self.up[(segment + 1) % n];
+        let mixed = a.lerp(b, t);
+        if mixed.hypot() > 1e-9 { mixed.normalize() } else { a }
+    }
+
+    /// `T(x)`, the top offset curve.
+    pub fn top(&self, x: f64) -> Point {
+        self.point(x) + self.up(x) * (0.5 * self.width)
+    }
+
+    /// `B(x)`, the bottom offset curve.
+    pub fn bottom(&self, x: f64) -> Point {
+        self.point(x) - self.up(x) * (0.5 * self.width)
+    }
+
+    /// The centre curve as resampled internally.
+    pub fn centre(&self) -> &Polyline {
+        &self.centre
+    }
+}
+
+/// One piece of the ribbon in the canvas: the quadrilateral `(T(x_i), B(x_i), B(x_{i+1}), T(x_{i+1}))`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PieceQuad {
+    /// Arc length where the piece starts, `x_i`.
+    pub start: f64,
+    /// Arc length where the piece ends, `x_{i+1}`.
+    pub end: f64,
+    /// Corners in the order top-left, bottom-left, bottom-right, top-right.
+    pub corners: [Point; 4],
+}
+
+/// Slice positions `x_i = iδ`, `i ∈ [0..N]`, with a final shorter piece for the fractional part
+/// (§1.3). A remainder shorter than half a canvas unit is absorbed by the last full piece, which
+/// would otherwise be a sliver with no room for the pattern. Requires `δ ≤ L` (checked by the caller).
+pub fn slice_positions(length: f64, delta: f64) -> Vec<f64> {
+    let full = (length / delta).floor() as usize;
+    let mut positions: Vec<f64> = (0..=full).map(|i| i as f64 * delta).collect();
+    let remainder = length - full as f64 * delta;
+    if remainder >= 0.5 || full == 0 {
+        positions.push(length);
+    } else {
+        *positions.last_mut().expect("at least one slice") = length;
+    }
+    positions.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    positions
+}
+
+/// Slices the ribbon into pieces of length `delta` (§1.3).
+pub fn slice(ribbon: &Ribbon, delta: f64) -> Vec<PieceQuad> {
+    let positions = slice_positions(ribbon.length(), delta);
+    positions
+        .windows(2)
+        .map(|pair| {
+            let (start, end) = (pair[0], pair[1]);
+            PieceQuad {
+                start,
+                end,
+                corners: [ribbon.top(start), ribbon.bottom(start), ribbon.bottom(end), ribbon.top(end)],
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slicing_adds_a_shorter_final_piece() {
+        assert_eq!(slice_positions(10.0, 3.0), vec![0.0, 3.0, 6.0, 9.0, 10.0]);
+        assert_eq!(slice_positions(9.0, 3.0), vec![0.0, 3.0, 6.0, 9.0]);
+        assert_eq!(slice_positions(9.2, 3.0), vec![0.0, 3.0, 6.0, 9.2]);
+    }
+
+    #[test]
+    fn straight_ribbon_has_upright_rectangular_pieces() {
+        let curve = Polyline::new(vec![Point::new(0.0, 50.0), Point::new(100.0, 50.0)], false).unwrap();
+        let ribbon = Ribbon::new(&curve, 20.0).unwrap();
+        let pieces = slice(&ribbon, 25.0);
+        assert_eq!(pieces.len(), 4);
+        let first = pieces[0].corners;
+        assert!(first[0].distance(Point::new(0.0, 40.0)) < 1e-9, "{first:?}");
+        assert!(first[1].distance(Point::new(0.0, 60.0)) < 1e-9);
+        assert!(first[2].distance(Point::new(25.0, 60.0)) < 1e-9);
+        assert!(first[3].distance(Point::new(25.0, 40.0)) < 1e-9);
+    }
+
+    #[test]
+    fn every_slice_edge_has_the_ribbon_width() {
+        let points = (0..200).map(|i| {
+            let a = i as f64 / 200.0 * std::f64::consts::TAU;
+            Point::new(100.0 + 60.0 * a.cos(), 100.0 + 40.0 * a.sin())
+        });
+        let curve = Polyline::new(points.collect(), true).unwrap();
+        let ribbon = Ribbon::new(&curve, 16.0).unwrap();
+        for piece in slice(&ribbon, 13.0) {
+            assert!((piece.corners[0].distance(piece.corners[1]) - 16.0).abs() < 1e-9);
+            assert!((piece.corners[3].distance(piece.corners[2]) - 16.0).abs() < 1e-9);
+        }
+    }
+}

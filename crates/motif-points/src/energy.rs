@@ -1,0 +1,492 @@
+//! The discrete similarity error T of Eq. 6 and its analytic gradients ∂T/∂x_i, ∂T/∂a_i and
+//! ∂S/∂m_k (fast path).
+//!
+//! `T = Σ_k S_k` with `S_k = Σ a_i·a_j K − 2 Σ a_i·b_j K + Σ b_i·b_j K` (see [`crate::model`]). The
+//! fast path regroups the first two sums by output point: row `i` collects every term that holds
+//! `x_i` over the quadrature points within reach, so each point's energy share and gradient are
+//! computed independently (in parallel, in a fixed order, hence identical for any thread count),
+//! with neighbour lists from a uniform grid instead of the window's all-pairs loops.
+
+use rayon::prelude::*;
+
+use crate::domain::Quadrature;
+use crate::grid::StaticGrid;
+use crate::linear::{self, Vector};
+use crate::model::{Exemplar, Kernel, State, feature_dot};
+use crate::params::Window;
+
+/// Compressed neighbour lists (each point's neighbours within a radius, itself excluded).
+#[derive(Debug, Clone, Default)]
+pub struct Neighbours {
+    starts: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Neighbours {
+    /// Neighbours within `radius` of every point, through a uniform grid.
+    pub fn build<const D: usize>(positions: &[Vector<D>], radius: f64) -> Self {
+        let grid = StaticGrid::new(positions, radius);
+        let lists: Vec<Vec<u32>> = positions
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| {
+                let mut list = Vec::new();
+                grid.for_each_within(p, radius, |j, _, _| {
+                    if j != i {
+                        list.push(j as u32);
+                    }
+                });
+                // Grid order depends only on the positions, but sort anyway so sums are reproducible.
+                list.sort_unstable();
+                list
+            })
+            .collect();
+        let mut starts = Vec::with_capacity(positions.len() + 1);
+        let mut items = Vec::with_capacity(lists.iter().map(Vec::len).sum());
+        starts.push(0);
+        for list in lists {
+            items.extend_from_slice(&list);
+            starts.push(items.len() as u32);
+        }
+        Self { starts, items }
+    }
+
+    /// The neighbours of point `i`.
+    #[inline(always)]
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.items[self.starts[i] as usize..self.starts[i + 1] as usize]
+    }
+}
+
+/// The fixed parts of the problem at one window size δ.
+pub struct Problem<'a, const D: usize> {
+    pub kernel: Kernel,
+    pub exemplar: &'a Exemplar<D>,
+    /// Exemplar grid with cells of the largest query radius (cut-off over the smallest scale).
+    pub exemplar_grid: &'a StaticGrid<D>,
+    /// Exemplar neighbour lists within the cut-off over the smallest scale.
+    pub exemplar_neighbours: &'a Neighbours,
+    pub quadrature: &'a Quadrature<D>,
+    /// Per quadrature point: every place its window reaches is inside Ω (no masking needed).
+    pub interior: Vec<bool>,
+}
+
+/// One output pair `(i, j)` of a row with its quadrature-independent factors.
+#[derive(Debug, Clone, Copy)]
+pub struct PairCache<const D: usize> {
+    other: u32,
+    /// `exp(−|x_i − x_j|²/2σ²) − floor`.
+    pair: f64,
+    /// `−∂pair/∂x_i`.
+    slope: Vector<D>,
+    /// `(x_i + x_j)/2`.
+    mid: Vector<D>,
+    /// `a_i · a_j`.
+    weight: f64,
+}
+
+/// Per-thread buffers of [`Problem::point_row`], reused from row to row (no allocation in the loop).
+#[derive(Debug, Clone, Default)]
+pub struct RowScratch<const D: usize> {
+    pairs: Vec<PairCache<D>>,
+    /// Per pair and axis, the window factor `exp(−(mid_c − q_c)²/δ'²)` at every grid coordinate of
+    /// the row's quadrature range: the Gaussian window is separable and the quadrature points lie
+    /// on a grid, so `D` short tables replace one exponential per (pair, quadrature point).
+    windows: Vec<f64>,
+}
+
+/// T and its gradients.
+#[derive(Debug, Clone)]
+pub struct Evaluation<const D: usize> {
+    pub energy: f64,
+    pub positions: Vec<Vector<D>>,
+    /// `n × channels` (empty when not requested).
+    pub features: Vec<f64>,
+}
+
+impl<const D: usize> Problem<'_, D> {
+    /// The row of output point `i`: `(Σ_k Σ_j a_i·a_j K(u_i, u_j), −2 Σ_k Σ_j a_i·b_j K(u_i, v_j))`,
+    /// adding `∂T/∂x_i` to `gradient` and `∂T/∂a_i` to `feature_gradient` (when given).
+    ///
+    /// The pair factor of `K` does not depend on the quadrature point, so it is computed once per
+    /// neighbour (into `scratch`); the exemplar side is evaluated in exemplar coordinates, where the
+    /// frame `sR` reduces to the scalar `s` (distances are rotation invariant), so candidates need no
+    /// matrix product. With the Gaussian window the pairs' window factors come from per-axis
+    /// tables (see [`RowScratch`]), equal to the direct exponential up to rounding.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    pub fn point_row(
+        &self,
+        state: &State<D>,
+        matches: &[Vector<D>],
+        i: usize,
+        neighbours: &[u32],
+        gradient: &mut Vector<D>,
+        mut feature_gradient: Option<&mut [f64]>,
+        scratch: &mut RowScratch<D>,
+    ) -> (f64, f64) {
+        let kernel = &self.kernel;
+        let x = state.positions[i];
+        let a = state.feature(i);
+        let (mut row_a, mut row_b) = (0.0, 0.0);
+        let gaussian = kernel.window == Window::Gaussian;
+        let Some(range) = self.quadrature.node_range(&x, kernel.gather) else {
+            return (0.0, 0.0);
+        };
+        // Pairs (i, j), the point itself first.
+        let RowScratch { pairs: scratch, windows } = scratch;
+        scratch.clear();
+        scratch.push(PairCache {
+            other: i as u32,
+            pair: 1.0 - kernel.pair_floor,
+            slope: [0.0; D],
+            mid: x,
+            weight: feature_dot(a, a),
+        });
+        for &j in neighbours {
+            let xj = state.positions[j as usize];
+            let d = linear::sub(&x, &xj);
+            let d2 = linear::norm2(&d);
+            if d2 >= kernel.cutoff2 {
+                continue;
+            }
+            let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+            scratch.push(PairCache {
+                other: j,
+                pair: pair_exp - kernel.pair_floor,
+                slope: linear::scale(&d, pair_exp * kernel.inv_sigma2),
+                mid: std::array::from_fn(|c| 0.5 * (x[c] + xj[c])),
+                weight: feature_dot(a, state.feature(j as usize)),
+            });
+        }
+        // Window tables: pair p, axis c, node n at windows[(p·D + c)·width + n − low_c].
+        let (low, high) = range;
+        let width = (0..D).map(|c| high[c] - low[c] + 1).max().unwrap_or(1);
+        windows.clear();
+        if gaussian {
+            for cache in scratch.iter() {
+                for c in 0..D {
+                    for n in 0..width {
+                        let t = cache.mid[c] - self.quadrature.node_coordinate(c, low[c] + n);
+                        windows.push((-t * t * kernel.inv_delta_prime2).exp());
+                    }
+                }
+            }
+        }
+        let cutoff = kernel.cutoff;
+        self.quadrature.for_each_in_range(&x, kernel.gather, &range, |k, node| {
+            let q = self.quadrature.points[k];
+            let u = linear::sub(&x, &q);
+            let u2 = linear::norm2(&u);
+            for (p, cache) in scratch.iter().enumerate() {
+                // K = pair · window; ∂K/∂x_i = −slope · window − pair · ∂window (for j = i the
+                // derivative doubles, which the factor 2 below supplies in both cases).
+                let (value, du) = if gaussian {
+                    let mid = linear::sub(&cache.mid, &q);
+                    let mid2 = linear::norm2(&mid);
+                    if mid2 >= kernel.window2 {
+                        continue;
+                    }
+                    let table = &windows[p * D * width..(p + 1) * D * width];
+                    let mut window_exp = table[node[0]];
+                    for c in 1..D {
+                        window_exp *= table[c * width + node[c]];
+                    }
+                    let window = window_exp - kernel.window_floor;
+                    let b = cache.pair * window_exp * kernel.inv_delta_prime2;
+                    let du: Vector<D> = std::array::from_fn(|c| -cache.slope[c] * window - b * mid[c]);
+                    (cache.pair * window, du)
+                } else {
+                    let uj = linear::sub(&state.positions[cache.other as usize], &q);
+                    if u2 >= kernel.window2 || linear::norm2(&uj) >= kernel.window2 {
+                        continue;
+                    }
+                    (cache.pair, linear::scale(&cache.slope, -1.0))
+                };
+                row_a += cache.weight * value;
+                linear::axpy(gradient, 2.0 * cache.weight, &du);
+                if let Some(fg) = feature_gradient.as_deref_mut() {
+                    for (g, &ac) in fg.iter_mut().zip(state.feature(cache.other as usize)) {
+                        *g += 2.0 * ac * value;
+                    }
+                }
+            }
+            let m = matches[k];
+            let s = self.quadrature.scale[k];
+            let s2 = s * s;
+            let inverse = &self.quadrature.inverse[k];
+            let offset = linear::mat_vec(inverse, &u);
+            let y = linear::add(&m, &offset);
+            let interior = self.interior[k];
+            let transform = &self.quadrature.transform[k];
+            let mut gy = [0.0; D];
+            self.exemplar_grid.for_each_within(&y, cutoff / s, |j, e, distance2| {
+                let d2 = s2 * distance2;
+                if d2 >= kernel.cutoff2 {
+                    return;
+                }
+                // The window tests come before the masking test and the exponentials: they are
+                // cheap and reject about a third of the candidates near the rim of the reach.
+                let sum: Vector<D> = std::array::from_fn(|c| offset[c] + e[c] - m[c]);
+                let mid2 = 0.25 * s2 * linear::norm2(&sum);
+                if gaussian {
+                    if mid2 >= kernel.window2 {
+                        return;
+                    }
+                } else if u2 >= kernel.window2 || s2 * linear::norm2(&linear::sub(e, &m)) >= kernel.window2 {
+                    return;
+                }
+                if !interior
+                    && !self.quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, &m))))
+                {
+                    return;
+                }
+                let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+                let pair = pair_exp - kernel.pair_floor;
+                let dex = linear::sub(&y, e);
+                // ∂/∂y in exemplar coordinates.
+                let (value, dy) = if gaussian {
+                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                    let window = window_exp - kernel.window_floor;
+                    let p = pair_exp * s2 * kernel.inv_sigma2 * window;
+                    let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;
+                    let dy: Vector<D> = std::array::from_fn(|c| -p * dex[c] - w * sum[c]);
+                    (pair * window, dy)
+                } else {
+                    let p = pair_exp * s2 * kernel.inv_sigma2;
+                    (pair, std::array::from_fn(|c| -p * dex[c]))
+                };
+                let b = self.exemplar.feature(j);
+                let weight = feature_dot(a, b);
+                row_b -= 2.0 * weight * value;
+                linear::axpy(&mut gy, -2.0 * weight, &dy);
+                if let Some(fg) = feature_gradient.as_deref_mut() {
+                    for (g, &bc) in fg.iter_mut().zip(b) {
+                        *g -= 2.0 * bc * value;
+                    }
+                }
+            });
+            // y = m + (sR)⁻¹ u, so ∂/∂u = ((sR)⁻¹)ᵀ ∂/∂y.
+            linear::axpy(gradient, 1.0, &linear::mat_t_vec(inverse, &gy));
+        });
+        (row_a, row_b)
+    }
+
+    /// T (given `exemplar_self = Σ_k C_k`) with gradients, point-centric and parallel.
+    pub fn evaluate(
+        &self,
+        state: &State<D>,
+        matches: &[Vector<D>],
+        exemplar_self: f64,
+        features: bool,
+    ) -> Evaluation<D> {
+        let n = state.positions.len();
+        let neighbours = Neighbours::build(&state.positions, self.kernel.cutoff);
+        let channels = state.channels;
+        let mut rows: Vec<(f64, Vector<D>)> = vec![(0.0, [0.0; D]); n];
+        let mut feature_gradient = vec![0.0; if features { n * channels } else { 0 }];
+        if features {
+            rows.par_iter_mut().zip(feature_gradient.par_chunks_mut(channels)).enumerate().for_each_init(
+                RowScratch::default,
+                |scratch, (i, (row, fg))| {
+                    let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, Some(fg), scratch);
+                    row.0 = ra + rb;
+                },
+            );
+        } else {
+            rows.par_iter_mut().enumerate().for_each_init(RowScratch::default, |scratch, (i, row)| {
+                let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, None, scratch);
+                row.0 = ra + rb;
+            });
+        }
+        let mut energy = exemplar_self;
+        for row in &rows {
+            energy += row.0;
+        }
+        Evaluation { energy, positions: rows.into_iter().map(|r| r.1).collect(), features: feature_gradient }
+    }
+
+    /// `C_k(m) = Σ b_j·b_j' K(v_j, v_j')` over the exemplar window at `m` (the third term of Eq. 5),
+    /// adding `∂C_k/∂m` to `gradient` when given.
+    pub fn exemplar_self(&self, k: usize, m: &Vector<D>, gradient: Option<&mut Vector<D>>) -> f64 {
+        let q = self.quadrature.points[k];
+        // Interior windows need no masking.
+        let mask = if self.interior[k] { None } else { Some(&q) };
+        self.exemplar_self_with(&self.quadrature.transform[k], self.quadrature.scale[k], m, mask, gradient)
+    }
+
+    /// [`Problem::exemplar_self`] for an explicit frame `transform = sR`.
+    pub fn exemplar_self_with(
+        &self,
+        transform: &crate::linear::Matrix<D>,
+        s: f64,
+        m: &Vector<D>,
+        q: Option<&Vector<D>>,
+        mut gradient: Option<&mut Vector<D>>,
+    ) -> f64 {
+        let kernel = &self.kernel;
+        if q.is_none() {
+            return self.exemplar_self_unmasked(s, m, gradient);
+        }
+        // Exemplar points whose place in the output falls outside Ω do not take part.
+        let inside = |v: &Vector<D>| q.is_none_or(|q| self.quadrature.inside(&linear::add(q, v)));
+        let mut total = 0.0;
+        let positions = &self.exemplar.positions;
+        self.exemplar_grid.for_each_within(m, kernel.gather / s, |j, e, _| {
+            let v = linear::mat_vec(transform, &linear::sub(e, m));
+            if !inside(&v) {
+                return;
+            }
+            let b = self.exemplar.feature(j);
+            let mut visit = |other: usize| {
+                let w = linear::mat_vec(transform, &linear::sub(&positions[other], m));
+                if !inside(&w) {
+                    return;
+                }
+                if let Some((value, du, dv)) = kernel.eval(&v, &w) {
+                    let weight = feature_dot(b, self.exemplar.feature(other));
+                    total += weight * value;
+                    if let Some(g) = gradient.as_deref_mut() {
+                        // v and w both move by −sR dm.
+                        let sum = linear::add(&du, &dv);
+                        linear::axpy(g, -weight, &linear::mat_t_vec(transform, &sum));
+                    }
+                }
+            };
+            visit(j);
+            for &other in self.exemplar_neighbours.of(j) {
+                visit(other as usize);
+            }
+        });
+        total
+    }
+
+    /// [`Problem::exemplar_self_with`] without masking, in exemplar coordinates: `K` depends on the
+    /// frame only through the scale (`|v − w| = s|e − e'|`, `|v + w| = s|e + e' − 2m|`).
+    fn exemplar_self_unmasked(&self, s: f64, m: &Vector<D>, gradient: Option<&mut Vector<D>>) -> f64 {
+        let kernel = &self.kernel;
+        let s2 = s * s;
+        let gaussian = kernel.window == Window::Gaussian;
+        let positions = &self.exemplar.positions;
+        let mut total = 0.0;
+        let mut g = [0.0; D];
+        self.exemplar_grid.for_each_within(m, kernel.gather / s, |j, e, distance2| {
+            if !gaussian && s2 * distance2 >= kernel.window2 {
+                return;
+            }
+            let b = self.exemplar.feature(j);
+            let mut visit = |other: usize| {
+                let o = &positions[other];
+                let d2 = s2 * linear::norm2(&linear::sub(e, o));
+                if d2 >= kernel.cutoff2 {
+                    return;
+                }
+                let weight = feature_dot(b, self.exemplar.feature(other));
+                if gaussian {
+                    let sum: Vector<D> = std::array::from_fn(|c| e[c] + o[c] - 2.0 * m[c]);
+                    let mid2 = 0.25 * s2 * linear::norm2(&sum);
+                    if mid2 >= kernel.window2 {
+                        return;
+                    }
+                    let pair = (-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor;
+                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                    total += weight * pair * (window_exp - kernel.window_floor);
+                    linear::axpy(&mut g, weight * pair * window_exp * s2 * kernel.inv_delta_prime2, &sum);
+                } else {
+                    if s2 * linear::norm2(&linear::sub(o, m)) >= kernel.window2 {
+                        return;
+                    }
+                    total += weight * ((-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor);
+                }
+            };
+            visit(j);
+            for &other in self.exemplar_neighbours.of(j) {
+                visit(other as usize);
+            }
+        });
+        if let Some(gradient) = gradient {
+            linear::axpy(gradient, 1.0, &g);
+        }
+        total
+    }
+
+    /// `−2 B_k(m) = −2 Σ a_i·b_j K(u_i, v_j)` for the output window `window` (offsets `u_i` from
+    /// `q_k` with their point ids), adding `∂/∂m` to `gradient` when given.
+    pub fn cross(
+        &self,
+        k: usize,
+        m: &Vector<D>,
+        window: &[(Vector<D>, u32)],
+        state: &State<D>,
+        mut gradient: Option<&mut Vector<D>>,
+    ) -> f64 {
+        let kernel = &self.kernel;
+        let transform = &self.quadrature.transform[k];
+        let inverse = &self.quadrature.inverse[k];
+        let s = self.quadrature.scale[k];
+        let q = self.quadrature.points[k];
+        let interior = self.interior[k];
+        let mut total = 0.0;
+        for (u, i) in window {
+            let a = state.feature(*i as usize);
+            let y = linear::add(m, &linear::mat_vec(inverse, u));
+            self.exemplar_grid.for_each_within(&y, kernel.cutoff / s, |j, e, _| {
+                let v = linear::mat_vec(transform, &linear::sub(e, m));
+                if !interior && !self.quadrature.inside(&linear::add(&q, &v)) {
+                    return;
+                }
+                if let Some((value, _, dv)) = kernel.eval(u, &v) {
+                    let weight = feature_dot(a, self.exemplar.feature(j));
+                    total -= 2.0 * weight * value;
+                    if let Some(g) = gradient.as_deref_mut() {
+                        // ∂v/∂m = −sR, so ∂/∂m (−2 w K) = 2 w (sR)ᵀ ∂K/∂v.
+                        linear::axpy(g, 2.0 * weight, &linear::mat_t_vec(transform, &dv));
+                    }
+                }
+            });
+        }
+        total
+    }
+
+    /// The output points within reach of quadrature point `k`, as offsets from it.
+    pub fn output_window(&self, k: usize, grid: &StaticGrid<D>) -> Vec<(Vector<D>, u32)> {
+        let q = self.quadrature.points[k];
+        let mut window = Vec::new();
+        grid.for_each_within(&q, self.kernel.gather, |i, p, _| window.push((linear::sub(p, &q), i as u32)));
+        window.sort_unstable_by_key(|w| w.1);
+        window
+    }
+
+    /// The part of `S_k(m)` that depends on `m`: `C_k(m) − 2 B_k(m)`, and its gradient.
+    #[cfg(test)]
+    pub fn match_objective(
+        &self,
+        k: usize,
+        m: &Vector<D>,
+        window: &[(Vector<D>, u32)],
+        state: &State<D>,
+        gradient: Option<&mut Vector<D>>,
+    ) -> f64 {
+        let (c, cross) = self.match_parts(k, m, window, state, gradient);
+        c + cross
+    }
+
+    /// `(C_k(m), −2 B_k(m))`, with the gradient of their sum.
+    pub fn match_parts(
+        &self,
+        k: usize,
+        m: &Vector<D>,
+        window: &[(Vector<D>, u32)],
+        state: &State<D>,
+        gradient: Option<&mut Vector<D>>,
+    ) -> (f64, f64) {
+        match gradient {
+            Some(g) => {
+                *g = [0.0; D];
+                let c = self.exemplar_self(k, m, Some(&mut *g));
+                (c, self.cross(k, m, window, state, Some(g)))
+            }
+            None => (self.exemplar_self(k, m, None), self.cross(k, m, window, state, None)),
+        }
+    }
+}

@@ -1,0 +1,180 @@
+//! Initialization of the output (§5.2): random points at the exemplar's density, or copies of
+//! exemplar patches. The solver is meant to reach the same kind of result from either.
+
+use motif_core::SeedStreams;
+use motif_core::random::Rng;
+
+use crate::domain::Quadrature;
+use crate::linear::{self, Matrix, Vector};
+use crate::model::{Exemplar, Rigid, State};
+
+/// A random rotation (uniform angle in 2D; uniform axis and angle in 3D).
+fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
+    let angle = stream.random::<f64>() * std::f64::consts::TAU;
+    if D == 2 {
+        return linear::rotation_xy::<D>(angle);
+    }
+    let z: f64 = stream.random::<f64>() * 2.0 - 1.0;
+    let phi = stream.random::<f64>() * std::f64::consts::TAU;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    linear::rotation_axis_angle::<D>([r * phi.cos(), r * phi.sin(), z], angle)
+}
+
+/// Adds exemplar point `j` (or its whole element) mapped by `x = anchor + frame (e − origin)`.
+/// Elements get `extra` applied to their orientation. Returns the number of points added.
+#[allow(clippy::too_many_arguments)]
+fn place<const D: usize>(
+    exemplar: &Exemplar<D>,
+    state: &mut State<D>,
+    j: usize,
+    anchor: &Vector<D>,
+    origin: &Vector<D>,
+    frame: &Matrix<D>,
+    scale: f64,
+    extra: Option<Matrix<D>>,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> usize {
+    match exemplar.element_of[j] {
+        None => {
+            let x = linear::add(anchor, &linear::mat_vec(frame, &linear::sub(&exemplar.positions[j], origin)));
+            if !allowed(&x) {
+                return 0;
+            }
+            state.add_free(x, exemplar.feature(j), false);
+            1
+        }
+        Some(element) => {
+            let source = &exemplar.elements[element as usize];
+            let centre = linear::add(anchor, &linear::mat_vec(frame, &linear::sub(&source.centre, origin)));
+            if !allowed(&centre) {
+                return 0;
+            }
+            let pure: Matrix<D> = std::array::from_fn(|r| std::array::from_fn(|c| frame[r][c] / scale));
+            let rotation = match extra {
+                Some(extra) => linear::mat_mul(&pure, &extra),
+                None => pure,
+            };
+            let body: Vec<Vector<D>> = source
+                .members
+                .iter()
+                .map(|&p| linear::scale(&linear::sub(&exemplar.positions[p], &source.centre), scale))
+                .collect();
+            let mut features = Vec::new();
+            for &p in &source.members {
+                features.extend_from_slice(exemplar.feature(p));
+            }
+            state.add_rigid(Rigid { centre, rotation, body }, &features, 0, false);
+            source.members.len()
+        }
+    }
+}
+
+/// Random initialization: as many points as the exemplar's density asks for over the quadrature
+/// points `fill` (each stands for `spacing^D` of volume), at uniformly random positions.
+pub fn random<const D: usize>(
+    exemplar: &Exemplar<D>,
+    quadrature: &Quadrature<D>,
+    fill: &[usize],
+    state: &mut State<D>,
+    streams: &SeedStreams,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) {
+    if fill.is_empty() {
+        return;
+    }
+    let h = quadrature.spacing();
+    let density = exemplar.density();
+    let target: f64 = fill.iter().map(|&k| h.powi(D as i32) * density / quadrature.scale[k].powi(D as i32)).sum();
+    let target = target.round() as usize;
+    let mut placed = 0;
+    let mut attempt = 0u64;
+    while placed < target && attempt < 20 * target as u64 + 100 {
+        let mut stream = streams.stream("initial point", attempt);
+        attempt += 1;
+        let k = fill[stream.random_range(0..fill.len())];
+        let x: Vector<D> = std::array::from_fn(|a| quadrature.points[k][a] + (stream.random::<f64>() - 0.5) * h);
+        let j = stream.random_range(0..exemplar.positions.len());
+        let extra = random_rotation::<D>(&mut stream);
+        // Map e_j onto x (the frame orients elements; a random extra turn randomizes them).
+        placed += place(
+            exemplar,
+            state,
+            j,
+            &x,
+            &exemplar.positions[j],
+            &quadrature.transform[k],
+            quadrature.scale[k],
+            Some(extra),
+            allowed,
+        );
+    }
+}
+
+/// Patch initialization: the domain is tiled with cubes of side `patch`; each receives a copy of a
+/// random exemplar patch placed with the frame of its nearest quadrature point.
+pub fn patches<const D: usize>(
+    exemplar: &Exemplar<D>,
+    quadrature: &Quadrature<D>,
+    fill: &[usize],
+    patch: f64,
+    state: &mut State<D>,
+    streams: &SeedStreams,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) {
+    if fill.is_empty() {
+        return;
+    }
+    let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
+    let (low, high) = crate::grid::bounds(&points);
+    let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
+    let total: usize = dims.iter().product();
+    // Which tile each fill point belongs to, so that tiles outside the domain are skipped.
+    let tile_of = |x: &Vector<D>| -> usize {
+        let mut index = 0;
+        for a in (0..D).rev() {
+            let c = (((x[a] - low[a]) / patch).floor().max(0.0) as usize).min(dims[a] - 1);
+            index = index * dims[a] + c;
+        }
+        index
+    };
+    let mut representative: Vec<Option<usize>> = vec![None; total];
+    for &k in fill {
+        let t = tile_of(&quadrature.points[k]);
+        representative[t].get_or_insert(k);
+    }
+    let extent: Vector<D> = std::array::from_fn(|a| exemplar.high[a] - exemplar.low[a]);
+    for (tile, k) in representative.iter().enumerate() {
+        let Some(k) = *k else { continue };
+        let mut stream = streams.stream("initial patch", tile as u64);
+        let mut rest = tile;
+        let centre: Vector<D> = std::array::from_fn(|a| {
+            let c = rest % dims[a];
+            rest /= dims[a];
+            low[a] + (c as f64 + 0.5) * patch
+        });
+        let s = quadrature.scale[k];
+        let half = 0.5 * patch / s;
+        // A patch centre whose patch lies inside the exemplar where possible.
+        let origin: Vector<D> = std::array::from_fn(|a| {
+            let margin = half.min(0.5 * extent[a]);
+            exemplar.low[a] + margin + stream.random::<f64>() * (extent[a] - 2.0 * margin).max(0.0)
+        });
+        for j in 0..exemplar.positions.len() {
+            let anchor = match exemplar.element_of[j] {
+                None => exemplar.positions[j],
+                Some(e) => {
+                    // Each element is placed once, from its first member.
+                    if exemplar.elements[e as usize].members[0] != j {
+                        continue;
+                    }
+                    exemplar.elements[e as usize].centre
+                }
+            };
+            let offset = linear::sub(&anchor, &origin);
+            if (0..D).any(|a| offset[a].abs() > half) {
+                continue;
+            }
+            place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed);
+        }
+    }
+}

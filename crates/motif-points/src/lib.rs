@@ -1,0 +1,49 @@
+//! Example-based repetitive structure synthesis from point samples, in 2D and 3D, after Roveri,
+//! Öztireli, Martin, Solenthaler and Gross, "Example Based Repetitive Structure Synthesis" (2015).
+//!
+//! The exemplar and the output are point sets with attributes (§4.1); both become sums of Gaussians
+//! (§4.3) and the output is optimized so that every neighbourhood of it matches some neighbourhood
+//! of the exemplar under the similarity error T of Eq. 5–6. Modules, by section of the paper:
+//!
+//! - [`points`] (§4.1, Eq. 1): [`PointSet`], points with float attributes and element ids.
+//! - `model` (§4.3, Eq. 4–5): features, the kernel of the discrete error density for the box and
+//!   Gaussian windows with truncation at 3δ, exemplar/output state, rigid elements (§6.1).
+//! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, ∂S/∂m_k, point-centric and
+//!   parallel; `reference`: the plain per-quadrature-point version used by tests and the speed-up
+//!   figure.
+//! - `domain` (§6.2): boxes, polygon regions, brush strokes; the regular quadrature grid; rotation
+//!   and scale fields stored at the quadrature points (Eq. 8).
+//! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts.
+//! - `merging` (§5.1, global step): gradient descent on positions (rigid motions for elements), then
+//!   attributes, discrete attributes snapped (§4.4).
+//! - `sampling` (§5.1, Eq. 7): sampling control by the signed density difference P.
+//! - `init` (§5.2): random or patch initialization.
+//! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
+//! - [`fidelity`]: nearest-neighbour histogram and radial distribution comparisons.
+//! - `grid`, `raster`, `linear`: uniform-grid neighbour queries, multilinear rasters, small vectors.
+
+// Coordinates are indexed `0..D` throughout: index loops over fixed-size arrays read like the
+// formulas they implement.
+#![allow(clippy::needless_range_loop)]
+
+mod domain;
+mod energy;
+pub mod fidelity;
+mod grid;
+mod init;
+mod linear;
+mod matching;
+mod merging;
+mod model;
+mod params;
+pub mod points;
+mod raster;
+mod reference;
+mod sampling;
+mod solver;
+#[cfg(test)]
+mod tests;
+
+pub use params::{Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Stroke, Window};
+pub use points::PointSet;
+pub use solver::{EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

@@ -1,0 +1,250 @@
+//! The local step of Algorithm 1 (§5.1): for every quadrature point `q_k`, the exemplar location
+//! `m_k` whose neighbourhood best matches the output around `q_k`.
+//!
+//! `∂T/∂m_k = ∂S_k/∂m_k`, so quadrature points are matched independently, in parallel, each with
+//! its own random stream keyed by (iteration, k). Following the paper, gradient descent runs from
+//! five random starts. The descent of the starts uses a rasterized form of `S_k` (the exemplar
+//! function `e` smoothed by the σ-Gaussian and the exemplar self-term, both sampled on grids, and
+//! the window weight taken at the output point) which costs a few lookups per window point; the
+//! winner is then compared with the previous match on the exact `S_k` and polished by exact
+//! gradient descent (∂S/∂m of [`crate::energy`]). Keeping the previous match when it is better
+//! makes the step never raise T.
+
+use motif_core::SeedStreams;
+use motif_core::random::Rng;
+use rayon::prelude::*;
+
+use crate::energy::Problem;
+use crate::grid::StaticGrid;
+use crate::linear::{self, Vector};
+use crate::model::{State, feature_dot};
+use crate::params::Window;
+use crate::raster::Raster;
+
+/// Matching settings.
+#[derive(Debug, Clone, Copy)]
+pub struct MatchSettings {
+    pub starts: usize,
+    pub iterations: usize,
+    pub polish: usize,
+}
+
+/// Rasters of the exemplar used by the candidate search at one window size.
+pub struct SearchFields<const D: usize> {
+    /// `ẽ(y) = Σ_j b_j exp(−|y − e_j|²/2σ²)`, `channels` components.
+    smoothed: Raster<D>,
+    /// `C(m)` for the identity frame.
+    exemplar_self: Raster<D>,
+    channels: usize,
+}
+
+impl<const D: usize> SearchFields<D> {
+    pub fn new(problem: &Problem<'_, D>) -> Self {
+        let exemplar = problem.exemplar;
+        let sigma = problem.kernel.sigma;
+        let channels = exemplar.channels;
+        let margin = problem.kernel.cutoff;
+        let low = std::array::from_fn(|a| exemplar.low[a] - margin);
+        let high = std::array::from_fn(|a| exemplar.high[a] + margin);
+        let fine = if D == 2 { 0.25 * sigma } else { 0.4 * sigma };
+        let cutoff = problem.kernel.cutoff;
+        let inv = 0.5 / (sigma * sigma);
+        let smoothed = Raster::new(low, high, fine, channels, |y, out| {
+            problem.exemplar_grid.for_each_within(y, cutoff, |j, _, d2| {
+                let g = (-d2 * inv).exp();
+                for (o, b) in out.iter_mut().zip(exemplar.feature(j)) {
+                    *o += b * g;
+                }
+            });
+        });
+        let exemplar_self = Self::exemplar_self_raster(problem);
+        Self { smoothed, exemplar_self, channels }
+    }
+
+    /// Rebuilds the part that depends on the window size (the smoothed exemplar does not).
+    pub fn set_window(&mut self, problem: &Problem<'_, D>) {
+        self.exemplar_self = Self::exemplar_self_raster(problem);
+    }
+
+    /// `C(m)` varies on the window's scale, so a raster of spacing δ'/2 resolves it.
+    fn exemplar_self_raster(problem: &Problem<'_, D>) -> Raster<D> {
+        let exemplar = problem.exemplar;
+        let kernel = &problem.kernel;
+        let identity = linear::identity::<D>();
+        let delta_prime = (kernel.delta * kernel.delta + 0.5 * kernel.sigma * kernel.sigma).sqrt();
+        Raster::new(exemplar.low, exemplar.high, 0.5 * delta_prime, 1, |m, out| {
+            out[0] = problem.exemplar_self_with(&identity, 1.0, m, None, None);
+        })
+    }
+}
+
+/// The box that matches are kept in: the exemplar shrunk by the window's reach, so that a matched
+/// neighbourhood lies inside the exemplar.
+fn admissible<const D: usize>(problem: &Problem<'_, D>, k: usize) -> (Vector<D>, Vector<D>) {
+    let exemplar = problem.exemplar;
+    let reach = match problem.kernel.window {
+        Window::Gaussian => 2.0 * problem.kernel.delta,
+        Window::Box => problem.kernel.delta,
+    } / problem.quadrature.scale[k];
+    let mut low = [0.0; D];
+    let mut high = [0.0; D];
+    for a in 0..D {
+        let extent = exemplar.high[a] - exemplar.low[a];
+        let margin = reach.min(0.45 * extent);
+        low[a] = exemplar.low[a] + margin;
+        high[a] = exemplar.high[a] - margin;
+    }
+    (low, high)
+}
+
+fn clamp<const D: usize>(m: &Vector<D>, low: &Vector<D>, high: &Vector<D>) -> Vector<D> {
+    std::array::from_fn(|a| m[a].clamp(low[a], high[a]))
+}
+
+/// The result of matching: `m_k` and the exact `C_k(m_k)`.
+#[derive(Debug, Clone, Copy)]
+pub struct Match<const D: usize> {
+    pub location: Vector<D>,
+    pub exemplar_self: f64,
+}
+
+/// Matches every quadrature point. `previous` holds the last matches (empty on the first call).
+pub fn match_all<const D: usize>(
+    problem: &Problem<'_, D>,
+    fields: &SearchFields<D>,
+    state: &State<D>,
+    previous: &[Vector<D>],
+    settings: MatchSettings,
+    streams: &SeedStreams,
+) -> Vec<Match<D>> {
+    let grid = StaticGrid::new(&state.positions, problem.kernel.gather);
+    (0..problem.quadrature.len())
+        .into_par_iter()
+        .map(|k| match_one(problem, fields, state, &grid, previous.get(k), k, settings, streams))
+        .collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn match_one<const D: usize>(
+    problem: &Problem<'_, D>,
+    fields: &SearchFields<D>,
+    state: &State<D>,
+    grid: &StaticGrid<D>,
+    previous: Option<&Vector<D>>,
+    k: usize,
+    settings: MatchSettings,
+    streams: &SeedStreams,
+) -> Match<D> {
+    let kernel = &problem.kernel;
+    let window = problem.output_window(k, grid);
+    let (low, high) = admissible(problem, k);
+    let inverse = &problem.quadrature.inverse[k];
+    let delta_prime2 = kernel.delta * kernel.delta + 0.5 * kernel.sigma * kernel.sigma;
+    // The search objective keeps the window points that carry weight: (exemplar offset, a_i w(u_i)).
+    let channels = fields.channels;
+    let mut offsets: Vec<Vector<D>> = Vec::new();
+    let mut weights: Vec<f64> = Vec::new();
+    for (u, i) in &window {
+        let r2 = linear::norm2(u);
+        let w = match kernel.window {
+            Window::Gaussian if r2 < 9.0 * kernel.delta * kernel.delta => (-r2 / delta_prime2).exp(),
+            Window::Box if r2 < kernel.delta * kernel.delta => 1.0,
+            _ => 0.0,
+        };
+        if w > 0.1 {
+            offsets.push(linear::mat_vec(inverse, u));
+            weights.extend(state.feature(*i as usize).iter().map(|a| a * w));
+        }
+    }
+    let mut sample = vec![0.0; channels];
+    let mut sample_gradient = vec![[0.0; D]; channels];
+    let mut search = |m: &Vector<D>, gradient: &mut Vector<D>| -> f64 {
+        let mut one = [0.0];
+        let mut one_gradient = [[0.0; D]];
+        fields.exemplar_self.sample(m, &mut one, &mut one_gradient);
+        let mut value = one[0];
+        *gradient = one_gradient[0];
+        for (o, offset) in offsets.iter().enumerate() {
+            let y = linear::add(m, offset);
+            fields.smoothed.sample(&y, &mut sample, &mut sample_gradient);
+            let w = &weights[o * channels..(o + 1) * channels];
+            value -= 2.0 * feature_dot(w, &sample);
+            for c in 0..channels {
+                linear::axpy(gradient, -2.0 * w[c], &sample_gradient[c]);
+            }
+        }
+        value
+    };
+    let sigma = kernel.sigma;
+    let mut stream = streams.stream("matching", k as u64);
+    let mut best: Option<(f64, Vector<D>)> = None;
+    // `starts` random starts, plus one from the previous match (keeps coherence between iterations).
+    let extra = usize::from(previous.is_some());
+    for start in 0..settings.starts + extra {
+        let mut m: Vector<D> = std::array::from_fn(|a| low[a] + stream.random::<f64>() * (high[a] - low[a]));
+        if start == settings.starts
+            && let Some(p) = previous
+        {
+            m = clamp(p, &low, &high);
+        }
+        let mut gradient = [0.0; D];
+        let mut value = search(&m, &mut gradient);
+        let mut step = 0.5 * sigma;
+        for _ in 0..settings.iterations {
+            let norm = linear::norm2(&gradient).sqrt();
+            if norm == 0.0 || step < 1e-3 * sigma {
+                break;
+            }
+            let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), &low, &high);
+            let mut trial_gradient = [0.0; D];
+            let trial_value = search(&trial, &mut trial_gradient);
+            if trial_value < value {
+                m = trial;
+                value = trial_value;
+                gradient = trial_gradient;
+                step *= 1.5;
+            } else {
+                step *= 0.4;
+            }
+        }
+        if best.is_none_or(|(v, _)| value < v) {
+            best = Some((value, m));
+        }
+    }
+    let candidate = best.map(|b| b.1).unwrap_or_else(|| clamp(&low, &low, &high));
+    // Exact selection: the searched candidate against the previous match.
+    let mut gradient = [0.0; D];
+    let mut m = candidate;
+    let (mut c, cross) = problem.match_parts(k, &m, &window, state, Some(&mut gradient));
+    let mut value = c + cross;
+    if let Some(p) = previous {
+        let mut previous_gradient = [0.0; D];
+        let (previous_c, previous_cross) = problem.match_parts(k, p, &window, state, Some(&mut previous_gradient));
+        if previous_c + previous_cross <= value {
+            m = *p;
+            value = previous_c + previous_cross;
+            c = previous_c;
+            gradient = previous_gradient;
+        }
+    }
+    let mut step = 0.25 * sigma;
+    for _ in 0..settings.polish {
+        let norm = linear::norm2(&gradient).sqrt();
+        if norm == 0.0 {
+            break;
+        }
+        let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), &low, &high);
+        let mut trial_gradient = [0.0; D];
+        let (trial_c, trial_cross) = problem.match_parts(k, &trial, &window, state, Some(&mut trial_gradient));
+        if trial_c + trial_cross < value {
+            m = trial;
+            value = trial_c + trial_cross;
+            c = trial_c;
+            gradient = trial_gradient;
+            step *= 1.5;
+        } else {
+            step *= 0.4;
+        }
+    }
+    Match { location: m, exemplar_self: c }
+}

@@ -1,0 +1,207 @@
+//! The global step of Algorithm 1 (§5.1): gradient descent on T, first on the positions, then on
+//! the attributes (Gauss–Seidel), with discrete attributes snapped afterwards (§4.4).
+//!
+//! Free points follow `−∂T/∂x_i`; a discrete element (§6.1) is a rigid body that follows the summed
+//! force (translation) and torque (rotation about its centre), so its points keep their relative
+//! positions exactly. The step is the root-mean-square movement in units of σ (0.03 by default,
+//! §7.1); a step that does not lower T is undone and halved, an accepted one grows by 20 %, so T
+//! decreases monotonically. Units that would leave the domain stay where they are.
+
+use crate::energy::Evaluation;
+use crate::linear::{self, Vector};
+use crate::model::State;
+
+/// Merging settings.
+#[derive(Debug, Clone, Copy)]
+pub struct MergeSettings {
+    pub iterations: usize,
+    pub attribute_iterations: usize,
+    pub step: f64,
+    pub tolerance: f64,
+    pub stagnation: f64,
+    pub sigma: f64,
+}
+
+/// Gradient descent on the positions. Returns T after every accepted step (the first entry is T
+/// before merging).
+pub fn merge_positions<const D: usize>(
+    state: &mut State<D>,
+    settings: MergeSettings,
+    evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> Vec<f64> {
+    let sigma = settings.sigma;
+    let mut current = evaluate(state, false);
+    let mut energies = vec![current.energy];
+    let mut eta = settings.step;
+    let mut iteration = 0;
+    while iteration < settings.iterations {
+        iteration += 1;
+        // Per-unit forces: (unit, mean gradient, torque, inertia).
+        let mut forces: Vec<(usize, Vector<D>, [f64; 3], f64)> = Vec::new();
+        for (index, unit) in state.units.iter().enumerate() {
+            if !unit.alive || unit.frozen {
+                continue;
+            }
+            match &unit.rigid {
+                None => forces.push((index, current.positions[unit.points[0] as usize], [0.0; 3], 0.0)),
+                Some(rigid) => {
+                    let mut force = [0.0; D];
+                    let mut torque = [0.0; 3];
+                    let mut inertia = 0.0;
+                    for &p in &unit.points {
+                        let g = current.positions[p as usize];
+                        linear::axpy(&mut force, 1.0, &g);
+                        let lever = linear::sub(&state.positions[p as usize], &rigid.centre);
+                        let t = linear::torque(&lever, &g);
+                        for a in 0..3 {
+                            torque[a] += t[a];
+                        }
+                        inertia += linear::norm2(&lever);
+                    }
+                    let count = unit.points.len() as f64;
+                    forces.push((
+                        index,
+                        linear::scale(&force, 1.0 / count),
+                        torque.map(|t| t / count),
+                        inertia / count,
+                    ));
+                }
+            }
+        }
+        if forces.is_empty() {
+            break;
+        }
+        let rms = (forces.iter().map(|f| linear::norm2(&f.1)).sum::<f64>() / forces.len() as f64).sqrt();
+        if rms == 0.0 || !rms.is_finite() {
+            break;
+        }
+        let mut trial = state.clone();
+        let factor = eta * sigma / rms;
+        let mut movement = 0.0;
+        for (index, force, torque, inertia) in &forces {
+            let step = linear::scale(force, -factor);
+            let unit = &mut trial.units[*index];
+            match &mut unit.rigid {
+                None => {
+                    let p = unit.points[0] as usize;
+                    let moved = linear::add(&trial.positions[p], &step);
+                    if allowed(&moved) {
+                        trial.positions[p] = moved;
+                        movement += linear::norm2(&step).sqrt();
+                    }
+                }
+                Some(rigid) => {
+                    let moved = linear::add(&rigid.centre, &step);
+                    if allowed(&moved) {
+                        rigid.centre = moved;
+                        movement += linear::norm2(&step).sqrt();
+                    }
+                    if *inertia > 0.0 {
+                        let omega = torque.map(|t| -factor * t / inertia);
+                        let turn = linear::rotation_from_vector::<D>(omega);
+                        rigid.rotation = linear::mat_mul(&turn, &rigid.rotation);
+                        linear::orthonormalize(&mut rigid.rotation);
+                    }
+                    trial.place_rigid(*index);
+                }
+            }
+        }
+        let candidate = evaluate(&trial, false);
+        if candidate.energy < current.energy {
+            let decrease = current.energy - candidate.energy;
+            *state = trial;
+            current = candidate;
+            energies.push(current.energy);
+            eta = (eta * 1.2).min(0.5);
+            if movement / (forces.len() as f64) < settings.tolerance * sigma {
+                break;
+            }
+            // Stagnation: the step gained almost nothing compared with this merging step so far.
+            if decrease < settings.stagnation * (energies[0] - current.energy) {
+                break;
+            }
+        } else {
+            eta *= 0.5;
+            if eta < 1e-6 * settings.step {
+                break;
+            }
+        }
+    }
+    energies
+}
+
+/// Gradient descent on the (normalized) attributes of free points, then snapping of the discrete
+/// channels. `discrete[c]` lists the allowed values of channel `c` (empty = continuous).
+pub fn merge_attributes<const D: usize>(
+    state: &mut State<D>,
+    settings: MergeSettings,
+    discrete: &[Vec<f64>],
+    evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
+) {
+    let channels = state.channels;
+    if channels <= 1 || settings.attribute_iterations == 0 {
+        return;
+    }
+    let movable: Vec<usize> = state
+        .units
+        .iter()
+        .filter(|u| u.alive && !u.frozen && u.rigid.is_none())
+        .map(|u| u.points[0] as usize)
+        .collect();
+    if movable.is_empty() {
+        return;
+    }
+    let mut current = evaluate(state, true);
+    let mut eta = 3.0 * settings.step;
+    for _ in 0..settings.attribute_iterations {
+        let mut sum = 0.0;
+        for &p in &movable {
+            for c in 1..channels {
+                sum += current.features[p * channels + c].powi(2);
+            }
+        }
+        let rms = (sum / (movable.len() * (channels - 1)) as f64).sqrt();
+        if rms == 0.0 || !rms.is_finite() {
+            break;
+        }
+        let mut trial = state.clone();
+        for &p in &movable {
+            for c in 1..channels {
+                trial.features[p * channels + c] -= eta * current.features[p * channels + c] / rms;
+            }
+        }
+        let candidate = evaluate(&trial, true);
+        if candidate.energy < current.energy {
+            *state = trial;
+            current = candidate;
+            eta = (eta * 1.2).min(1.0);
+        } else {
+            eta *= 0.5;
+            if eta < 1e-6 {
+                break;
+            }
+        }
+    }
+    snap(state, discrete, &movable);
+}
+
+/// Snaps discrete channels of the given points to the nearest allowed value.
+pub fn snap<const D: usize>(state: &mut State<D>, discrete: &[Vec<f64>], points: &[usize]) {
+    let channels = state.channels;
+    for (c, values) in discrete.iter().enumerate() {
+        if values.is_empty() {
+            continue;
+        }
+        for &p in points {
+            let value = &mut state.features[p * channels + c];
+            let mut best = values[0];
+            for &v in values {
+                if (v - *value).abs() < (best - *value).abs() {
+                    best = v;
+                }
+            }
+            *value = best;
+        }
+    }
+}

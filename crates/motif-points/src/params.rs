@@ -1,0 +1,245 @@
+//! Parameters of the synthesis (§4.3, §5.1, §6.2, §7.1 defaults) and the error type.
+
+use std::sync::Arc;
+
+use motif_core::InvalidParameter;
+
+use crate::PointSet;
+
+/// Everything that can go wrong; messages are lower-case and say what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A parameter is outside its range.
+    #[error(transparent)]
+    Parameter(#[from] InvalidParameter),
+    /// The exemplar or the existing points are unusable.
+    #[error("{0}")]
+    Input(String),
+    /// The domain holds no quadrature point (zero size, or a stroke/region that is too thin).
+    #[error("empty domain: {0}")]
+    EmptyDomain(String),
+}
+
+/// The window function `w` delimiting a neighbourhood (§4.2–4.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Window {
+    /// `w(s) = exp(-|s|²/δ²)`, truncated at `3δ`; smooth in the positions (default).
+    #[default]
+    Gaussian,
+    /// The box `|s| < δ` of Eq. 5: only points inside the window count.
+    Box,
+}
+
+/// How the output points are created before optimization (§5.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Initialization {
+    /// Uniformly random positions, as many as the exemplar's density asks for (default).
+    #[default]
+    Random,
+    /// Copies of randomly chosen exemplar patches of size `2δ`, tiled over the domain.
+    Patches,
+}
+
+/// Which implementation of the energy and its gradient the solver uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Evaluator {
+    /// Point-centric, parallel, with cached neighbour lists (default).
+    #[default]
+    Fast,
+    /// A plain, sequential transcription of Eq. 5–6 per quadrature point (for tests and the speed-up
+    /// figure); gives the same energy.
+    Reference,
+}
+
+/// A function of the position (output units) to a field value.
+pub type FieldFunction = Arc<dyn Fn(&[f64]) -> f64 + Send + Sync>;
+
+/// A scalar field over the output domain (positions in output units).
+#[derive(Clone, Default)]
+pub enum Field {
+    /// No field: rotation 0°, scale 1.
+    #[default]
+    None,
+    /// The same value everywhere.
+    Uniform(f64),
+    /// Any function of the position (called once per quadrature point).
+    Custom(FieldFunction),
+}
+
+impl Field {
+    /// The value at `p`, or `default` for [`Field::None`].
+    pub fn value(&self, p: &[f64], default: f64) -> f64 {
+        match self {
+            Field::None => default,
+            Field::Uniform(value) => *value,
+            Field::Custom(f) => f(p),
+        }
+    }
+}
+
+impl std::fmt::Debug for Field {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Field::None => write!(f, "None"),
+            Field::Uniform(value) => write!(f, "Uniform({value})"),
+            Field::Custom(_) => write!(f, "Custom(..)"),
+        }
+    }
+}
+
+/// A brush stroke: the region within `width / 2` of a polyline, oriented along its tangent (§6.2).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stroke {
+    /// Vertices of the curve, each with `dimension` coordinates (at least 2 distinct vertices).
+    pub points: Vec<Vec<f64>>,
+    /// Brush width (output units, > 0): the region covered is a tube of radius `width / 2`.
+    pub width: f64,
+    /// Scale of the exemplar at the start of the stroke (> 0, default 1).
+    pub scale_start: f64,
+    /// Scale at the end; the scale varies linearly with arc length in between (> 0, default 1).
+    pub scale_end: f64,
+}
+
+/// Where the output is synthesized (§6.2): quadrature points are placed on a regular grid inside it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Domain {
+    /// The axis-aligned box `[min, max]` (2 or 3 coordinates each).
+    Box {
+        /// Lower corner.
+        min: Vec<f64>,
+        /// Upper corner.
+        max: Vec<f64>,
+    },
+    /// A polygonal region (2D only), for example read from an SVG.
+    Polygon(motif_core::Polygon),
+    /// A brush stroke; the exemplar's x axis follows the stroke tangent.
+    Stroke(Stroke),
+}
+
+/// Parameters of [`crate::synthesize`]. Defaults follow §7.1 of the paper.
+#[derive(Debug, Clone)]
+#[non_exhaustive]
+pub struct Params {
+    /// Neighbourhood size δ (output units, > 0): the width of the window `w` (§4.2). Large values
+    /// keep large-scale structure, small ones leave more randomness (Fig. 10). Default 2σ if `None`.
+    pub neighbourhood: Option<f64>,
+    /// Window shape (§4.3). Default Gaussian.
+    pub window: Window,
+    /// Gaussian width σ (output units, > 0). Default `None`: `spacing_fraction` times the mean
+    /// nearest-neighbour spacing of the exemplar (§7.1).
+    pub sigma: Option<f64>,
+    /// σ as a fraction of the exemplar's mean nearest-neighbour spacing when `sigma` is `None`
+    /// (0.1–2, default 0.5). The paper sets σ to the spacing itself; with `g = exp(-|x|²/σ²)` the
+    /// lattice frequency of a regular structure then survives in `f` only with weight
+    /// `exp(-π²) ≈ 1e-4`, so regular arrangements are indistinguishable from random ones of the same
+    /// density; at half the spacing it keeps `exp(-π²/4) ≈ 0.08` and structure is reproduced.
+    pub spacing_fraction: f64,
+    /// Spacing of the quadrature grid, in units of σ (0.25–4, default 2). §4.3 derives the spacing
+    /// from the band limit of the σ-Gaussians and §7.1 sets σ to the exemplar spacing; with σ at half
+    /// the spacing (see `spacing_fraction`) the default keeps the quadrature grid at the exemplar
+    /// spacing, as in the paper.
+    pub quadrature_spacing: f64,
+    /// Pairs of points farther apart than this many σ are ignored (the σ-Gaussian is below
+    /// `exp(-c²/2)` there; 2–6, default 3).
+    pub kernel_cutoff: f64,
+    /// Window shrink factor α per scale (§5.1; 0.5–0.99, default 0.9).
+    pub shrink: f64,
+    /// Stop shrinking once δ falls below this fraction of its start (§7.1; 0.05–1, default 0.5).
+    pub final_fraction: f64,
+    /// Sampling-control rounds per scale (Algorithm 1; 1–20, default 1).
+    pub sampling_rounds: usize,
+    /// Matching/merging alternations per sampling round (Algorithm 1; 1–20, default 1).
+    pub local_global_iterations: usize,
+    /// Gradient-descent iterations of one position merging step (§7.1; 1–1000, default 30).
+    pub merge_iterations: usize,
+    /// Gradient-descent iterations of one attribute merging step (0–1000, default 5).
+    pub attribute_iterations: usize,
+    /// Initial gradient step, as the root-mean-square movement per iteration in units of σ (§7.1;
+    /// 1e-4–1, default 0.03). Steps that raise the energy are halved and retried.
+    pub step: f64,
+    /// Merging stops when the mean movement falls below this (units of σ; default 1e-6, §7.1).
+    pub tolerance: f64,
+    /// Random starts of the matching gradient descent per quadrature point (§5.1; 1–64, default 5).
+    pub matching_starts: usize,
+    /// Merging also stops when an accepted step lowers T by less than this fraction of what the
+    /// merging step has gained so far (0–1, default 0.01; 0 turns it off).
+    pub stagnation: f64,
+    /// Gradient-descent iterations per matching start (1–200, default 8).
+    pub matching_iterations: usize,
+    /// Exact-gradient polishing iterations of the chosen match (0–50, default 1).
+    pub matching_polish: usize,
+    /// Add and remove points by the sampling error density P of Eq. 7 (default true).
+    pub sampling_control: bool,
+    /// A quadrature point asks for a point to be added (removed) when P < -t (P > t), P measured in
+    /// peak contributions of one point (0.05–10, default 0.5; the paper's ε).
+    pub sampling_threshold: f64,
+    /// Initialization (§5.2). Default random.
+    pub initialization: Initialization,
+    /// Output domain (required: `None` is reported as an empty domain).
+    pub domain: Option<Domain>,
+    /// Rotation field in degrees, counter-clockwise in the xy-plane (§6.2). Default none.
+    pub rotation: Field,
+    /// Scale field (> 0; §6.2). Default none (1).
+    pub scale: Field,
+    /// Attributes to synthesize, by name; `None` uses all of the exemplar's attributes.
+    pub attributes: Option<Vec<String>>,
+    /// Attributes that take discrete values: snapped to the nearest exemplar value after each step
+    /// (§4.4). Default none.
+    pub discrete_attributes: Vec<String>,
+    /// Weight of attributes relative to point density in `f` (attributes are first divided by their
+    /// exemplar standard deviation; 0–100, default 1).
+    pub attribute_weight: f64,
+    /// Progressive synthesis: existing points farther than this from the new domain stay fixed
+    /// (output units ≥ 0; default `None` = 3δ).
+    pub keep_margin: Option<f64>,
+    /// Energy implementation. Default fast.
+    pub evaluator: Evaluator,
+    /// Seed of every random choice (matching starts, initialization).
+    pub seed: u64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            neighbourhood: None,
+            window: Window::Gaussian,
+            sigma: None,
+            spacing_fraction: 0.5,
+            quadrature_spacing: 2.0,
+            kernel_cutoff: 3.0,
+            shrink: 0.9,
+            final_fraction: 0.5,
+            sampling_rounds: 1,
+            local_global_iterations: 1,
+            merge_iterations: 30,
+            attribute_iterations: 5,
+            step: 0.03,
+            tolerance: 1e-6,
+            matching_starts: 5,
+            stagnation: 0.01,
+            matching_iterations: 8,
+            matching_polish: 1,
+            sampling_control: true,
+            sampling_threshold: 0.5,
+            initialization: Initialization::Random,
+            domain: None,
+            rotation: Field::None,
+            scale: Field::None,
+            attributes: None,
+            discrete_attributes: Vec::new(),
+            attribute_weight: 1.0,
+            keep_margin: None,
+            evaluator: Evaluator::Fast,
+            seed: 0,
+        }
+    }
+}
+
+/// What [`crate::synthesize`] works on.
+#[derive(Debug, Clone, Default)]
+pub struct Input {
+    /// The exemplar `{(e_i, b_i)}` (at least 3 points).
+    pub exemplar: PointSet,
+    /// A previous result to extend (progressive synthesis, §6.2); `None` for a fresh synthesis.
+    pub existing: Option<PointSet>,
+}

@@ -1,0 +1,79 @@
+//! Point sets with attributes and optional element ids (§4.1, Eq. 1).
+
+use crate::Error;
+
+/// A set of points `x_i ∈ R^d` (d = 2 or 3) with float attributes `a_i` and optional element ids.
+///
+/// Points that share an element id form one discrete element (§6.1) and move rigidly; points with
+/// no element id (or a negative one) are free samples of a continuous structure.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PointSet {
+    /// 2 or 3.
+    pub dimension: usize,
+    /// Coordinates, row-major: point `i` is `positions[i * dimension..(i + 1) * dimension]`.
+    pub positions: Vec<f64>,
+    /// Names of the attribute columns (colour channels, radius, normal components, labels...).
+    pub attribute_names: Vec<String>,
+    /// Attribute values, row-major: point `i` has `attributes[i * names.len()..]`.
+    pub attributes: Vec<f64>,
+    /// Element id per point, or `None` when the set has no element column. Negative ids mean "free".
+    pub elements: Option<Vec<i64>>,
+}
+
+impl PointSet {
+    /// A set of `dimension`-dimensional points without attributes.
+    pub fn new(dimension: usize, positions: Vec<f64>) -> Self {
+        Self { dimension, positions, ..Self::default() }
+    }
+
+    /// The number of points.
+    pub fn len(&self) -> usize {
+        self.positions.len().checked_div(self.dimension).unwrap_or(0)
+    }
+
+    /// True when the set has no points.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The coordinates of point `i`.
+    pub fn position(&self, i: usize) -> &[f64] {
+        &self.positions[i * self.dimension..(i + 1) * self.dimension]
+    }
+
+    /// The attributes of point `i`.
+    pub fn attributes_of(&self, i: usize) -> &[f64] {
+        let n = self.attribute_names.len();
+        &self.attributes[i * n..(i + 1) * n]
+    }
+
+    /// Checks shapes and values; `what` names the set in messages ("exemplar", "existing points").
+    pub fn validate(&self, what: &str) -> Result<(), Error> {
+        if self.dimension != 2 && self.dimension != 3 {
+            return Err(Error::Input(format!("{what}: points must have 2 or 3 coordinates, not {}", self.dimension)));
+        }
+        if self.positions.len() % self.dimension != 0 {
+            return Err(Error::Input(format!("{what}: coordinate count is not a multiple of the dimension")));
+        }
+        let n = self.len();
+        if self.attributes.len() != n * self.attribute_names.len() {
+            return Err(Error::Input(format!(
+                "{what}: {} attribute values for {n} points and {} attributes",
+                self.attributes.len(),
+                self.attribute_names.len()
+            )));
+        }
+        if let Some(elements) = &self.elements
+            && elements.len() != n
+        {
+            return Err(Error::Input(format!("{what}: {} element ids for {n} points", elements.len())));
+        }
+        if let Some(i) = (0..n).find(|&i| self.position(i).iter().any(|v| !v.is_finite())) {
+            return Err(Error::Input(format!("{what}: point {i} has a non-finite coordinate (NaN or infinity)")));
+        }
+        if let Some(i) = (0..n).find(|&i| self.attributes_of(i).iter().any(|v| !v.is_finite())) {
+            return Err(Error::Input(format!("{what}: point {i} has a non-finite attribute value")));
+        }
+        Ok(())
+    }
+}

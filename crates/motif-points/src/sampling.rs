@@ -1,0 +1,397 @@
+//! Sampling control (§5.1, Eq. 7): add points where the output lacks density, remove them where it
+//! has too much, each change kept only if T decreases.
+//!
+//! `P_k = ∫ (f(q_k + s) − e(m_k + s)) w(s) ds` with all attributes set to 1. For the Gaussian window
+//! it is `Σ_i g(u_i, σ_P) − Σ_j g(v_j, σ_P)` with `σ_P² = σ² + δ²` (the constant factor dropped),
+//! so one point at `q_k` adds 1; for the box window it counts points inside δ. Quadrature points are
+//! visited from the largest deficit (excess) down; `P` is updated after every accepted change so a
+//! region is not filled twice. A proposal copies the exemplar point (or element) of the matched
+//! neighbourhood that is farthest from any output point, placed by the match's frame, then takes a
+//! few gradient steps; the change in T is computed exactly from the terms that hold the unit.
+
+use rayon::prelude::*;
+
+use crate::energy::Problem;
+use crate::grid::{DynamicGrid, StaticGrid};
+use crate::linear::{self, Vector};
+use crate::model::{Exemplar, Rigid, State, feature_dot};
+
+/// What one sampling-control pass did.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SamplingOutcome {
+    pub added: usize,
+    pub removed: usize,
+    pub rejected: usize,
+}
+
+struct Pass<'a, 'p, const D: usize> {
+    problem: &'a Problem<'p, D>,
+    matches: &'a [Vector<D>],
+    grid: DynamicGrid<D>,
+    density: Vec<f64>,
+    width: Option<f64>,
+    allowed: &'a dyn Fn(&Vector<D>) -> bool,
+}
+
+/// The sampling error density `P_k` of every quadrature point.
+pub fn sampling_density<const D: usize>(problem: &Problem<'_, D>, state: &State<D>, matches: &[Vector<D>]) -> Vec<f64> {
+    let width = problem.kernel.density_width();
+    let reach = width.map_or(problem.kernel.delta, |w| 3.0 * w);
+    let grid = StaticGrid::new(&state.positions, reach);
+    let quadrature = problem.quadrature;
+    (0..quadrature.len())
+        .into_par_iter()
+        .map(|k| {
+            let q = quadrature.points[k];
+            let mut p = 0.0;
+            grid.for_each_within(&q, reach, |i, _, d2| {
+                if state.alive[i] {
+                    p += weight(width, d2);
+                }
+            });
+            let m = matches[k];
+            let s = quadrature.scale[k];
+            let transform = &quadrature.transform[k];
+            problem.exemplar_grid.for_each_within(&m, reach / s, |_, e, d2| {
+                if quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, &m)))) {
+                    p -= weight(width, d2 * s * s);
+                }
+            });
+            p
+        })
+        .collect()
+}
+
+#[inline]
+fn weight(width: Option<f64>, d2: f64) -> f64 {
+    match width {
+        Some(w) => (-d2 / (w * w)).exp(),
+        None => 1.0,
+    }
+}
+
+/// One sampling-control pass over all quadrature points. Compacts `state` at the end.
+pub fn control<const D: usize>(
+    problem: &Problem<'_, D>,
+    exemplar: &Exemplar<D>,
+    state: &mut State<D>,
+    matches: &[Vector<D>],
+    threshold: f64,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> SamplingOutcome {
+    let density = sampling_density(problem, state, matches);
+    let (low, high) = crate::grid::bounds(&problem.quadrature.points);
+    let mut grid = DynamicGrid::new(low, high, problem.kernel.cutoff);
+    for (i, p) in state.positions.iter().enumerate() {
+        if state.alive[i] {
+            grid.insert(i, p);
+        }
+    }
+    let width = problem.kernel.density_width();
+    let mut pass = Pass { problem, matches, grid, density, width, allowed };
+    let mut outcome = SamplingOutcome::default();
+    let mut deficits: Vec<usize> = (0..pass.density.len()).filter(|&k| pass.density[k] < -threshold).collect();
+    deficits.sort_by(|&a, &b| pass.density[a].total_cmp(&pass.density[b]).then(a.cmp(&b)));
+    for k in deficits {
+        if pass.density[k] >= -threshold {
+            continue;
+        }
+        match pass.propose_addition(exemplar, state, k) {
+            Some(true) => outcome.added += 1,
+            Some(false) => outcome.rejected += 1,
+            None => {}
+        }
+    }
+    let mut excesses: Vec<usize> = (0..pass.density.len()).filter(|&k| pass.density[k] > threshold).collect();
+    excesses.sort_by(|&a, &b| pass.density[b].total_cmp(&pass.density[a]).then(a.cmp(&b)));
+    for k in excesses {
+        if pass.density[k] <= threshold {
+            continue;
+        }
+        match pass.propose_removal(state, k) {
+            Some(true) => outcome.removed += 1,
+            Some(false) => outcome.rejected += 1,
+            None => {}
+        }
+    }
+    state.compact();
+    outcome
+}
+
+impl<const D: usize> Pass<'_, '_, D> {
+    fn reach(&self) -> f64 {
+        self.width.map_or(self.problem.kernel.delta, |w| 3.0 * w)
+    }
+
+    /// Adds (`sign = 1`) or removes (`-1`) the unit's points from `P`.
+    fn update_density(&mut self, state: &State<D>, unit: usize, sign: f64) {
+        let reach = self.reach();
+        for &p in &state.units[unit].points {
+            let x = state.positions[p as usize];
+            let quadrature = self.problem.quadrature;
+            let density = &mut self.density;
+            let width = self.width;
+            quadrature.for_each_within(&x, reach, |k| {
+                density[k] += sign * weight(width, linear::norm2(&linear::sub(&x, &quadrature.points[k])));
+            });
+        }
+    }
+
+    fn nearest_distance(&self, state: &State<D>, x: &Vector<D>, radius: f64, skip_unit: Option<usize>) -> f64 {
+        let mut best = radius * radius;
+        self.grid.for_each_candidate(x, radius, |j| {
+            if state.alive[j] && Some(state.unit_of[j] as usize) != skip_unit {
+                best = best.min(linear::norm2(&linear::sub(&state.positions[j], x)));
+            }
+        });
+        best.sqrt()
+    }
+
+    /// The change of T from the terms that hold `unit` (what removing it would subtract), and the
+    /// gradient of T with respect to each of its points.
+    fn unit_energy(&self, state: &State<D>, unit: usize, gradients: &mut Vec<Vector<D>>) -> f64 {
+        let kernel = &self.problem.kernel;
+        let members = &state.units[unit].points;
+        gradients.clear();
+        let mut total = 0.0;
+        let mut neighbours: Vec<u32> = Vec::new();
+        let mut scratch = crate::energy::RowScratch::default();
+        for &p in members {
+            let p = p as usize;
+            let x = state.positions[p];
+            neighbours.clear();
+            self.grid.for_each_candidate(&x, kernel.cutoff, |j| {
+                if j != p
+                    && state.alive[j]
+                    && linear::norm2(&linear::sub(&state.positions[j], &x)) < kernel.cutoff * kernel.cutoff
+                {
+                    neighbours.push(j as u32);
+                }
+            });
+            neighbours.sort_unstable();
+            let mut gradient = [0.0; D];
+            let (row_a, row_b) =
+                self.problem.point_row(state, self.matches, p, &neighbours, &mut gradient, None, &mut scratch);
+            total += 2.0 * row_a + row_b;
+            gradients.push(gradient);
+        }
+        // Pairs inside the unit were counted twice above (once per end, twice each): take one copy off.
+        let quadrature = self.problem.quadrature;
+        for &p in members {
+            let x = state.positions[p as usize];
+            let a = state.feature(p as usize);
+            quadrature.for_each_within(&x, kernel.gather, |k| {
+                let u = linear::sub(&x, &quadrature.points[k]);
+                for &r in members {
+                    let v = linear::sub(&state.positions[r as usize], &quadrature.points[k]);
+                    if let Some((value, _, _)) = kernel.eval(&u, &v) {
+                        total -= feature_dot(a, state.feature(r as usize)) * value;
+                    }
+                }
+            });
+        }
+        total
+    }
+
+    fn insert_unit(&mut self, state: &State<D>, unit: usize) {
+        for &p in &state.units[unit].points {
+            self.grid.insert(p as usize, &state.positions[p as usize]);
+        }
+    }
+
+    fn remove_unit(&mut self, state: &State<D>, unit: usize) {
+        for &p in &state.units[unit].points {
+            self.grid.remove(p as usize, &state.positions[p as usize]);
+        }
+    }
+
+    /// Proposes a unit at quadrature point `k`; `None` when nothing fits there.
+    fn propose_addition(&mut self, exemplar: &Exemplar<D>, state: &mut State<D>, k: usize) -> Option<bool> {
+        let problem = self.problem;
+        let kernel = &problem.kernel;
+        let quadrature = problem.quadrature;
+        let q = quadrature.points[k];
+        let m = self.matches[k];
+        let transform = quadrature.transform[k];
+        let s = quadrature.scale[k];
+        let sigma = kernel.sigma;
+        // The exemplar points of the matched window farthest from every output point: the three
+        // largest gaps are tried and the best is kept.
+        let mut candidates: Vec<(usize, Vector<D>)> = Vec::new();
+        problem.exemplar_grid.for_each_within(&m, kernel.delta.max(sigma) / s, |j, e, _| {
+            candidates.push((j, linear::add(&q, &linear::mat_vec(&transform, &linear::sub(e, &m)))));
+        });
+        candidates.sort_unstable_by_key(|c| c.0);
+        let mut gaps: Vec<(f64, usize, Vector<D>)> = Vec::new();
+        for (j, x) in candidates {
+            if !(self.allowed)(&x) {
+                continue;
+            }
+            let gap = self.nearest_distance(state, &x, 2.0 * sigma, None);
+            if gap > 0.5 * sigma * s.min(1.0) {
+                gaps.push((gap, j, x));
+            }
+        }
+        gaps.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let mut best: Option<(f64, usize)> = None;
+        for &(_, j, x) in gaps.iter().take(3) {
+            let Some((energy, unit)) = self.try_unit(exemplar, state, k, j, x) else { continue };
+            match best {
+                Some((best_energy, _)) if best_energy <= energy => self.discard(state, unit),
+                _ => {
+                    if let Some((_, previous)) = best {
+                        self.discard(state, previous);
+                    }
+                    best = Some((energy, unit));
+                }
+            }
+        }
+        let (energy, unit) = best?;
+        if energy < 0.0 {
+            self.update_density(state, unit, 1.0);
+            Some(true)
+        } else {
+            self.discard(state, unit);
+            Some(false)
+        }
+    }
+
+    fn discard(&mut self, state: &mut State<D>, unit: usize) {
+        self.remove_unit(state, unit);
+        state.kill(unit);
+    }
+
+    /// Inserts a copy of exemplar point `j` (or its element) at `x`, lets it take a few gradient
+    /// steps, and returns the change of T it causes with its unit.
+    fn try_unit(
+        &mut self,
+        exemplar: &Exemplar<D>,
+        state: &mut State<D>,
+        k: usize,
+        j: usize,
+        x: Vector<D>,
+    ) -> Option<(f64, usize)> {
+        let problem = self.problem;
+        let quadrature = problem.quadrature;
+        let q = quadrature.points[k];
+        let m = self.matches[k];
+        let transform = quadrature.transform[k];
+        let s = quadrature.scale[k];
+        let sigma = problem.kernel.sigma;
+        let unit = match exemplar.element_of[j] {
+            None => state.add_free(x, exemplar.feature(j), false),
+            Some(element) => {
+                let source = &exemplar.elements[element as usize];
+                let centre = linear::add(&q, &linear::mat_vec(&transform, &linear::sub(&source.centre, &m)));
+                if !(self.allowed)(&centre) {
+                    return None;
+                }
+                let rotation: crate::linear::Matrix<D> =
+                    std::array::from_fn(|r| std::array::from_fn(|c| transform[r][c] / s));
+                let body: Vec<Vector<D>> = source
+                    .members
+                    .iter()
+                    .map(|&p| linear::scale(&linear::sub(&exemplar.positions[p], &source.centre), s))
+                    .collect();
+                let mut features = Vec::new();
+                for &p in &source.members {
+                    features.extend_from_slice(exemplar.feature(p));
+                }
+                state.add_rigid(Rigid { centre, rotation, body }, &features, 0, false)
+            }
+        };
+        self.insert_unit(state, unit);
+        // A few gradient steps on the new unit alone (translation), each kept only if it helps.
+        let mut gradients = Vec::new();
+        let mut energy = self.unit_energy(state, unit, &mut gradients);
+        let mut step = 0.1 * sigma;
+        for _ in 0..4 {
+            let mut force = [0.0; D];
+            for g in &gradients {
+                linear::axpy(&mut force, 1.0, g);
+            }
+            let norm = linear::norm2(&force).sqrt();
+            if norm == 0.0 {
+                break;
+            }
+            let shift = linear::scale(&force, -step / norm);
+            let moved = self.shift_unit(state, unit, &shift);
+            let mut trial_gradients = Vec::new();
+            let trial = self.unit_energy(state, unit, &mut trial_gradients);
+            if moved && trial < energy {
+                energy = trial;
+                gradients = trial_gradients;
+                step *= 1.5;
+            } else {
+                if moved {
+                    self.shift_unit(state, unit, &linear::scale(&shift, -1.0));
+                }
+                step *= 0.4;
+            }
+        }
+        Some((energy, unit))
+    }
+
+    /// Moves a unit by `shift` if its anchor stays allowed; returns whether it moved.
+    fn shift_unit(&mut self, state: &mut State<D>, unit: usize, shift: &Vector<D>) -> bool {
+        let anchor = match &state.units[unit].rigid {
+            Some(rigid) => rigid.centre,
+            None => state.positions[state.units[unit].points[0] as usize],
+        };
+        if !(self.allowed)(&linear::add(&anchor, shift)) {
+            return false;
+        }
+        self.remove_unit(state, unit);
+        if let Some(rigid) = &mut state.units[unit].rigid {
+            rigid.centre = linear::add(&rigid.centre, shift);
+            state.place_rigid(unit);
+        } else {
+            let p = state.units[unit].points[0] as usize;
+            state.positions[p] = linear::add(&state.positions[p], shift);
+        }
+        self.insert_unit(state, unit);
+        true
+    }
+
+    /// Proposes removing, among the units near quadrature point `k`, the one whose removal lowers T
+    /// the most.
+    fn propose_removal(&mut self, state: &mut State<D>, k: usize) -> Option<bool> {
+        let kernel = &self.problem.kernel;
+        let q = self.problem.quadrature.points[k];
+        let radius = kernel.delta.max(kernel.sigma);
+        let mut candidates: Vec<(f64, usize)> = Vec::new();
+        self.grid.for_each_candidate(&q, radius, |i| {
+            let d2 = linear::norm2(&linear::sub(&state.positions[i], &q));
+            if state.alive[i] && !state.units[state.unit_of[i] as usize].frozen && d2 < radius * radius {
+                candidates.push((d2, state.unit_of[i] as usize));
+            }
+        });
+        candidates.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut units: Vec<usize> = Vec::new();
+        for (_, unit) in candidates {
+            if !units.contains(&unit) {
+                units.push(unit);
+            }
+            if units.len() == 8 {
+                break;
+            }
+        }
+        let mut best: Option<(f64, usize)> = None;
+        let mut gradients = Vec::new();
+        for unit in units {
+            let energy = self.unit_energy(state, unit, &mut gradients);
+            if best.is_none_or(|b| energy > b.0) {
+                best = Some((energy, unit));
+            }
+        }
+        let (energy, unit) = best?;
+        if energy > 0.0 {
+            self.update_density(state, unit, -1.0);
+            self.remove_unit(state, unit);
+            state.kill(unit);
+            Some(true)
+        } else {
+            Some(false)
+        }
+    }
+}

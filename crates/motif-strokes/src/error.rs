@@ -1,0 +1,32 @@
+//! The engine's one error type.
+
+use motif_core::InvalidParameter;
+
+/// Everything that can stop an analysis or a synthesis. Messages are lower-case and say what to
+/// change.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A parameter (or a piece of input geometry checked like one) is out of range.
+    #[error(transparent)]
+    InvalidParameter(#[from] InvalidParameter),
+    /// The reference drawing holds no visible stroke.
+    #[error("the reference has no strokes: it needs at least one stroked or filled path with a length > 0")]
+    NoStrokes,
+    /// The target region's boundary crosses itself.
+    #[error(
+        "the target region is self-intersecting: its boundary crosses itself, so inside and outside are ambiguous; \
+         draw it as one simple closed path"
+    )]
+    SelfIntersectingRegion,
+    /// The target would need more elements than the limit allows.
+    #[error(
+        "the target needs {count} elements, more than the limit of {limit}: use a smaller target or a larger scale"
+    )]
+    TooManyElements {
+        /// Elements the target would need (N_tar).
+        count: usize,
+        /// The limit ([`crate::Params::max_elements`]).
+        limit: usize,
+    },
+}

@@ -1,0 +1,335 @@
+//! Stroke pattern analysis and synthesis, after Barla, Breslav, Thollot, Sillion and Markosian,
+//! "Stroke Pattern Analysis and Synthesis" (Eurographics 2006).
+//!
+//! A reference drawing (vector strokes with widths and colours) is analysed into perceptual
+//! elements and their distribution, then a similar pattern is synthesized along a target path (1D)
+//! or inside a target region (2D). Modules, by section of the paper:
+//!
+//! - [`stroke`]: strokes as polylines with width and colour (§1).
+//! - [`element`]: oriented bounding boxes from the covariance of skeleton or contour points, and
+//!   box Hausdorff distances (§2.1).
+//! - [`cluster`]: the greedy clustering queue with the proximity and continuation tests (§2.2).
+//! - [`distribution`]: chain and unskewed-Delaunay neighbour graphs, k-rings, shift vectors (§2.3).
+//! - [`analysis`]: the whole analysis of a reference (§2).
+//! - [`matching`]: relevant pairs, the five perceptual measures and the threshold test (§3.1).
+//! - [`seeds`]: Lloyd relaxation along a path and clipped centroidal Voronoi in a polygon (§3.2).
+//! - [`synthesis`]: seed layout and outward growth with partial neighbourhoods (§3.2, Algorithm 1).
+//! - [`variation`]: parameter exchange and position variation (§3.3).
+//! - [`generate`]: generated reference drawings for demos, benchmarks and tests.
+//!
+//! The entry point is [`synthesize`]; [`analyse`] runs the analysis alone (for interactive tuning
+//! of ε).
+
+pub mod analysis;
+pub mod cluster;
+pub mod distribution;
+pub mod element;
+mod error;
+pub mod generate;
+pub mod matching;
+mod params;
+pub mod seeds;
+pub mod stroke;
+pub mod synthesis;
+pub mod variation;
+
+use std::ops::Range;
+
+use kurbo::{Affine, Vec2};
+use motif_core::{Point, Polygon, Polyline, Progress, SeedStreams, StageTimer};
+use serde::Serialize;
+
+pub use analysis::{Analysis, analyse};
+pub use cluster::Element;
+pub use element::OrientedBox;
+pub use error::Error;
+pub use params::{FitPoints, Params, Thresholds};
+pub use stroke::Stroke;
+pub use variation::Exchange;
+
+use matching::{Limits, MeasureTable};
+use synthesis::{Layout, ReferenceRings, grow, layout_path, layout_region};
+
+/// Where to synthesize.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Target {
+    /// Along a path (a 1D pattern): elements are placed along it and turned with its tangent.
+    Path(Polyline),
+    /// Inside a simple polygon (a 2D pattern).
+    Region(Polygon),
+}
+
+/// What [`synthesize`] works on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Input {
+    /// The reference strokes, in drawing order (clustering follows it).
+    pub strokes: Vec<Stroke>,
+    /// The target path or region, in the same units as the strokes.
+    pub target: Target,
+}
+
+/// One synthesized element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthesizedElement {
+    /// The reference element it copies (index into [`Analysis::elements`]).
+    pub reference: usize,
+    /// Where the reference element's centre was placed.
+    pub position: Point,
+    /// Rotation applied to the reference strokes about their element centre, radians (the path
+    /// tangent in 1D, plus the exchanged orientation).
+    pub rotation: f64,
+    /// False when no reference neighbourhood passed the thresholds and the best match was taken.
+    pub matched: bool,
+    /// The parameter exchange applied (identity without variation).
+    pub exchange: Exchange,
+    /// Its strokes in [`Output::strokes`].
+    pub strokes: Range<usize>,
+}
+
+/// Figures of a run, for reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// Strokes in the reference.
+    pub reference_strokes: usize,
+    /// Elements found in the reference.
+    pub reference_elements: usize,
+    /// Elements synthesized (N_tar).
+    pub output_elements: usize,
+    /// Strokes written.
+    pub output_strokes: usize,
+    /// N_ref · A_tar / A_ref before rounding.
+    pub expected_elements: f64,
+    /// Output elements that found at least one candidate within the thresholds.
+    pub matched_elements: usize,
+    /// Output elements that fell back to the best match.
+    pub fallback_elements: usize,
+    /// matched_elements / output_elements.
+    pub candidate_fraction: f64,
+    /// Mean number of candidate reference neighbourhoods per output element.
+    pub mean_candidates: f64,
+    /// Neighbourhood rings used.
+    pub rings: usize,
+    /// Lloyd iterations run.
+    pub lloyd_iterations: usize,
+    /// Reference Delaunay triangles dropped by the unskewed filter (2D).
+    pub skewed_triangles_removed: usize,
+    /// Milliseconds per stage, in order.
+    pub stages_ms: Vec<(String, f64)>,
+}
+
+/// Everything a synthesis produces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    /// The synthesized strokes, element by element.
+    pub strokes: Vec<Stroke>,
+    /// The synthesized elements, one per seed.
+    pub elements: Vec<SynthesizedElement>,
+    /// Edges of the target neighbour graph (between indices of `elements`).
+    pub target_edges: Vec<(usize, usize)>,
+    /// The reference analysis.
+    pub analysis: Analysis,
+    /// Figures of the run.
+    pub report: Report,
+}
+
+/// Checks the input geometry.
+fn validate(input: &Input, params: &Params) -> Result<(), Error> {
+    params.validate()?;
+    if input.strokes.is_empty() {
+        return Err(Error::NoStrokes);
+    }
+    if let Target::Region(region) = &input.target
+        && !region.is_simple()
+    {
+        return Err(Error::SelfIntersectingRegion);
+    }
+    Ok(())
+}
+
+/// Builds a target region from outline points, telling a self-intersecting outline (even one
+/// whose signed area cancels out, like a symmetric bow tie) apart from a degenerate one.
+pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
+    match Polygon::new(points.clone()) {
+        Ok(region) if region.is_simple() => Ok(region),
+        Ok(_) => Err(Error::SelfIntersectingRegion),
+        Err(error) => {
+            // Only reached for rejected outlines, so the quadratic scan is bounded by input size
+            // and never runs on a valid region.
+            let mut kept: Vec<Point> = Vec::with_capacity(points.len());
+            for p in points {
+                if kept.last().is_none_or(|last: &Point| last.distance(p) > 1e-9) {
+                    kept.push(p);
+                }
+            }
+            if kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) <= 1e-9 {
+                kept.pop();
+            }
+            let n = kept.len();
+            let crossing = n >= 4
+                && (0..n).any(|i| {
+                    (i + 2..n).any(|j| {
+                        (j + 1) % n != i
+                            && motif_core::geometry::segments_intersect(
+                                kept[i],
+                                kept[(i + 1) % n],
+                                kept[j],
+                                kept[(j + 1) % n],
+                            )
+                    })
+                });
+            if crossing { Err(Error::SelfIntersectingRegion) } else { Err(error.into()) }
+        }
+    }
+}
+
+/// Analyses the reference and synthesizes a similar pattern on the target (the paper's whole
+/// pipeline, §2–§3).
+pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
+    validate(input, params)?;
+    let streams = SeedStreams::new(params.seed);
+    let along_path = matches!(input.target, Target::Path(_));
+    let rings = params.rings_for(along_path);
+    let mut timer = StageTimer::new();
+
+    progress.report("analysis", 0.0);
+    timer.start("fit");
+    let sets = analysis::fit_sets(&input.strokes, params);
+    timer.start("cluster");
+    let elements = cluster::cluster(&input.strokes, &sets, params.scale);
+    timer.start("distribution");
+    let analysis = analysis::relate(elements, params.scale, along_path);
+    progress.report("analysis", 1.0);
+
+    timer.start("seeds");
+    let target_area = match &input.target {
+        Target::Path(path) => path.length(),
+        Target::Region(region) => region.area(),
+    };
+    let expected = analysis.elements.len() as f64 * target_area / analysis.reference_area();
+    if !expected.is_finite() || expected > params.max_elements as f64 {
+        return Err(Error::TooManyElements {
+            count: expected.min(usize::MAX as f64) as usize,
+            limit: params.max_elements,
+        });
+    }
+    let count = (expected.round() as usize).max(1);
+    progress.report("seeds", 0.0);
+    let layout = match &input.target {
+        Target::Path(path) => layout_path(path, count, analysis.frame_angle, params.lloyd_iterations, &streams),
+        Target::Region(region) => layout_region(region, count, params.lloyd_iterations, &streams),
+    };
+    progress.report("seeds", 1.0);
+
+    timer.start("match");
+    let frames: Vec<OrientedBox> = (0..analysis.elements.len()).map(|i| analysis.pattern_frame(i)).collect();
+    let colours: Vec<[f64; 3]> = analysis.elements.iter().map(|e| e.colour).collect();
+    let limits = Limits::new(&params.thresholds, analysis.mean_length);
+    let table = MeasureTable::new(&frames, &colours, &limits);
+    let reference_rings = ReferenceRings::new(&analysis, rings);
+    let growth = grow(&layout, rings, &reference_rings, &table, &streams, progress);
+
+    timer.start("variation");
+    let exchanges = variation::exchange(&growth.assigned, &analysis, &limits, params.variation, &streams);
+    let positions = if params.position_variation {
+        shifted_positions(&layout, &growth.assigned, &analysis, &input.target)
+    } else {
+        layout.positions.clone()
+    };
+
+    timer.start("output");
+    let mut strokes = Vec::new();
+    let mut synthesized = Vec::with_capacity(layout.len());
+    for seed in 0..layout.len() {
+        let reference = growth.assigned[seed] as usize;
+        let element = &analysis.elements[reference];
+        let exchange = exchanges[seed];
+        let rotation = layout.rotations[seed] + exchange.rotation;
+        let transform = placement_transform(&element.frame, positions[seed], rotation, &exchange);
+        let start = strokes.len();
+        strokes.extend(element.strokes.iter().map(|&s| {
+            let mut stroke = input.strokes[s].transformed(transform);
+            if exchange.colour_shift != [0.0; 3] {
+                stroke.colour = shift_colour(stroke.colour, exchange.colour_shift);
+                stroke.fill = stroke.fill.map(|fill| shift_colour(fill, exchange.colour_shift));
+            }
+            stroke
+        }));
+        synthesized.push(SynthesizedElement {
+            reference,
+            position: positions[seed],
+            rotation,
+            matched: growth.matched[seed],
+            exchange,
+            strokes: start..strokes.len(),
+        });
+    }
+    let stages_ms = timer.finish();
+    let matched_elements = growth.matched.iter().filter(|&&m| m).count();
+    let report = Report {
+        reference_strokes: input.strokes.len(),
+        reference_elements: analysis.elements.len(),
+        output_elements: synthesized.len(),
+        output_strokes: strokes.len(),
+        expected_elements: expected,
+        matched_elements,
+        fallback_elements: synthesized.len() - matched_elements,
+        candidate_fraction: matched_elements as f64 / synthesized.len().max(1) as f64,
+        mean_candidates: growth.mean_candidates,
+        rings,
+        lloyd_iterations: layout.lloyd_iterations,
+        skewed_triangles_removed: analysis.skewed_triangles,
+        stages_ms,
+    };
+    Ok(Output { strokes, elements: synthesized, target_edges: layout.graph.edges().collect(), analysis, report })
+}
+
+/// The map taking a reference element's strokes to a seed: scale in the element's own frame
+/// (exchanged length and thickness), rotate about its centre, move the centre to `position`.
+fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, exchange: &Exchange) -> Affine {
+    let to_origin = Affine::translate(-frame.centre.to_vec2());
+    let axis_angle = frame.axis.y.atan2(frame.axis.x);
+    let scale = if exchange.length_scale != 1.0 || exchange.thickness_scale != 1.0 {
+        Affine::rotate(axis_angle)
+            * Affine::scale_non_uniform(exchange.length_scale, exchange.thickness_scale)
+            * Affine::rotate(-axis_angle)
+    } else {
+        Affine::IDENTITY
+    };
+    Affine::translate(position.to_vec2()) * Affine::rotate(rotation) * scale * to_origin
+}
+
+fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
+    let mut out = colour;
+    for c in 0..3 {
+        out[c] = (f64::from(colour[c]) + 255.0 * shift[c]).round().clamp(0.0, 255.0) as u8;
+    }
+    out
+}
+
+/// Position variation mapped back to the document; positions that would leave a region stay.
+fn shifted_positions(layout: &Layout, assigned: &[u32], analysis: &Analysis, target: &Target) -> Vec<Point> {
+    let coords = variation::shifted_coords(layout, assigned, analysis);
+    coords
+        .iter()
+        .enumerate()
+        .map(|(i, moved)| {
+            let Some(moved) = moved else { return layout.positions[i] };
+            match target {
+                Target::Path(path) => {
+                    // x is arc length along the path, y the offset along its normal.
+                    let s = moved.x;
+                    let chord = path.point_at(s + 1e-3 * path.length()) - path.point_at(s - 1e-3 * path.length());
+                    let tangent = if chord.hypot() > 1e-12 { chord.normalize() } else { path.tangent_at(s) };
+                    path.point_at(s) + Vec2::new(-tangent.y, tangent.x) * moved.y
+                }
+                Target::Region(region) => {
+                    if region.contains(*moved) {
+                        *moved
+                    } else {
+                        layout.positions[i]
+                    }
+                }
+            }
+        })
+        .collect()
+}

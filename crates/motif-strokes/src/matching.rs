@@ -1,0 +1,347 @@
+//! Neighbourhood matching (§3.1): relevant pairs by mutual nearest centres, the five perceptual
+//! measures averaged over the pairs, and the test `col and (shape or (par and ov and sup))`.
+//!
+//! Every synthesized element is (until the variation post-process) a copy of a reference element,
+//! so a pair's measures depend only on the two reference elements involved. [`MeasureTable`]
+//! computes them once for all reference pairs, already divided by their thresholds; comparing two
+//! neighbourhoods is then a mutual-nearest search plus table look-ups. [`compare_plain`] computes
+//! every measure from the boxes instead, as the reference implementation.
+
+use kurbo::Vec2;
+
+use crate::element::OrientedBox;
+use crate::params::Thresholds;
+
+/// The five measures of one element pair or, averaged, of two neighbourhoods (§3.1).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Measures {
+    /// Symmetric Hausdorff distance between the boxes with their centres aligned.
+    pub shape: f64,
+    /// Angle between the principal axes, in `[0, π/2]`.
+    pub parallelism: f64,
+    /// Ratio of principal-axis lengths, larger over smaller (≥ 1).
+    pub overlap: f64,
+    /// Difference of secondary-axis lengths (thicknesses).
+    pub superimposition: f64,
+    /// Distance between the mean colours in the RGB unit cube.
+    pub colour: f64,
+}
+
+impl Measures {
+    /// The measures of a reference element and a target element, both in the pattern frame.
+    pub fn of_pair(
+        reference: &OrientedBox,
+        target: &OrientedBox,
+        reference_colour: [f64; 3],
+        target_colour: [f64; 3],
+    ) -> Measures {
+        let aligned = target.moved_to(reference.centre);
+        let shape = reference.directed_hausdorff(&aligned).max(aligned.directed_hausdorff(reference));
+        let cosine = reference.axis.dot(target.axis).abs().min(1.0);
+        let parallelism = cosine.acos();
+        let (long, short) = if reference.length >= target.length {
+            (reference.length, target.length)
+        } else {
+            (target.length, reference.length)
+        };
+        let overlap = if short > 0.0 {
+            long / short
+        } else if long > 0.0 {
+            f64::INFINITY
+        } else {
+            1.0
+        };
+        let superimposition = (reference.thickness - target.thickness).abs();
+        let colour = reference_colour.iter().zip(&target_colour).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
+        Measures { shape, parallelism, overlap, superimposition, colour }
+    }
+
+    /// The measures divided by their thresholds, overlap as `(ov - 1) / (σ_ov - 1)`: each is below
+    /// 1 exactly when its measure is below its threshold, and each is linear in its measure, so
+    /// averaging normalized values equals normalizing averages.
+    pub fn normalized(&self, limits: &Limits) -> [f64; 5] {
+        [
+            self.shape / limits.shape,
+            self.parallelism / limits.parallelism,
+            (self.overlap - 1.0) / (limits.overlap - 1.0),
+            self.superimposition / limits.superimposition,
+            self.colour / limits.colour,
+        ]
+    }
+}
+
+/// The thresholds in drawing units (shape and superimposition multiplied by L).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// σ_shape in drawing units.
+    pub shape: f64,
+    /// σ_par in radians.
+    pub parallelism: f64,
+    /// σ_ov, a ratio > 1.
+    pub overlap: f64,
+    /// σ_sup in drawing units.
+    pub superimposition: f64,
+    /// σ_col in the RGB unit cube.
+    pub colour: f64,
+}
+
+impl Limits {
+    /// Thresholds for a reference whose elements have mean principal-axis length `mean_length`.
+    pub fn new(thresholds: &Thresholds, mean_length: f64) -> Limits {
+        let length = mean_length.max(1e-9);
+        Limits {
+            shape: thresholds.shape * length,
+            parallelism: thresholds.parallelism,
+            overlap: thresholds.overlap,
+            superimposition: thresholds.superimposition * length,
+            colour: thresholds.colour,
+        }
+    }
+}
+
+/// How far averaged normalized measures are from passing the paper's test
+/// `col and (shape or (par and ov and sup))`: `max(col, min(shape, max(par, ov, sup)))`. The test
+/// passes exactly when this is below 1; the fallback takes the smallest.
+pub fn violation(normalized: &[f64; 5]) -> f64 {
+    let [shape, parallelism, overlap, superimposition, colour] = *normalized;
+    colour.max(shape.min(parallelism.max(overlap).max(superimposition)))
+}
+
+/// A neighbour in a neighbourhood: which reference element it is (or is a copy of) and its offset
+/// from the neighbourhood's centre in the pattern frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Member {
+    /// Reference element index.
+    pub element: u32,
+    /// Offset from the centre element's position.
+    pub offset: Vec2,
+}
+
+/// References with more elements than this do not get a full pair table (it grows with the
+/// square of the count: 2 048 elements take 160 MiB); their measures are computed on demand.
+pub const MAX_TABLE_ELEMENTS: usize = 2048;
+
+/// Normalized measures for every ordered pair of reference elements: a precomputed table, or for
+/// very large references, the boxes to compute them from on demand.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasureTable {
+    count: usize,
+    values: Vec<[f64; 5]>,
+    frames: Vec<OrientedBox>,
+    colours: Vec<[f64; 3]>,
+    limits: Limits,
+}
+
+impl MeasureTable {
+    /// The table for reference elements with boxes `frames` (pattern frame) and `colours`.
+    pub fn new(frames: &[OrientedBox], colours: &[[f64; 3]], limits: &Limits) -> MeasureTable {
+        let count = frames.len();
+        let mut values = Vec::new();
+        if count <= MAX_TABLE_ELEMENTS {
+            values.reserve(count * count);
+            for i in 0..count {
+                for j in 0..count {
+                    values.push(Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(limits));
+                }
+            }
+        }
+        MeasureTable { count, values, frames: frames.to_vec(), colours: colours.to_vec(), limits: *limits }
+    }
+
+    /// Normalized measures of reference element `reference` against (a copy of) `target`.
+    pub fn get(&self, reference: u32, target: u32) -> [f64; 5] {
+        let (i, j) = (reference as usize, target as usize);
+        if self.values.is_empty() {
+            Measures::of_pair(&self.frames[i], &self.frames[j], self.colours[i], self.colours[j])
+                .normalized(&self.limits)
+        } else {
+            self.values[i * self.count + j]
+        }
+    }
+}
+
+/// Reusable buffers for [`compare`].
+#[derive(Debug, Clone, Default)]
+pub struct CompareScratch {
+    /// For each target member: index of its nearest reference member.
+    nearest_reference: Vec<u32>,
+}
+
+/// Index of the member of `members` nearest to `offset` (the first one on ties).
+fn nearest(members: &[Member], offset: Vec2) -> usize {
+    let mut best = (f64::INFINITY, 0);
+    for (index, member) in members.iter().enumerate() {
+        let d = (member.offset - offset).hypot2();
+        if d < best.0 {
+            best = (d, index);
+        }
+    }
+    best.1
+}
+
+/// Calls `visit(a, b)` for every relevant pair: `reference[a]` and `target[b]` mutually nearest by
+/// centre offsets (ties to the lower index), in target order.
+///
+/// A pair needs `a` to be the nearest reference member of `b`, so only those candidates are
+/// checked the other way: `|target| × (|reference| + |target|)` distances instead of the whole
+/// matrix twice.
+fn mutual_nearest(
+    reference: &[Member],
+    target: &[Member],
+    scratch: &mut CompareScratch,
+    mut visit: impl FnMut(usize, usize),
+) {
+    if target.is_empty() || reference.is_empty() {
+        return;
+    }
+    let candidates = &mut scratch.nearest_reference;
+    candidates.clear();
+    candidates.extend(target.iter().map(|t| nearest(reference, t.offset) as u32));
+    for (b, &a) in candidates.iter().enumerate() {
+        if nearest(target, reference[a as usize].offset) == b {
+            visit(a as usize, b);
+        }
+    }
+}
+
+/// Averaged normalized measures between a reference neighbourhood and a (partial) target
+/// neighbourhood: relevant pairs by mutual nearest centres, measures from the table, averaged over
+/// the pairs, which normalizes by the number of known target neighbours that found a partner
+/// (§3.2). `None` when no pair exists.
+pub fn compare(
+    reference: &[Member],
+    target: &[Member],
+    table: &MeasureTable,
+    scratch: &mut CompareScratch,
+) -> Option<[f64; 5]> {
+    let mut sum = [0.0; 5];
+    let mut pairs = 0usize;
+    mutual_nearest(reference, target, scratch, |a, b| {
+        let values = table.get(reference[a].element, target[b].element);
+        for (s, v) in sum.iter_mut().zip(values) {
+            *s += v;
+        }
+        pairs += 1;
+    });
+    (pairs > 0).then(|| sum.map(|s| s / pairs as f64))
+}
+
+/// [`compare`] computing every measure from the boxes: the plain reference implementation.
+pub fn compare_plain(
+    reference: &[Member],
+    target: &[Member],
+    frames: &[OrientedBox],
+    colours: &[[f64; 3]],
+    limits: &Limits,
+) -> Option<[f64; 5]> {
+    let mut sum = [0.0; 5];
+    let mut pairs = 0usize;
+    for (a, r) in reference.iter().enumerate() {
+        let nearest_target = (0..target.len())
+            .min_by(|&x, &y| (r.offset - target[x].offset).hypot2().total_cmp(&(r.offset - target[y].offset).hypot2()));
+        let Some(b) = nearest_target else { continue };
+        let nearest_reference = (0..reference.len()).min_by(|&x, &y| {
+            (reference[x].offset - target[b].offset)
+                .hypot2()
+                .total_cmp(&(reference[y].offset - target[b].offset).hypot2())
+        });
+        if nearest_reference != Some(a) {
+            continue;
+        }
+        let (i, j) = (r.element as usize, target[b].element as usize);
+        let values = Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(limits);
+        for (s, v) in sum.iter_mut().zip(values) {
+            *s += v;
+        }
+        pairs += 1;
+    }
+    (pairs > 0).then(|| sum.map(|s| s / pairs as f64))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use motif_core::random::Rng;
+    use motif_core::{Point, SeedStreams};
+
+    fn frame(angle: f64, length: f64, thickness: f64) -> OrientedBox {
+        OrientedBox { centre: Point::ORIGIN, axis: Vec2::new(angle.cos(), angle.sin()), length, thickness }
+    }
+
+    #[test]
+    fn pair_measures_follow_their_definitions() {
+        let a = frame(0.0, 10.0, 2.0);
+        let b = frame(std::f64::consts::FRAC_PI_2 + 0.1, 5.0, 1.0).moved_to(Point::new(50.0, 50.0));
+        let m = Measures::of_pair(&a, &b, [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]);
+        assert!((m.parallelism - (std::f64::consts::FRAC_PI_2 - 0.1)).abs() < 1e-12);
+        assert_eq!(m.overlap, 2.0);
+        assert_eq!(m.superimposition, 1.0);
+        assert_eq!(m.colour, 1.0);
+        // Centres are aligned first: the far-away position of b does not matter.
+        assert!(m.shape < 10.0);
+        let same = Measures::of_pair(&a, &a.moved_to(Point::new(9.0, 9.0)), [0.5; 3], [0.5; 3]);
+        assert_eq!(same, Measures { shape: 0.0, parallelism: 0.0, overlap: 1.0, superimposition: 0.0, colour: 0.0 });
+    }
+
+    #[test]
+    fn violation_is_below_one_exactly_when_the_paper_test_passes() {
+        let streams = SeedStreams::new(11);
+        let mut random = streams.stream("violation", 0);
+        for _ in 0..2000 {
+            let v: [f64; 5] = std::array::from_fn(|_| random.random_range(0.0..2.0));
+            let pass = |x: f64| x < 1.0;
+            let [shape, par, ov, sup, col] = v;
+            let paper = pass(col) && (pass(shape) || (pass(par) && pass(ov) && pass(sup)));
+            assert_eq!(violation(&v) < 1.0, paper, "{v:?}");
+        }
+    }
+
+    #[test]
+    fn large_references_compute_measures_on_demand() {
+        let frames: Vec<OrientedBox> =
+            (0..=MAX_TABLE_ELEMENTS).map(|i| frame(i as f64 * 0.001, 5.0 + (i % 7) as f64, (i % 3) as f64)).collect();
+        let colours: Vec<[f64; 3]> = (0..frames.len()).map(|i| [(i % 5) as f64 / 5.0, 0.2, 0.4]).collect();
+        let limits = Limits::new(&Thresholds::default(), 8.0);
+        let table = MeasureTable::new(&frames, &colours, &limits);
+        assert!(table.values.is_empty());
+        for (i, j) in [(0, 1), (17, 2048), (2048, 5)] {
+            let direct = Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(&limits);
+            assert_eq!(table.get(i as u32, j as u32), direct);
+        }
+    }
+
+    #[test]
+    fn table_comparison_equals_the_plain_computation() {
+        let streams = SeedStreams::new(5);
+        let mut random = streams.stream("table", 0);
+        let frames: Vec<OrientedBox> = (0..12)
+            .map(|_| {
+                frame(random.random_range(0.0..3.0), random.random_range(2.0..20.0), random.random_range(0.0..4.0))
+            })
+            .collect();
+        let colours: Vec<[f64; 3]> = (0..12).map(|_| std::array::from_fn(|_| random.random_range(0.0..1.0))).collect();
+        let limits = Limits::new(&Thresholds::default(), 10.0);
+        let table = MeasureTable::new(&frames, &colours, &limits);
+        let mut scratch = CompareScratch::default();
+        for _ in 0..200 {
+            let members = |count: usize, random: &mut motif_core::random::Stream| -> Vec<Member> {
+                (0..count)
+                    .map(|_| Member {
+                        element: random.random_range(0..12),
+                        offset: Vec2::new(random.random_range(-30.0..30.0), random.random_range(-30.0..30.0)),
+                    })
+                    .collect()
+            };
+            let (m, n) = (random.random_range(0..8), random.random_range(0..8));
+            let reference = members(m, &mut random);
+            let target = members(n, &mut random);
+            let fast = compare(&reference, &target, &table, &mut scratch);
+            let plain = compare_plain(&reference, &target, &frames, &colours, &limits);
+            match (fast, plain) {
+                (Some(f), Some(p)) => assert!(f.iter().zip(&p).all(|(a, b)| (a - b).abs() < 1e-12)),
+                (None, None) => assert!(m == 0 || n == 0),
+                other => panic!("{other:?}"),
+            }
+        }
+    }
+}

@@ -1,0 +1,358 @@
+//! Seed distributions by Lloyd relaxation (§3.2): along a target path (1D, Voronoi cells in arc
+//! length) and inside a target polygon (2D, clipped centroidal Voronoi tessellation).
+//!
+//! The 2D Voronoi cells are the duals of a `spade` Delaunay triangulation. Four far-away guard
+//! sites around the region make every seed's cell bounded without changing it inside the region
+//! (their bisectors with any seed lie far outside). Cells are clipped to the region with
+//! Sutherland–Hodgman (a convex clip window, any simple subject polygon); cells that meet no region
+//! edge skip the clip.
+
+use motif_core::random::Rng;
+use motif_core::{Point, Polygon, SeedStreams};
+use rayon::prelude::*;
+use rstar::primitives::Rectangle;
+use rstar::{AABB, RTree};
+use spade::{DelaunayTriangulation, Point2, Triangulation};
+
+use crate::distribution::Site;
+
+/// Seeds along a path of arc length `length`: `count` stratified random positions relaxed by
+/// Lloyd's method, where each seed's Voronoi cell is the arc between the midpoints to its
+/// neighbours (clipped to `[0, length]` on an open path, wrapping on a closed one). Returns the
+/// sorted arc-length positions and the iterations run.
+pub fn lloyd_path(
+    length: f64,
+    closed: bool,
+    count: usize,
+    iterations: usize,
+    streams: &SeedStreams,
+) -> (Vec<f64>, usize) {
+    let spacing = length / count.max(1) as f64;
+    let mut positions: Vec<f64> = (0..count)
+        .map(|i| {
+            let jitter: f64 = streams.stream("seeds", i as u64).random();
+            (i as f64 + jitter) * spacing
+        })
+        .collect();
+    let mut next = vec![0.0; count];
+    let mut run = 0;
+    while run < iterations && count > 0 {
+        run += 1;
+        let mut largest_move: f64 = 0.0;
+        for i in 0..count {
+            let here = positions[i];
+            let low = match (i, closed) {
+                (0, false) => 0.0,
+                (0, true) => 0.5 * (positions[count - 1] - length + here),
+                _ => 0.5 * (positions[i - 1] + here),
+            };
+            let high = match (i + 1 == count, closed) {
+                (true, false) => length,
+                (true, true) => 0.5 * (here + positions[0] + length),
+                _ => 0.5 * (here + positions[i + 1]),
+            };
+            let centre = 0.5 * (low + high);
+            largest_move = largest_move.max((centre - here).abs());
+            next[i] = if closed { centre.rem_euclid(length) } else { centre };
+        }
+        std::mem::swap(&mut positions, &mut next);
+        if closed {
+            positions.sort_by(f64::total_cmp);
+        }
+        if largest_move < 1e-3 * spacing {
+            break;
+        }
+    }
+    (positions, run)
+}
+
+/// Per-thread buffers of a 2D Lloyd step.
+#[derive(Default)]
+struct CellScratch {
+    cell: Vec<Point>,
+    clipped: Vec<Point>,
+    swap: Vec<Point>,
+}
+
+/// `count` random points inside `region`, stratified: one jittered point per cell of a grid whose
+/// cells hold one point on average; cells outside the region give none, and the shortfall or
+/// excess is made up with uniform random points or by dropping random ones. A stratified start
+/// leaves Lloyd's method only local work, so it converges in a few iterations.
+fn stratified_points(region: &Polygon, count: usize, streams: &SeedStreams) -> Vec<Point> {
+    let bounds = region.bounds();
+    let fallback = if region.contains(region.centroid()) { region.centroid() } else { interior_point(region) };
+    let cell = (region.area() / count.max(1) as f64).sqrt().max(1e-12);
+    let columns = ((bounds.width() / cell).ceil() as usize).max(1);
+    let rows = ((bounds.height() / cell).ceil() as usize).max(1);
+    let mut points = Vec::with_capacity(count + count / 4);
+    // Guard against a region whose bounds dwarf its area (a thin diagonal sliver): past this many
+    // cells, fall back to plain uniform sampling.
+    if columns.saturating_mul(rows) <= 16 * count.max(1) + 16 {
+        for row in 0..rows {
+            for column in 0..columns {
+                let mut stream = streams.stream("seed grid", (row * columns + column) as u64);
+                let p = Point::new(
+                    bounds.x0 + (column as f64 + stream.random::<f64>()) * cell,
+                    bounds.y0 + (row as f64 + stream.random::<f64>()) * cell,
+                );
+                if region.contains(p) {
+                    points.push(p);
+                }
+            }
+        }
+    }
+    let mut drop = streams.stream("seed drop", 0);
+    while points.len() > count {
+        let index = drop.random_range(0..points.len());
+        points.swap_remove(index);
+    }
+    let mut extra = 0u64;
+    while points.len() < count {
+        let mut stream = streams.stream("seed extra", extra);
+        extra += 1;
+        let p = (0..10_000)
+            .map(|_| {
+                Point::new(
+                    bounds.x0 + stream.random::<f64>() * bounds.width(),
+                    bounds.y0 + stream.random::<f64>() * bounds.height(),
+                )
+            })
+            .find(|&p| region.contains(p))
+            .unwrap_or(fallback);
+        points.push(p);
+    }
+    points
+}
+
+/// Seeds inside `region`: `count` stratified random points relaxed by Lloyd's method towards a
+/// centroidal Voronoi tessellation clipped to the region. Returns the points and the iterations
+/// run. Every point stays inside the region: a centroid that falls outside a non-convex region
+/// (possible for a cell split by the boundary) is not taken.
+pub fn lloyd_region(region: &Polygon, count: usize, iterations: usize, streams: &SeedStreams) -> (Vec<Point>, usize) {
+    let bounds = region.bounds();
+    if count == 1 {
+        // Lloyd's fixed point for one seed: the region's centroid (when it lies inside).
+        let centroid = region.centroid();
+        return (vec![if region.contains(centroid) { centroid } else { interior_point(region) }], 0);
+    }
+    let mut positions = stratified_points(region, count, streams);
+    let spacing = (region.area() / count.max(1) as f64).sqrt();
+    let vertices = region.vertices();
+    let edges: RTree<Rectangle<[f64; 2]>> = RTree::bulk_load(
+        (0..vertices.len())
+            .map(|i| {
+                let (a, b) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+                Rectangle::from_corners([a.x.min(b.x), a.y.min(b.y)], [a.x.max(b.x), a.y.max(b.y)])
+            })
+            .collect(),
+    );
+    let extent = bounds.width().max(bounds.height()).max(1e-9) * 10.0;
+    let middle = bounds.center();
+    let guards = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(dx, dy)| Point2::new(middle.x + dx * extent, middle.y + dy * extent));
+    let mut circumcentres: Vec<Point> = Vec::new();
+    let mut run = 0;
+    while run < iterations && count > 1 {
+        run += 1;
+        let mut sites: Vec<Site> =
+            positions.iter().enumerate().map(|(index, p)| Site { position: Point2::new(p.x, p.y), index }).collect();
+        sites.extend(guards.iter().map(|&position| Site { position, index: usize::MAX }));
+        let Ok(triangulation) = DelaunayTriangulation::<Site>::bulk_load(sites) else { break };
+        // Each Voronoi vertex (a triangle's circumcentre) is shared by three cells: compute it once.
+        circumcentres.clear();
+        circumcentres.resize(triangulation.num_all_faces(), Point::ORIGIN);
+        for face in triangulation.inner_faces() {
+            let c = face.circumcenter();
+            circumcentres[face.fix().index()] = Point::new(c.x, c.y);
+        }
+        let mut handles = vec![None; count];
+        for vertex in triangulation.vertices() {
+            let index = vertex.data().index;
+            if index != usize::MAX {
+                handles[index] = Some(vertex.fix());
+            }
+        }
+        let next: Vec<Point> = (0..count)
+            .into_par_iter()
+            .with_min_len(256)
+            .map_init(CellScratch::default, |scratch, i| {
+                let Some(handle) = handles[i] else { return positions[i] };
+                scratch.cell.clear();
+                for edge in triangulation.vertex(handle).out_edges() {
+                    let face = edge.face();
+                    if face.is_outer() {
+                        return positions[i];
+                    }
+                    scratch.cell.push(circumcentres[face.fix().index()]);
+                }
+                cell_centroid(region, &edges, positions[i], scratch).unwrap_or(positions[i])
+            })
+            .collect();
+        let largest_move = positions.iter().zip(&next).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+        positions = next;
+        if largest_move < 1e-3 * spacing {
+            break;
+        }
+    }
+    (positions, run)
+}
+
+/// Centroid of the Voronoi cell in `scratch.cell` intersected with the region, when it lies inside
+/// the region.
+fn cell_centroid(
+    region: &Polygon,
+    edges: &RTree<Rectangle<[f64; 2]>>,
+    seed: Point,
+    scratch: &mut CellScratch,
+) -> Option<Point> {
+    if signed_area(&scratch.cell) < 0.0 {
+        scratch.cell.reverse();
+    }
+    let bounds = motif_core::geometry::bounds_of(&scratch.cell);
+    let envelope = AABB::from_corners([bounds.x0, bounds.y0], [bounds.x1, bounds.y1]);
+    let crosses_boundary = edges.locate_in_envelope_intersecting(&envelope).next().is_some();
+    let centroid = if !crosses_boundary && region.contains(seed) {
+        polygon_centroid(&scratch.cell)?
+    } else {
+        clip_to_convex(region.vertices(), &scratch.cell, &mut scratch.clipped, &mut scratch.swap);
+        polygon_centroid(&scratch.clipped)?
+    };
+    region.contains(centroid).then_some(centroid)
+}
+
+/// Sutherland–Hodgman: `subject` clipped by the convex counter-clockwise polygon `window`, into
+/// `out`.
+pub fn clip_to_convex(subject: &[Point], window: &[Point], out: &mut Vec<Point>, swap: &mut Vec<Point>) {
+    out.clear();
+    out.extend_from_slice(subject);
+    for i in 0..window.len() {
+        let (a, b) = (window[i], window[(i + 1) % window.len()]);
+        let edge = b - a;
+        let side = |p: Point| edge.cross(p - a);
+        std::mem::swap(out, swap);
+        out.clear();
+        let n = swap.len();
+        for j in 0..n {
+            let (p, q) = (swap[j], swap[(j + 1) % n]);
+            let (sp, sq) = (side(p), side(q));
+            if sp >= 0.0 {
+                out.push(p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                let t = sp / (sp - sq);
+                out.push(p.lerp(q, t));
+            }
+        }
+        if out.is_empty() {
+            return;
+        }
+    }
+}
+
+fn signed_area(points: &[Point]) -> f64 {
+    let n = points.len();
+    0.5 * (0..n).map(|i| points[i].to_vec2().cross(points[(i + 1) % n].to_vec2())).sum::<f64>()
+}
+
+/// Area centroid of a polygon (None when its area vanishes).
+fn polygon_centroid(points: &[Point]) -> Option<Point> {
+    let n = points.len();
+    if n < 3 {
+        return None;
+    }
+    // Relative to the first vertex, for precision far from the origin.
+    let origin = points[0];
+    let (mut twice_area, mut sum) = (0.0, kurbo::Vec2::ZERO);
+    for i in 1..n - 1 {
+        let (a, b) = (points[i] - origin, points[i + 1] - origin);
+        let cross = a.cross(b);
+        twice_area += cross;
+        sum += (a + b) * cross;
+    }
+    (twice_area.abs() > 1e-12).then(|| origin + sum / (3.0 * twice_area))
+}
+
+/// A point inside a simple polygon: the midpoint of the widest inside stretch of the horizontal
+/// line through the middle of its bounds.
+pub fn interior_point(region: &Polygon) -> Point {
+    let bounds = region.bounds();
+    let y = bounds.center().y;
+    let vertices = region.vertices();
+    let n = vertices.len();
+    let mut crossings: Vec<f64> = (0..n)
+        .filter_map(|i| {
+            let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+            ((a.y > y) != (b.y > y)).then(|| a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x))
+        })
+        .collect();
+    crossings.sort_by(f64::total_cmp);
+    crossings
+        .chunks_exact(2)
+        .max_by(|p, q| (p[1] - p[0]).total_cmp(&(q[1] - q[0])))
+        .map_or(region.centroid(), |pair| Point::new(0.5 * (pair[0] + pair[1]), y))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn path_seeds_converge_to_even_spacing() {
+        let streams = SeedStreams::new(1);
+        let (open, _) = lloyd_path(100.0, false, 10, 400, &streams);
+        for (i, s) in open.iter().enumerate() {
+            assert!((s - (i as f64 + 0.5) * 10.0).abs() < 0.2, "{open:?}");
+        }
+        let (closed, _) = lloyd_path(100.0, true, 10, 400, &streams);
+        let gaps: Vec<f64> = (0..10).map(|i| (closed[(i + 1) % 10] - closed[i]).rem_euclid(100.0)).collect();
+        assert!(gaps.iter().all(|g| (g - 10.0).abs() < 0.2), "{gaps:?}");
+    }
+
+    #[test]
+    fn region_seeds_are_inside_and_evenly_spread() {
+        // An L-shaped (non-convex) region.
+        let region = Polygon::new(vec![
+            Point::new(0.0, 0.0),
+            Point::new(100.0, 0.0),
+            Point::new(100.0, 40.0),
+            Point::new(40.0, 40.0),
+            Point::new(40.0, 100.0),
+            Point::new(0.0, 100.0),
+        ])
+        .unwrap();
+        let streams = SeedStreams::new(2);
+        let (seeds, run) = lloyd_region(&region, 200, 60, &streams);
+        assert_eq!(seeds.len(), 200);
+        assert!(run > 5);
+        assert!(seeds.iter().all(|&p| region.contains(p)));
+        // Lloyd spreads the seeds: nearest-neighbour distances are far more even than random.
+        let nearest: Vec<f64> = seeds
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                seeds
+                    .iter()
+                    .enumerate()
+                    .filter(|(j, _)| *j != i)
+                    .map(|(_, q)| p.distance(*q))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .collect();
+        let spacing = (region.area() / 200.0).sqrt();
+        let smallest = nearest.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(smallest > 0.5 * spacing, "{smallest} vs spacing {spacing}");
+    }
+
+    #[test]
+    fn clipping_a_square_by_a_triangle() {
+        let square = [Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(2.0, 2.0), Point::new(0.0, 2.0)];
+        let triangle = [Point::new(0.0, 0.0), Point::new(4.0, 0.0), Point::new(0.0, 4.0)];
+        let (mut out, mut swap) = (Vec::new(), Vec::new());
+        clip_to_convex(&square, &triangle, &mut out, &mut swap);
+        assert!((signed_area(&out) - 4.0).abs() < 1e-12);
+        let small = [Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(0.0, 2.0)];
+        clip_to_convex(&square, &small, &mut out, &mut swap);
+        assert!((signed_area(&out) - 2.0).abs() < 1e-12);
+        assert!(polygon_centroid(&out).unwrap().distance(Point::new(2.0 / 3.0, 2.0 / 3.0)) < 1e-12);
+    }
+}

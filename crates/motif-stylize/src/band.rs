@@ -1,0 +1,194 @@
+//! The band around segment edges and the bitmap composition of pre-synthesized textures (§3.7).
+//!
+//! A pixel is an edge pixel when one of its 4-neighbours has another label. The band holds every
+//! pixel whose Euclidean distance to the nearest edge pixel is below T (exact distance transform
+//! of Felzenszwalb and Huttenlocher); everything else is copied from its segment's texture. The
+//! textures' fields are composed the same way, so every band pixel starts at the source patch
+//! its texture pixel came from: next to the band's edge that is the true match, and propagation
+//! carries it inwards from the first PatchMatch iteration.
+
+use motif_core::FloatImage;
+
+/// Pixels closer than `band` to a segment edge (none when `band` is 0 or there is one segment).
+pub(crate) fn band_mask(labels: &[u16], width: usize, height: usize, band: usize) -> Vec<bool> {
+    if band == 0 {
+        return vec![false; width * height];
+    }
+    let mut distance: Vec<f32> = (0..width * height)
+        .map(|index| {
+            let (x, y) = (index % width, index / width);
+            let label = labels[index];
+            let differs = (x > 0 && labels[index - 1] != label)
+                || (x + 1 < width && labels[index + 1] != label)
+                || (y > 0 && labels[index - width] != label)
+                || (y + 1 < height && labels[index + width] != label);
+            if differs { 0.0 } else { f32::INFINITY }
+        })
+        .collect();
+    squared_distance_transform(&mut distance, width, height);
+    let limit = (band * band) as f32;
+    distance.iter().map(|&d| d < limit).collect()
+}
+
+/// In-place 2-D squared Euclidean distance transform (columns, then rows).
+fn squared_distance_transform(grid: &mut [f32], width: usize, height: usize) {
+    let n = width.max(height);
+    let (mut f, mut d) = (vec![0.0; n], vec![0.0; n]);
+    let (mut v, mut z) = (vec![0usize; n], vec![0.0; n + 1]);
+    for x in 0..width {
+        for y in 0..height {
+            f[y] = grid[y * width + x];
+        }
+        transform_1d(&f[..height], &mut d[..height], &mut v, &mut z);
+        for y in 0..height {
+            grid[y * width + x] = d[y];
+        }
+    }
+    for y in 0..height {
+        f[..width].copy_from_slice(&grid[y * width..(y + 1) * width]);
+        transform_1d(&f[..width], &mut d[..width], &mut v, &mut z);
+        grid[y * width..(y + 1) * width].copy_from_slice(&d[..width]);
+    }
+}
+
+/// Lower envelope of parabolas: `d[q] = min_p (q − p)² + f[p]` in linear time.
+fn transform_1d(f: &[f32], d: &mut [f32], v: &mut [usize], z: &mut [f32]) {
+    let n = f.len();
+    let finite: Vec<usize> = (0..n).filter(|&q| f[q].is_finite()).collect();
+    if finite.is_empty() {
+        d.fill(f32::INFINITY);
+        return;
+    }
+    let mut k = 0;
+    v[0] = finite[0];
+    z[0] = f32::NEG_INFINITY;
+    z[1] = f32::INFINITY;
+    for &q in &finite[1..] {
+        loop {
+            let p = v[k];
+            let s = ((f[q] + (q * q) as f32) - (f[p] + (p * p) as f32)) / (2.0 * (q as f32 - p as f32));
+            // z[0] is -inf, so this never steps below the first parabola.
+            if s <= z[k] {
+                k -= 1;
+                continue;
+            }
+            k += 1;
+            v[k] = q;
+            z[k] = s;
+            z[k + 1] = f32::INFINITY;
+            break;
+        }
+    }
+    let mut k = 0;
+    for (q, out) in d.iter_mut().enumerate() {
+        while z[k + 1] < q as f32 {
+            k += 1;
+        }
+        let p = v[k];
+        *out = (q as f32 - p as f32).powi(2) + f[p];
+    }
+}
+
+/// The target filled from the textures: pixel `(x, y)` of label `l` takes
+/// `textures[texture_of[l]]` at `(x mod width, y mod height)` (the textures tile).
+pub(crate) fn compose(
+    labels: &[u16],
+    width: usize,
+    height: usize,
+    textures: &[&FloatImage],
+    texture_of: &[usize],
+    channels: usize,
+) -> FloatImage {
+    let mut out = FloatImage::new(width, height, channels);
+    for y in 0..height {
+        for x in 0..width {
+            let texture = textures[texture_of[usize::from(labels[y * width + x])]];
+            let value = texture.pixel(x % texture.width(), y % texture.height());
+            out.pixel_mut(x, y).copy_from_slice(value);
+        }
+    }
+    out
+}
+
+/// Marks a target pixel with no starting match in [`compose_field`].
+pub(crate) const NO_SEED: u32 = u32::MAX;
+
+/// The textures' fields composed like [`compose`]: the source centre (`y · source_width + x`) that
+/// texture pixel `(x mod width, y mod height)` came from, or [`NO_SEED`] where the texture has no
+/// field.
+pub(crate) fn compose_field(
+    labels: &[u16],
+    width: usize,
+    height: usize,
+    fields: &[Option<&crate::NearestNeighbourField>],
+    texture_of: &[usize],
+    source_width: usize,
+) -> Vec<u32> {
+    let mut out = vec![NO_SEED; width * height];
+    for y in 0..height {
+        for x in 0..width {
+            let index = y * width + x;
+            if let Some(field) = fields[texture_of[usize::from(labels[index])]] {
+                let at = (y % field.height) * field.width + x % field.width;
+                if let Some([sx, sy]) = field.matches[at] {
+                    out[index] = sy * source_width as u32 + sx;
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_transform_matches_brute_force() {
+        let (w, h) = (23, 17);
+        let seeds = [(3usize, 4usize), (20, 2), (11, 15), (12, 8)];
+        let mut grid: Vec<f32> =
+            (0..w * h).map(|i| if seeds.contains(&(i % w, i / w)) { 0.0 } else { f32::INFINITY }).collect();
+        squared_distance_transform(&mut grid, w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let best = seeds
+                    .iter()
+                    .map(|&(sx, sy)| (x as f32 - sx as f32).powi(2) + (y as f32 - sy as f32).powi(2))
+                    .fold(f32::INFINITY, f32::min);
+                assert_eq!(grid[y * w + x], best, "at {x},{y}");
+            }
+        }
+    }
+
+    #[test]
+    fn composed_field_takes_each_segment_textures_match_where_it_tiles() {
+        let field = |offset: u32| crate::NearestNeighbourField {
+            width: 2,
+            height: 2,
+            source_width: 10,
+            source_height: 10,
+            patch_size: 3,
+            matches: vec![Some([offset + 1, 1]), Some([offset + 2, 1]), None, Some([offset + 2, 2])],
+        };
+        let (first, second) = (field(0), field(5));
+        let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];
+        // Label 0 takes texture 1, label 1 texture 0.
+        let out = compose_field(&labels, 3, 2, &[Some(&first), Some(&second)], &[1, 0], 10);
+        // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
+        // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
+        assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
+        assert_eq!(compose_field(&labels, 3, 2, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
+    }
+
+    #[test]
+    fn band_widens_with_t_and_is_empty_at_zero() {
+        let (w, h) = (20, 10);
+        let labels: Vec<u16> = (0..w * h).map(|i| u16::from(i % w >= 10)).collect();
+        let count = |t| band_mask(&labels, w, h, t).iter().filter(|&&b| b).count();
+        assert_eq!(count(0), 0);
+        assert_eq!(count(1), 2 * h);
+        assert_eq!(count(3), 6 * h);
+        assert!(band_mask(&vec![0; w * h], w, h, 5).iter().all(|&b| !b));
+    }
+}

@@ -1,0 +1,366 @@
+//! One pyramid level laid out for fast patch distances (Eq. 4).
+//!
+//! Every channel of the style and of all guides is stacked into one interleaved buffer per side,
+//! stored as 8 bits like ebsynth's images (4× less memory than floats). Each channel `c` is stored
+//! as `round(v · 255 · sqrt(w_c / w_max))`, so the weighted patch distance of Eq. 4 is
+//! `w_max · Σ (a − b)²` over plain integer differences: one integer sum of squares per patch row,
+//! which the compiler vectorizes (multiply-add of 16-bit pairs), with one float multiply per row
+//! for the early exit. Channels of the largest weight (all of them when the weights are equal, the
+//! common case) keep full 8-bit precision; a channel of weight `w` keeps `sqrt(w / w_max)` of it.
+//! The target buffer is padded by the patch radius (border clamped, or wrapped when tileable) so
+//! every target patch is in bounds too.
+
+use motif_core::FloatImage;
+use rayon::prelude::*;
+
+/// Marks a target pixel whose segment has no source pixels: it may match anywhere.
+pub(crate) const UNRESTRICTED: u16 = u16::MAX;
+
+/// A pyramid level of the source (style + guides) and target (output style + guides).
+pub(crate) struct Level {
+    /// Patch side.
+    pub patch: usize,
+    /// Patch radius, `patch / 2`.
+    pub radius: usize,
+    /// Channels per stacked pixel: style channels first, then guide channels.
+    pub channels: usize,
+    /// Style channels (the first `style_channels` of each stacked pixel).
+    pub style_channels: usize,
+    /// Source size.
+    pub source_width: usize,
+    /// Source size.
+    pub source_height: usize,
+    /// Stacked source, 8-bit: `source_width × source_height × channels`.
+    pub source: Vec<u8>,
+    /// The style at this level, unweighted (voting averages these values).
+    pub style: FloatImage,
+    /// Per stacked channel: `255 · sqrt(w_c / w_max)`, the 8-bit scale of its values.
+    pub channel_scales: Vec<f32>,
+    /// `w_max`: the largest channel weight, the factor of every integer sum of squares.
+    pub weight: f32,
+    /// Target size.
+    pub target_width: usize,
+    /// Target size.
+    pub target_height: usize,
+    /// Padded target row length in pixels: `target_width + 2 · radius`.
+    pub padded_width: usize,
+    /// Stacked, padded target, 8-bit: `padded_width × (target_height + 2·radius) × channels`.
+    pub target: Vec<u8>,
+    /// Target guide channels, 8-bit, unpadded: `target_width × target_height × guide channels`.
+    target_guides: Vec<u8>,
+    /// Whether target patches wrap around the borders.
+    pub tileable: bool,
+    /// Segment label of every source pixel (when segments are on).
+    pub source_labels: Option<Vec<u16>>,
+    /// Per target pixel: the only source label its patch may match, or [`UNRESTRICTED`].
+    pub target_restrict: Option<Vec<u16>>,
+    /// Per label: the valid source patch centres with that label (for random candidates).
+    pub segment_centres: Vec<Vec<u32>>,
+    /// Which target patch centres are searched (all when `None`; the band in §3.7 mode).
+    pub active: Option<Vec<bool>>,
+    /// Which target pixels voting writes (all when `None`).
+    pub domain: Option<Vec<bool>>,
+}
+
+/// What a level is built from.
+pub(crate) struct LevelSpec<'a> {
+    pub patch: usize,
+    pub style: FloatImage,
+    /// Per style channel: α / style channels.
+    pub style_weights: &'a [f32],
+    pub source_guides: Option<&'a FloatImage>,
+    pub target_guides: Option<&'a FloatImage>,
+    /// Per stacked guide channel: β_i / channels of guide i.
+    pub guide_weights: &'a [f32],
+    pub target_size: (usize, usize),
+    pub tileable: bool,
+    pub source_labels: Option<Vec<u16>>,
+    pub target_labels: Option<Vec<u16>>,
+    pub label_count: usize,
+}
+
+impl Level {
+    /// Stacks and weights the images of one level.
+    pub fn new(spec: LevelSpec<'_>) -> Level {
+        let patch = spec.patch;
+        let radius = patch / 2;
+        let style_channels = spec.style.channels();
+        let guide_channels = spec.guide_weights.len();
+        let channels = style_channels + guide_channels;
+        let (source_width, source_height) = (spec.style.width(), spec.style.height());
+        let weights: Vec<f32> = spec.style_weights.iter().chain(spec.guide_weights).copied().collect();
+        let weight = weights.iter().copied().fold(0.0_f32, f32::max);
+        let scales: Vec<f32> =
+            weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
+        let mut source = vec![0_u8; source_width * source_height * channels];
+        source.par_chunks_mut(source_width * channels).enumerate().for_each(|(y, row)| {
+            for x in 0..source_width {
+                let out = &mut row[x * channels..(x + 1) * channels];
+                for (c, value) in spec.style.pixel(x, y).iter().enumerate() {
+                    out[c] = quantize(*value, scales[c]);
+                }
+                if let Some(guides) = spec.source_guides {
+                    for (c, value) in guides.pixel(x, y).iter().enumerate() {
+                        out[style_channels + c] = quantize(*value, scales[style_channels + c]);
+                    }
+                }
+            }
+        });
+        let (target_width, target_height) = spec.target_size;
+        let mut target_guides = Vec::new();
+        if let Some(guides) = spec.target_guides {
+            target_guides = guides
+                .data()
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| quantize(v, scales[style_channels + i % guide_channels]))
+                .collect();
+        }
+        let padded_width = target_width + 2 * radius;
+        let padded_height = target_height + 2 * radius;
+        let mut segment_centres = vec![Vec::new(); spec.label_count];
+        if let Some(labels) = &spec.source_labels {
+            for y in radius..source_height - radius {
+                for x in radius..source_width - radius {
+                    let index = y * source_width + x;
+                    segment_centres[usize::from(labels[index])].push(index as u32);
+                }
+            }
+        }
+        let target_restrict = spec.target_labels.map(|labels| {
+            labels
+                .iter()
+                .map(|&label| if segment_centres[usize::from(label)].is_empty() { UNRESTRICTED } else { label })
+                .collect()
+        });
+        Level {
+            patch,
+            radius,
+            channels,
+            style_channels,
+            source_width,
+            source_height,
+            source,
+            channel_scales: scales.clone(),
+            weight,
+            target_width,
+            target_height,
+            padded_width,
+            target: vec![0; padded_width * padded_height * channels],
+            target_guides,
+            tileable: spec.tileable,
+            source_labels: spec.source_labels,
+            target_restrict,
+            segment_centres,
+            active: None,
+            domain: None,
+            style: spec.style,
+        }
+    }
+
+    /// Number of target pixels.
+    pub fn target_len(&self) -> usize {
+        self.target_width * self.target_height
+    }
+
+    /// Whether target patch centre `index` is searched.
+    #[inline]
+    pub fn is_active(&self, index: usize) -> bool {
+        self.active.as_ref().is_none_or(|active| active[index])
+    }
+
+    /// Whether target pixel `index` is written by voting.
+    #[inline]
+    pub fn in_domain(&self, index: usize) -> bool {
+        self.domain.as_ref().is_none_or(|domain| domain[index])
+    }
+
+    /// Whether source centre `s` may serve target pixel `t` (segment restriction, §3.6).
+    #[inline]
+    pub fn allowed(&self, t: usize, s: u32) -> bool {
+        match (&self.target_restrict, &self.source_labels) {
+            (Some(restrict), Some(labels)) => {
+                let wanted = restrict[t];
+                wanted == UNRESTRICTED || labels[s as usize] == wanted
+            }
+            _ => true,
+        }
+    }
+
+    /// The first and one-past-last valid source centre coordinate on each axis.
+    #[inline]
+    pub fn valid_x(&self) -> (usize, usize) {
+        (self.radius, self.source_width - self.radius)
+    }
+
+    /// See [`valid_x`](Self::valid_x).
+    #[inline]
+    pub fn valid_y(&self) -> (usize, usize) {
+        (self.radius, self.source_height - self.radius)
+    }
+
+    /// Weighted squared distance between source patch centred at `s` and the target patch
+    /// centred at `(x, y)`; stops early (returning a value ≥ `limit`) once a partial sum
+    /// reaches `limit`. `ROW` is the patch row length (`patch × channels` bytes) when fixed at
+    /// compile time, else 0 (see [`row_distance_n`]).
+    #[inline(always)]
+    pub fn distance<const ROW: usize>(&self, s: u32, x: usize, y: usize, limit: f32) -> f32 {
+        self.distance_from::<ROW>(s, x, y, 0, 0.0, limit)
+    }
+
+    /// The first patch row's share of [`distance`](Self::distance). Computing it for a batch of
+    /// candidates before any branch on the results lets the processor overlap their cache
+    /// misses (random source patches rarely sit in L2). `ROW` is the patch row length in bytes
+    /// (`patch × channels`) when known at compile time, else 0 (see [`row_distance_n`]).
+    #[inline(always)]
+    pub fn first_row<const ROW: usize>(&self, s: u32, x: usize, y: usize) -> f32 {
+        let channels = self.channels;
+        let row_len = self.patch * channels;
+        let source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
+        let target_offset = (y * self.padded_width + x) * channels;
+        self.weight
+            * row_distance_n::<ROW>(
+                &self.source[source_offset..source_offset + row_len],
+                &self.target[target_offset..target_offset + row_len],
+            ) as f32
+    }
+
+    /// Reads one byte of every row of source patch `s`: issued for a whole batch of candidates
+    /// before their distances, these independent loads overlap their cache misses (a software
+    /// prefetch without `unsafe`).
+    #[inline(always)]
+    pub fn touch(&self, s: u32) -> u32 {
+        let stride = self.source_width * self.channels;
+        let start = (s as usize - self.radius * (self.source_width + 1)) * self.channels;
+        (0..self.patch).map(|row| u32::from(self.source[start + row * stride])).sum()
+    }
+
+    /// [`distance`](Self::distance) continued from patch row `first_row`, with `partial` the sum
+    /// of the rows before it; `ROW` as in [`first_row`](Self::first_row).
+    #[inline(always)]
+    pub fn distance_from<const ROW: usize>(
+        &self,
+        s: u32,
+        x: usize,
+        y: usize,
+        first_row: usize,
+        partial: f32,
+        limit: f32,
+    ) -> f32 {
+        let channels = self.channels;
+        let row_len = self.patch * channels;
+        let source_stride = self.source_width * channels;
+        let target_stride = self.padded_width * channels;
+        // Top-left of the source patch: `s − radius · (width + 1)` (no division needed).
+        let mut source_offset =
+            (s as usize - self.radius * (self.source_width + 1)) * channels + first_row * source_stride;
+        let mut target_offset = (y * self.padded_width + x) * channels + first_row * target_stride;
+        let mut total = partial;
+        for _ in first_row..self.patch {
+            total += self.weight
+                * row_distance_n::<ROW>(
+                    &self.source[source_offset..source_offset + row_len],
+                    &self.target[target_offset..target_offset + row_len],
+                ) as f32;
+            if total >= limit {
+                return total;
+            }
+            source_offset += source_stride;
+            target_offset += target_stride;
+        }
+        total
+    }
+
+    /// Like [`distance`](Self::distance) without early exit, split into the style part and the
+    /// guide part (for the report; not a hot path).
+    pub fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32) {
+        let (channels, style_channels) = (self.channels, self.style_channels);
+        let row_len = self.patch * channels;
+        let mut source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
+        let mut target_offset = (y * self.padded_width + x) * channels;
+        let (mut style, mut all) = (0_u32, 0_u32);
+        for _ in 0..self.patch {
+            let source = &self.source[source_offset..source_offset + row_len];
+            let target = &self.target[target_offset..target_offset + row_len];
+            all += row_distance(source, target);
+            for (a, b) in source.chunks_exact(channels).zip(target.chunks_exact(channels)) {
+                style += row_distance(&a[..style_channels], &b[..style_channels]);
+            }
+            source_offset += self.source_width * channels;
+            target_offset += self.padded_width * channels;
+        }
+        (self.weight * style as f32, self.weight * (all - style) as f32)
+    }
+
+    /// Replaces the target's style channels by `image` (target size, values in `[0, 1]`) and
+    /// refreshes the padding. With `only_domain`, only pixels of the voting domain are rewritten
+    /// (after a vote, the only ones that can have changed; the band in §3.7 mode).
+    pub fn set_target_style(&mut self, image: &FloatImage, only_domain: bool) {
+        let domain = if only_domain { self.domain.as_deref() } else { None };
+        let (channels, style_channels, radius) = (self.channels, self.style_channels, self.radius);
+        let (width, height, padded_width) = (self.target_width, self.target_height, self.padded_width);
+        let guide_channels = channels - style_channels;
+        let tileable = self.tileable;
+        let (guides, scales) = (&self.target_guides, &self.channel_scales);
+        let map = |p: usize, size: usize| -> usize {
+            let v = p as isize - radius as isize;
+            if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
+        };
+        self.target.par_chunks_mut(padded_width * channels).enumerate().for_each(|(py, row)| {
+            let y = map(py, height);
+            for px in 0..padded_width {
+                let x = map(px, width);
+                if domain.is_some_and(|domain| !domain[y * width + x]) {
+                    continue;
+                }
+                let out = &mut row[px * channels..(px + 1) * channels];
+                for ((slot, value), scale) in out.iter_mut().zip(image.pixel(x, y)).zip(scales) {
+                    *slot = quantize(*value, *scale);
+                }
+                if guide_channels > 0 {
+                    let start = (y * width + x) * guide_channels;
+                    out[style_channels..].copy_from_slice(&guides[start..start + guide_channels]);
+                }
+            }
+        });
+    }
+}
+
+/// A value in `[0, 1]` times `scale` (at most 255) as 8 bits, rounded.
+#[inline]
+pub(crate) fn quantize(value: f32, scale: f32) -> u8 {
+    // `+ 0.5` then truncation rounds half up like `round` on these non-negative values, without
+    // the libm call (`round` is not an SSE2 instruction), which dominated re-quantizing after votes.
+    (value.clamp(0.0, 1.0) * scale + 0.5) as u8
+}
+
+/// [`row_distance`] for rows of exactly `ROW` bytes (0 = any length): with the length a constant
+/// the loop is fully unrolled into whole vector steps, instead of a vector body plus a scalar
+/// tail that, for rows of 18 or 30 bytes, costs as much as the body.
+#[inline(always)]
+pub(crate) fn row_distance_n<const ROW: usize>(a: &[u8], b: &[u8]) -> u32 {
+    if ROW == 0 {
+        return row_distance(a, b);
+    }
+    let (a, b) = (&a[..ROW], &b[..ROW]);
+    let mut sum = 0_u32;
+    for i in 0..ROW {
+        let d = i32::from(a[i]) - i32::from(b[i]);
+        sum += (d * d) as u32;
+    }
+    sum
+}
+
+/// Integer sum of squared differences of two equal-length 8-bit rows. Integer sums are
+/// associative, so the compiler vectorizes freely and the result is exact (no order effects).
+/// Fits `u32` for rows up to 66 000 bytes (`patch × channels`, far beyond the 31 × 256 allowed).
+#[inline(always)]
+pub(crate) fn row_distance(a: &[u8], b: &[u8]) -> u32 {
+    a.iter()
+        .zip(b)
+        .map(|(&x, &y)| {
+            let d = i32::from(x) - i32::from(y);
+            (d * d) as u32
+        })
+        .sum()
+}

@@ -1,0 +1,495 @@
+//! Guided patch-based stylization and texture synthesis, after Texler, "Example-Based
+//! Stylization of Navigation Maps on Mobile Devices" (and Kwatra's texture optimization, StyLit's
+//! guided energy, Kaspar's occurrence penalty, as in ebsynth).
+//!
+//! Given a style A' with its guides A and target guides B, [`synthesize`] produces B' so that
+//! A : A' :: B : B'. Without guides it synthesizes a texture of any size (optionally tileable).
+//!
+//! Modules, by section of the paper:
+//! - [`params`]: every tunable with ebsynth's defaults (α, λ of Eq. 5, patch size, levels, N).
+//! - `level`: one pyramid level with all channels stacked as 8-bit values (as ebsynth stores
+//!   them) so the weighted patch distance of Eq. 4 is a sum over contiguous rows against one row
+//!   of per-channel weights (any number of 1/3/4-channel guides, each with its own weight; target
+//!   guides of any size).
+//! - `occurrence`: the occurrence map Ω and penalty λ·Ω/ω_best of Eq. 5, ω_best global or
+//!   per segment (Eq. 6).
+//! - `search`: nearest-neighbour fields (Eq. 2): deterministic parallel PatchMatch and the
+//!   exact brute-force search of §4.2.
+//! - `vote`: voting, the E-step of §3.3.
+//! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
+//!   upsampling (§3.5), the optional 3×3 pass, the report.
+//! - [`segments`]: segment labels from guide colours, exact palette or k-means (§3.6).
+//! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
+//!   the composition of the textures' fields that starts the band's search.
+//! - [`field`]: the public nearest-neighbour field, its PNG encoding and re-application.
+//! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
+//!
+//! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
+//! every parallel reduction has a fixed order: the same seed gives the same bytes on any number
+//! of threads.
+
+mod band;
+mod error;
+pub mod field;
+mod level;
+mod occurrence;
+pub mod params;
+pub mod samples;
+mod search;
+pub mod segments;
+mod synthesis;
+mod vote;
+
+#[cfg(test)]
+mod tests;
+
+use motif_core::{FloatImage, InvalidParameter, Progress};
+use serde::Serialize;
+
+pub use error::Error;
+pub use field::{NearestNeighbourField, apply_field};
+pub use params::{NnfMethod, Segmentation, StylizeParams};
+pub use segments::{SegmentLabels, label_guides};
+
+/// One guide pair: a source guide (aligned with the style) and the matching target guide.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Guide {
+    /// Source guide A (same size as the style), 1, 3 or 4 channels, values in `[0, 1]`.
+    pub source: FloatImage,
+    /// Target guide B (any size, the same for all guides), same channel count as `source`.
+    pub target: FloatImage,
+    /// β of Eq. 4 for this guide, shared by its channels; `None` = 1 / number of guides
+    /// (ebsynth's default). Range `[0, 1000]`.
+    pub weight: Option<f32>,
+}
+
+/// A pre-synthesized texture of one segment (§3.7).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SegmentTexture {
+    /// The segment's colour in the segment guide (values in `[0, 1]`, the guide's channels).
+    pub colour: Vec<f32>,
+    /// The texture (tiles seamlessly), the style's channel count.
+    pub image: FloatImage,
+    /// Where each texture pixel came from: the presynthesis field (texture size, source = the
+    /// style). Band pixels start from it (at the composed position's source patch), so pixels
+    /// next to the band's edge begin at their true matches and propagation spreads them at once
+    /// (§3.7); `None` = random start. [`presynthesize`] fills it.
+    pub field: Option<NearestNeighbourField>,
+}
+
+/// What to synthesize.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StylizeInput {
+    /// The style exemplar A' (or the texture exemplar), 1, 3 or 4 channels, values in `[0, 1]`.
+    pub style: FloatImage,
+    /// Guide pairs; empty for non-guided texture synthesis.
+    pub guides: Vec<Guide>,
+    /// Output size `(width, height)`: required without guides, else must equal the target
+    /// guides' size (or be `None`).
+    pub size: Option<(usize, usize)>,
+    /// Pre-synthesized textures, one per segment: fill everything outside the band around
+    /// segment edges from them and optimize only the band (§3.7). Needs guides.
+    pub textures: Option<Vec<SegmentTexture>>,
+}
+
+impl StylizeInput {
+    /// Guided stylization of the target guides' size.
+    pub fn guided(style: FloatImage, guides: Vec<Guide>) -> Self {
+        Self { style, guides, size: None, textures: None }
+    }
+
+    /// Non-guided texture synthesis of `width × height` from `exemplar`.
+    pub fn texture(exemplar: FloatImage, width: usize, height: usize) -> Self {
+        Self { style: exemplar, guides: Vec::new(), size: Some((width, height)), textures: None }
+    }
+}
+
+/// Mean per-pixel energy of Eq. 5 and its parts (squared 8-bit differences, weighted).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct EnergyParts {
+    /// style + guide + occurrence.
+    pub total: f64,
+    /// α · patch distance between A' and B'.
+    pub style: f64,
+    /// Σ β · patch distance between A and B.
+    pub guide: f64,
+    /// λ · Ω / ω_best.
+    pub occurrence: f64,
+}
+
+/// What happened on one pyramid level.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LevelReport {
+    /// Stage name ("level 2 of 5", "extra 3×3 pass").
+    pub name: String,
+    /// Target width at this level.
+    pub width: usize,
+    /// Target height at this level.
+    pub height: usize,
+    /// Patch side used.
+    pub patch_size: usize,
+    /// Mean per-pixel energy after each search (before its vote), one per iteration.
+    pub energies: Vec<f64>,
+    /// Wall-clock milliseconds.
+    pub ms: f64,
+}
+
+/// The result of [`synthesize`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    /// B', the style's channel count, values in `[0, 1]`.
+    pub image: FloatImage,
+    /// The final nearest-neighbour field.
+    pub field: NearestNeighbourField,
+    /// Per-pixel energy (patch distance + penalty) of the final field, 1 channel; 0 outside
+    /// the band in band mode.
+    pub error_map: FloatImage,
+    /// Final mean per-pixel energy of the output and its parts.
+    pub energy: EnergyParts,
+    /// Fraction of source patches used by at least one output patch.
+    pub source_coverage: f64,
+    /// One report per level, coarsest first (plus the 3×3 pass).
+    pub levels: Vec<LevelReport>,
+    /// Milliseconds per stage (per level), in order.
+    pub stages_ms: Vec<(String, f64)>,
+    /// Total milliseconds.
+    pub total_ms: f64,
+    /// Number of target patches that were optimized (all, or the band's in §3.7 mode).
+    pub searched_pixels: usize,
+}
+
+fn size_of(image: &FloatImage) -> String {
+    format!("{}×{}", image.width(), image.height())
+}
+
+fn check_image(image: &FloatImage, what: &str) -> Result<(), Error> {
+    if image.is_empty() || image.width() == 0 || image.height() == 0 {
+        return Err(Error::EmptyImage(what.to_string()));
+    }
+    if ![1, 3, 4].contains(&image.channels()) {
+        return Err(Error::UnsupportedChannels { what: what.to_string(), channels: image.channels() });
+    }
+    Ok(())
+}
+
+/// Most guide channels in all (so a patch row's integer sum of squares cannot overflow).
+pub const MAX_GUIDE_CHANNELS: usize = 252;
+
+/// Per-channel weights: an image's weight shared equally by its channels (as ebsynth does).
+fn channel_weights(weight: f32, channels: usize) -> impl Iterator<Item = f32> {
+    std::iter::repeat_n(weight / channels as f32, channels)
+}
+
+/// Stylizes (with guides) or synthesizes a texture (without), per the paper's Algorithm 1.
+///
+/// Validates everything first: images non-empty with 1, 3 or 4 channels, source guides the
+/// style's size, target guides one common size, guide pairs with equal channels, parameters in
+/// range. Progress is reported per level.
+pub fn synthesize(input: &StylizeInput, params: &StylizeParams, progress: &mut dyn Progress) -> Result<Output, Error> {
+    params.validate()?;
+    check_image(&input.style, "style")?;
+    let style = &input.style;
+    let patch = params.patch_size;
+    if style.width() < patch || style.height() < patch {
+        return Err(Error::StyleTooSmall { width: style.width(), height: style.height(), patch });
+    }
+    let guide_count = input.guides.len();
+    for (index, guide) in input.guides.iter().enumerate() {
+        let number = index + 1;
+        check_image(&guide.source, &format!("source guide {number}"))?;
+        check_image(&guide.target, &format!("target guide {number}"))?;
+        if guide.source.width() != style.width() || guide.source.height() != style.height() {
+            return Err(Error::SizeMismatch {
+                what: "a source guide must have the style's size".into(),
+                first: "the style".into(),
+                first_size: size_of(style),
+                second: format!("source guide {number}"),
+                second_size: size_of(&guide.source),
+            });
+        }
+        if guide.source.channels() != guide.target.channels() {
+            return Err(Error::ChannelMismatch {
+                index: number,
+                source_channels: guide.source.channels(),
+                target_channels: guide.target.channels(),
+            });
+        }
+        let first = &input.guides[0].target;
+        if guide.target.width() != first.width() || guide.target.height() != first.height() {
+            return Err(Error::SizeMismatch {
+                what: "all target guides must have the same size".into(),
+                first: "target guide 1".into(),
+                first_size: size_of(first),
+                second: format!("target guide {number}"),
+                second_size: size_of(&guide.target),
+            });
+        }
+        if let Some(weight) = guide.weight {
+            motif_core::error::check_range(&format!("weight of guide {number}"), f64::from(weight), 0.0, 1000.0)?;
+        }
+    }
+    let target_size = match (input.guides.first(), input.size) {
+        (Some(guide), Some(size)) if size != (guide.target.width(), guide.target.height()) => {
+            return Err(Error::SizeMismatch {
+                what: "the output size must equal the target guides' size".into(),
+                first: "the output".into(),
+                first_size: format!("{}×{}", size.0, size.1),
+                second: "target guide 1".into(),
+                second_size: size_of(&guide.target),
+            });
+        }
+        (Some(guide), _) => (guide.target.width(), guide.target.height()),
+        (None, Some((w, h))) => {
+            if w == 0 || h == 0 {
+                return Err(Error::EmptyImage("output".into()));
+            }
+            if w > 1 << 15 || h > 1 << 15 {
+                return Err(InvalidParameter::new("size", format!("{w}×{h}"), "must be at most 32768 a side").into());
+            }
+            (w, h)
+        }
+        (None, None) => return Err(Error::MissingTargetSize),
+    };
+    let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
+    if guide_channels > MAX_GUIDE_CHANNELS {
+        return Err(InvalidParameter::new(
+            "guide",
+            format!("{guide_count} guides with {guide_channels} channels"),
+            format!("must have at most {MAX_GUIDE_CHANNELS} channels in all"),
+        )
+        .into());
+    }
+    let style_weights: Vec<f32> = channel_weights(params.style_weight, style.channels()).collect();
+    let mut guide_weights = Vec::new();
+    for guide in &input.guides {
+        let weight = guide.weight.unwrap_or(1.0 / guide_count as f32);
+        guide_weights.extend(channel_weights(weight, guide.source.channels()));
+    }
+    let (source_guides, target_guides) = if guide_count == 0 {
+        (None, None)
+    } else {
+        let sources: Vec<&FloatImage> = input.guides.iter().map(|g| &g.source).collect();
+        let targets: Vec<&FloatImage> = input.guides.iter().map(|g| &g.target).collect();
+        (Some(FloatImage::stack(&sources)?), Some(FloatImage::stack(&targets)?))
+    };
+    let wants_segments = params.segments.is_some() || input.textures.is_some();
+    let labels = if wants_segments {
+        let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
+            if guide_count == 0 {
+                Error::Segments("segment guidance needs a guide pair".into())
+            } else {
+                InvalidParameter::new(
+                    "segment-guide",
+                    params.segment_guide,
+                    format!("must name one of the {guide_count} guides (from 0)"),
+                )
+                .into()
+            }
+        })?;
+        let mode = params.segments.unwrap_or(Segmentation::Palette);
+        Some(label_guides(&guide.source, &guide.target, mode, params.seed)?)
+    } else {
+        None
+    };
+    let composition = match &input.textures {
+        Some(textures) => {
+            let labels = labels.as_ref().expect("textures imply segments");
+            Some(compose_textures(
+                textures,
+                labels,
+                (style.width(), style.height(), style.channels()),
+                target_size,
+                params.band,
+            )?)
+        }
+        None => None,
+    };
+    let (composition, seeds) = match composition {
+        Some((composed, domain, seeds)) => (Some((composed, domain)), seeds),
+        None => (None, None),
+    };
+    let problem = synthesis::Problem {
+        style,
+        source_guides,
+        target_guides,
+        style_weights,
+        guide_weights,
+        target_size,
+        labels: labels.map(|l| {
+            let count = l.colours.len();
+            (l.source, l.target, count)
+        }),
+        tileable: params.tileable,
+        composition,
+        seeds,
+    };
+    synthesis::run(&problem, params, progress)
+}
+
+/// The composed target, the band, and (when the textures carry fields) the starting source centre
+/// of every target pixel.
+type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
+
+/// Matches textures to segments by colour, composes the target from them (and their fields) and
+/// marks the band.
+fn compose_textures(
+    textures: &[SegmentTexture],
+    labels: &SegmentLabels,
+    (style_width, style_height, channels): (usize, usize, usize),
+    (width, height): (usize, usize),
+    band_width: usize,
+) -> Result<Composition, Error> {
+    if textures.is_empty() {
+        return Err(Error::Presynth("no textures given".into()));
+    }
+    for (index, texture) in textures.iter().enumerate() {
+        if texture.image.is_empty() {
+            return Err(Error::EmptyImage(format!("pre-synthesized texture {}", index + 1)));
+        }
+        if texture.image.channels() != channels {
+            return Err(Error::Presynth(format!(
+                "texture {} has {} channels but the style has {channels}",
+                index + 1,
+                texture.image.channels()
+            )));
+        }
+        if let Some(field) = &texture.field {
+            let (tw, th) = (texture.image.width(), texture.image.height());
+            if field.width != tw || field.height != th || field.matches.len() != tw * th {
+                return Err(Error::Presynth(format!(
+                    "the field of texture {} is {}×{} but the texture is {tw}×{th}",
+                    index + 1,
+                    field.width,
+                    field.height
+                )));
+            }
+            let outside =
+                |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
+            if field.matches.iter().any(outside) {
+                return Err(Error::Presynth(format!(
+                    "the field of texture {} points outside the {style_width}×{style_height} style",
+                    index + 1
+                )));
+            }
+            if field.source_width != style_width || field.source_height != style_height {
+                return Err(Error::Presynth(format!(
+                    "the field of texture {} points into a {}×{} source but the style is {style_width}×{style_height}",
+                    index + 1,
+                    field.source_width,
+                    field.source_height
+                )));
+            }
+        }
+    }
+    let mut present = vec![false; labels.colours.len()];
+    for &label in &labels.target {
+        present[usize::from(label)] = true;
+    }
+    // Each label takes the texture of the nearest colour, which must be within 8/255 per channel.
+    let mut texture_of = vec![0; labels.colours.len()];
+    for (label, colour) in labels.colours.iter().enumerate() {
+        let distance =
+            |t: &SegmentTexture| -> f32 { t.colour.iter().zip(colour).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max) };
+        let (best, gap) = textures
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (i, if t.colour.len() == colour.len() { distance(t) } else { f32::INFINITY }))
+            .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+        if present[label] && gap > 8.5 / 255.0 {
+            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
+            return Err(Error::Presynth(format!("no texture for the target segment of colour #{hex}")));
+        }
+        texture_of[label] = best;
+    }
+    let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
+    let composed = band::compose(&labels.target, width, height, &images, &texture_of, channels);
+    let domain = band::band_mask(&labels.target, width, height, band_width);
+    let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
+    let seeds = fields
+        .iter()
+        .any(Option::is_some)
+        .then(|| band::compose_field(&labels.target, width, height, &fields, &texture_of, style_width));
+    Ok((composed, domain, seeds))
+}
+
+/// What [`presynthesize`] makes textures from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PresynthInput {
+    /// The style A'.
+    pub style: FloatImage,
+    /// The source segment guide A (the style's size): its colours are the segments.
+    pub guide: FloatImage,
+    /// Size of every texture `(width, height)`; they tile, so any size ≥ a few patches works.
+    pub size: (usize, usize),
+}
+
+/// Synthesizes one seamless texture per segment of the source guide from the style patches of
+/// that segment (§3.7), for [`StylizeInput::textures`]. Segments are the guide's colours
+/// ([`StylizeParams::segments`], palette by default). The textures tile (`tileable` is forced).
+pub fn presynthesize(
+    input: &PresynthInput,
+    params: &StylizeParams,
+    progress: &mut dyn Progress,
+) -> Result<Vec<SegmentTexture>, Error> {
+    params.validate()?;
+    check_image(&input.style, "style")?;
+    check_image(&input.guide, "source guide")?;
+    if input.guide.width() != input.style.width() || input.guide.height() != input.style.height() {
+        return Err(Error::SizeMismatch {
+            what: "the source guide must have the style's size".into(),
+            first: "the style".into(),
+            first_size: size_of(&input.style),
+            second: "the source guide".into(),
+            second_size: size_of(&input.guide),
+        });
+    }
+    let patch = params.patch_size;
+    if input.style.width() < patch || input.style.height() < patch {
+        return Err(Error::StyleTooSmall { width: input.style.width(), height: input.style.height(), patch });
+    }
+    let (width, height) = input.size;
+    if width < patch || height < patch || width > 1 << 14 || height > 1 << 14 {
+        return Err(InvalidParameter::new(
+            "size",
+            format!("{width}×{height}"),
+            format!("must be between {patch} and 16384 a side"),
+        )
+        .into());
+    }
+    let mode = params.segments.unwrap_or(Segmentation::Palette);
+    let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
+    let (sw, sh) = (input.style.width(), input.style.height());
+    let r = patch / 2;
+    let mut textures = Vec::with_capacity(labels.colours.len());
+    let style_weights: Vec<f32> =
+        channel_weights(params.style_weight.max(f32::MIN_POSITIVE), input.style.channels()).collect();
+    for (label, colour) in labels.colours.iter().enumerate() {
+        let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(labels.source[y * sw + x]) == label));
+        if !has_centre {
+            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
+            return Err(Error::Presynth(format!(
+                "segment #{hex} has no pixel where a whole {patch}×{patch} patch fits inside the style"
+            )));
+        }
+        let problem = synthesis::Problem {
+            style: &input.style,
+            source_guides: None,
+            target_guides: None,
+            style_weights: style_weights.clone(),
+            guide_weights: Vec::new(),
+            target_size: input.size,
+            labels: Some((labels.source.clone(), vec![label as u16; width * height], labels.colours.len())),
+            tileable: true,
+            composition: None,
+            seeds: None,
+        };
+        let mut segment_params = params.clone();
+        segment_params.seed = motif_core::SeedStreams::new(params.seed).child("presynth", label as u64).seed();
+        let mut report = |stage: &str, fraction: f64| {
+            progress.report(&format!("segment {} of {}: {stage}", label + 1, labels.colours.len()), fraction)
+        };
+        let output = synthesis::run(&problem, &segment_params, &mut report)?;
+        textures.push(SegmentTexture { colour: colour.clone(), image: output.image, field: Some(output.field) });
+    }
+    Ok(textures)
+}

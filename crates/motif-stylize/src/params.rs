@@ -1,0 +1,133 @@
+//! Parameters of the engine, with ebsynth's defaults.
+
+use motif_core::InvalidParameter;
+use motif_core::error::{check_count, check_range};
+
+use crate::Error;
+
+/// How the nearest-neighbour field is searched (paper §4.2; PatchMatch by Barnes et al. 2009).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NnfMethod {
+    /// Randomized PatchMatch: propagation plus random search, deterministic under parallelism
+    /// (row tiles with one seeded stream each). The default; near-linear in the image sizes.
+    #[default]
+    PatchMatch,
+    /// Brute force over every source patch: the paper's own method (§4.2). Exact but
+    /// `O(|target| · |source|)`, for small images and for tests.
+    Exact,
+}
+
+/// How guide colours become segment labels (paper §3.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Segmentation {
+    /// Every distinct colour of the segment guide is a segment (at most
+    /// [`MAX_PALETTE`](crate::segments::MAX_PALETTE) colours): for flat, aliased map renders.
+    Palette,
+    /// Quantize the guide colours into this many clusters by k-means (seeded, deterministic):
+    /// for anti-aliased guides. Range 2..=64.
+    KMeans(usize),
+}
+
+/// All tunables of [`synthesize`](crate::synthesize) and
+/// [`presynthesize`](crate::presynthesize). Defaults are ebsynth's.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct StylizeParams {
+    /// α of Eq. 4–5: weight of the style term (A' against B' patches), shared equally by the
+    /// style channels. Range `[0, 1000]`, default 1.
+    pub style_weight: f32,
+    /// λ of Eq. 5: weight of the occurrence penalty Ω/ω_best that keeps source patches in uniform
+    /// use (against wash-out). Same units as ebsynth's `-uniformity` (squared 8-bit differences).
+    /// Range `[0, 1e6]`, default 3500; 0 turns the penalty off.
+    pub uniformity: f32,
+    /// Side of the square patches in pixels. Odd, range 3..=31, default 5.
+    pub patch_size: usize,
+    /// Number of pyramid levels (§3.5); 0 = as many as fit (coarsest level at least
+    /// `2·patch_size + 1` pixels on each side of both source and target). Range 0..=32, default 0.
+    pub pyramid_levels: usize,
+    /// N of Algorithm 1: search-then-vote iterations per level. Range 1..=100, default 6.
+    pub search_vote_iterations: usize,
+    /// PatchMatch iterations per search (propagation + random search). Range 1..=100, default 4.
+    pub patchmatch_iterations: usize,
+    /// ebsynth's `-stopthreshold`: after a vote, a pixel whose colour moved by less than this
+    /// (largest absolute change over the style channels, 8-bit units) is considered converged; a
+    /// patch is searched again only while some pixel under it still changes. The first search
+    /// of every level covers every pixel. Range `[0, 1020]`, default 5; 0 searches every pixel
+    /// every time.
+    pub stop_threshold: f32,
+    /// Nearest-neighbour search method. Default PatchMatch.
+    pub nnf: NnfMethod,
+    /// After the finest level, one more search-and-vote with 3×3 patches and no uniformity
+    /// (ebsynth's `extrapass3x3`): sharpens fine detail. Default off.
+    pub extra_pass_3x3: bool,
+    /// Segment guidance (§3.6): label the segment guide's colours, compute ω_best per segment
+    /// (Eq. 6) and restrict matches to the same segment. Default off (global ω_best).
+    pub segments: Option<Segmentation>,
+    /// Which guide (index into the input's guides, from 0) defines the segments. Default 0.
+    pub segment_guide: usize,
+    /// Band half-width T in pixels for pre-synthesized textures (§3.7, Table 1): pixels at
+    /// distance ≥ T from every segment edge are copied from the textures, only the band is
+    /// optimized; 0 = pure bitmap composition. Used only when textures are given. Range 0..=4096,
+    /// default 4.
+    pub band: usize,
+    /// Search-vote iterations in band mode when the band starts from the textures' fields
+    /// ([`crate::SegmentTexture::field`], §3.7): the start is already the textures' own
+    /// solution, so fewer iterations reach nearly the energy of N from a random start (measured
+    /// on the Table 1 map, band 2: 3 × 2 iterations end 7 % above 6 × 4 from random, in 40 % of
+    /// the time). Without fields, band mode uses N and K. Range 1..=100, default 3.
+    pub band_search_vote_iterations: usize,
+    /// PatchMatch iterations per search in band mode with a seeded start (see
+    /// [`band_search_vote_iterations`](Self::band_search_vote_iterations)). Range 1..=100,
+    /// default 2.
+    pub band_patchmatch_iterations: usize,
+    /// Non-guided synthesis only: wrap patches around the borders so the output tiles seamlessly.
+    /// Default off.
+    pub tileable: bool,
+    /// Seed of every random choice (PatchMatch, initialization, k-means). Default 0.
+    pub seed: u64,
+}
+
+impl Default for StylizeParams {
+    fn default() -> Self {
+        Self {
+            style_weight: 1.0,
+            uniformity: 3500.0,
+            patch_size: 5,
+            pyramid_levels: 0,
+            search_vote_iterations: 6,
+            patchmatch_iterations: 4,
+            stop_threshold: 5.0,
+            nnf: NnfMethod::PatchMatch,
+            extra_pass_3x3: false,
+            segments: None,
+            segment_guide: 0,
+            band: 4,
+            band_search_vote_iterations: 3,
+            band_patchmatch_iterations: 2,
+            tileable: false,
+            seed: 0,
+        }
+    }
+}
+
+impl StylizeParams {
+    /// Checks every field's range; the first bad one is the error.
+    pub fn validate(&self) -> Result<(), Error> {
+        check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
+        check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
+        if self.patch_size < 3 || self.patch_size % 2 == 0 || self.patch_size > 31 {
+            return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd and between 3 and 31").into());
+        }
+        check_range("stop-threshold", f64::from(self.stop_threshold), 0.0, 1020.0)?;
+        check_count("pyramid-levels", self.pyramid_levels, 0, 32)?;
+        check_count("search-vote-iters", self.search_vote_iterations, 1, 100)?;
+        check_count("patchmatch-iters", self.patchmatch_iterations, 1, 100)?;
+        check_count("band", self.band, 0, 4096)?;
+        check_count("band-iters", self.band_search_vote_iterations, 1, 100)?;
+        check_count("band-patchmatch-iters", self.band_patchmatch_iterations, 1, 100)?;
+        if let Some(Segmentation::KMeans(k)) = self.segments {
+            check_count("segment-count", k, 2, 64)?;
+        }
+        Ok(())
+    }
+}

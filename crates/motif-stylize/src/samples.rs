@@ -1,0 +1,121 @@
+//! Seeded synthetic inputs for demos, benchmarks and tests: a map-like segment guide and a
+//! hand-drawn-looking style for it, plus smooth multi-channel guides.
+
+use motif_core::random::Rng;
+use motif_core::{FloatImage, SeedStreams};
+
+/// Colours of the map segments: water, grass, built-up, sand, road (like the paper's Fig. 1).
+pub const MAP_PALETTE: [[f32; 3]; 5] =
+    [[0.55, 0.75, 0.95], [0.75, 0.9, 0.6], [0.95, 0.8, 0.85], [0.95, 0.9, 0.7], [1.0, 1.0, 1.0]];
+
+/// A map-like guide of flat colours: `segments` (2..=5) regions with wavy borders from a warped
+/// Voronoi diagram, and, with 5 segments, white roads on top. Exact palette, no anti-aliasing.
+pub fn map_guide(width: usize, height: usize, segments: usize, seed: u64) -> FloatImage {
+    let segments = segments.clamp(2, 5);
+    let regions = if segments == 5 { 4 } else { segments };
+    let mut stream = SeedStreams::new(seed).stream("map guide", 0);
+    let sites: Vec<(f32, f32, usize)> = (0..3 * regions)
+        .map(|i| (stream.random::<f32>() * width as f32, stream.random::<f32>() * height as f32, i % regions))
+        .collect();
+    let phase: [f32; 4] = std::array::from_fn(|_| stream.random::<f32>() * 6.3);
+    let roads: Vec<(f32, f32, f32)> = (0..2)
+        .map(|_| {
+            let angle = stream.random::<f32>() * std::f32::consts::PI;
+            (angle.cos(), angle.sin(), (stream.random::<f32>() - 0.5) * 0.5 * width.min(height) as f32)
+        })
+        .collect();
+    let scale = width.max(height) as f32;
+    let mut data = Vec::with_capacity(width * height * 3);
+    for y in 0..height {
+        for x in 0..width {
+            let (fx, fy) = (x as f32, y as f32);
+            let wx = fx
+                + 0.04 * scale * (fy * 9.0 / scale + phase[0]).sin()
+                + 0.02 * scale * (fy * 23.0 / scale + phase[1]).sin();
+            let wy = fy
+                + 0.04 * scale * (fx * 8.0 / scale + phase[2]).sin()
+                + 0.02 * scale * (fx * 19.0 / scale + phase[3]).sin();
+            let region = sites
+                .iter()
+                .map(|&(sx, sy, r)| ((sx - wx).powi(2) + (sy - wy).powi(2), r))
+                .fold((f32::INFINITY, 0), |a, b| if b.0 < a.0 { b } else { a })
+                .1;
+            let mut colour = MAP_PALETTE[region];
+            if segments == 5 {
+                let (cx, cy) = (fx - width as f32 / 2.0, fy - height as f32 / 2.0);
+                let on_road =
+                    roads.iter().any(|&(c, s, offset)| (cx * c + cy * s - offset).abs() < 0.012 * scale + 1.5);
+                if on_road {
+                    colour = MAP_PALETTE[4];
+                }
+            }
+            data.extend_from_slice(&colour);
+        }
+    }
+    FloatImage::from_data(width, height, 3, data).expect("sizes match")
+}
+
+/// A crayon-like style for a segment guide: each guide colour becomes a darker, hatched,
+/// noisy version of itself, with strokes in a direction of its own.
+pub fn crayon_style(guide: &FloatImage, seed: u64) -> FloatImage {
+    let channels = guide.channels().min(3);
+    let mut stream = SeedStreams::new(seed).stream("crayon", 0);
+    let mut out = FloatImage::new(guide.width(), guide.height(), 3);
+    for y in 0..guide.height() {
+        for x in 0..guide.width() {
+            let g = guide.pixel(x, y);
+            let hue = g.iter().take(channels).enumerate().map(|(c, v)| v * (c + 1) as f32).sum::<f32>();
+            let angle = hue * 2.1;
+            let t = x as f32 * angle.cos() + y as f32 * angle.sin();
+            let stroke = 0.5 + 0.5 * (t * 0.9 + (y as f32 * 0.21).sin() * 2.0).sin();
+            let grain = stream.random::<f32>();
+            let shade = 0.55 + 0.3 * stroke + 0.15 * grain;
+            let pixel = out.pixel_mut(x, y);
+            for c in 0..3 {
+                let base = g[c.min(channels - 1)];
+                pixel[c] = (base * shade + 0.08 * (grain - 0.5)).clamp(0.0, 1.0);
+            }
+        }
+    }
+    out
+}
+
+/// A smooth random image of `channels` channels (sums of sinusoids plus light noise), for guide
+/// channels such as gradients or normals in benchmarks.
+pub fn smooth_field(width: usize, height: usize, channels: usize, seed: u64) -> FloatImage {
+    let mut stream = SeedStreams::new(seed).stream("smooth field", 0);
+    let waves: Vec<[f32; 3]> = (0..4 * channels)
+        .map(|_| [stream.random::<f32>() * 0.05, stream.random::<f32>() * 0.05, stream.random::<f32>() * 6.3])
+        .collect();
+    let mut data = Vec::with_capacity(width * height * channels);
+    for y in 0..height {
+        for x in 0..width {
+            for c in 0..channels {
+                let mut v = 0.5;
+                for wave in &waves[c * 4..(c + 1) * 4] {
+                    v += 0.11 * (wave[0] * x as f32 + wave[1] * y as f32 + wave[2]).sin();
+                }
+                data.push((v + 0.02 * (stream.random::<f32>() - 0.5)).clamp(0.0, 1.0));
+            }
+        }
+    }
+    FloatImage::from_data(width, height, channels, data).expect("sizes match")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_guide_uses_exactly_the_requested_segments() {
+        let guide = map_guide(120, 90, 5, 3);
+        let mut seen: Vec<[u32; 3]> =
+            guide.data().chunks_exact(3).map(|p| [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]).collect();
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 5);
+        assert_eq!(map_guide(120, 90, 5, 3), guide);
+        let style = crayon_style(&guide, 1);
+        assert_eq!((style.width(), style.height(), style.channels()), (120, 90, 3));
+    }
+}

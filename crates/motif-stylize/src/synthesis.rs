@@ -1,0 +1,353 @@
+//! Multi-resolution EM (Algorithm 1, §3.5): coarse to fine, N × (search, vote) per level, the
+//! field upsampled between levels; optionally a final 3×3 pass; the report figures.
+
+use motif_core::timing::Clock;
+use motif_core::{FloatImage, Progress, SeedStreams, StageTimer};
+
+use crate::field::NearestNeighbourField;
+use crate::level::{Level, LevelSpec};
+use crate::occurrence::Occurrence;
+use crate::search::{Field, exact_search, patchmatch_iteration};
+use crate::vote::vote;
+use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, StylizeParams, segments};
+
+/// A validated problem in the engine's terms (built by the public entry points).
+pub(crate) struct Problem<'a> {
+    pub style: &'a FloatImage,
+    pub source_guides: Option<FloatImage>,
+    pub target_guides: Option<FloatImage>,
+    pub style_weights: Vec<f32>,
+    pub guide_weights: Vec<f32>,
+    pub target_size: (usize, usize),
+    /// Source labels, target labels, label count.
+    pub labels: Option<(Vec<u16>, Vec<u16>, usize)>,
+    pub tileable: bool,
+    /// Band mode (§3.7): the composed image and the band of pixels to optimize.
+    pub composition: Option<(FloatImage, Vec<bool>)>,
+    /// Band mode: the starting source centre of every target pixel, from the textures' fields
+    /// ([`crate::band::NO_SEED`] = none).
+    pub seeds: Option<Vec<u32>>,
+}
+
+/// Number of pyramid levels whose sides all stay ≥ `min_side`.
+fn fitting_levels(sizes: &[(usize, usize)], min_side: usize) -> usize {
+    let mut levels = 1;
+    let mut current: Vec<(usize, usize)> = sizes.to_vec();
+    loop {
+        current = current.iter().map(|&(w, h)| (w.div_ceil(2), h.div_ceil(2))).collect();
+        if current.iter().any(|&(w, h)| w < min_side || h < min_side) || levels >= 32 {
+            return levels;
+        }
+        levels += 1;
+    }
+}
+
+/// Size of pyramid level `level` of an image of size `size`.
+fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
+    (0..level).fold(size, |(w, h), _| (w.div_ceil(2), h.div_ceil(2)))
+}
+
+/// Dilates a mask by `radius` (Chebyshev): the patch centres whose patch touches the mask.
+fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) -> Vec<bool> {
+    let mut horizontal = vec![false; mask.len()];
+    for y in 0..height {
+        for x in 0..width {
+            if mask[y * width + x] {
+                for xx in x.saturating_sub(radius)..(x + radius + 1).min(width) {
+                    horizontal[y * width + xx] = true;
+                }
+            }
+        }
+    }
+    let mut out = vec![false; mask.len()];
+    for y in 0..height {
+        for x in 0..width {
+            if horizontal[y * width + x] {
+                for yy in y.saturating_sub(radius)..(y + radius + 1).min(height) {
+                    out[yy * width + x] = true;
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Runs the whole optimization.
+pub(crate) fn run(problem: &Problem<'_>, params: &StylizeParams, progress: &mut dyn Progress) -> Result<Output, Error> {
+    let start = Clock::now();
+    // A band that starts from the textures' fields is nearly converged: fewer iterations (§3.7).
+    let seeded_band = problem.composition.is_some() && problem.seeds.is_some();
+    let mut params = params.clone();
+    if seeded_band {
+        params.search_vote_iterations = params.band_search_vote_iterations;
+        params.patchmatch_iterations = params.band_patchmatch_iterations;
+    }
+    let params = &params;
+    let mut timer = StageTimer::new();
+    let patch = params.patch_size;
+    let streams = SeedStreams::new(params.seed);
+    let source_size = (problem.style.width(), problem.style.height());
+    let levels = if problem.composition.is_some() {
+        // Band mode optimizes a thin band at full resolution only (§3.7).
+        1
+    } else {
+        let fit = fitting_levels(&[source_size, problem.target_size], 2 * patch + 1);
+        if params.pyramid_levels == 0 { fit } else { params.pyramid_levels.min(fit) }
+    };
+    if let Some((composed, domain)) = &problem.composition {
+        if !domain.iter().any(|&inside| inside) {
+            // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
+            return Ok(composition_only(composed, source_size, patch, start));
+        }
+    }
+    let style_pyramid = problem.style.gaussian_pyramid(levels, 1);
+    let source_guide_pyramid = problem.source_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
+    let target_guide_pyramid = problem.target_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
+    let spec = |level: usize, patch: usize| -> LevelSpec<'_> {
+        let target_size = level_size(problem.target_size, level);
+        let (source_labels, target_labels, label_count) = match &problem.labels {
+            Some((source, target, count)) => (
+                Some(segments::decimate(source, source_size.0, source_size.1, level_size(source_size, level), level)),
+                Some(segments::decimate(target, problem.target_size.0, problem.target_size.1, target_size, level)),
+                *count,
+            ),
+            None => (None, None, 0),
+        };
+        LevelSpec {
+            patch,
+            style: style_pyramid[level].clone(),
+            style_weights: &problem.style_weights,
+            source_guides: source_guide_pyramid.as_ref().map(|p| &p[level]),
+            target_guides: target_guide_pyramid.as_ref().map(|p| &p[level]),
+            guide_weights: &problem.guide_weights,
+            target_size,
+            tileable: problem.tileable,
+            source_labels,
+            target_labels,
+            label_count,
+        }
+    };
+    let band = |level: &mut Level| {
+        if let Some((_, domain)) = &problem.composition {
+            level.active = Some(dilate(domain, level.target_width, level.target_height, level.radius));
+            level.domain = Some(domain.clone());
+        }
+    };
+
+    let mut reports = Vec::with_capacity(levels + 1);
+    let mut previous: Option<(Field, Level)> = None;
+    let mut image = FloatImage::new(0, 0, 1);
+    let mut scratch = Vec::new();
+    for level_index in (0..levels).rev() {
+        let level_start = Clock::now();
+        let stage = format!("level {} of {}", levels - level_index, levels);
+        progress.report(&stage, 0.0);
+        let level_streams = streams.child("level", level_index as u64);
+        let mut level = Level::new(spec(level_index, patch));
+        band(&mut level);
+        let mut field = match (&previous, &problem.seeds) {
+            (None, Some(seeds)) => Field::seeded(&level, seeds, &level_streams),
+            (None, None) => Field::random(&level, &level_streams),
+            (Some((coarse, coarse_level)), _) => Field::upsample(coarse, coarse_level, &level, &level_streams),
+        };
+        image = match &problem.composition {
+            Some((composed, _)) => composed.clone(),
+            None => {
+                let mut fresh = FloatImage::new(level.target_width, level.target_height, level.style_channels);
+                vote(&level, &field, &mut fresh, false);
+                fresh
+            }
+        };
+        level.set_target_style(&image, false);
+        let mut occurrence = Occurrence::new(&level, params.uniformity);
+        let mut energies = Vec::with_capacity(params.search_vote_iterations);
+        let mut converged: Option<Vec<bool>> = None;
+        for iteration in 0..params.search_vote_iterations {
+            field.recompute_costs(&level);
+            let mask = converged.as_deref();
+            search(&level, &mut field, &mut occurrence, &mut scratch, params, &level_streams, iteration, mask);
+            occurrence.refresh(&level, &field.matches);
+            energies.push(field.mean_energy(&level, &occurrence));
+            let before = (params.stop_threshold > 0.0).then(|| image.clone());
+            vote(&level, &field, &mut image, true);
+            level.set_target_style(&image, true);
+            converged = before.map(|before| converged_patches(&level, &before, &image, params.stop_threshold));
+            progress.report(&stage, (iteration + 1) as f64 / params.search_vote_iterations as f64);
+        }
+        let ms = motif_core::timing::elapsed_ms(level_start);
+        timer.add(&stage, ms);
+        reports.push(LevelReport {
+            name: stage,
+            width: level.target_width,
+            height: level.target_height,
+            patch_size: patch,
+            energies,
+            ms,
+        });
+        previous = Some((field, level));
+    }
+    let (mut field, mut level) = previous.expect("at least one level");
+
+    if params.extra_pass_3x3 {
+        let pass_start = Clock::now();
+        let stage = "extra 3×3 pass".to_string();
+        progress.report(&stage, 0.0);
+        let mut fine = Level::new(spec(0, 3));
+        band(&mut fine);
+        fine.set_target_style(&image, false);
+        let mut occurrence = Occurrence::new(&fine, 0.0);
+        field.recompute_costs(&fine);
+        let pass_streams = streams.child("extra pass", 0);
+        search(&fine, &mut field, &mut occurrence, &mut scratch, params, &pass_streams, 0, None);
+        let energies = vec![field.mean_energy(&fine, &occurrence)];
+        vote(&fine, &field, &mut image, true);
+        fine.set_target_style(&image, true);
+        let ms = motif_core::timing::elapsed_ms(pass_start);
+        timer.add(&stage, ms);
+        reports.push(LevelReport {
+            name: stage.clone(),
+            width: fine.target_width,
+            height: fine.target_height,
+            patch_size: 3,
+            energies,
+            ms,
+        });
+        progress.report(&stage, 1.0);
+        level = fine;
+    }
+
+    // Figures of the output itself: its final patch distances and the penalty of its field.
+    field.recompute_costs(&level);
+    let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
+    let mut occurrence = Occurrence::new(&level, final_lambda);
+    occurrence.refresh(&level, &field.matches);
+    let energy = energy_parts(&level, &field, &occurrence);
+    let source_coverage = Occurrence::coverage(&level, &field.matches);
+    let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
+    for (t, value) in error_map.data_mut().iter_mut().enumerate() {
+        if level.is_active(t) {
+            *value = field.costs[t] + occurrence.snapshot_cost(field.matches[t]);
+        }
+    }
+    let searched = level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count());
+    let nnf = NearestNeighbourField {
+        width: level.target_width,
+        height: level.target_height,
+        source_width: level.source_width,
+        source_height: level.source_height,
+        patch_size: level.patch,
+        matches: field
+            .matches
+            .iter()
+            .enumerate()
+            .map(|(t, &s)| {
+                level.is_active(t).then(|| {
+                    let s = s as usize;
+                    [(s % level.source_width) as u32, (s / level.source_width) as u32]
+                })
+            })
+            .collect(),
+    };
+    Ok(Output {
+        image,
+        field: nnf,
+        error_map,
+        energy,
+        source_coverage,
+        levels: reports,
+        stages_ms: timer.finish(),
+        total_ms: motif_core::timing::elapsed_ms(start),
+        searched_pixels: searched,
+    })
+}
+
+/// Patches none of whose pixels changed by `threshold` or more in the last vote
+/// (largest absolute change over the style channels, 8-bit units).
+fn converged_patches(level: &Level, before: &FloatImage, after: &FloatImage, threshold: f32) -> Vec<bool> {
+    let channels = level.style_channels;
+    let changed: Vec<bool> = before
+        .data()
+        .chunks_exact(channels)
+        .zip(after.data().chunks_exact(channels))
+        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max) * 255.0 >= threshold)
+        .collect();
+    dilate(&changed, level.target_width, level.target_height, level.radius).into_iter().map(|c| !c).collect()
+}
+
+/// The output of a band with no pixels: the composed textures, no field, zero energy.
+fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: usize, start: Clock) -> Output {
+    let (width, height) = (composed.width(), composed.height());
+    let total_ms = motif_core::timing::elapsed_ms(start);
+    Output {
+        image: composed.clone(),
+        field: NearestNeighbourField {
+            width,
+            height,
+            source_width: source_size.0,
+            source_height: source_size.1,
+            patch_size: patch,
+            matches: vec![None; width * height],
+        },
+        error_map: FloatImage::new(width, height, 1),
+        energy: EnergyParts { total: 0.0, style: 0.0, guide: 0.0, occurrence: 0.0 },
+        source_coverage: 0.0,
+        levels: Vec::new(),
+        stages_ms: vec![("composition".to_string(), total_ms)],
+        total_ms,
+        searched_pixels: 0,
+    }
+}
+
+/// One search: K PatchMatch iterations (Ω refreshed before each) or one exact pass.
+#[allow(clippy::too_many_arguments)]
+fn search(
+    level: &Level,
+    field: &mut Field,
+    occurrence: &mut Occurrence,
+    scratch: &mut Vec<u32>,
+    params: &StylizeParams,
+    streams: &SeedStreams,
+    iteration: usize,
+    converged: Option<&[bool]>,
+) {
+    match params.nnf {
+        NnfMethod::PatchMatch => {
+            for k in 0..params.patchmatch_iterations {
+                occurrence.refresh(level, &field.matches);
+                let key = (iteration * params.patchmatch_iterations + k) as u64;
+                patchmatch_iteration(level, field, scratch, occurrence, &streams.child("search", key), k, converged);
+            }
+        }
+        NnfMethod::Exact => {
+            occurrence.refresh(level, &field.matches);
+            exact_search(level, field, occurrence);
+        }
+    }
+}
+
+/// Mean per searched pixel of the style distance, guide distance and penalty.
+fn energy_parts(level: &Level, field: &Field, occurrence: &Occurrence) -> EnergyParts {
+    use rayon::prelude::*;
+    let rows: Vec<(f64, f64, f64, usize)> = (0..level.target_height)
+        .into_par_iter()
+        .map(|y| {
+            let (mut style, mut guide, mut penalty, mut count) = (0.0_f64, 0.0_f64, 0.0_f64, 0usize);
+            for x in 0..level.target_width {
+                let t = y * level.target_width + x;
+                if !level.is_active(t) {
+                    continue;
+                }
+                let (s, g) = level.distance_parts(field.matches[t], x, y);
+                style += f64::from(s);
+                guide += f64::from(g);
+                penalty += f64::from(occurrence.snapshot_cost(field.matches[t]));
+                count += 1;
+            }
+            (style, guide, penalty, count)
+        })
+        .collect();
+    let (style, guide, penalty, count) =
+        rows.iter().fold((0.0, 0.0, 0.0, 0), |a, r| (a.0 + r.0, a.1 + r.1, a.2 + r.2, a.3 + r.3));
+    let n = count.max(1) as f64;
+    EnergyParts { total: (style + guide + penalty) / n, style: style / n, guide: guide / n, occurrence: penalty / n }
+}

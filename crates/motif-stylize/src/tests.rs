@@ -1,0 +1,543 @@
+//! Properties of the engine: exact search against a naive formula, monotone PatchMatch,
+//! EM energy decrease, identity, uniformity, segments, band mode, determinism, bad input.
+
+use motif_core::random::Rng;
+use motif_core::{FloatImage, NoProgress, SeedStreams};
+
+use crate::level::{Level, LevelSpec};
+use crate::occurrence::{Occurrence, OmegaDelta};
+use crate::search::{Field, exact_search, patchmatch_iteration, patchmatch_tiles};
+use crate::*;
+
+/// A smooth, textured image: sums of random sinusoids plus some per-pixel noise.
+pub(crate) fn texture(width: usize, height: usize, channels: usize, seed: u64) -> FloatImage {
+    let mut stream = SeedStreams::new(seed).stream("texture", 0);
+    let waves: Vec<[f32; 4]> = (0..6 * channels)
+        .map(|_| [stream.random::<f32>() * 0.6, stream.random::<f32>() * 0.6, stream.random::<f32>() * 6.3, 0.0])
+        .collect();
+    let mut data = Vec::with_capacity(width * height * channels);
+    for y in 0..height {
+        for x in 0..width {
+            for c in 0..channels {
+                let mut v = 0.5;
+                for wave in &waves[c * 6..(c + 1) * 6] {
+                    v += 0.07 * (wave[0] * x as f32 + wave[1] * y as f32 + wave[2]).sin();
+                }
+                v += 0.08 * (stream.random::<f32>() - 0.5);
+                // 8-bit values, as PNG inputs are (the engine stores 8 bits).
+                data.push((v.clamp(0.0, 1.0) * 255.0).round() / 255.0);
+            }
+        }
+    }
+    FloatImage::from_data(width, height, channels, data).unwrap()
+}
+
+fn flat(width: usize, height: usize, colour: impl Fn(usize, usize) -> [f32; 3]) -> FloatImage {
+    let data = (0..width * height).flat_map(|i| colour(i % width, i / width)).collect();
+    FloatImage::from_data(width, height, 3, data).unwrap()
+}
+
+fn psnr(a: &FloatImage, b: &FloatImage) -> f64 {
+    let mse: f64 =
+        a.data().iter().zip(b.data()).map(|(x, y)| f64::from(x - y).powi(2)).sum::<f64>() / a.data().len() as f64;
+    10.0 * (1.0 / mse.max(1e-12)).log10()
+}
+
+/// A level with a 3-channel style, a 1-channel and a 3-channel guide of their own weights,
+/// and target guides of a different size.
+fn small_level(patch: usize) -> (Level, FloatImage, Vec<FloatImage>, Vec<FloatImage>, Vec<f32>, FloatImage) {
+    let style = texture(14, 12, 3, 1);
+    let sources = vec![texture(14, 12, 1, 2), texture(14, 12, 3, 3)];
+    let targets = vec![texture(11, 9, 1, 4), texture(11, 9, 3, 5)];
+    let weights = vec![0.7 / 3.0, 0.3, 0.2 / 3.0];
+    let style_weights = vec![0.7_f32 / 3.0; 3];
+    let mut guide_weights = vec![0.3_f32];
+    guide_weights.extend([0.2_f32 / 3.0; 3]);
+    let source_stack = FloatImage::stack(&[&sources[0], &sources[1]]).unwrap();
+    let target_stack = FloatImage::stack(&[&targets[0], &targets[1]]).unwrap();
+    let mut level = Level::new(LevelSpec {
+        patch,
+        style: style.clone(),
+        style_weights: &style_weights,
+        source_guides: Some(&source_stack),
+        target_guides: Some(&target_stack),
+        guide_weights: &guide_weights,
+        target_size: (11, 9),
+        tileable: false,
+        source_labels: None,
+        target_labels: None,
+        label_count: 0,
+    });
+    let current = texture(11, 9, 3, 6);
+    level.set_target_style(&current, false);
+    (level, style, sources, targets, weights, current)
+}
+
+/// Eq. 4 written out over the engine's 8-bit representation: channel `c` of weight `w_c` stored
+/// as `round(v · 255 · sqrt(w_c / w_max))`, distance `w_max · Σ d²`, target border clamped.
+fn naive_distance(
+    (style, sources, targets, weights, current): (&FloatImage, &[FloatImage], &[FloatImage], &[f32], &FloatImage),
+    (sx, sy): (usize, usize),
+    (x, y): (usize, usize),
+    radius: isize,
+) -> f64 {
+    // Channel weights in stacking order: style (3), guide 1 (1), guide 2 (3).
+    let channel_weights = [weights[0], weights[0], weights[0], weights[1], weights[2], weights[2], weights[2]];
+    let w_max = channel_weights.iter().copied().fold(0.0_f32, f32::max);
+    let q = |v: f32, c: usize| (v.clamp(0.0, 1.0) * 255.0 * (channel_weights[c] / w_max).sqrt()).round() as f64;
+    let mut total = 0.0;
+    for dy in -radius..=radius {
+        for dx in -radius..=radius {
+            let (ax, ay) = ((sx as isize + dx) as usize, (sy as isize + dy) as usize);
+            let bx = (x as isize + dx).clamp(0, current.width() as isize - 1) as usize;
+            let by = (y as isize + dy).clamp(0, current.height() as isize - 1) as usize;
+            let mut add = |a: f32, b: f32, c: usize| {
+                let d = q(a, c) - q(b, c);
+                total += f64::from(w_max) * d * d;
+            };
+            for c in 0..3 {
+                add(style.pixel(ax, ay)[c], current.pixel(bx, by)[c], c);
+            }
+            add(sources[0].pixel(ax, ay)[0], targets[0].pixel(bx, by)[0], 3);
+            for c in 0..3 {
+                add(sources[1].pixel(ax, ay)[c], targets[1].pixel(bx, by)[c], 4 + c);
+            }
+        }
+    }
+    total
+}
+
+#[test]
+fn exact_search_equals_naive_minimum_with_occurrence() {
+    for patch in [3, 5] {
+        let (level, style, sources, targets, weights, current) = small_level(patch);
+        let r = (patch / 2) as isize;
+        let streams = SeedStreams::new(9);
+        let mut field = Field::random(&level, &streams);
+        field.recompute_costs(&level);
+        let lambda = 2000.0;
+        let mut occurrence = Occurrence::new(&level, lambda);
+        occurrence.refresh(&level, &field.matches);
+        // Ω written out: per source pixel, how many matched patches cover it.
+        let (sw, sh) = (level.source_width, level.source_height);
+        let mut counts = vec![0.0_f64; sw * sh];
+        for &s in &field.matches {
+            let (cx, cy) = (s as usize % sw, s as usize / sw);
+            for y in cy - r as usize..=cy + r as usize {
+                for x in cx - r as usize..=cx + r as usize {
+                    counts[y * sw + x] += 1.0;
+                }
+            }
+        }
+        let area = (patch * patch) as f64;
+        let best_use = area * 99.0 / (sw * sh) as f64;
+        let penalty = |sx: usize, sy: usize| -> f64 {
+            let mut omega = 0.0;
+            for y in sy - r as usize..=sy + r as usize {
+                for x in sx - r as usize..=sx + r as usize {
+                    omega += counts[y * sw + x];
+                }
+            }
+            f64::from(lambda) * omega / area / best_use
+        };
+        let images = (&style, &sources[..], &targets[..], &weights[..], &current);
+        let before = field.clone();
+        exact_search(&level, &mut field, &occurrence);
+        for y in 0..9 {
+            for x in 0..11 {
+                let cost = |s: u32| {
+                    let (sx, sy) = (s as usize % sw, s as usize / sw);
+                    naive_distance(images, (sx, sy), (x, y), r) + penalty(sx, sy)
+                };
+                let mut naive_best = cost(before.matches[y * 11 + x]);
+                for sy in r as usize..sh - r as usize {
+                    for sx in r as usize..sw - r as usize {
+                        naive_best = naive_best.min(cost((sy * sw + sx) as u32));
+                    }
+                }
+                let found = cost(field.matches[y * 11 + x]);
+                assert!(
+                    (found - naive_best).abs() <= 1e-3 * naive_best.max(1.0),
+                    "patch {patch} at {x},{y}: {found} vs {naive_best}"
+                );
+                let stored = f64::from(field.costs[y * 11 + x]);
+                let (sx, sy) = (field.matches[y * 11 + x] as usize % sw, field.matches[y * 11 + x] as usize / sw);
+                assert!((stored - naive_distance(images, (sx, sy), (x, y), r)).abs() <= 1e-3 * stored.max(1.0));
+            }
+        }
+    }
+}
+
+#[test]
+fn omega_delta_tracks_a_full_refresh() {
+    let (level, ..) = small_level(5);
+    let streams = SeedStreams::new(3);
+    let field = Field::random(&level, &streams);
+    let mut occurrence = Occurrence::new(&level, 1.0);
+    occurrence.refresh(&level, &field.matches);
+    let mut delta = OmegaDelta::new(&level, Some(&occurrence));
+    let mut moved = field.matches.clone();
+    let other = Field::random(&level, &SeedStreams::new(4));
+    for t in [0, 7, 30, 31, 50] {
+        delta.moved(moved[t], other.matches[t]);
+        moved[t] = other.matches[t];
+    }
+    let mut fresh = Occurrence::new(&level, 1.0);
+    fresh.refresh(&level, &moved);
+    let inert = OmegaDelta::new(&level, None);
+    for s in 0..(level.source_width * level.source_height) as u32 {
+        assert!((occurrence.cost(s, &delta) - fresh.cost(s, &inert)).abs() < 1e-4);
+    }
+    delta.clear();
+    for s in 0..(level.source_width * level.source_height) as u32 {
+        assert_eq!(occurrence.cost(s, &delta), occurrence.snapshot_cost(s));
+    }
+}
+
+/// With λ = 0 every accepted candidate lowers its own pixel's distance, so the field's energy
+/// can only fall (with the penalty, one pixel's cost depends on the others' choices and the sum
+/// is not monotone by construction, in ebsynth either).
+#[test]
+fn patchmatch_energy_never_increases_and_nears_exact() {
+    let style = texture(40, 36, 3, 11);
+    let target_style = texture(33, 30, 3, 12);
+    let weights = [1.0_f32 / 3.0; 3];
+    let spec = |patch| LevelSpec {
+        patch,
+        style: style.clone(),
+        style_weights: &weights,
+        source_guides: None,
+        target_guides: None,
+        guide_weights: &[],
+        target_size: (33, 30),
+        tileable: false,
+        source_labels: None,
+        target_labels: None,
+        label_count: 0,
+    };
+    let mut level = Level::new(spec(5));
+    level.set_target_style(&target_style, false);
+    let occurrence = Occurrence::new(&level, 0.0);
+    let streams = SeedStreams::new(5);
+    let mut field = Field::random(&level, &streams);
+    field.recompute_costs(&level);
+    let mut energies = vec![field.mean_energy(&level, &occurrence)];
+    let mut scratch = Vec::new();
+    for k in 0..8 {
+        let before = field.costs.clone();
+        patchmatch_iteration(&level, &mut field, &mut scratch, &occurrence, &streams.child("pm", k as u64), k, None);
+        assert!(field.costs.iter().zip(&before).all(|(after, before)| after <= before));
+        energies.push(field.mean_energy(&level, &occurrence));
+    }
+    assert!(energies.windows(2).all(|w| w[1] <= w[0]), "{energies:?}");
+    assert!(energies[8] < 0.5 * energies[0]);
+    let mut exact = field.clone();
+    exact_search(&level, &mut exact, &occurrence);
+    let exact_energy = exact.mean_energy(&level, &occurrence);
+    assert!(energies[8] <= 1.1 * exact_energy, "patchmatch {} vs exact {exact_energy}", energies[8]);
+}
+
+fn guided_input(size: usize) -> StylizeInput {
+    let style = texture(size, size, 3, 21);
+    let source = flat(size, size, |x, y| if (x / 8 + y / 8) % 2 == 0 { [0.2, 0.2, 0.2] } else { [0.8, 0.8, 0.8] });
+    let target = flat(size + 7, size - 5, |x, y| if (x + y) / 12 % 2 == 0 { [0.2, 0.2, 0.2] } else { [0.8, 0.8, 0.8] });
+    StylizeInput::guided(style, vec![Guide { source, target, weight: None }])
+}
+
+#[test]
+fn em_energy_decreases_within_each_level() {
+    let output = synthesize(&guided_input(48), &StylizeParams::default(), &mut NoProgress).unwrap();
+    assert!(output.levels.len() >= 2);
+    for level in &output.levels {
+        let (first, last) = (level.energies[0], *level.energies.last().unwrap());
+        assert!(last < first, "{}: {:?}", level.name, level.energies);
+    }
+    assert_eq!((output.image.width(), output.image.height()), (55, 43));
+    assert!(output.energy.total > 0.0 && output.energy.guide > 0.0 && output.energy.occurrence > 0.0);
+    let parts = output.energy.style + output.energy.guide + output.energy.occurrence;
+    assert!((parts - output.energy.total).abs() < 1e-6 * output.energy.total);
+}
+
+#[test]
+fn same_seed_same_bytes_on_one_and_two_threads() {
+    let input = guided_input(40);
+    let params = StylizeParams { seed: 77, extra_pass_3x3: true, ..Default::default() };
+    let run = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| synthesize(&input, &params, &mut NoProgress).unwrap())
+    };
+    let (one, two) = (run(1), run(2));
+    let bits = |o: &Output| o.image.data().iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&one), bits(&two));
+    assert_eq!(one.field, two.field);
+    let mut other = params.clone();
+    other.seed = 78;
+    let three = synthesize(&input, &other, &mut NoProgress).unwrap();
+    assert_ne!(bits(&one), bits(&three));
+}
+
+#[test]
+fn identity_guides_reproduce_the_style() {
+    let style = texture(48, 48, 3, 31);
+    let guide = style.clone();
+    let input = StylizeInput::guided(style.clone(), vec![Guide { source: guide.clone(), target: guide, weight: None }]);
+    let output = synthesize(&input, &StylizeParams::default(), &mut NoProgress).unwrap();
+    let value = psnr(&output.image, &style);
+    assert!(value > 30.0, "PSNR {value}");
+}
+
+#[test]
+fn uniformity_raises_coverage_and_prevents_wash_out() {
+    // Two regions: the target is mostly the dark region, the source half and half.
+    let size = 40;
+    let style = texture(size, size, 3, 41);
+    let source = flat(size, size, |x, _| if x < size / 2 { [0.0; 3] } else { [1.0; 3] });
+    let target = flat(size, size, |x, _| if x < 3 * size / 4 { [0.0; 3] } else { [1.0; 3] });
+    let input = StylizeInput::guided(style.clone(), vec![Guide { source, target, weight: Some(4.0) }]);
+    let mut params = StylizeParams { uniformity: 0.0, ..Default::default() };
+    let off = synthesize(&input, &params, &mut NoProgress).unwrap();
+    params.uniformity = 3500.0;
+    let on = synthesize(&input, &params, &mut NoProgress).unwrap();
+    assert!(on.source_coverage > off.source_coverage + 0.05, "{} vs {}", on.source_coverage, off.source_coverage);
+    // The dark region keeps the style's contrast instead of flattening out.
+    let spread = |image: &FloatImage, x1: usize| {
+        let values: Vec<f32> =
+            (4..size - 4).flat_map(|y| (4..x1).map(move |x| (x, y))).map(|(x, y)| image.pixel(x, y)[0]).collect();
+        let mean = values.iter().sum::<f32>() / values.len() as f32;
+        values.iter().map(|v| (v - mean).powi(2)).sum::<f32>() / values.len() as f32
+    };
+    assert!(spread(&on.image, 3 * size / 4 - 4) > 0.5 * spread(&style, size / 2 - 4));
+}
+
+fn two_segment_case() -> StylizeInput {
+    let size = 48;
+    let red = texture(size, size, 3, 51);
+    // Style: reddish on the left segment, bluish on the right (separable colours).
+    let style = FloatImage::from_data(
+        size,
+        size,
+        3,
+        (0..size * size)
+            .flat_map(|i| {
+                let v = red.pixel(i % size, i / size)[0] * 0.4;
+                if i % size < size / 2 { [0.6 + v, 0.1, 0.1] } else { [0.1, 0.1, 0.6 + v] }
+            })
+            .collect(),
+    )
+    .unwrap();
+    let source = flat(size, size, |x, _| if x < size / 2 { [1.0, 0.0, 0.0] } else { [0.0, 0.0, 1.0] });
+    let target = flat(50, 44, |x, y| {
+        if (x as f32 - 25.0).powi(2) + (y as f32 - 22.0).powi(2) < 225.0 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }
+    });
+    StylizeInput::guided(style, vec![Guide { source, target, weight: None }])
+}
+
+#[test]
+fn segments_never_match_across_separable_segments() {
+    let input = two_segment_case();
+    let params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+    let target = &input.guides[0].target;
+    let source = &input.guides[0].source;
+    let r = params.patch_size / 2;
+    for y in 0..44 {
+        for x in 0..50 {
+            let [sx, sy] = output.field.matches[y * 50 + x].unwrap();
+            assert_eq!(target.pixel(x, y), source.pixel(sx as usize, sy as usize), "at {x},{y}");
+            // Pixels whose whole patch neighbourhood is one segment carry only that segment's colours.
+            let uniform = (y.saturating_sub(2 * r)..(y + 2 * r + 1).min(44)).all(|yy| {
+                (x.saturating_sub(2 * r)..(x + 2 * r + 1).min(50)).all(|xx| target.pixel(xx, yy) == target.pixel(x, y))
+            });
+            if uniform {
+                let blue = target.pixel(x, y)[2] > 0.5;
+                let pixel = output.image.pixel(x, y);
+                assert_eq!(pixel[2] > pixel[0], blue, "colour at {x},{y}: {pixel:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn band_mode_keeps_textures_outside_the_band() {
+    let input = two_segment_case();
+    let mut params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (32, 32) };
+    let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
+    assert_eq!(textures.len(), 2);
+    // Each texture draws only from its own segment's colours.
+    for texture in &textures {
+        let blue = texture.colour[2] > 0.5;
+        assert!(texture.image.data().chunks_exact(3).all(|p| (p[2] > p[0]) == blue));
+    }
+    let mut banded = input.clone();
+    banded.textures = Some(textures.clone());
+    params.band = 0;
+    let composed = synthesize(&banded, &params, &mut NoProgress).unwrap();
+    assert!(composed.field.matches.iter().all(Option::is_none));
+    assert_eq!(composed.searched_pixels, 0);
+    params.band = 2;
+    let output = synthesize(&banded, &params, &mut NoProgress).unwrap();
+    let mask = band::band_mask(
+        &label_guides(&input.guides[0].source, &input.guides[0].target, Segmentation::Palette, 0).unwrap().target,
+        50,
+        44,
+        2,
+    );
+    let mut changed = 0;
+    for (index, inside) in mask.iter().enumerate() {
+        let (x, y) = (index % 50, index / 50);
+        if *inside {
+            changed += usize::from(output.image.pixel(x, y) != composed.image.pixel(x, y));
+        } else {
+            assert_eq!(output.image.pixel(x, y), composed.image.pixel(x, y));
+        }
+    }
+    assert!(changed > 0);
+    assert!(output.searched_pixels > 0 && output.searched_pixels < 50 * 44);
+}
+
+/// The specialized kernels (row length fixed at compile time) give exactly the generic sums, and
+/// so the very same PatchMatch field.
+#[test]
+fn specialized_kernels_equal_the_generic_one() {
+    let mut stream = SeedStreams::new(3).stream("bytes", 0);
+    let a: Vec<u8> = (0..70).map(|_| stream.random_range(0..=255)).collect();
+    let b: Vec<u8> = (0..70).map(|_| stream.random_range(0..=255)).collect();
+    assert_eq!(level::row_distance_n::<18>(&a, &b), level::row_distance(&a[..18], &b[..18]));
+    assert_eq!(level::row_distance_n::<30>(&a, &b), level::row_distance(&a[..30], &b[..30]));
+    assert_eq!(level::row_distance_n::<65>(&a, &b), level::row_distance(&a[..65], &b[..65]));
+    assert_eq!(level::row_distance_n::<0>(&a[..9], &b[..9]), level::row_distance(&a[..9], &b[..9]));
+    // 3×3 patches of 3 style + 4 guide channels: 21-byte rows, a specialized length.
+    let (level, ..) = small_level(3);
+    assert_eq!(level.patch * level.channels, 21);
+    let occurrence = Occurrence::new(&level, 3500.0);
+    let streams = SeedStreams::new(8);
+    let mut generic = Field::random(&level, &streams);
+    generic.recompute_costs(&level);
+    let mut special = generic.clone();
+    let previous = generic.matches.clone();
+    patchmatch_tiles::<0>(&level, &mut generic, &previous, &occurrence, &streams, 0, None);
+    patchmatch_tiles::<21>(&level, &mut special, &previous, &occurrence, &streams, 0, None);
+    assert_eq!(generic.matches, special.matches);
+    assert_eq!(generic.costs, special.costs);
+    assert_ne!(generic.matches, previous, "the iteration must have moved some matches");
+}
+
+/// Band mode seeded from the textures' own fields (§3.7): outside the band the output is the
+/// composition, the band starts at a lower energy than from a random start with the same work,
+/// optimizing lowers it, and the bytes do not depend on the thread count.
+#[test]
+fn seeded_band_starts_lower_and_keeps_textures_outside() {
+    let input = two_segment_case();
+    let mut params = StylizeParams { segments: Some(Segmentation::Palette), band: 3, ..Default::default() };
+    let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (32, 32) };
+    let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
+    assert!(textures.iter().all(|t| t.field.as_ref().is_some_and(|f| f.matches.iter().all(Option::is_some))));
+    let mut seeded = input.clone();
+    seeded.textures = Some(textures.clone());
+    let mut unseeded = input.clone();
+    unseeded.textures = Some(textures.iter().cloned().map(|t| SegmentTexture { field: None, ..t }).collect());
+    let run = |input: &StylizeInput, params: &StylizeParams, threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| synthesize(input, params, &mut NoProgress).unwrap())
+    };
+    let with_seeds = run(&seeded, &params, 1);
+    assert_eq!(with_seeds.image, run(&seeded, &params, 2).image);
+    // The same work from a random start.
+    let mut same_work = params.clone();
+    same_work.search_vote_iterations = params.band_search_vote_iterations;
+    same_work.patchmatch_iterations = params.band_patchmatch_iterations;
+    let without = run(&unseeded, &same_work, 1);
+    let (seeded_energies, random_energies) = (&with_seeds.levels[0].energies, &without.levels[0].energies);
+    assert_eq!(seeded_energies.len(), params.band_search_vote_iterations);
+    assert!(seeded_energies[0] < random_energies[0], "{seeded_energies:?} vs {random_energies:?}");
+    assert!(seeded_energies.last().unwrap() < &seeded_energies[0], "{seeded_energies:?}");
+    params.band = 0;
+    let composed = run(&seeded, &params, 1).image;
+    let labels = label_guides(&input.guides[0].source, &input.guides[0].target, Segmentation::Palette, 0).unwrap();
+    let mask = band::band_mask(&labels.target, 50, 44, 3);
+    for (index, inside) in mask.iter().enumerate() {
+        if !inside {
+            assert_eq!(with_seeds.image.pixel(index % 50, index / 50), composed.pixel(index % 50, index / 50));
+        }
+    }
+}
+
+#[test]
+fn texture_fields_must_fit_their_texture_and_the_style() {
+    let input = two_segment_case();
+    let params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (20, 20) };
+    let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
+    let mut wrong_size = textures.clone();
+    wrong_size[0].field.as_mut().unwrap().width = 19;
+    let mut wrong_source = textures.clone();
+    wrong_source[1].field.as_mut().unwrap().source_width = 40;
+    let mut outside = textures.clone();
+    outside[0].field.as_mut().unwrap().matches[3] = Some([u32::MAX, 7]);
+    for bad in [wrong_size, wrong_source, outside] {
+        let mut banded = input.clone();
+        banded.textures = Some(bad);
+        let error = synthesize(&banded, &params, &mut NoProgress).unwrap_err();
+        assert!(matches!(error, Error::Presynth(_)), "{error}");
+    }
+}
+
+#[test]
+fn tileable_textures_wrap_seamlessly() {
+    let exemplar = texture(40, 40, 3, 61);
+    let params = StylizeParams { tileable: true, ..Default::default() };
+    let output = synthesize(&StylizeInput::texture(exemplar, 64, 48), &params, &mut NoProgress).unwrap();
+    let image = &output.image;
+    let column_gap = |a: usize, b: usize| -> f32 {
+        (0..48)
+            .map(|y| image.pixel(a, y).iter().zip(image.pixel(b, y)).map(|(p, q)| (p - q).powi(2)).sum::<f32>())
+            .sum()
+    };
+    let interior: f32 = (1..63).map(|x| column_gap(x - 1, x)).sum::<f32>() / 62.0;
+    assert!(column_gap(63, 0) < 2.0 * interior, "seam {} vs {interior}", column_gap(63, 0));
+}
+
+#[test]
+fn extra_pass_and_field_reapplication() {
+    let input = guided_input(40);
+    let params = StylizeParams { extra_pass_3x3: true, ..Default::default() };
+    let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+    let last = output.levels.last().unwrap();
+    assert_eq!((last.patch_size, output.field.patch_size), (3, 3));
+    assert_eq!(output.energy.occurrence, 0.0);
+    let reapplied = apply_field(&output.field, &input.style).unwrap();
+    assert!(psnr(&reapplied, &output.image) > 20.0);
+}
+
+#[test]
+fn bad_input_gives_clear_errors() {
+    let good = guided_input(32);
+    let params = StylizeParams::default();
+    let mut wrong_size = good.clone();
+    wrong_size.guides[0].source = texture(31, 32, 3, 1);
+    let message = synthesize(&wrong_size, &params, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("source guide must have the style's size") && message.contains("31×32"), "{message}");
+    let mut channels = good.clone();
+    channels.guides[0].target = texture(39, 27, 1, 1);
+    let message = synthesize(&channels, &params, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("3 channels but the target guide has 1"), "{message}");
+    for patch in [4, 1, 2] {
+        let mut bad = params.clone();
+        bad.patch_size = patch;
+        let message = synthesize(&good, &bad, &mut NoProgress).unwrap_err().to_string();
+        assert!(message.contains("patch-size") && message.contains("odd"), "{message}");
+    }
+    let mut empty = good.clone();
+    empty.style = FloatImage::new(0, 0, 3);
+    assert_eq!(synthesize(&empty, &params, &mut NoProgress).unwrap_err(), Error::EmptyImage("style".into()));
+    let mut empty_target = good.clone();
+    empty_target.guides[0].target = FloatImage::new(0, 5, 3);
+    assert!(synthesize(&empty_target, &params, &mut NoProgress).unwrap_err().to_string().contains("empty"));
+    let no_size = StylizeInput { size: None, ..StylizeInput::texture(texture(8, 8, 3, 1), 1, 1) };
+    assert_eq!(synthesize(&no_size, &params, &mut NoProgress).unwrap_err(), Error::MissingTargetSize);
+    let tiny = StylizeInput::texture(texture(4, 9, 3, 1), 10, 10);
+    assert!(matches!(synthesize(&tiny, &params, &mut NoProgress), Err(Error::StyleTooSmall { .. })));
+    let two_channels = StylizeInput::texture(FloatImage::new(8, 8, 2), 10, 10);
+    assert!(synthesize(&two_channels, &params, &mut NoProgress).unwrap_err().to_string().contains("1, 3 or 4"));
+}

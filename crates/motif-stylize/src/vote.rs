@@ -1,0 +1,77 @@
+//! Voting (the E-step of Kwatra's EM, §3.3): every output pixel becomes the weighted average of
+//! the source pixels that the overlapping target patches put on it.
+//!
+//! Written as a gather (each output pixel reads the patches that cover it), so rows are
+//! independent, run in parallel, and sum in a fixed order: the result never depends on threads.
+//! A patch's vote weighs `1 / (1 + D / patch²)`: well-matched patches dominate, which keeps
+//! edges sharper than a plain mean (Kwatra's robust weighting in spirit).
+
+use motif_core::FloatImage;
+use rayon::prelude::*;
+
+use crate::level::Level;
+use crate::search::Field;
+
+/// Votes the level's style through `field` into `output` (target size, style channels). Pixels
+/// outside the level's domain keep their value.
+pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weighted: bool) {
+    let (width, height, radius) = (level.target_width, level.target_height, level.radius as isize);
+    let channels = level.style_channels;
+    let area = (level.patch * level.patch) as f32;
+    let weights: Vec<f32> = if weighted {
+        field.costs.par_iter().map(|&cost| 1.0 / (1.0 + cost / area)).collect()
+    } else {
+        vec![1.0; field.costs.len()]
+    };
+    let style = level.style.data();
+    let source_width = level.source_width as isize;
+    output.data_mut().par_chunks_mut(width * channels).enumerate().for_each(|(y, row)| {
+        let mut sum = [0.0_f32; 4];
+        for x in 0..width {
+            if !level.in_domain(y * width + x) {
+                continue;
+            }
+            sum[..channels].fill(0.0);
+            let mut total_weight = 0.0;
+            for oy in -radius..=radius {
+                let py = y as isize + oy;
+                let py = if level.tileable {
+                    py.rem_euclid(height as isize)
+                } else if py < 0 || py >= height as isize {
+                    continue;
+                } else {
+                    py
+                } as usize;
+                for ox in -radius..=radius {
+                    let px = x as isize + ox;
+                    let px = if level.tileable {
+                        px.rem_euclid(width as isize)
+                    } else if px < 0 || px >= width as isize {
+                        continue;
+                    } else {
+                        px
+                    } as usize;
+                    let t = py * width + px;
+                    if !level.is_active(t) {
+                        continue;
+                    }
+                    // The source pixel at the same offset from the matched centre (a valid centre,
+                    // so the whole patch is inside): `s − oy · width − ox`, no division needed.
+                    let s = field.matches[t] as isize;
+                    let start = (s - oy * source_width - ox) as usize * channels;
+                    let weight = weights[t];
+                    for (acc, value) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
+                        *acc += weight * value;
+                    }
+                    total_weight += weight;
+                }
+            }
+            if total_weight > 0.0 {
+                let out = &mut row[x * channels..(x + 1) * channels];
+                for (value, acc) in out.iter_mut().zip(&sum[..channels]) {
+                    *value = acc / total_weight;
+                }
+            }
+        }
+    });
+}
