@@ -6,7 +6,7 @@
 //! that made the output.
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, Parser};
@@ -68,7 +68,8 @@ impl Demo {
             .args
             .iter()
             .map(|arg| {
-                let is_file = !arg.starts_with('-') && (listed.contains(&arg.as_str()) || self.dir.join(arg).is_file());
+                let is_file = !arg.starts_with('-')
+                    && (listed.contains(&arg.as_str()) || self.dir.join(arg).exists() || looks_like_file_name(arg));
                 if is_file { self.dir.join(arg).to_string_lossy().into_owned() } else { arg.clone() }
             })
             .collect();
@@ -93,6 +94,16 @@ impl Demo {
         self.records.push(CaseRecord { case, figures: context.into_figures(), ms });
         Ok(())
     }
+}
+
+/// A plain relative file name with an extension motif reads or writes (so an output that no case
+/// lists still lands in the demo folder, never in the working directory).
+fn looks_like_file_name(arg: &str) -> bool {
+    let path = Path::new(arg);
+    path.is_relative()
+        && path.extension().and_then(|e| e.to_str()).is_some_and(|extension| {
+            ["png", "jpg", "jpeg", "svg", "json", "ply", "csv"].contains(&extension.to_ascii_lowercase().as_str())
+        })
 }
 
 /// Runs `motif demo`.
@@ -235,6 +246,16 @@ impl Demo {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn file_names_are_told_from_other_arguments() {
+        assert!(looks_like_file_name("out.svg") && looks_like_file_name("a.PNG"));
+        assert!(
+            !looks_like_file_name("0.8,1.3")
+                && !looks_like_file_name("box:14,10")
+                && !looks_like_file_name("/tmp/x.png")
+        );
+    }
 
     #[test]
     fn command_lines_quote_what_a_shell_would_split() {

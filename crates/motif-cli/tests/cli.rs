@@ -50,8 +50,18 @@ fn demo_writes_a_gallery_and_bench_prints_json() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("demo");
     let report = dir.path().join("demo.json");
-    let status = motif().args(["--quiet", "--report"]).arg(&report).args(["demo", "--out"]).arg(&out).status().unwrap();
+    let elsewhere = tempfile::tempdir().unwrap();
+    let status = motif()
+        .current_dir(elsewhere.path())
+        .args(["--quiet", "--report"])
+        .arg(&report)
+        .args(["demo", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
     assert!(status.success());
+    // Everything goes into the demo folder, nothing into the working directory.
+    assert_eq!(std::fs::read_dir(elsewhere.path()).unwrap().count(), 0);
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.starts_with("<!DOCTYPE html>"));
     let figures: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
