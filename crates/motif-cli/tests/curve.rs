@@ -246,6 +246,8 @@ fn bad_input_gives_clear_errors() {
     assert!(e.contains("piece-length") && e.contains("curve's length"), "{e}");
     let e = failure(&with(&["--width", "NaN", "--piece-length", "10"]), &files);
     assert!(e.contains("invalid width"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "10", "--min-coverage", "1.5"]), &files);
+    assert!(e.contains("invalid min-coverage"), "{e}");
 
     motif_io::write_png(&files.path("clear.png"), &RgbaImage::new(20, 10)).unwrap();
     motif_io::write_png(&files.path("solid.png"), &RgbaImage::filled(20, 10, [9, 9, 9, 255])).unwrap();
@@ -328,4 +330,56 @@ fn bad_input_gives_clear_errors() {
         &files,
     );
     assert!(e.contains("also an input"), "{e}");
+}
+
+#[test]
+fn min_coverage_keeps_the_pattern_instead_of_a_free_sliver() {
+    let files = Files::new();
+    // A uniform 2-pixel bar (x < 20) beside a band of distinct columns (x ≥ 20): the paper's rule
+    // repeats the bar for free; the default coverage rule must copy the band.
+    let image = RgbaImage::from_fn(80, 24, |x, y| {
+        if x < 20 {
+            if (11..13).contains(&y) { [90, 90, 90, 255] } else { [0; 4] }
+        } else if (4..19).contains(&y) {
+            [(x * 37 % 251) as u8, (x * 91 % 241) as u8, (y * 13) as u8, 255]
+        } else {
+            [0; 4]
+        }
+    });
+    motif_io::write_png(&files.path("sliver.png"), &image).unwrap();
+    std::fs::write(
+        files.path("long.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"120\" height=\"60\"><path d=\"M 10 30 L 100 30\"/></svg>",
+    )
+    .unwrap();
+    let mut costs = Vec::new();
+    for (coverage, name) in [("0", "paper.json"), ("0.5", "default.json")] {
+        let output = run(
+            &[
+                "--report",
+                name,
+                "curve",
+                "--exemplar",
+                "sliver.png",
+                "--path",
+                "long.svg",
+                "--width",
+                "20",
+                "--piece-length",
+                "6",
+                "--min-coverage",
+                coverage,
+                "--out",
+                "out.png",
+            ],
+            &files,
+        );
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let image = motif_io::read_image(&files.path("out.png")).unwrap();
+        costs.push((report(&files.path(name))["total_cost"].as_f64().unwrap(), image.count_alpha_at_least(128)));
+    }
+    assert_eq!(costs[0].0, 0.0, "{costs:?}");
+    assert!(costs[1].0 > 0.0, "{costs:?}");
+    // The band is 7.5 times as tall as the bar: far more of the ribbon is drawn.
+    assert!(costs[1].1 > 4 * costs[0].1, "{costs:?}");
 }

@@ -50,6 +50,9 @@ pub(crate) struct Exemplar {
     occupied_prefix: Vec<u32>,
     /// Per padded row, `stride + 1` prefix counts of pixels with alpha > 0.
     visible_prefix: Vec<u32>,
+    /// First and last exemplar rows holding a pixel with alpha > `cut_alpha` (the pattern's
+    /// vertical extent), `None` when there is none.
+    pub pattern_rows: Option<(i32, i32)>,
 }
 
 impl Exemplar {
@@ -89,6 +92,10 @@ impl Exemplar {
         };
         let occupied_prefix = prefix(cut_alpha);
         let visible_prefix = prefix(0);
+        let row_total = |y: usize| occupied_prefix[(y + pad) * (stride + 1) + stride];
+        let first = (0..h).find(|&y| row_total(y) > 0);
+        let last = (0..h).rev().find(|&y| row_total(y) > 0);
+        let pattern_rows = first.zip(last).map(|(a, b)| (a as i32, b as i32));
         Self {
             width: w as i32,
             height: h as i32,
@@ -99,6 +106,7 @@ impl Exemplar {
             premultiplied,
             occupied_prefix,
             visible_prefix,
+            pattern_rows,
         }
     }
 
@@ -127,6 +135,13 @@ impl Exemplar {
     #[inline]
     pub fn run_is_invisible(&self, run: &Run, x: i32, y: i32) -> bool {
         self.run_count(&self.visible_prefix, run, x, y) == 0
+    }
+
+    /// Number of pixels of run `run` placed at `(x, y)` with alpha > `cut_alpha` (the pattern's
+    /// pixels), from the row prefix counts: constant time per run.
+    #[inline]
+    pub fn run_occupied(&self, run: &Run, x: i32, y: i32) -> u32 {
+        self.run_count(&self.occupied_prefix, run, x, y)
     }
 
     #[inline]

@@ -8,7 +8,8 @@
 //!
 //! - [`ribbon`]: the ribbon's offset curves and the slicing into quadrilateral pieces (§1.1, §1.3).
 //! - [`piece`]: a piece in exemplar space (rotation `M`, scale `s`, edges `L_i`, `R_i`) and the
-//!   validity test of positions (§1.3, §3.1), over `U = W × (H + C)` candidates (§1.4).
+//!   validity test of positions (§1.3, §3.1), over `U = W × (H + C)` candidates (§1.4), plus a
+//!   minimum-coverage rule (not in the paper) that keeps thin slivers of the pattern out.
 //! - [`cost`]: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
 //!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3).
 //! - [`dp`]: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
@@ -139,6 +140,13 @@ pub struct CurveParams {
     /// Exact closed mode: most start positions tried with a pinned DP before giving up the
     /// certificate. Integer in `[1, 100000]`. Default 64.
     pub closed_max_starts: usize,
+    /// Minimum coverage (§1.3, an addition to the paper's validity test): a piece position is
+    /// valid only if the pattern pixels inside the piece number at least `min_coverage` × the
+    /// piece's typical coverage (the median over the exemplar windows that are cut cleanly and
+    /// hold the pattern's whole height). Without it the global optimum may copy one thin sliver
+    /// of the pattern (the edge of one ring of a chain) along the whole curve: it is valid and its
+    /// seams cost almost nothing. Finite, in `[0, 1]`; 0 is the paper's rule. Default 0.5.
+    pub min_coverage: f64,
 }
 
 impl Default for CurveParams {
@@ -160,6 +168,7 @@ impl Default for CurveParams {
             samples_per_axis: 3,
             cut_alpha: 8,
             closed_max_starts: 64,
+            min_coverage: 0.5,
         }
     }
 }
@@ -326,6 +335,7 @@ fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error>
     check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
     motif_core::error::check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
     motif_core::error::check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
+    check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
     if params.cut_alpha == 255 {
         return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
     }
@@ -587,7 +597,7 @@ pub fn synthesize(
         .zip(&piece_forbidden)
         .map(|(frame, samples)| {
             let runs = avoidance::forbidden_runs(samples);
-            let positions = frame.valid_positions(&exemplar, &runs);
+            let positions = frame.valid_positions(&exemplar, &runs, params.min_coverage);
             // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
             // position stays empty; the DP pays for the gap at its seams.
             if positions.is_empty() && !runs.is_empty() {

@@ -197,38 +197,87 @@ impl PieceFrame {
         2 * (extent.ceil() as i32 + self.samples as i32) + 8
     }
 
-    /// The validity test of §1.3 and §3.1 at `u`: the piece stays inside the exemplar horizontally
-    /// (the exemplar is cut at its left and right borders), its top and bottom edges stay in
-    /// transparent pixels, it is not empty, and none of its visible pixels falls in a forbidden
-    /// canvas area (`forbidden`: offsets whose exemplar pixels must have alpha 0).
-    pub fn is_valid(&self, exemplar: &Exemplar, u: Position, forbidden: &[Run]) -> bool {
+    /// The slicing part of the validity test (§1.3) at `u`: the piece stays inside the exemplar
+    /// horizontally (the exemplar is cut at its left and right borders) and its top and bottom
+    /// edges stay in transparent pixels.
+    fn is_cut(&self, exemplar: &Exemplar, u: Position) -> bool {
         let left = f64::from(u[0]) + 0.5;
         if left + self.x_range.0 < -1e-9 || left + self.x_range.1 > f64::from(exemplar.width) + 1e-9 {
             return false;
         }
-        let [x, y] = u;
-        if !self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, x, y)) {
-            return false;
+        self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))
+    }
+
+    /// Coverage of the piece at `u`: how many exemplar pixels inside it belong to the pattern
+    /// (alpha > `cut_alpha`). One prefix-count difference per interior row run, so the cost is
+    /// the piece's height in rows, not its area.
+    pub fn coverage(&self, exemplar: &Exemplar, u: Position) -> u32 {
+        self.interior_runs.iter().map(|run| exemplar.run_occupied(run, u[0], u[1])).sum()
+    }
+
+    /// The paper's validity test (§1.3 and §3.1) at `u`: the piece is cut cleanly
+    /// (see [`valid_positions`](Self::valid_positions)), it is not empty, and none of its visible
+    /// pixels falls in a forbidden canvas area (`forbidden`: offsets whose exemplar pixels must
+    /// have alpha 0). The coverage rule of `valid_positions` comes on top of this. A plain
+    /// reference for the tests.
+    #[cfg(test)]
+    pub fn is_valid(&self, exemplar: &Exemplar, u: Position, forbidden: &[Run]) -> bool {
+        self.is_cut(exemplar, u)
+            && self.coverage(exemplar, u) > 0
+            && forbidden.iter().all(|run| exemplar.run_is_invisible(run, u[0], u[1]))
+    }
+
+    /// The typical coverage of this piece over the exemplar: the (lower) median coverage over the
+    /// cleanly cut, non-empty positions `cut` whose left edge spans the pattern's whole height
+    /// ("full-pattern windows"); over all of `cut` when no position spans it (a pattern taller
+    /// than the piece in places). 0 when `cut` is empty.
+    fn typical_coverage(&self, exemplar: &Exemplar, cut: &[(Position, u32)]) -> u32 {
+        let mut full: Vec<u32> = match exemplar.pattern_rows {
+            Some((top, bottom)) => cut
+                .iter()
+                .filter(|(u, _)| u[1] <= top && f64::from(bottom + 1) <= f64::from(u[1]) + self.height + 1e-9)
+                .map(|&(_, coverage)| coverage)
+                .collect(),
+            None => Vec::new(),
+        };
+        if full.is_empty() {
+            full = cut.iter().map(|&(_, coverage)| coverage).collect();
         }
-        if self.interior_runs.iter().all(|run| exemplar.run_is_clear(run, x, y)) {
-            return false;
+        if full.is_empty() {
+            return 0;
         }
-        forbidden.iter().all(|run| exemplar.run_is_invisible(run, x, y))
+        let middle = (full.len() - 1) / 2;
+        *full.select_nth_unstable(middle).1
     }
 
     /// Every position `u ∈ [0, W) × [−C, H)` (the paper's `U = W × (H + C)`) passing
-    /// [`is_valid`](Self::is_valid), in row-major order.
-    pub fn valid_positions(&self, exemplar: &Exemplar, forbidden: &[Run]) -> Vec<Position> {
+    /// [`is_valid`](Self::is_valid) and carrying a representative share of the pattern: its
+    /// [`coverage`](Self::coverage) is at least `min_coverage` × the piece's typical coverage
+    /// (the median over full-pattern windows, computed without forbidden areas). This keeps the
+    /// optimum from copying one thin sliver of the pattern along the whole curve, which has a
+    /// near-zero seam cost; `min_coverage` 0 is the paper's rule. Row-major order.
+    pub fn valid_positions(&self, exemplar: &Exemplar, forbidden: &[Run], min_coverage: f64) -> Vec<Position> {
         let c = self.samples as i32;
-        let mut positions = Vec::new();
+        let mut cut: Vec<(Position, u32)> = Vec::new();
         for y in -c..exemplar.height {
             for x in 0..exemplar.width {
-                if self.is_valid(exemplar, [x, y], forbidden) {
-                    positions.push([x, y]);
+                if self.is_cut(exemplar, [x, y]) {
+                    let coverage = self.coverage(exemplar, [x, y]);
+                    if coverage > 0 {
+                        cut.push(([x, y], coverage));
+                    }
                 }
             }
         }
-        positions
+        let threshold =
+            if min_coverage > 0.0 { min_coverage * f64::from(self.typical_coverage(exemplar, &cut)) } else { 0.0 };
+        cut.into_iter()
+            .filter(|&(u, coverage)| {
+                f64::from(coverage) >= threshold
+                    && forbidden.iter().all(|run| exemplar.run_is_invisible(run, u[0], u[1]))
+            })
+            .map(|(u, _)| u)
+            .collect()
     }
 }
 
@@ -299,10 +348,79 @@ mod tests {
         assert!(!frame.is_valid(&exemplar, [18, 2], &[]), "crosses the right border");
         let forbidden = [Run { dy: 3, x0: 1, x1: 2 }];
         assert!(!frame.is_valid(&exemplar, [2, 2], &forbidden));
-        let positions = frame.valid_positions(&exemplar, &[]);
+        let positions = frame.valid_positions(&exemplar, &[], 0.0);
         assert!(positions.iter().all(|p| p[1] == 1 || p[1] == 2 || p[1] == 3), "{positions:?}");
         assert!(!positions.is_empty());
         let empty = frame.empty_position();
         assert!(frame.interior_runs.iter().all(|run| exemplar.run_is_invisible(run, empty[0], empty[1])));
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(64))]
+        #[test]
+        fn prefix_sum_coverage_equals_a_naive_count(
+            width in 3_usize..14,
+            height in 3_usize..12,
+            cells in proptest::collection::vec(0_u8..=255, 1..64),
+            corners in proptest::collection::vec(-6.0_f64..6.0, 4),
+            length in 1.0_f64..7.0,
+            ribbon in 2.0_f64..9.0,
+            scale in 0.5_f64..2.0,
+            cut_alpha in 0_u8..200,
+        ) {
+            let image = RgbaImage::from_fn(width, height, |x, y| {
+                let v = cells[(y * width + x) % cells.len()];
+                [v, v / 2, 9, if v % 3 == 0 { 0 } else { v }]
+            });
+            // A straight or tilted (trapezoid-like) quad: left edge along −y rotated, jittered right corners.
+            let quad = PieceQuad {
+                start: 0.0,
+                end: length,
+                corners: [
+                    Point::new(20.0, 20.0),
+                    Point::new(20.0 + corners[0] * 0.3, 20.0 + ribbon),
+                    Point::new(20.0 + length + corners[1], 20.0 + ribbon + corners[2] * 0.3),
+                    Point::new(20.0 + length + corners[3] * 0.5, 20.0),
+                ],
+            };
+            let samples = (ribbon * scale).ceil() as usize;
+            let frame = PieceFrame::new(&quad, scale, samples);
+            let exemplar = Exemplar::new(&image, frame.required_margin() as usize, cut_alpha);
+            for y in -(samples as i32)..height as i32 {
+                for x in -2..width as i32 + 2 {
+                    let mut naive = 0;
+                    for py in 0..height {
+                        for px in 0..width {
+                            let local = Vec2::new(f64::from(px as i32 - x), f64::from(py as i32 - y) + 0.5);
+                            if image.get(px, py)[3] > cut_alpha && frame.contains_local(local) {
+                                naive += 1;
+                            }
+                        }
+                    }
+                    proptest::prop_assert_eq!(frame.coverage(&exemplar, [x, y]), naive, "at ({}, {})", x, y);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_coverage_rule_keeps_the_typical_windows_only() {
+        // A 2-row bar at x < 10 next to a 6-row band at x ≥ 10, 40 wide: most full-pattern windows
+        // lie in the band, so half the typical coverage rules the bar out.
+        let image = RgbaImage::from_fn(40, 14, |x, y| {
+            let rows = if x < 10 { 6..8 } else { 4..10 };
+            if rows.contains(&y) { [50, 60, 70, 255] } else { [0; 4] }
+        });
+        let frame = PieceFrame::new(&straight_quad(12.0, 3.0), 1.0, 12);
+        let exemplar = Exemplar::new(&image, frame.required_margin() as usize, 0);
+        assert_eq!(exemplar.pattern_rows, Some((4, 9)));
+        let paper = frame.valid_positions(&exemplar, &[], 0.0);
+        let kept = frame.valid_positions(&exemplar, &[], 0.5);
+        assert!(paper.iter().any(|p| p[0] + 3 <= 10), "the paper's rule keeps the bar");
+        assert!(!kept.is_empty());
+        assert!(kept.iter().all(|&p| frame.coverage(&exemplar, p) >= 9), "{kept:?}");
+        assert!(kept.iter().all(|p| paper.contains(p)));
+        let all = frame.valid_positions(&exemplar, &[], 1.0);
+        assert!(all.iter().all(|&p| frame.coverage(&exemplar, p) == 18));
     }
 }

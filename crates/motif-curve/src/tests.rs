@@ -27,7 +27,7 @@ impl Problem {
         let frames: Vec<PieceFrame> = slice(&ribbon, delta).iter().map(|q| PieceFrame::new(q, 1.0, samples)).collect();
         let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap();
         let exemplar = Exemplar::new(image, margin as usize, 8);
-        let valid = frames.iter().map(|f| f.valid_positions(&exemplar, &[])).collect();
+        let valid = frames.iter().map(|f| f.valid_positions(&exemplar, &[], 0.0)).collect();
         Self { exemplar, model: CostModel::new(mode, 1024.0), frames, valid }
     }
 
@@ -421,4 +421,71 @@ fn long_edges_stay_exact() {
     assert_eq!(exact.report.total_cost, reference.report.total_cost);
     let positions = |o: &crate::CurveOutput| o.pieces.iter().map(|p| p.position).collect::<Vec<_>>();
     assert_eq!(positions(&exact), positions(&reference));
+}
+
+/// A 2-pixel uniform bar at the left (a sliver: valid, and free to repeat) next to a tall band of
+/// columns of distinct colours (the pattern proper: every seam costs something).
+fn sliver_and_band() -> RgbaImage {
+    RgbaImage::from_fn(80, 24, |x, y| {
+        if x < 20 {
+            if (11..13).contains(&y) { [90, 90, 90, 255] } else { [0; 4] }
+        } else if (4..19).contains(&y) {
+            [(x * 37 % 251) as u8, (x * 91 % 241) as u8, (y * 13) as u8, 255]
+        } else {
+            [0; 4]
+        }
+    })
+}
+
+#[test]
+fn a_sliver_only_optimum_is_excluded_by_the_coverage_rule_and_allowed_without_it() {
+    let image = sliver_and_band();
+    let curve = line(0.0, 30.0, 90.0, 30.0);
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    // Opaque pixels of the exemplar window a straight piece covers at `position`.
+    let coverage = |position: [i32; 2], length: i32| {
+        let mut count = 0;
+        for y in position[1]..position[1] + 20 {
+            for x in position[0]..position[0] + length {
+                if (0..80).contains(&x) && (0..24).contains(&y) && image.get(x as usize, y as usize)[3] > 8 {
+                    count += 1;
+                }
+            }
+        }
+        count
+    };
+    let mut p = params(20.0, 6.0);
+    p.min_coverage = 0.0;
+    let paper = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert_eq!(paper.report.dp_optimum, 0.0, "the paper's rule: the sliver repeats for free");
+    for piece in &paper.pieces {
+        let position = piece.position.unwrap();
+        assert!(position[0] + 6 <= 20 && coverage(position, 6) == 12, "piece {} at {position:?}", piece.index);
+    }
+    let default = synthesize(&input, &params(20.0, 6.0), &mut NoProgress).unwrap();
+    // 15 pieces need 90 columns; the band has 60, so the pattern proper cannot be copied seamlessly.
+    assert!(default.report.dp_optimum > 0.0);
+    assert!(default.report.valid_fraction < paper.report.valid_fraction);
+    for piece in &default.pieces {
+        let position = piece.position.unwrap();
+        // The typical window holds 15 × 6 = 90 pattern pixels; half of it is required.
+        assert!(coverage(position, 6) >= 45, "piece {} at {position:?}", piece.index);
+    }
+    // The same holds with the reference solver.
+    let mut p = params(20.0, 6.0);
+    p.solver = Solver::Reference;
+    let reference = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert_eq!(reference.report.dp_optimum, default.report.dp_optimum);
+}
+
+#[test]
+fn min_coverage_out_of_range_is_rejected() {
+    let image = sliver_and_band();
+    let curve = line(0.0, 30.0, 90.0, 30.0);
+    for bad in [-0.1, 1.5, f64::NAN] {
+        let mut p = params(20.0, 6.0);
+        p.min_coverage = bad;
+        let result = synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: None }, &p, &mut NoProgress);
+        assert!(matches!(result, Err(Error::InvalidParameter(_))), "{bad}");
+    }
 }

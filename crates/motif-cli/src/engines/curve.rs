@@ -118,6 +118,11 @@ pub struct CurveArgs {
     /// slices the pattern completely.
     #[arg(long, value_name = "A", default_value_t = 8)]
     pub cut_alpha: u8,
+    /// Minimum coverage, 0–1: a piece position is valid only if it holds at least this share of
+    /// the pattern pixels a typical piece holds (the median over exemplar windows spanning the
+    /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule.
+    #[arg(long, value_name = "F", default_value_t = 0.5)]
+    pub min_coverage: f64,
     /// Exact closed mode: start positions tried at most before giving up the certificate.
     #[arg(long, value_name = "N", default_value_t = 64)]
     pub closed_max_starts: usize,
@@ -214,6 +219,7 @@ fn params_of(args: &CurveArgs) -> CurveParams {
     };
     params.samples_per_axis = args.samples;
     params.cut_alpha = args.cut_alpha;
+    params.min_coverage = args.min_coverage;
     params.closed_max_starts = args.closed_max_starts;
     params
 }
