@@ -43,6 +43,12 @@ impl Context {
         self.figures.insert(key.to_string(), value);
     }
 
+    /// Records an engine's own per-stage timings as the report's `stages_ms` (replacing the
+    /// timings the CLI took from progress).
+    pub fn stages(&mut self, stages: &[(String, f64)]) {
+        self.figures.insert("stages_ms".to_string(), stages_object(stages));
+    }
+
     /// Refuses an output path that names one of the inputs: motif never overwrites its input.
     pub fn check_output(&self, output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
         for input in inputs {
@@ -73,6 +79,11 @@ impl Context {
         }
         self.figures
     }
+}
+
+/// `(stage, milliseconds)` pairs as a JSON object, in order.
+pub fn stages_object(stages: &[(String, f64)]) -> Value {
+    Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect())
 }
 
 /// Runs an engine subcommand and writes `--report` if asked.

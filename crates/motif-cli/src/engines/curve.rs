@@ -241,9 +241,7 @@ fn record(context: &mut Context, output: &CurveOutput) {
         "dp_row_ms",
         json!({ "median": report.dp_row_ms_median, "max": report.dp_row_ms_max, "rows": report.dp_row_ms.len() }),
     );
-    let stages: serde_json::Map<String, Value> =
-        report.stages_ms.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect();
-    context.figure("stages_ms", Value::Object(stages));
+    context.stages(&report.stages_ms);
     context.figure("closed", report.closed);
     if report.closed {
         context.figure("closed_certified", report.closed_certified);

@@ -346,9 +346,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
 
 fn record_figures(context: &mut Context, output: &Output) {
     let report = &output.report;
-    let stages: serde_json::Map<String, Value> =
-        report.stages_ms.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect();
-    context.figure("stages_ms", Value::Object(stages));
+    context.stages(&report.stages_ms);
     context.figure("energy_per_iteration", &report.energy);
     context.figure("final_energy", report.final_energy);
     context.figure("points_added", report.added);
@@ -755,7 +753,7 @@ fn bench_case(
         "final_energy": output.report.final_energy,
         "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
         "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
-        "stages_ms": output.report.stages_ms.iter().map(|(n, ms)| (n.clone(), Value::from(*ms))).collect::<serde_json::Map<_, _>>(),
+        "stages_ms": crate::context::stages_object(&output.report.stages_ms),
         "energy_evaluation": {
             "fast_ms": comparison.fast_ms,
             "reference_ms": comparison.reference_ms,

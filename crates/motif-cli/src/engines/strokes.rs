@@ -10,7 +10,7 @@ use motif_core::{NoProgress, Point, Polygon, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
 use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Analysis, FitPoints, Input, Output, Params, Stroke, Target, Thresholds};
-use serde_json::{Map, Value, json};
+use serde_json::{Value, json};
 
 use crate::bench::Bench;
 use crate::context::Context;
@@ -317,10 +317,6 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn stages_object(stages: &[(String, f64)]) -> Value {
-    Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect::<Map<String, Value>>())
-}
-
 fn record_figures(context: &mut Context, output: &Output) {
     let r = &output.report;
     context.figure("reference_strokes", r.reference_strokes);
@@ -335,7 +331,7 @@ fn record_figures(context: &mut Context, output: &Output) {
     context.figure("rings", r.rings);
     context.figure("lloyd_iterations", r.lloyd_iterations);
     context.figure("skewed_triangles_removed", r.skewed_triangles_removed);
-    context.figure("stages_ms", stages_object(&r.stages_ms));
+    context.stages(&r.stages_ms);
 }
 
 fn write_strokes_svg(path: &Path, strokes: &[Stroke], width: f64, height: f64) -> anyhow::Result<()> {
@@ -547,7 +543,7 @@ fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
         "total_ms_median": total_ms,
         "target_ms": target_ms,
         "meets_target": total_ms <= target_ms,
-        "stages_ms": stages_object(&r.stages_ms),
+        "stages_ms": crate::context::stages_object(&r.stages_ms),
     })
 }
 

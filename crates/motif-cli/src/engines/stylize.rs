@@ -321,9 +321,7 @@ fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
 fn record(context: &mut Context, output: &Output) {
     context.figure("energy", output.energy);
     context.figure("source_coverage", output.source_coverage);
-    let stages: Map<String, Value> =
-        output.stages_ms.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect();
-    context.figure("stages_ms", stages);
+    context.stages(&output.stages_ms);
     context.figure("engine_ms", output.total_ms);
     context.figure("levels", &output.levels);
     context.figure("searched_pixels", output.searched_pixels);
