@@ -165,7 +165,10 @@ pub(crate) fn run(problem: &Problem<'_>, params: &StylizeParams, progress: &mut 
         for iteration in 0..params.search_vote_iterations {
             field.recompute_costs(&level);
             let mask = converged.as_deref();
-            search(&level, &mut field, &mut occurrence, &mut scratch, params, &level_streams, iteration, mask);
+            // From the second iteration on, Ω was refreshed after the last search and the field has
+            // not moved since (voting changes only the target).
+            let current = iteration > 0;
+            search(&level, &mut field, &mut occurrence, &mut scratch, params, &level_streams, iteration, mask, current);
             occurrence.refresh(&level, &field.matches);
             energies.push(field.mean_energy(&level, &occurrence));
             let before = (params.stop_threshold > 0.0).then(|| image.clone());
@@ -198,7 +201,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &StylizeParams, progress: &mut 
         let mut occurrence = Occurrence::new(&fine, 0.0);
         field.recompute_costs(&fine);
         let pass_streams = streams.child("extra pass", 0);
-        search(&fine, &mut field, &mut occurrence, &mut scratch, params, &pass_streams, 0, None);
+        search(&fine, &mut field, &mut occurrence, &mut scratch, params, &pass_streams, 0, None, false);
         let energies = vec![field.mean_energy(&fine, &occurrence)];
         vote(&fine, &field, &mut image, true);
         fine.set_target_style(&image, true);
@@ -299,6 +302,7 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
 }
 
 /// One search: K PatchMatch iterations (Ω refreshed before each) or one exact pass.
+/// `omega_current`: Ω already matches the field (its refresh before the first iteration is skipped).
 #[allow(clippy::too_many_arguments)]
 fn search(
     level: &Level,
@@ -309,17 +313,22 @@ fn search(
     streams: &SeedStreams,
     iteration: usize,
     converged: Option<&[bool]>,
+    omega_current: bool,
 ) {
     match params.nnf {
         NnfMethod::PatchMatch => {
             for k in 0..params.patchmatch_iterations {
-                occurrence.refresh(level, &field.matches);
+                if k > 0 || !omega_current {
+                    occurrence.refresh(level, &field.matches);
+                }
                 let key = (iteration * params.patchmatch_iterations + k) as u64;
                 patchmatch_iteration(level, field, scratch, occurrence, &streams.child("search", key), k, converged);
             }
         }
         NnfMethod::Exact => {
-            occurrence.refresh(level, &field.matches);
+            if !omega_current {
+                occurrence.refresh(level, &field.matches);
+            }
             exact_search(level, field, occurrence);
         }
     }
