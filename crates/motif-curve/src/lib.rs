@@ -18,7 +18,8 @@
 //! - [`avoidance`]: avoidance maps and fold-over detection (§3.1).
 //! - [`stitch`]: the edge alignment of Eq. 2–3 and its propagation inside pieces (§3.2).
 //! - `render`: anti-aliased rasterization of the pieces; `repeat`: the classic arc-length
-//!   texture-mapping baseline; [`overlay`]: the debug drawing.
+//!   texture-mapping baseline; [`overlay`]: the debug drawing; [`samples`]: generated exemplars
+//!   for benchmarks.
 //!
 //! The entry point is [`synthesize`]. The crate does no I/O and builds for `wasm32`.
 
@@ -32,6 +33,7 @@ pub mod piece;
 mod render;
 mod repeat;
 pub mod ribbon;
+pub mod samples;
 pub mod stitch;
 
 use motif_core::error::{check_positive, check_range};
