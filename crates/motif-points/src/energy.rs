@@ -14,6 +14,7 @@ use crate::grid::StaticGrid;
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, State, feature_dot};
 use crate::params::Window;
+use crate::quadratic::{AttributeQuadratic, RowQuadratic};
 
 /// Compressed neighbour lists (each point's neighbours within a radius, itself excluded).
 #[derive(Debug, Clone, Default)]
@@ -83,6 +84,8 @@ pub struct PairCache<const D: usize> {
     mid: Vector<D>,
     /// `a_i · a_j`.
     weight: f64,
+    /// `Σ_k K(u_i, u_j)` over the row's quadrature points (collected only for the attribute form).
+    coefficient: f64,
 }
 
 /// Per-thread buffers of [`Problem::point_row`], reused from row to row (no allocation in the loop).
@@ -100,13 +103,14 @@ pub struct RowScratch<const D: usize> {
 pub struct Evaluation<const D: usize> {
     pub energy: f64,
     pub positions: Vec<Vector<D>>,
-    /// `n × channels` (empty when not requested).
-    pub features: Vec<f64>,
+    /// T as a quadratic form in the attributes at these positions (when requested).
+    pub quadratic: Option<AttributeQuadratic>,
 }
 
 impl<const D: usize> Problem<'_, D> {
     /// The row of output point `i`: `(Σ_k Σ_j a_i·a_j K(u_i, u_j), −2 Σ_k Σ_j a_i·b_j K(u_i, v_j))`,
-    /// adding `∂T/∂x_i` to `gradient` and `∂T/∂a_i` to `feature_gradient` (when given).
+    /// adding `∂T/∂x_i` to `gradient` and, when `quadratic` is given, writing the row's
+    /// coefficients of the attribute form (see [`crate::quadratic`]) into it.
     ///
     /// The pair factor of `K` does not depend on the quadrature point, so it is computed once per
     /// neighbour (into `scratch`); the exemplar side is evaluated in exemplar coordinates, where the
@@ -122,7 +126,7 @@ impl<const D: usize> Problem<'_, D> {
         i: usize,
         neighbours: &[u32],
         gradient: &mut Vector<D>,
-        mut feature_gradient: Option<&mut [f64]>,
+        mut quadratic: Option<&mut RowQuadratic>,
         scratch: &mut RowScratch<D>,
     ) -> (f64, f64) {
         let kernel = &self.kernel;
@@ -130,6 +134,11 @@ impl<const D: usize> Problem<'_, D> {
         let a = state.feature(i);
         let (mut row_a, mut row_b) = (0.0, 0.0);
         let gaussian = kernel.window == Window::Gaussian;
+        if let Some(row) = quadratic.as_deref_mut() {
+            row.coefficients.clear();
+            row.linear.clear();
+            row.linear.resize(state.channels, 0.0);
+        }
         let Some(range) = self.quadrature.node_range(&x, kernel.gather) else {
             return (0.0, 0.0);
         };
@@ -142,6 +151,7 @@ impl<const D: usize> Problem<'_, D> {
             slope: [0.0; D],
             mid: x,
             weight: feature_dot(a, a),
+            coefficient: 0.0,
         });
         for &j in neighbours {
             let xj = state.positions[j as usize];
@@ -157,6 +167,7 @@ impl<const D: usize> Problem<'_, D> {
                 slope: linear::scale(&d, pair_exp * kernel.inv_sigma2),
                 mid: std::array::from_fn(|c| 0.5 * (x[c] + xj[c])),
                 weight: feature_dot(a, state.feature(j as usize)),
+                coefficient: 0.0,
             });
         }
         // Window tables: pair p, axis c, node n at windows[(p·D + c)·width + n − low_c].
@@ -174,11 +185,12 @@ impl<const D: usize> Problem<'_, D> {
             }
         }
         let cutoff = kernel.cutoff;
+        let collect = quadratic.is_some();
         self.quadrature.for_each_in_range(&x, kernel.gather, &range, |k, node| {
             let q = self.quadrature.points[k];
             let u = linear::sub(&x, &q);
             let u2 = linear::norm2(&u);
-            for (p, cache) in scratch.iter().enumerate() {
+            for (p, cache) in scratch.iter_mut().enumerate() {
                 // K = pair · window; ∂K/∂x_i = −slope · window − pair · ∂window (for j = i the
                 // derivative doubles, which the factor 2 below supplies in both cases).
                 let (value, du) = if gaussian {
@@ -205,10 +217,8 @@ impl<const D: usize> Problem<'_, D> {
                 };
                 row_a += cache.weight * value;
                 linear::axpy(gradient, 2.0 * cache.weight, &du);
-                if let Some(fg) = feature_gradient.as_deref_mut() {
-                    for (g, &ac) in fg.iter_mut().zip(state.feature(cache.other as usize)) {
-                        *g += 2.0 * ac * value;
-                    }
+                if collect {
+                    cache.coefficient += value;
                 }
             }
             let m = matches[k];
@@ -260,15 +270,18 @@ impl<const D: usize> Problem<'_, D> {
                 let weight = feature_dot(a, b);
                 row_b -= 2.0 * weight * value;
                 linear::axpy(&mut gy, -2.0 * weight, &dy);
-                if let Some(fg) = feature_gradient.as_deref_mut() {
-                    for (g, &bc) in fg.iter_mut().zip(b) {
-                        *g -= 2.0 * bc * value;
+                if let Some(row) = quadratic.as_deref_mut() {
+                    for (l, &bc) in row.linear.iter_mut().zip(b) {
+                        *l += bc * value;
                     }
                 }
             });
             // y = m + (sR)⁻¹ u, so ∂/∂u = ((sR)⁻¹)ᵀ ∂/∂y.
             linear::axpy(gradient, 1.0, &linear::mat_t_vec(inverse, &gy));
         });
+        if let Some(row) = quadratic {
+            row.coefficients.extend(scratch.iter().map(|cache| (cache.other, cache.coefficient)));
+        }
         (row_a, row_b)
     }
 
@@ -282,17 +295,18 @@ impl<const D: usize> Problem<'_, D> {
     ) -> Evaluation<D> {
         let n = state.positions.len();
         let neighbours = Neighbours::build(&state.positions, self.kernel.cutoff);
-        let channels = state.channels;
         let mut rows: Vec<(f64, Vector<D>)> = vec![(0.0, [0.0; D]); n];
-        let mut feature_gradient = vec![0.0; if features { n * channels } else { 0 }];
+        let mut quadratic = None;
         if features {
-            rows.par_iter_mut().zip(feature_gradient.par_chunks_mut(channels)).enumerate().for_each_init(
+            let mut coefficients = vec![RowQuadratic::default(); n];
+            rows.par_iter_mut().zip(coefficients.par_iter_mut()).enumerate().for_each_init(
                 RowScratch::default,
-                |scratch, (i, (row, fg))| {
-                    let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, Some(fg), scratch);
+                |scratch, (i, (row, q))| {
+                    let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, Some(q), scratch);
                     row.0 = ra + rb;
                 },
             );
+            quadratic = Some(AttributeQuadratic::from_rows(coefficients, state.channels, exemplar_self));
         } else {
             rows.par_iter_mut().enumerate().for_each_init(RowScratch::default, |scratch, (i, row)| {
                 let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, None, scratch);
@@ -303,7 +317,7 @@ impl<const D: usize> Problem<'_, D> {
         for row in &rows {
             energy += row.0;
         }
-        Evaluation { energy, positions: rows.into_iter().map(|r| r.1).collect(), features: feature_gradient }
+        Evaluation { energy, positions: rows.into_iter().map(|r| r.1).collect(), quadratic }
     }
 
     /// `C_k(m) = Σ b_j·b_j' K(v_j, v_j')` over the exemplar window at `m` (the third term of Eq. 5),

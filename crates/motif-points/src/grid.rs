@@ -100,21 +100,30 @@ impl<const D: usize> CellIndex<D> {
 
     /// Calls `visit(first, last)` with the first and last linear cell index of every row (along
     /// axis 0) of the cells overlapping the cube of half-side `radius` around `center`, in
-    /// [`CellIndex::for_each_cell`] order, leaving out rows that lie entirely beyond `radius`.
+    /// [`CellIndex::for_each_cell`] order, leaving out rows that lie entirely beyond `radius` and
+    /// clipping each row to the chord of the ball through it (with cells finer than the radius, this
+    /// scans about half the volume of the full cube of cells).
     #[inline(always)]
     pub fn for_each_row(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, usize)) {
         let low: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] - radius, a));
         let high: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] + radius, a));
         let r2 = radius * radius;
+        // The cells along axis 0 that the ball's chord at squared cross-section distance `g` covers.
+        let chord = |g: f64| {
+            let half = (r2 - g).sqrt();
+            (self.coordinate(center[0] - half, 0), self.coordinate(center[0] + half, 0))
+        };
         match D {
             1 => visit(low[0], high[0]),
             2 => {
                 for y in low[1]..=high[1] {
-                    if self.gap2(center[1], y, 1) >= r2 {
+                    let g = self.gap2(center[1], y, 1);
+                    if g >= r2 {
                         continue;
                     }
                     let row = y * self.dims[0];
-                    visit(row + low[0], row + high[0]);
+                    let (first, last) = chord(g);
+                    visit(row + first, row + last);
                 }
             }
             _ => {
@@ -124,11 +133,13 @@ impl<const D: usize> CellIndex<D> {
                         continue;
                     }
                     for y in low[1]..=high[1] {
-                        if gz + self.gap2(center[1], y, 1) >= r2 {
+                        let g = gz + self.gap2(center[1], y, 1);
+                        if g >= r2 {
                             continue;
                         }
                         let row = (z * self.dims[1] + y) * self.dims[0];
-                        visit(row + low[0], row + high[0]);
+                        let (first, last) = chord(g);
+                        visit(row + first, row + last);
                     }
                 }
             }
@@ -277,7 +288,10 @@ mod tests {
         flat.for_each_cell(&[2.0, 2.0], 1.2, |c| cells.push(c));
         let mut rows = Vec::new();
         flat.for_each_row(&[2.0, 2.0], 1.2, |first, last| rows.extend(first..=last));
-        assert_eq!(rows, cells, "in 2D every row of the square reaches the disc's centre row");
+        // The centre row is whole; the outer rows are clipped to the disc's chords.
+        assert!(rows.len() < cells.len());
+        // 11 cells per row; the centre cell is (4, 4) and its row reaches x ∈ (0.8, 3.2): cells 1..=6.
+        assert!((45..=50).all(|c| rows.contains(&c)), "{rows:?}");
     }
 
     #[test]

@@ -37,8 +37,10 @@ mod merging;
 mod model;
 mod params;
 pub mod points;
+mod quadratic;
 mod raster;
 mod reference;
+pub mod samples;
 mod sampling;
 mod solver;
 #[cfg(test)]
@@ -46,4 +48,4 @@ mod tests;
 
 pub use params::{Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Stroke, Window};
 pub use points::PointSet;
-pub use solver::{EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};
+pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

@@ -131,17 +131,22 @@ pub fn merge_positions<const D: usize>(
     energies
 }
 
-/// Gradient descent on the (normalized) attributes of free points, then snapping of the discrete
-/// channels. `discrete[c]` lists the allowed values of channel `c` (empty = continuous).
+/// Descent on the (normalized) attributes of free points, then snapping of the discrete channels.
+/// `discrete[c]` lists the allowed values of channel `c` (empty = continuous). Returns T afterwards
+/// (`None` when there is nothing to optimize, T is then unchanged).
+///
+/// T is quadratic in the attributes at fixed positions ([`crate::quadratic`]): one evaluation pass
+/// gives the form, and `attribute_iterations` conjugate-gradient steps with exact line searches
+/// then cost a sparse product each instead of a pass over the quadrature per trial step.
 pub fn merge_attributes<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     discrete: &[Vec<f64>],
     evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
-) {
+) -> Option<f64> {
     let channels = state.channels;
     if channels <= 1 || settings.attribute_iterations == 0 {
-        return;
+        return None;
     }
     let movable: Vec<usize> = state
         .units
@@ -150,40 +155,20 @@ pub fn merge_attributes<const D: usize>(
         .map(|u| u.points[0] as usize)
         .collect();
     if movable.is_empty() {
-        return;
+        return None;
     }
-    let mut current = evaluate(state, true);
-    let mut eta = 3.0 * settings.step;
-    for _ in 0..settings.attribute_iterations {
-        let mut sum = 0.0;
-        for &p in &movable {
-            for c in 1..channels {
-                sum += current.features[p * channels + c].powi(2);
-            }
-        }
-        let rms = (sum / (movable.len() * (channels - 1)) as f64).sqrt();
-        if rms == 0.0 || !rms.is_finite() {
-            break;
-        }
-        let mut trial = state.clone();
-        for &p in &movable {
-            for c in 1..channels {
-                trial.features[p * channels + c] -= eta * current.features[p * channels + c] / rms;
-            }
-        }
-        let candidate = evaluate(&trial, true);
-        if candidate.energy < current.energy {
-            *state = trial;
-            current = candidate;
-            eta = (eta * 1.2).min(1.0);
-        } else {
-            eta *= 0.5;
-            if eta < 1e-6 {
-                break;
-            }
-        }
+    let quadratic = evaluate(state, true).quadratic.expect("an evaluation with features carries the attribute form");
+    let before = quadratic.energy(&state.features);
+    let mut features = state.features.clone();
+    for c in 1..channels {
+        quadratic.minimize_channel(&mut features, c, &movable, settings.attribute_iterations);
+    }
+    // Exact line searches never raise T; the test guards against rounding on a flat form.
+    if quadratic.energy(&features) < before {
+        state.features = features;
     }
     snap(state, discrete, &movable);
+    Some(quadratic.energy(&state.features))
 }
 
 /// Snaps discrete channels of the given points to the nearest allowed value.

@@ -152,7 +152,9 @@ pub struct Params {
     pub local_global_iterations: usize,
     /// Gradient-descent iterations of one position merging step (§7.1; 1–1000, default 30).
     pub merge_iterations: usize,
-    /// Gradient-descent iterations of one attribute merging step (0–1000, default 5).
+    /// Descent iterations of one attribute merging step (§5.1, Gauss–Seidel after the positions):
+    /// conjugate-gradient steps with exact line search, since T is quadratic in the attributes at fixed
+    /// positions (0–1000, default 5; 0 keeps the attributes as initialized).
     pub attribute_iterations: usize,
     /// Initial gradient step, as the root-mean-square movement per iteration in units of σ (§7.1;
     /// 1e-4–1, default 0.03). Steps that raise the energy are halved and retried.

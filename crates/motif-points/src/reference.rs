@@ -2,10 +2,13 @@
 //! time, all pairs of the window's output and exemplar points, sequential. Used by the tests (the
 //! fast path must agree with it) and for the speed-up figure.
 
+use std::collections::BTreeMap;
+
 use crate::energy::{Evaluation, Problem};
 use crate::grid::StaticGrid;
 use crate::linear::{self, Vector};
 use crate::model::{State, feature_dot};
+use crate::quadratic::{AttributeQuadratic, RowQuadratic};
 
 /// T and its gradients, summed quadrature point by quadrature point.
 pub fn evaluate<const D: usize>(
@@ -22,7 +25,10 @@ pub fn evaluate<const D: usize>(
     let grid = StaticGrid::new(&state.positions, kernel.gather);
     let mut energy = 0.0;
     let mut gradient = vec![[0.0; D]; n];
-    let mut feature_gradient = vec![0.0; if features { n * channels } else { 0 }];
+    // The attribute form's rows: A_ij per ordered pair, B_i per channel.
+    let mut pairs: Vec<BTreeMap<u32, f64>> = vec![BTreeMap::new(); if features { n } else { 0 }];
+    let mut linear_terms = vec![0.0; if features { n * channels } else { 0 }];
+    let mut constant = 0.0;
     let mut out: Vec<(usize, Vector<D>)> = Vec::new();
     let mut ex: Vec<(usize, Vector<D>)> = Vec::new();
     for k in 0..quadrature.len() {
@@ -47,10 +53,7 @@ pub fn evaluate<const D: usize>(
                     linear::axpy(&mut gradient[i], w, &du);
                     linear::axpy(&mut gradient[j], w, &dv);
                     if features {
-                        for c in 0..channels {
-                            feature_gradient[i * channels + c] += state.feature(j)[c] * value;
-                            feature_gradient[j * channels + c] += state.feature(i)[c] * value;
-                        }
+                        *pairs[i].entry(j as u32).or_insert(0.0) += value;
                     }
                 }
             }
@@ -64,7 +67,7 @@ pub fn evaluate<const D: usize>(
                     linear::axpy(&mut gradient[i], -2.0 * w, &du);
                     if features {
                         for c in 0..channels {
-                            feature_gradient[i * channels + c] -= 2.0 * exemplar.feature(j)[c] * value;
+                            linear_terms[i * channels + c] += exemplar.feature(j)[c] * value;
                         }
                     }
                 }
@@ -74,10 +77,20 @@ pub fn evaluate<const D: usize>(
         for &(i, vi) in &ex {
             for &(j, vj) in &ex {
                 if let Some((value, _, _)) = kernel.eval(&vi, &vj) {
-                    energy += feature_dot(exemplar.feature(i), exemplar.feature(j)) * value;
+                    let term = feature_dot(exemplar.feature(i), exemplar.feature(j)) * value;
+                    energy += term;
+                    constant += term;
                 }
             }
         }
     }
-    Evaluation { energy, positions: gradient, features: feature_gradient }
+    let quadratic = features.then(|| {
+        let rows = pairs
+            .into_iter()
+            .zip(linear_terms.chunks(channels.max(1)))
+            .map(|(row, linear)| RowQuadratic { coefficients: row.into_iter().collect(), linear: linear.to_vec() })
+            .collect();
+        AttributeQuadratic::from_rows(rows, channels, constant)
+    });
+    Evaluation { energy, positions: gradient, quadratic }
 }

@@ -155,11 +155,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
 /// Times one evaluation of T and its position gradient with the fast and the reference
 /// implementation on the initialized output (after one matching step).
 pub fn compare_evaluators(input: &Input, params: &Params) -> Result<EvaluatorComparison, Error> {
-    validate(input, params)?;
-    match input.exemplar.dimension {
-        2 => compare::<2>(input, params),
-        _ => compare::<3>(input, params),
-    }
+    compare(input, params)
 }
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
@@ -495,12 +491,9 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                     |s: &State<D>, f: bool| evaluate_with(&problem, params.evaluator, s, &matches, exemplar_self, f);
                 let allowed = |p: &Vector<D>| setup.allowed(p);
                 let steps = merging::merge_positions(&mut state, merge_settings, &evaluate, &allowed);
-                merging::merge_attributes(&mut state, merge_settings, &setup.attributes.discrete, &evaluate);
-                let after = if setup.attributes.names.is_empty() {
-                    steps.last().copied().unwrap_or(f64::NAN)
-                } else {
-                    evaluate(&state, false).energy
-                };
+                let after =
+                    merging::merge_attributes(&mut state, merge_settings, &setup.attributes.discrete, &evaluate)
+                        .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
                 energies.push(IterationEnergy {
                     scale,
                     neighbourhood: delta,
@@ -597,31 +590,102 @@ fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet 
     }
 }
 
-fn compare<const D: usize>(input: &Input, params: &Params) -> Result<EvaluatorComparison, Error> {
-    let streams = SeedStreams::new(params.seed);
-    let mut setup = prepare::<D>(input, params)?;
-    setup.initialize(params, &streams.child("initialize", 0));
-    let problem = setup.problem(setup.delta, params);
-    let fields = SearchFields::new(&problem);
-    let settings = MatchSettings { starts: params.matching_starts, iterations: params.matching_iterations, polish: 0 };
-    let found = matching::match_all(&problem, &fields, &setup.state, &[], settings, &streams);
-    let matches: Vec<Vector<D>> = found.iter().map(|m| m.location).collect();
-    let exemplar_self: f64 = found.iter().map(|m| m.exemplar_self).sum();
+/// One prepared evaluation problem of a given dimension (see [`EnergyCase`]).
+struct PreparedCase<const D: usize> {
+    setup: Setup<D>,
+    matches: Vec<Vector<D>>,
+    exemplar_self: f64,
+    delta: f64,
+    params: Params,
+}
+
+impl<const D: usize> PreparedCase<D> {
+    fn new(input: &Input, params: &Params) -> Result<Self, Error> {
+        let streams = SeedStreams::new(params.seed);
+        let mut setup = prepare::<D>(input, params)?;
+        setup.initialize(params, &streams.child("initialize", 0));
+        let delta = setup.delta;
+        let problem = setup.problem(delta, params);
+        let fields = SearchFields::new(&problem);
+        let settings =
+            MatchSettings { starts: params.matching_starts, iterations: params.matching_iterations, polish: 0 };
+        let found = matching::match_all(&problem, &fields, &setup.state, &[], settings, &streams);
+        let matches = found.iter().map(|m| m.location).collect();
+        let exemplar_self = found.iter().map(|m| m.exemplar_self).sum();
+        Ok(Self { setup, matches, exemplar_self, delta, params: params.clone() })
+    }
+
+    fn evaluate(&self, evaluator: Evaluator, attributes: bool) -> f64 {
+        let problem = self.setup.problem(self.delta, &self.params);
+        evaluate_with(&problem, evaluator, &self.setup.state, &self.matches, self.exemplar_self, attributes).energy
+    }
+}
+
+enum PreparedAny {
+    Two(PreparedCase<2>),
+    Three(PreparedCase<3>),
+}
+
+/// The initialized output of a synthesis after its first matching step, ready for timing single
+/// evaluations of T (the merging step's unit of work) with either implementation: for benchmarks
+/// and the speed-up figure.
+pub struct EnergyCase {
+    prepared: PreparedAny,
+}
+
+impl EnergyCase {
+    /// Validates, prepares and initializes as [`synthesize`] does, then matches once.
+    pub fn new(input: &Input, params: &Params) -> Result<Self, Error> {
+        validate(input, params)?;
+        let prepared = match input.exemplar.dimension {
+            2 => PreparedAny::Two(PreparedCase::new(input, params)?),
+            _ => PreparedAny::Three(PreparedCase::new(input, params)?),
+        };
+        Ok(Self { prepared })
+    }
+
+    /// T with its position gradient (and, with `attributes`, the attribute form) by `evaluator`.
+    pub fn evaluate(&self, evaluator: Evaluator, attributes: bool) -> f64 {
+        match &self.prepared {
+            PreparedAny::Two(case) => case.evaluate(evaluator, attributes),
+            PreparedAny::Three(case) => case.evaluate(evaluator, attributes),
+        }
+    }
+
+    /// Output points of the initialized state.
+    pub fn points(&self) -> usize {
+        match &self.prepared {
+            PreparedAny::Two(case) => case.setup.state.positions.len(),
+            PreparedAny::Three(case) => case.setup.state.positions.len(),
+        }
+    }
+
+    /// Quadrature points.
+    pub fn quadrature_points(&self) -> usize {
+        match &self.prepared {
+            PreparedAny::Two(case) => case.setup.quadrature.len(),
+            PreparedAny::Three(case) => case.setup.quadrature.len(),
+        }
+    }
+}
+
+fn compare(input: &Input, params: &Params) -> Result<EvaluatorComparison, Error> {
+    let case = EnergyCase::new(input, params)?;
     // The fastest of three runs each (the first may pay for cold caches or thread start-up).
     let mut fast_ms = f64::INFINITY;
     let mut reference_ms = f64::INFINITY;
     let mut energies = (0.0, 0.0);
     for _ in 0..3 {
         let start = Clock::now();
-        energies.0 = problem.evaluate(&setup.state, &matches, exemplar_self, false).energy;
+        energies.0 = case.evaluate(Evaluator::Fast, false);
         fast_ms = fast_ms.min(start.elapsed().as_secs_f64() * 1000.0);
         let start = Clock::now();
-        energies.1 = reference::evaluate(&problem, &setup.state, &matches, false).energy;
+        energies.1 = case.evaluate(Evaluator::Reference, false);
         reference_ms = reference_ms.min(start.elapsed().as_secs_f64() * 1000.0);
     }
     Ok(EvaluatorComparison {
-        points: setup.state.positions.len(),
-        quadrature_points: setup.quadrature.len(),
+        points: case.points(),
+        quadrature_points: case.quadrature_points(),
         fast_ms,
         reference_ms,
         fast_energy: energies.0,

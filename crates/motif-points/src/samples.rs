@@ -1,0 +1,85 @@
+//! Generated exemplars for the demo, the benchmarks and the tests: the paper's kinds of input
+//! (a 2D grid-like arrangement, sand ripples, a 3D organic lattice, rigid leaves) drawn from a seed.
+
+use motif_core::SeedStreams;
+use motif_core::random::Rng;
+
+use crate::PointSet;
+
+/// A jittered hexagonal arrangement with a `shade` attribute that follows rows: the "grid"
+/// exemplar of Fig. 7.
+pub fn hex_exemplar(columns: usize, rows: usize, jitter: f64, seed: u64) -> PointSet {
+    let mut stream = SeedStreams::new(seed).stream("hex exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for row in 0..rows {
+        for column in 0..columns {
+            let x = column as f64 + if row % 2 == 1 { 0.5 } else { 0.0 };
+            let y = row as f64 * 0.866;
+            positions.push(x + jitter * (stream.random::<f64>() - 0.5));
+            positions.push(y + jitter * (stream.random::<f64>() - 0.5));
+            attributes.push(if row % 3 == 0 { 1.0 } else { 0.0 });
+        }
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec!["shade".into()], attributes, elements: None }
+}
+
+/// Wavy "sand ripple" points: rows of points whose height follows a sine, with a height attribute.
+pub fn ripple_exemplar(count: usize, seed: u64) -> PointSet {
+    let side = (count as f64).sqrt().ceil() as usize;
+    let mut stream = SeedStreams::new(seed).stream("ripple exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for i in 0..count {
+        let (row, column) = (i / side, i % side);
+        let x = column as f64 + 0.15 * (stream.random::<f64>() - 0.5);
+        let y = row as f64 + 0.35 * (2.0 * std::f64::consts::PI * x / 6.0).sin() + 0.1 * (stream.random::<f64>() - 0.5);
+        positions.push(x);
+        positions.push(y);
+        attributes.push((2.0 * std::f64::consts::PI * (x + y) / 5.0).sin());
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec!["height".into()], attributes, elements: None }
+}
+
+/// A 3D lattice-like organic structure: points on jittered cubic cells with a `radius` attribute.
+pub fn lattice_exemplar(count: usize, seed: u64) -> PointSet {
+    let side = (count as f64).cbrt().ceil() as usize;
+    let mut stream = SeedStreams::new(seed).stream("lattice exemplar", 0);
+    let mut positions = Vec::new();
+    let mut attributes = Vec::new();
+    for i in 0..count {
+        let (x, y, z) = (i % side, (i / side) % side, i / (side * side));
+        let shift = if (x + y + z) % 2 == 0 { 0.15 } else { -0.15 };
+        positions.push(x as f64 + shift + 0.1 * (stream.random::<f64>() - 0.5));
+        positions.push(y as f64 + 0.1 * (stream.random::<f64>() - 0.5));
+        positions.push(z as f64 - shift + 0.1 * (stream.random::<f64>() - 0.5));
+        attributes.push(if z % 2 == 0 { 1.0 } else { 0.5 });
+    }
+    PointSet { dimension: 3, positions, attribute_names: vec!["radius".into()], attributes, elements: None }
+}
+
+/// Small rigid "leaves" (three points each) on a jittered grid, with a free-point background.
+pub fn leaf_exemplar(seed: u64) -> PointSet {
+    let mut stream = SeedStreams::new(seed).stream("leaf exemplar", 0);
+    let mut positions = Vec::new();
+    let mut elements = Vec::new();
+    let mut id = 0;
+    for row in 0..6 {
+        for column in 0..6 {
+            let cx = column as f64 * 3.0 + 0.3 * (stream.random::<f64>() - 0.5);
+            let cy = row as f64 * 3.0 + 0.3 * (stream.random::<f64>() - 0.5);
+            let angle = 0.5 * (stream.random::<f64>() - 0.5);
+            for t in [-0.6, 0.0, 0.6] {
+                positions.push(cx + t * angle.cos() - 0.25 * t * t * angle.sin());
+                positions.push(cy + t * angle.sin() + 0.25 * t * t * angle.cos());
+                elements.push(id);
+            }
+            id += 1;
+            // A free background point between leaves.
+            positions.push(cx + 1.5);
+            positions.push(cy + 1.5);
+            elements.push(-1);
+        }
+    }
+    PointSet { dimension: 2, positions, attribute_names: vec![], attributes: vec![], elements: Some(elements) }
+}
