@@ -10,7 +10,7 @@
 use rayon::prelude::*;
 
 use crate::domain::Quadrature;
-use crate::grid::StaticGrid;
+use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, State, feature_dot};
 use crate::params::Window;
@@ -65,6 +65,8 @@ pub struct Problem<'a, const D: usize> {
     pub exemplar: &'a Exemplar<D>,
     /// Exemplar grid with cells of the largest query radius (cut-off over the smallest scale).
     pub exemplar_grid: &'a StaticGrid<D>,
+    /// Exemplar lists for queries of the cut-off over the smallest scale (the inner loops).
+    pub exemplar_cells: &'a CellLists<D>,
     /// Exemplar neighbour lists within the cut-off over the smallest scale.
     pub exemplar_neighbours: &'a Neighbours,
     pub quadrature: &'a Quadrature<D>,
@@ -96,6 +98,8 @@ pub struct RowScratch<const D: usize> {
     /// the row's quadrature range: the Gaussian window is separable and the quadrature points lie
     /// on a grid, so `D` short tables replace one exponential per (pair, quadrature point).
     windows: Vec<f64>,
+    /// Exemplar points within the cut-off of the current place, with squared distances.
+    found: Vec<(u32, f64)>,
 }
 
 /// T and its gradients.
@@ -143,7 +147,7 @@ impl<const D: usize> Problem<'_, D> {
             return (0.0, 0.0);
         };
         // Pairs (i, j), the point itself first.
-        let RowScratch { pairs: scratch, windows } = scratch;
+        let RowScratch { pairs: scratch, windows, found } = scratch;
         scratch.clear();
         scratch.push(PairCache {
             other: i as u32,
@@ -230,10 +234,13 @@ impl<const D: usize> Problem<'_, D> {
             let interior = self.interior[k];
             let transform = &self.quadrature.transform[k];
             let mut gy = [0.0; D];
-            self.exemplar_grid.for_each_within(&y, cutoff / s, |j, e, distance2| {
+            self.exemplar_cells.collect_within(&y, cutoff / s, found);
+            for &(j, distance2) in found.iter() {
+                let j = j as usize;
+                let e = &self.exemplar.positions[j];
                 let d2 = s2 * distance2;
                 if d2 >= kernel.cutoff2 {
-                    return;
+                    continue;
                 }
                 // The window tests come before the masking test and the exponentials: they are
                 // cheap and reject about a third of the candidates near the rim of the reach.
@@ -241,15 +248,15 @@ impl<const D: usize> Problem<'_, D> {
                 let mid2 = 0.25 * s2 * linear::norm2(&sum);
                 if gaussian {
                     if mid2 >= kernel.window2 {
-                        return;
+                        continue;
                     }
                 } else if u2 >= kernel.window2 || s2 * linear::norm2(&linear::sub(e, &m)) >= kernel.window2 {
-                    return;
+                    continue;
                 }
                 if !interior
                     && !self.quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, &m))))
                 {
-                    return;
+                    continue;
                 }
                 let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
                 let pair = pair_exp - kernel.pair_floor;
@@ -275,7 +282,7 @@ impl<const D: usize> Problem<'_, D> {
                         *l += bc * value;
                     }
                 }
-            });
+            }
             // y = m + (sR)⁻¹ u, so ∂/∂u = ((sR)⁻¹)ᵀ ∂/∂y.
             linear::axpy(gradient, 1.0, &linear::mat_t_vec(inverse, &gy));
         });
@@ -444,7 +451,7 @@ impl<const D: usize> Problem<'_, D> {
         for (u, i) in window {
             let a = state.feature(*i as usize);
             let y = linear::add(m, &linear::mat_vec(inverse, u));
-            self.exemplar_grid.for_each_within(&y, kernel.cutoff / s, |j, e, _| {
+            self.exemplar_cells.for_each_within(&y, kernel.cutoff / s, |j, e, _| {
                 let v = linear::mat_vec(transform, &linear::sub(e, m));
                 if !interior && !self.quadrature.inside(&linear::add(&q, &v)) {
                     return;

@@ -206,6 +206,120 @@ impl<const D: usize> StaticGrid<D> {
     }
 }
 
+/// Fixed-radius queries on a small static point set answered by one slice scan: every cell of a
+/// fine grid keeps the ids of all points within `radius` of any place in it (its centre's ball
+/// grown by half the cell diagonal).
+///
+/// The energy's inner loop asks the exemplar for the points within the pair cut-off of a place
+/// hundreds of times per output point; with [`StaticGrid`] each query walks 9 rows of 3 cells and
+/// scans about 5.8 times the ball's volume, here it reads one list of about 2.9 times the ball's
+/// volume (cells of half the radius) with no row bookkeeping. Lists of large sets would take too much
+/// memory, so cells grow until the lists fit [`CellLists::MAX_ENTRIES`].
+#[derive(Debug, Clone)]
+pub struct CellLists<const D: usize> {
+    index: CellIndex<D>,
+    starts: Vec<u32>,
+    ids: Vec<u32>,
+    positions: Vec<Vector<D>>,
+    radius: f64,
+}
+
+impl<const D: usize> CellLists<D> {
+    /// The most list entries kept (4 bytes each).
+    pub const MAX_ENTRIES: usize = 1 << 23;
+
+    /// Lists for queries of radius up to `radius` over `points`.
+    pub fn new(points: &[Vector<D>], radius: f64) -> Self {
+        let grid = StaticGrid::new(points, radius);
+        let (low, high) = bounds(points);
+        let mut cell = 0.5 * radius;
+        loop {
+            let index = CellIndex::new(low, high, cell);
+            let side = 1.0 / index.inverse_cell;
+            let reach = radius + 0.5 * side * (D as f64).sqrt();
+            let mut starts = Vec::with_capacity(index.len() + 1);
+            let mut ids = Vec::new();
+            starts.push(0);
+            let mut fits = true;
+            let mut position = [0usize; D];
+            for _ in 0..index.len() {
+                let centre: Vector<D> = std::array::from_fn(|a| index.origin[a] + (position[a] as f64 + 0.5) * side);
+                let first = ids.len();
+                grid.for_each_within(&centre, reach, |id, _, _| ids.push(id as u32));
+                ids[first..].sort_unstable();
+                starts.push(ids.len() as u32);
+                if ids.len() > Self::MAX_ENTRIES {
+                    fits = false;
+                    break;
+                }
+                // Next cell in linear order (axis 0 fastest, as `cell_of`).
+                for a in 0..D {
+                    position[a] += 1;
+                    if position[a] < index.dims[a] {
+                        break;
+                    }
+                    position[a] = 0;
+                }
+            }
+            if fits {
+                return Self { index, starts, ids, positions: points.to_vec(), radius };
+            }
+            cell *= 2.0;
+        }
+    }
+
+    /// Calls `visit(id, position, squared distance)` for every point within `radius` of `center`
+    /// (`radius` at most the radius the lists were built for), in increasing id order.
+    #[inline(always)]
+    pub fn for_each_within(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, &Vector<D>, f64)) {
+        debug_assert!(radius <= self.radius * (1.0 + 1e-12));
+        // A center outside the grid is clamped into a border cell: its projection onto the grid's box
+        // lies in that cell and is no farther from any point of the set, so the list still holds
+        // every point within `radius`.
+        let cell = self.index.cell_of(center);
+        let r2 = radius * radius;
+        for &id in &self.ids[self.starts[cell] as usize..self.starts[cell + 1] as usize] {
+            let p = &self.positions[id as usize];
+            let mut d2 = 0.0;
+            for a in 0..D {
+                let d = p[a] - center[a];
+                d2 += d * d;
+            }
+            if d2 < r2 {
+                visit(id as usize, p, d2);
+            }
+        }
+    }
+}
+
+impl<const D: usize> CellLists<D> {
+    /// Writes `(id, squared distance)` of every point within `radius` of `center` into `found`
+    /// (cleared first), in increasing id order: [`CellLists::for_each_within`] with the distance
+    /// test done without a branch, which the inner loops' unpredictable hit rate (about one in
+    /// three) otherwise pays for in mispredictions.
+    #[inline(always)]
+    pub fn collect_within(&self, center: &Vector<D>, radius: f64, found: &mut Vec<(u32, f64)>) {
+        let cell = self.index.cell_of(center);
+        let list = &self.ids[self.starts[cell] as usize..self.starts[cell + 1] as usize];
+        found.clear();
+        found.resize(list.len(), (0, 0.0));
+        let r2 = radius * radius;
+        let mut count = 0;
+        for &id in list {
+            let p = &self.positions[id as usize];
+            let mut d2 = 0.0;
+            for a in 0..D {
+                let d = p[a] - center[a];
+                d2 += d * d;
+            }
+            // Every candidate is written at `count`; a hit keeps it by moving `count` on.
+            found[count] = (id, d2);
+            count += usize::from(d2 < r2);
+        }
+        found.truncate(count);
+    }
+}
+
 /// A grid whose points can be inserted and removed (the output during sampling control).
 #[derive(Debug, Clone)]
 pub struct DynamicGrid<const D: usize> {
@@ -295,12 +409,29 @@ mod tests {
     }
 
     #[test]
+    fn cell_lists_answer_queries_from_outside_the_set() {
+        let mut stream = SeedStreams::new(5).stream("lists", 0);
+        let points: Vec<[f64; 2]> =
+            (0..300).map(|_| [stream.random::<f64>() * 6.0, stream.random::<f64>() * 3.0]).collect();
+        let lists = CellLists::new(&points, 0.8);
+        for center in [[-0.5, 1.0], [6.3, -0.4], [3.0, 3.7], [-0.79, -0.1], [2.0, 1.5]] {
+            let mut found = Vec::new();
+            lists.for_each_within(&center, 0.8, |id, _, _| found.push(id));
+            let expected: Vec<usize> = (0..points.len())
+                .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < 0.64)
+                .collect();
+            assert_eq!(found, expected, "{center:?}");
+        }
+    }
+
+    #[test]
     fn grid_queries_match_brute_force() {
         let mut stream = SeedStreams::new(3).stream("grid", 0);
         let points: Vec<[f64; 3]> = (0..500)
             .map(|_| [stream.random::<f64>() * 10.0, stream.random::<f64>() * 5.0, stream.random::<f64>()])
             .collect();
         let grid = StaticGrid::new(&points, 0.7);
+        let lists = CellLists::new(&points, 1.0);
         let mut dynamic = DynamicGrid::new([0.0; 3], [10.0, 5.0, 1.0], 0.7);
         for (i, p) in points.iter().enumerate() {
             dynamic.insert(i, p);
@@ -316,6 +447,15 @@ mod tests {
                 .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < radius * radius)
                 .collect();
             assert_eq!(found, expected);
+            let mut listed: Vec<usize> = Vec::new();
+            lists.for_each_within(&center, radius.min(1.0), |id, _, _| listed.push(id));
+            let mut collected = Vec::new();
+            lists.collect_within(&center, radius.min(1.0), &mut collected);
+            assert_eq!(collected.iter().map(|c| c.0 as usize).collect::<Vec<_>>(), listed);
+            let expected_listed: Vec<usize> = (0..points.len())
+                .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < radius.min(1.0).powi(2))
+                .collect();
+            assert_eq!(listed, expected_listed);
             let mut candidates: Vec<usize> = Vec::new();
             dynamic.for_each_candidate(&center, radius, |id| candidates.push(id));
             for &e in &expected {

@@ -8,7 +8,7 @@ use serde::Serialize;
 use crate::domain::{Quadrature, Region};
 use crate::energy::{Evaluation, Neighbours, Problem};
 use crate::fidelity::{self, Fidelity};
-use crate::grid::StaticGrid;
+use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::merging::{self, MergeSettings};
@@ -179,6 +179,7 @@ pub(crate) struct Setup<const D: usize> {
     pub region: Region<D>,
     pub quadrature: Quadrature<D>,
     pub exemplar_grid: StaticGrid<D>,
+    pub exemplar_cells: CellLists<D>,
     pub exemplar_neighbours: Neighbours,
     pub state: State<D>,
     pub fill: Vec<usize>,
@@ -317,6 +318,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     // Cells of the pair cut-off: a query of that radius scans 3 rows (2D) or 9 rows (3D) of 3 cells.
     // Half-size cells scan less volume but, measured in 3D, cost more in per-row overhead.
     let exemplar_grid = StaticGrid::new(&exemplar.positions, cutoff / s_min);
+    let exemplar_cells = CellLists::new(&exemplar.positions, cutoff / s_min);
     let exemplar_neighbours = Neighbours::build(&exemplar.positions, cutoff / s_min);
     // Existing points (progressive synthesis): fixed unless near the new region.
     let mut state = State::new(channels);
@@ -369,6 +371,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         region,
         quadrature,
         exemplar_grid,
+        exemplar_cells,
         exemplar_neighbours,
         state,
         fill,
@@ -410,6 +413,7 @@ impl<const D: usize> Setup<D> {
             interior,
             exemplar: &self.exemplar,
             exemplar_grid: &self.exemplar_grid,
+            exemplar_cells: &self.exemplar_cells,
             exemplar_neighbours: &self.exemplar_neighbours,
             quadrature: &self.quadrature,
         }
