@@ -199,6 +199,8 @@ pub struct Quadrature<const D: usize> {
     inverse_spacing: f64,
     dims: [usize; D],
     lookup: Vec<u32>,
+    /// Every grid node is a quadrature point (a box domain): membership is a bounds test.
+    full: bool,
     /// Positions `q_k`.
     pub points: Vec<Vector<D>>,
     /// `s_k R_k`: exemplar offsets to output offsets.
@@ -270,6 +272,7 @@ impl<const D: usize> Quadrature<D> {
             origin,
             inverse_spacing: 1.0 / spacing,
             dims,
+            full: lookup.iter().all(|&k| k != NONE),
             lookup,
             points,
             transform,
@@ -302,11 +305,14 @@ impl<const D: usize> Quadrature<D> {
             if t <= -0.5 || t >= self.dims[a] as f64 - 0.5 {
                 return false;
             }
+            if self.full {
+                continue;
+            }
             let whole = t as usize;
             let c = if t - whole as f64 >= 0.5 { whole + 1 } else { whole };
             index = index * self.dims[a] + c;
         }
-        self.lookup[index] != NONE
+        self.full || self.lookup[index] != NONE
     }
 
     /// Calls `visit(k)` for every quadrature point within `radius` of `x`.

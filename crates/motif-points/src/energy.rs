@@ -132,6 +132,7 @@ impl<const D: usize> Problem<'_, D> {
         gradient: &mut Vector<D>,
         mut quadratic: Option<&mut RowQuadratic>,
         scratch: &mut RowScratch<D>,
+        with_pairs: bool,
     ) -> (f64, f64) {
         let kernel = &self.kernel;
         let x = state.positions[i];
@@ -149,14 +150,19 @@ impl<const D: usize> Problem<'_, D> {
         // Pairs (i, j), the point itself first.
         let RowScratch { pairs: scratch, windows, found } = scratch;
         scratch.clear();
-        scratch.push(PairCache {
-            other: i as u32,
-            pair: 1.0 - kernel.pair_floor,
-            slope: [0.0; D],
-            mid: x,
-            weight: feature_dot(a, a),
-            coefficient: 0.0,
-        });
+        // Without pairs (they come from [`Problem::pair_terms`]) the node loop does only the
+        // exemplar side.
+        let neighbours = if with_pairs { neighbours } else { &[] };
+        if with_pairs {
+            scratch.push(PairCache {
+                other: i as u32,
+                pair: 1.0 - kernel.pair_floor,
+                slope: [0.0; D],
+                mid: x,
+                weight: feature_dot(a, a),
+                coefficient: 0.0,
+            });
+        }
         for &j in neighbours {
             let xj = state.positions[j as usize];
             let d = linear::sub(&x, &xj);
@@ -302,23 +308,39 @@ impl<const D: usize> Problem<'_, D> {
     ) -> Evaluation<D> {
         let n = state.positions.len();
         let neighbours = Neighbours::build(&state.positions, self.kernel.cutoff);
+        // With the Gaussian window the output pairs are summed pair by pair (see `crate::pairs`);
+        // the box window's pair test depends on both points, so its rows keep them.
+        let pairs = (self.kernel.window == Window::Gaussian).then(|| self.pair_terms(state, &neighbours));
+        let row =
+            |scratch: &mut RowScratch<D>, i: usize, gradient: &mut Vector<D>, mut q: Option<&mut RowQuadratic>| {
+                let (ra, rb) = self.point_row(
+                    state,
+                    matches,
+                    i,
+                    neighbours.of(i),
+                    gradient,
+                    q.as_deref_mut(),
+                    scratch,
+                    pairs.is_none(),
+                );
+                let pa = pairs
+                    .as_ref()
+                    .map_or(0.0, |p| p.row(i, state, &neighbours, gradient, q.map(|q| &mut q.coefficients)));
+                ra + rb + pa
+            };
         let mut rows: Vec<(f64, Vector<D>)> = vec![(0.0, [0.0; D]); n];
         let mut quadratic = None;
         if features {
             let mut coefficients = vec![RowQuadratic::default(); n];
-            rows.par_iter_mut().zip(coefficients.par_iter_mut()).enumerate().for_each_init(
-                RowScratch::default,
-                |scratch, (i, (row, q))| {
-                    let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, Some(q), scratch);
-                    row.0 = ra + rb;
-                },
-            );
+            rows.par_iter_mut()
+                .zip(coefficients.par_iter_mut())
+                .enumerate()
+                .for_each_init(RowScratch::default, |scratch, (i, (r, q))| r.0 = row(scratch, i, &mut r.1, Some(q)));
             quadratic = Some(AttributeQuadratic::from_rows(coefficients, state.channels, exemplar_self));
         } else {
-            rows.par_iter_mut().enumerate().for_each_init(RowScratch::default, |scratch, (i, row)| {
-                let (ra, rb) = self.point_row(state, matches, i, neighbours.of(i), &mut row.1, None, scratch);
-                row.0 = ra + rb;
-            });
+            rows.par_iter_mut()
+                .enumerate()
+                .for_each_init(RowScratch::default, |scratch, (i, r)| r.0 = row(scratch, i, &mut r.1, None));
         }
         let mut energy = exemplar_self;
         for row in &rows {

@@ -35,6 +35,7 @@ mod linear;
 mod matching;
 mod merging;
 mod model;
+mod pairs;
 mod params;
 pub mod points;
 mod quadratic;

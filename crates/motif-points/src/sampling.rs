@@ -171,7 +171,7 @@ impl<const D: usize> Pass<'_, '_, D> {
             neighbours.sort_unstable();
             let mut gradient = [0.0; D];
             let (row_a, row_b) =
-                self.problem.point_row(state, self.matches, p, &neighbours, &mut gradient, None, &mut scratch);
+                self.problem.point_row(state, self.matches, p, &neighbours, &mut gradient, None, &mut scratch, true);
             total += 2.0 * row_a + row_b;
             gradients.push(gradient);
         }
