@@ -240,8 +240,8 @@ impl<const D: usize> Problem<'_, D> {
             let interior = self.interior[k];
             let transform = &self.quadrature.transform[k];
             let mut gy = [0.0; D];
-            self.exemplar_cells.collect_within(&y, cutoff / s, found);
-            for &(j, distance2) in found.iter() {
+            let count = self.exemplar_cells.collect_within(&y, cutoff / s, found);
+            for &(j, distance2) in &found[..count] {
                 let j = j as usize;
                 let e = &self.exemplar.positions[j];
                 let d2 = s2 * distance2;
