@@ -182,6 +182,11 @@ impl<const D: usize> StaticGrid<D> {
         Self { index, starts: counts, positions, ids }
     }
 
+    /// The point ids in cell order (neighbouring points close together in the sequence).
+    pub fn cell_order(&self) -> &[u32] {
+        &self.ids
+    }
+
     /// Calls `visit(id, position, squared distance)` for every point within `radius` of `center`.
     ///
     /// Points are stored in cell order and a row of cells along the first axis is contiguous, so

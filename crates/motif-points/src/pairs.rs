@@ -84,9 +84,12 @@ impl<const D: usize> Problem<'_, D> {
     /// The terms of every pair of output points within the cut-off, in parallel.
     pub fn pair_terms(&self, state: &State<D>, neighbours: &Neighbours) -> PairTerms<D> {
         let kernel = &self.kernel;
-        let rows: Vec<(PairTerm<D>, Vec<PairTerm<D>>)> = (0..state.positions.len())
-            .into_par_iter()
-            .map_init(Vec::new, |tables, i| {
+        // In the grid's cell order for cache locality (see `Problem::evaluate`), then placed back.
+        let computed: Vec<(PairTerm<D>, Vec<PairTerm<D>>)> = neighbours
+            .order()
+            .par_iter()
+            .map_init(Vec::new, |tables, &i| {
+                let i = i as usize;
                 let x = state.positions[i];
                 let own = self.pair_term(&x, 1.0 - kernel.pair_floor, &[0.0; D], tables);
                 let entries = neighbours
@@ -107,7 +110,12 @@ impl<const D: usize> Problem<'_, D> {
                 (own, entries)
             })
             .collect();
-        let (own, entries) = rows.into_iter().unzip();
+        let mut own = vec![PairTerm::default(); computed.len()];
+        let mut entries = vec![Vec::new(); computed.len()];
+        for ((term, list), &i) in computed.into_iter().zip(neighbours.order()) {
+            own[i as usize] = term;
+            entries[i as usize] = list;
+        }
         PairTerms { own, entries }
     }
 }
