@@ -81,6 +81,49 @@ impl<const D: usize> Problem<'_, D> {
         }
     }
 
+    /// The term of the pair `(i, j)` (`j = i` for a point with itself).
+    pub fn pair_of(&self, state: &State<D>, i: usize, j: usize, tables: &mut Vec<f64>) -> (f64, Vector<D>) {
+        let kernel = &self.kernel;
+        let x = state.positions[i];
+        if i == j {
+            let term = self.pair_term(&x, 1.0 - kernel.pair_floor, &[0.0; D], tables);
+            return (term.value, term.first);
+        }
+        let xj = state.positions[j];
+        let d = linear::sub(&x, &xj);
+        let pair_exp = (-linear::norm2(&d) * kernel.half_inv_sigma2).exp();
+        let mid = std::array::from_fn(|c| 0.5 * (x[c] + xj[c]));
+        let slope = linear::scale(&d, pair_exp * kernel.inv_sigma2);
+        let term = self.pair_term(&mid, pair_exp - kernel.pair_floor, &slope, tables);
+        (term.value, term.first)
+    }
+
+    /// Point `i`'s share of the output–output term, `Σ_j a_i·a_j Σ_k K(u_i, u_j)` over itself and
+    /// `neighbours` (all within the cut-off), adding its derivative by `x_i` to `gradient`: the
+    /// one-point form of [`PairTerms::row`] for local changes (sampling control). Also returns the
+    /// point's own term `Σ_k K(u_i, u_i)`.
+    pub fn pair_row(
+        &self,
+        state: &State<D>,
+        i: usize,
+        neighbours: &[u32],
+        gradient: &mut Vector<D>,
+        tables: &mut Vec<f64>,
+    ) -> (f64, f64) {
+        let a = state.feature(i);
+        let (own, derivative) = self.pair_of(state, i, i, tables);
+        let weight = feature_dot(a, a);
+        let mut total = weight * own;
+        linear::axpy(gradient, 2.0 * weight, &derivative);
+        for &j in neighbours {
+            let (value, derivative) = self.pair_of(state, i, j as usize, tables);
+            let weight = feature_dot(a, state.feature(j as usize));
+            total += weight * value;
+            linear::axpy(gradient, 2.0 * weight, &derivative);
+        }
+        (total, own)
+    }
+
     /// The terms of every pair of output points within the cut-off, in parallel.
     pub fn pair_terms(&self, state: &State<D>, neighbours: &Neighbours) -> PairTerms<D> {
         let kernel = &self.kernel;

@@ -156,6 +156,8 @@ impl<const D: usize> Pass<'_, '_, D> {
         let mut total = 0.0;
         let mut neighbours: Vec<u32> = Vec::new();
         let mut scratch = crate::energy::RowScratch::default();
+        let mut tables = Vec::new();
+        let gaussian = kernel.window == crate::params::Window::Gaussian;
         for &p in members {
             let p = p as usize;
             let x = state.positions[p];
@@ -170,12 +172,46 @@ impl<const D: usize> Pass<'_, '_, D> {
             });
             neighbours.sort_unstable();
             let mut gradient = [0.0; D];
-            let (row_a, row_b) =
-                self.problem.point_row(state, self.matches, p, &neighbours, &mut gradient, None, &mut scratch, true);
-            total += 2.0 * row_a + row_b;
+            if gaussian {
+                // Output pairs pair by pair (see `crate::pairs`), the exemplar side by the row.
+                let (_, row_b) = self.problem.point_row(
+                    state,
+                    self.matches,
+                    p,
+                    &neighbours,
+                    &mut gradient,
+                    None,
+                    &mut scratch,
+                    false,
+                );
+                let (row_a, _) = self.problem.pair_row(state, p, &neighbours, &mut gradient, &mut tables);
+                total += 2.0 * row_a + row_b;
+            } else {
+                let (row_a, row_b) = self.problem.point_row(
+                    state,
+                    self.matches,
+                    p,
+                    &neighbours,
+                    &mut gradient,
+                    None,
+                    &mut scratch,
+                    true,
+                );
+                total += 2.0 * row_a + row_b;
+            }
             gradients.push(gradient);
         }
         // Pairs inside the unit were counted twice above (once per end, twice each): take one copy off.
+        if gaussian {
+            for &p in members {
+                let a = state.feature(p as usize);
+                for &r in members {
+                    let (value, _) = self.problem.pair_of(state, p as usize, r as usize, &mut tables);
+                    total -= feature_dot(a, state.feature(r as usize)) * value;
+                }
+            }
+            return total;
+        }
         let quadrature = self.problem.quadrature;
         for &p in members {
             let x = state.positions[p as usize];
