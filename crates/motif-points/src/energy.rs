@@ -10,6 +10,7 @@
 use rayon::prelude::*;
 
 use crate::domain::Quadrature;
+use crate::exemplar_pairs::ExemplarPairs;
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, State, feature_dot};
@@ -74,6 +75,8 @@ pub struct Problem<'a, const D: usize> {
     pub exemplar_grid: &'a StaticGrid<D>,
     /// Exemplar lists for queries of the cut-off over the smallest scale (the inner loops).
     pub exemplar_cells: &'a CellLists<D>,
+    /// Exemplar pairs within the cut-off over the smallest scale (the unmasked `C_k`).
+    pub exemplar_pairs: &'a ExemplarPairs<D>,
     /// Exemplar neighbour lists within the cut-off over the smallest scale.
     pub exemplar_neighbours: &'a Neighbours,
     pub quadrature: &'a Quadrature<D>,
@@ -392,6 +395,9 @@ impl<const D: usize> Problem<'_, D> {
     ) -> f64 {
         let kernel = &self.kernel;
         if q.is_none() {
+            if kernel.window == Window::Gaussian {
+                return self.exemplar_pairs.exemplar_self(kernel, s, m, &mut Vec::new(), gradient);
+            }
             return self.exemplar_self_unmasked(s, m, gradient);
         }
         // Exemplar points whose place in the output falls outside Ω do not take part.
@@ -484,7 +490,7 @@ impl<const D: usize> Problem<'_, D> {
         m: &Vector<D>,
         window: &[(Vector<D>, u32)],
         state: &State<D>,
-        mut gradient: Option<&mut Vector<D>>,
+        gradient: Option<&mut Vector<D>>,
     ) -> f64 {
         let kernel = &self.kernel;
         let transform = &self.quadrature.transform[k];
@@ -492,24 +498,69 @@ impl<const D: usize> Problem<'_, D> {
         let s = self.quadrature.scale[k];
         let q = self.quadrature.points[k];
         let interior = self.interior[k];
+        let gaussian = kernel.window == Window::Gaussian;
+        let s2 = s * s;
         let mut total = 0.0;
+        let mut g = [0.0; D];
+        let mut found = Vec::new();
+        // In exemplar coordinates, where the frame reduces to the scale (as in `point_row`):
+        // with y = m + (sR)⁻¹u, |u − v|² = s²|y − e|² and |u + v|² = s²|y + e − 2m|².
         for (u, i) in window {
             let a = state.feature(*i as usize);
+            let u2 = linear::norm2(u);
+            if !gaussian && u2 >= kernel.window2 {
+                continue;
+            }
             let y = linear::add(m, &linear::mat_vec(inverse, u));
-            self.exemplar_cells.for_each_within(&y, kernel.cutoff / s, |j, e, _| {
-                let v = linear::mat_vec(transform, &linear::sub(e, m));
-                if !interior && !self.quadrature.inside(&linear::add(&q, &v)) {
-                    return;
+            let count = self.exemplar_cells.collect_within(&y, kernel.cutoff / s, &mut found);
+            for &(j, distance2) in &found[..count] {
+                let j = j as usize;
+                let e = &self.exemplar.positions[j];
+                let d2 = s2 * distance2;
+                if d2 >= kernel.cutoff2 {
+                    continue;
                 }
-                if let Some((value, _, dv)) = kernel.eval(u, &v) {
-                    let weight = feature_dot(a, self.exemplar.feature(j));
-                    total -= 2.0 * weight * value;
-                    if let Some(g) = gradient.as_deref_mut() {
-                        // ∂v/∂m = −sR, so ∂/∂m (−2 w K) = 2 w (sR)ᵀ ∂K/∂v.
-                        linear::axpy(g, 2.0 * weight, &linear::mat_t_vec(transform, &dv));
+                let sum: Vector<D> = std::array::from_fn(|c| y[c] + e[c] - 2.0 * m[c]);
+                let mid2 = 0.25 * s2 * linear::norm2(&sum);
+                if gaussian {
+                    if mid2 >= kernel.window2 {
+                        continue;
+                    }
+                } else if s2 * linear::norm2(&linear::sub(e, m)) >= kernel.window2 {
+                    continue;
+                }
+                if !interior
+                    && !self.quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, m))))
+                {
+                    continue;
+                }
+                let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+                let pair = pair_exp - kernel.pair_floor;
+                let weight = feature_dot(a, self.exemplar.feature(j));
+                // ∂y/∂m = I and ∂(y + e − 2m)/∂m = −I.
+                let p = -pair_exp * s2 * kernel.inv_sigma2;
+                if gaussian {
+                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                    let window = window_exp - kernel.window_floor;
+                    total -= 2.0 * weight * pair * window;
+                    if gradient.is_some() {
+                        let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;
+                        for c in 0..D {
+                            g[c] -= 2.0 * weight * (p * window * (y[c] - e[c]) + w * sum[c]);
+                        }
+                    }
+                } else {
+                    total -= 2.0 * weight * pair;
+                    if gradient.is_some() {
+                        for c in 0..D {
+                            g[c] -= 2.0 * weight * p * (y[c] - e[c]);
+                        }
                     }
                 }
-            });
+            }
+        }
+        if let Some(gradient) = gradient {
+            linear::axpy(gradient, 1.0, &g);
         }
         total
     }

@@ -275,41 +275,28 @@ impl<const D: usize> CellLists<D> {
             cell *= 2.0;
         }
     }
-
-    /// Calls `visit(id, position, squared distance)` for every point within `radius` of `center`
-    /// (`radius` at most the radius the lists were built for), in increasing id order.
-    #[inline(always)]
-    pub fn for_each_within(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, &Vector<D>, f64)) {
-        debug_assert!(radius <= self.radius * (1.0 + 1e-12));
-        // A center outside the grid is clamped into a border cell: its projection onto the grid's box
-        // lies in that cell and is no farther from any point of the set, so the list still holds
-        // every point within `radius`.
-        let cell = self.index.cell_of(center);
-        let r2 = radius * radius;
-        for &id in &self.ids[self.starts[cell] as usize..self.starts[cell + 1] as usize] {
-            let p = &self.positions[id as usize];
-            let mut d2 = 0.0;
-            for a in 0..D {
-                let d = p[a] - center[a];
-                d2 += d * d;
-            }
-            if d2 < r2 {
-                visit(id as usize, p, d2);
-            }
-        }
-    }
 }
 
 impl<const D: usize> CellLists<D> {
-    /// Writes `(id, squared distance)` of every point within `radius` of `center` into `found`
-    /// (cleared first), in increasing id order: [`CellLists::for_each_within`] with the distance
-    /// test done without a branch, which the inner loops' unpredictable hit rate (about one in
-    /// three) otherwise pays for in mispredictions.
+    /// The position of point `id`.
+    #[inline(always)]
+    pub fn position(&self, id: usize) -> &Vector<D> {
+        &self.positions[id]
+    }
+
+    /// Writes `(id, squared distance)` of every point within `radius` (at most the radius the lists
+    /// were built for) of `center` into `found`, in increasing id order. The distance test is done
+    /// without a branch, which the inner loops' unpredictable hit rate (about one in three)
+    /// otherwise pays for in mispredictions.
     ///
     /// `found` is grown to the longest list once and then only overwritten: the result is
     /// `found[..count]` with the returned `count`.
     #[inline(always)]
     pub fn collect_within(&self, center: &Vector<D>, radius: f64, found: &mut Vec<(u32, f64)>) -> usize {
+        debug_assert!(radius <= self.radius * (1.0 + 1e-12));
+        // A center outside the grid is clamped into a border cell: its projection onto the grid's box
+        // lies in that cell and is no farther from any point of the set, so the list still holds
+        // every point within `radius`.
         let cell = self.index.cell_of(center);
         let list = &self.ids[self.starts[cell] as usize..self.starts[cell + 1] as usize];
         if found.len() < list.len() {
@@ -427,8 +414,9 @@ mod tests {
             (0..300).map(|_| [stream.random::<f64>() * 6.0, stream.random::<f64>() * 3.0]).collect();
         let lists = CellLists::new(&points, 0.8);
         for center in [[-0.5, 1.0], [6.3, -0.4], [3.0, 3.7], [-0.79, -0.1], [2.0, 1.5]] {
-            let mut found = Vec::new();
-            lists.for_each_within(&center, 0.8, |id, _, _| found.push(id));
+            let mut collected = Vec::new();
+            let count = lists.collect_within(&center, 0.8, &mut collected);
+            let found: Vec<usize> = collected[..count].iter().map(|c| c.0 as usize).collect();
             let expected: Vec<usize> = (0..points.len())
                 .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < 0.64)
                 .collect();
@@ -459,11 +447,9 @@ mod tests {
                 .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < radius * radius)
                 .collect();
             assert_eq!(found, expected);
-            let mut listed: Vec<usize> = Vec::new();
-            lists.for_each_within(&center, radius.min(1.0), |id, _, _| listed.push(id));
             let mut collected = Vec::new();
             let count = lists.collect_within(&center, radius.min(1.0), &mut collected);
-            assert_eq!(collected[..count].iter().map(|c| c.0 as usize).collect::<Vec<_>>(), listed);
+            let listed: Vec<usize> = collected[..count].iter().map(|c| c.0 as usize).collect();
             let expected_listed: Vec<usize> = (0..points.len())
                 .filter(|&i| crate::linear::norm2(&crate::linear::sub(&points[i], &center)) < radius.min(1.0).powi(2))
                 .collect();

@@ -28,6 +28,7 @@
 
 mod domain;
 mod energy;
+mod exemplar_pairs;
 pub mod fidelity;
 mod grid;
 mod init;

@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use crate::domain::{Quadrature, Region};
 use crate::energy::{Evaluation, Neighbours, Problem};
+use crate::exemplar_pairs::ExemplarPairs;
 use crate::fidelity::{self, Fidelity};
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
@@ -180,6 +181,7 @@ pub(crate) struct Setup<const D: usize> {
     pub quadrature: Quadrature<D>,
     pub exemplar_grid: StaticGrid<D>,
     pub exemplar_cells: CellLists<D>,
+    pub exemplar_pairs: ExemplarPairs<D>,
     pub exemplar_neighbours: Neighbours,
     pub state: State<D>,
     pub fill: Vec<usize>,
@@ -320,6 +322,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let exemplar_grid = StaticGrid::new(&exemplar.positions, cutoff / s_min);
     let exemplar_cells = CellLists::new(&exemplar.positions, cutoff / s_min);
     let exemplar_neighbours = Neighbours::build(&exemplar.positions, cutoff / s_min);
+    let exemplar_pairs = ExemplarPairs::new(&exemplar, &exemplar_neighbours, cutoff / s_min, 3.0 * delta / s_min);
     // Existing points (progressive synthesis): fixed unless near the new region.
     let mut state = State::new(channels);
     if let Some(set) = &input.existing {
@@ -372,6 +375,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         quadrature,
         exemplar_grid,
         exemplar_cells,
+        exemplar_pairs,
         exemplar_neighbours,
         state,
         fill,
@@ -414,6 +418,7 @@ impl<const D: usize> Setup<D> {
             exemplar: &self.exemplar,
             exemplar_grid: &self.exemplar_grid,
             exemplar_cells: &self.exemplar_cells,
+            exemplar_pairs: &self.exemplar_pairs,
             exemplar_neighbours: &self.exemplar_neighbours,
             quadrature: &self.quadrature,
         }
