@@ -201,6 +201,9 @@ pub struct Quadrature<const D: usize> {
     lookup: Vec<u32>,
     /// Every grid node is a quadrature point (a box domain): membership is a bounds test.
     full: bool,
+    /// Every frame `s_k R_k` is the identity (no guidance fields, no stroke): the inner loops skip
+    /// the frame products.
+    pub identity_frames: bool,
     /// Positions `q_k`.
     pub points: Vec<Vector<D>>,
     /// `s_k R_k`: exemplar offsets to output offsets.
@@ -273,6 +276,7 @@ impl<const D: usize> Quadrature<D> {
             inverse_spacing: 1.0 / spacing,
             dims,
             full: lookup.iter().all(|&k| k != NONE),
+            identity_frames: transform.iter().all(|t| *t == linear::identity::<D>()),
             lookup,
             points,
             transform,

@@ -206,6 +206,7 @@ impl<const D: usize> Problem<'_, D> {
         }
         let cutoff = kernel.cutoff;
         let collect = quadratic.is_some();
+        let identity = self.quadrature.identity_frames;
         self.quadrature.for_each_in_range(&x, kernel.gather, &range, |k, node| {
             let q = self.quadrature.points[k];
             let u = linear::sub(&x, &q);
@@ -245,7 +246,7 @@ impl<const D: usize> Problem<'_, D> {
             let s = self.quadrature.scale[k];
             let s2 = s * s;
             let inverse = &self.quadrature.inverse[k];
-            let offset = linear::mat_vec(inverse, &u);
+            let offset = if identity { u } else { linear::mat_vec(inverse, &u) };
             let y = linear::add(&m, &offset);
             let interior = self.interior[k];
             let transform = &self.quadrature.transform[k];
@@ -300,7 +301,11 @@ impl<const D: usize> Problem<'_, D> {
                 }
             }
             // y = m + (sR)⁻¹ u, so ∂/∂u = ((sR)⁻¹)ᵀ ∂/∂y.
-            linear::axpy(gradient, 1.0, &linear::mat_t_vec(inverse, &gy));
+            if identity {
+                linear::axpy(gradient, 1.0, &gy);
+            } else {
+                linear::axpy(gradient, 1.0, &linear::mat_t_vec(inverse, &gy));
+            }
         });
         if let Some(row) = quadratic {
             row.coefficients.extend(scratch.iter().map(|cache| (cache.other, cache.coefficient)));
@@ -511,7 +516,8 @@ impl<const D: usize> Problem<'_, D> {
             if !gaussian && u2 >= kernel.window2 {
                 continue;
             }
-            let y = linear::add(m, &linear::mat_vec(inverse, u));
+            let offset = if self.quadrature.identity_frames { *u } else { linear::mat_vec(inverse, u) };
+            let y = linear::add(m, &offset);
             let count = self.exemplar_cells.collect_within(&y, kernel.cutoff / s, &mut found);
             for &(j, distance2) in &found[..count] {
                 let j = j as usize;
