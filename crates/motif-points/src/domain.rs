@@ -4,7 +4,7 @@
 use motif_core::Point;
 
 use crate::linear::{self, Matrix, Vector};
-use crate::params::{Domain, Field};
+use crate::params::{Domain, Error, Field};
 
 /// A domain prepared for dimension `D`.
 #[derive(Debug, Clone)]
@@ -230,11 +230,14 @@ impl<const D: usize> Quadrature<D> {
         region: &Region<D>,
         rotation: &Field,
         scale: &Field,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, Error> {
         let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / spacing).floor().max(0.0) as usize + 1);
         let total = dims.iter().try_fold(1usize, |acc, &d| acc.checked_mul(d)).unwrap_or(usize::MAX);
         if total > 60_000_000 {
-            return Err(format!("the domain needs {total} quadrature points; make it smaller or raise sigma"));
+            return Err(Error::DomainTooLarge(format!(
+                "it needs {total} quadrature points, more than the 60 000 000 allowed (about 2 GB); make it smaller, \
+                 raise the quadrature spacing or sigma"
+            )));
         }
         // Centre the grid inside the bounds so that both sides get the same margin.
         let origin: Vector<D> =
@@ -261,7 +264,10 @@ impl<const D: usize> Quadrature<D> {
             let angle = rotation.value(q, 0.0).to_radians();
             let s = stroke_scale * scale.value(q, 1.0);
             if !(s.is_finite() && s > 0.0 && angle.is_finite()) {
-                return Err(format!("the guidance fields give scale {s} and rotation {angle} at a quadrature point"));
+                return Err(Error::Input(format!(
+                    "the guidance fields give scale {s} and rotation {angle} at a quadrature point; the scale must be \
+                     positive and finite"
+                )));
             }
             let r = linear::mat_mul(&stroke_rotation, &linear::rotation_xy::<D>(angle));
             let sr: Matrix<D> = std::array::from_fn(|i| std::array::from_fn(|j| r[i][j] * s));

@@ -18,6 +18,9 @@ pub enum Error {
     /// The domain holds no quadrature point (zero size, or a stroke/region that is too thin).
     #[error("empty domain: {0}")]
     EmptyDomain(String),
+    /// The domain needs more quadrature points than the solver's memory cap allows.
+    #[error("domain too large: {0}")]
+    DomainTooLarge(String),
 }
 
 /// The window function `w` delimiting a neighbourhood (§4.2–4.3).

@@ -307,8 +307,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let keep = |q: &Vector<D>| {
         region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
     };
-    let quadrature =
-        Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale).map_err(Error::EmptyDomain)?;
+    let quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
     let expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
         return Err(Error::EmptyDomain(format!(

@@ -691,6 +691,10 @@ fn bad_input_gives_clear_errors() {
     assert!(error.to_string().contains("empty domain"), "{error}");
     let error = run(grid.clone(), Params { domain: None, ..Params::default() }).unwrap_err();
     assert!(error.to_string().contains("empty domain"), "{error}");
+    // A huge domain is refused before anything is allocated, and says so.
+    let huge = Domain::Box { min: vec![0.0, 0.0], max: vec![1e6, 1e6] };
+    let error = run(grid.clone(), quick_params(huge)).unwrap_err();
+    assert!(matches!(error, Error::DomainTooLarge(_)) && error.to_string().contains("too large"), "{error}");
     let wrong_dimension = Domain::Box { min: vec![0.0; 3], max: vec![1.0; 3] };
     assert!(run(grid.clone(), quick_params(wrong_dimension)).is_err());
     let error = run(grid, Params { attributes: Some(vec!["colour".into()]), ..quick_params(box_domain(5.0, 5.0)) })
