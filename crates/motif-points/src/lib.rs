@@ -9,8 +9,11 @@
 //! - `model` (§4.3, Eq. 4–5): features, the kernel of the discrete error density for the box and
 //!   Gaussian windows with truncation at 3δ, exemplar/output state, rigid elements (§6.1).
 //! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, ∂S/∂m_k, point-centric and
-//!   parallel; `reference`: the plain per-quadrature-point version used by tests and the speed-up
-//!   figure.
+//!   parallel; `pairs`: its output–output term summed once per pair over the nodes around the
+//!   pair's midpoint; `exemplar_pairs`: the exemplar's own term `C_k` over listed exemplar pairs;
+//!   `reference`: the plain per-quadrature-point version used by tests and the speed-up figure.
+//! - `quadratic` (§4.4, Eq. 5): T as the quadratic form in the attributes that it is at fixed
+//!   positions, minimized by conjugate gradients in the attribute half of the merging step.
 //! - `domain` (§6.2): boxes, polygon regions, brush strokes; the regular quadrature grid; rotation
 //!   and scale fields stored at the quadrature points (Eq. 8).
 //! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts.
@@ -20,7 +23,10 @@
 //! - `init` (§5.2): random or patch initialization.
 //! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
 //! - [`fidelity`]: nearest-neighbour histogram and radial distribution comparisons.
-//! - `grid`, `raster`, `linear`: uniform-grid neighbour queries, multilinear rasters, small vectors.
+//! - [`samples`]: generated exemplars (demo, benchmarks); [`EnergyCase`]: single evaluations of T
+//!   for benchmarks.
+//! - `grid`, `raster`, `linear`: uniform-grid and per-cell-list neighbour queries, multilinear
+//!   rasters, small vectors.
 
 // Coordinates are indexed `0..D` throughout: index loops over fixed-size arrays read like the
 // formulas they implement.
