@@ -23,15 +23,17 @@ pub struct MergeSettings {
 }
 
 /// Gradient descent on the positions. Returns T after every accepted step (the first entry is T
-/// before merging).
+/// before merging) and the evaluation of the final state. With `attributes`, every evaluation also
+/// collects the attribute form, so that the attribute step that follows needs no pass of its own.
 pub fn merge_positions<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
+    attributes: bool,
     evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
     allowed: &dyn Fn(&Vector<D>) -> bool,
-) -> Vec<f64> {
+) -> (Vec<f64>, Evaluation<D>) {
     let sigma = settings.sigma;
-    let mut current = evaluate(state, false);
+    let mut current = evaluate(state, attributes);
     let mut energies = vec![current.energy];
     let mut eta = settings.step;
     let mut iteration = 0;
@@ -107,7 +109,7 @@ pub fn merge_positions<const D: usize>(
                 }
             }
         }
-        let candidate = evaluate(&trial, false);
+        let candidate = evaluate(&trial, attributes);
         if candidate.energy < current.energy {
             let decrease = current.energy - candidate.energy;
             *state = trial;
@@ -128,7 +130,7 @@ pub fn merge_positions<const D: usize>(
             }
         }
     }
-    energies
+    (energies, current)
 }
 
 /// Descent on the (normalized) attributes of free points, then snapping of the discrete channels.
@@ -136,12 +138,14 @@ pub fn merge_positions<const D: usize>(
 /// (`None` when there is nothing to optimize, T is then unchanged).
 ///
 /// T is quadratic in the attributes at fixed positions ([`crate::quadratic`]): one evaluation pass
-/// gives the form, and `attribute_iterations` conjugate-gradient steps with exact line searches
-/// then cost a sparse product each instead of a pass over the quadrature per trial step.
+/// gives the form (`evaluation` of the current state when it carries it, else a new pass), and
+/// `attribute_iterations` conjugate-gradient steps with exact line searches then cost a sparse
+/// product each instead of a pass over the quadrature per trial step.
 pub fn merge_attributes<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     discrete: &[Vec<f64>],
+    evaluation: Option<Evaluation<D>>,
     evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
 ) -> Option<f64> {
     let channels = state.channels;
@@ -157,7 +161,10 @@ pub fn merge_attributes<const D: usize>(
     if movable.is_empty() {
         return None;
     }
-    let quadratic = evaluate(state, true).quadratic.expect("an evaluation with features carries the attribute form");
+    let quadratic = match evaluation.and_then(|e| e.quadratic) {
+        Some(quadratic) => quadratic,
+        None => evaluate(state, true).quadratic?,
+    };
     let before = quadratic.energy(&state.features);
     let mut features = state.features.clone();
     for c in 1..channels {

@@ -498,10 +498,12 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                 let evaluate =
                     |s: &State<D>, f: bool| evaluate_with(&problem, params.evaluator, s, &matches, exemplar_self, f);
                 let allowed = |p: &Vector<D>| setup.allowed(p);
-                let steps = merging::merge_positions(&mut state, merge_settings, &evaluate, &allowed);
-                let after =
-                    merging::merge_attributes(&mut state, merge_settings, &setup.attributes.discrete, &evaluate)
-                        .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
+                let attributes = state.channels > 1 && merge_settings.attribute_iterations > 0;
+                let (steps, last) =
+                    merging::merge_positions(&mut state, merge_settings, attributes, &evaluate, &allowed);
+                let discrete = &setup.attributes.discrete;
+                let after = merging::merge_attributes(&mut state, merge_settings, discrete, Some(last), &evaluate)
+                    .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
                 energies.push(IterationEnergy {
                     scale,
                     neighbourhood: delta,

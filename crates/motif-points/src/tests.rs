@@ -349,7 +349,7 @@ fn energy_decreases_across_merging_steps() {
         sigma: fixture.setup.sigma,
     };
     let allowed = |p: &Vector<2>| fixture.setup.allowed(p);
-    let energies = crate::merging::merge_positions(&mut state, settings, &evaluate, &allowed);
+    let (energies, _) = crate::merging::merge_positions(&mut state, settings, false, &evaluate, &allowed);
     assert!(energies.len() > 10, "only {} accepted steps", energies.len());
     for pair in energies.windows(2) {
         assert!(pair[1] < pair[0], "{energies:?}");
