@@ -676,6 +676,7 @@ fn bench_case(
         "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
         "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
         "stages_ms": crate::context::stages_object(&output.report.stages_ms),
+        "merge_steps_per_scale": output.report.energy.iter().map(|e| e.merge_steps).collect::<Vec<_>>(),
         "energy_evaluation": {
             "fast_ms": comparison.fast_ms,
             "reference_ms": comparison.reference_ms,
