@@ -414,10 +414,22 @@ impl<const D: usize> Problem<'_, D> {
         mut gradient: Option<&mut Vector<D>>,
     ) -> f64 {
         let kernel = &self.kernel;
+        if kernel.window == Window::Gaussian {
+            let found = &mut Vec::new();
+            return match q {
+                None => self.exemplar_pairs.exemplar_self(kernel, s, m, found, None, gradient),
+                Some(q) => {
+                    // Exemplar points whose place in the output falls outside Ω do not take part.
+                    let positions = &self.exemplar.positions;
+                    let keep = |j: usize| {
+                        self.quadrature
+                            .inside(&linear::add(q, &linear::mat_vec(transform, &linear::sub(&positions[j], m))))
+                    };
+                    self.exemplar_pairs.exemplar_self(kernel, s, m, found, Some(&keep), gradient)
+                }
+            };
+        }
         if q.is_none() {
-            if kernel.window == Window::Gaussian {
-                return self.exemplar_pairs.exemplar_self(kernel, s, m, &mut Vec::new(), gradient);
-            }
             return self.exemplar_self_unmasked(s, m, gradient);
         }
         // Exemplar points whose place in the output falls outside Ω do not take part.

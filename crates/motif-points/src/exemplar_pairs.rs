@@ -2,8 +2,7 @@
 //! by pair.
 //!
 //! The matching step evaluates `C_k` at several candidate locations `m` of every quadrature point.
-//! Without masking (windows inside Ω) the kernel of an exemplar pair depends on `m` only through the
-//! window at the pair's midpoint: `K = pair(s²|e_j − e_j'|²) · window(s²|mid − m|²)`. So the pairs
+//! The kernel of an exemplar pair depends on `m` only through the window at the pair's midpoint: `K = pair(s²|e_j − e_j'|²) · window(s²|mid − m|²)`. So the pairs
 //! within the cut-off are listed once, with their midpoints, the product of their features and the
 //! pair factor at scale 1, and `C_k(m)` is a sum over the midpoints within the window's reach — one
 //! exponential per pair instead of a neighbour walk with two per ordered pair.
@@ -13,7 +12,7 @@ use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, feature_dot};
 
 /// The exemplar's pairs within the pair cut-off (each unordered pair once, and each point with
-/// itself), for the unmasked Gaussian-window `C_k`.
+/// itself), for the Gaussian-window `C_k`.
 #[derive(Debug, Clone)]
 pub struct ExemplarPairs<const D: usize> {
     /// Pair midpoints, queried by distance.
@@ -22,6 +21,10 @@ pub struct ExemplarPairs<const D: usize> {
     distance2: Vec<f64>,
     /// `b_j·b_j'` times the pair's multiplicity in the sum (2 for two points, 1 for a point with itself).
     weight: Vec<f64>,
+    /// The pair's two exemplar points (for masking).
+    ends: Vec<(u32, u32)>,
+    /// Exemplar points.
+    points: usize,
 }
 
 impl<const D: usize> ExemplarPairs<D> {
@@ -30,11 +33,13 @@ impl<const D: usize> ExemplarPairs<D> {
         let mut mids = Vec::new();
         let mut distance2 = Vec::new();
         let mut weight = Vec::new();
+        let mut ends = Vec::new();
         for (j, e) in exemplar.positions.iter().enumerate() {
             let b = exemplar.feature(j);
             mids.push(*e);
             distance2.push(0.0);
             weight.push(feature_dot(b, b));
+            ends.push((j as u32, j as u32));
             for &o in neighbours.of(j) {
                 let o = o as usize;
                 let other = &exemplar.positions[o];
@@ -45,20 +50,36 @@ impl<const D: usize> ExemplarPairs<D> {
                 mids.push(std::array::from_fn(|c| 0.5 * (e[c] + other[c])));
                 distance2.push(d2);
                 weight.push(2.0 * feature_dot(b, exemplar.feature(o)));
+                ends.push((j as u32, o as u32));
             }
         }
-        Self { mids: CellLists::new(&mids, reach), distance2, weight }
+        Self { mids: CellLists::new(&mids, reach), distance2, weight, ends, points: exemplar.positions.len() }
     }
 
-    /// `C(m)` at scale `s` with no masking, adding `∂C/∂m` to `gradient` when given.
+    /// `C(m)` at scale `s`, adding `∂C/∂m` to `gradient` when given. With `keep`, only pairs whose
+    /// two points it accepts take part (masking: exemplar points whose place in the output falls
+    /// outside Ω); each point is asked once.
     pub fn exemplar_self(
         &self,
         kernel: &Kernel,
         s: f64,
         m: &Vector<D>,
         found: &mut Vec<(u32, f64)>,
+        keep: Option<&dyn Fn(usize) -> bool>,
         gradient: Option<&mut Vector<D>>,
     ) -> f64 {
+        // Per exemplar point: 0 not asked yet, 1 kept, 2 masked.
+        let mut verdicts = if keep.is_some() { vec![0u8; self.points] } else { Vec::new() };
+        let mut kept = |j: u32| match keep {
+            None => true,
+            Some(keep) => {
+                let verdict = &mut verdicts[j as usize];
+                if *verdict == 0 {
+                    *verdict = if keep(j as usize) { 1 } else { 2 };
+                }
+                *verdict == 1
+            }
+        };
         let s2 = s * s;
         let reach = 3.0 * kernel.delta / s;
         let count = self.mids.collect_within(m, reach, found);
@@ -68,6 +89,10 @@ impl<const D: usize> ExemplarPairs<D> {
             let p = p as usize;
             let d2 = s2 * self.distance2[p];
             if d2 >= kernel.cutoff2 {
+                continue;
+            }
+            let (j, o) = self.ends[p];
+            if !(kept(j) && kept(o)) {
                 continue;
             }
             let pair = (-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor;

@@ -161,6 +161,7 @@ fn check_gradients(window: Window) {
     assert!(checked >= 8, "{checked}");
     // ∂S/∂m_k.
     let grid = crate::grid::StaticGrid::new(&state.positions, problem.kernel.gather);
+    let mut masked_checked = 0;
     for k in (0..problem.quadrature.len()).step_by(11) {
         let window_points = problem.output_window(k, &grid);
         let m = fixture.matches[k];
@@ -185,8 +186,16 @@ fn check_gradients(window: Window) {
         let (transform, scale) = (problem.quadrature.transform[k], problem.quadrature.scale[k]);
         let mut gradient = [0.0; 2];
         let unmasked = problem.exemplar_self_with(&transform, scale, &m, None, Some(&mut gradient));
-        let plain = plain_exemplar_self(&problem, &transform, scale, &m);
+        let plain = plain_exemplar_self(&problem, &transform, scale, &m, None);
         assert!((unmasked - plain).abs() < 1e-9 * (1.0 + plain.abs()), "{unmasked} vs {plain}");
+        // Masked (windows reaching out of Ω): the listed pairs against the plain sum.
+        let q = problem.quadrature.points[k];
+        let masked = problem.exemplar_self_with(&transform, scale, &m, Some(&q), None);
+        let plain_masked = plain_exemplar_self(&problem, &transform, scale, &m, Some(&q));
+        assert!((masked - plain_masked).abs() < 1e-9 * (1.0 + plain_masked.abs()), "{masked} vs {plain_masked}");
+        if !problem.interior[k] {
+            masked_checked += usize::from(plain_masked < plain - 1e-9);
+        }
         for a in 0..2 {
             let mut plus = m;
             plus[a] += h;
@@ -202,6 +211,7 @@ fn check_gradients(window: Window) {
             );
         }
     }
+    assert!(masked_checked > 0, "some checked windows should lose exemplar pairs to the mask");
 }
 
 /// `C(m)` as the plain all-pairs sum over the exemplar points in reach, frame applied by matrix.
@@ -210,12 +220,16 @@ fn plain_exemplar_self<const D: usize>(
     transform: &crate::linear::Matrix<D>,
     scale: f64,
     m: &Vector<D>,
+    mask: Option<&Vector<D>>,
 ) -> f64 {
     let kernel = &problem.kernel;
     let exemplar = problem.exemplar;
     let mut window = Vec::new();
     problem.exemplar_grid.for_each_within(m, kernel.gather / scale, |j, e, _| {
-        window.push((j, linear::mat_vec(transform, &linear::sub(e, m))));
+        let v = linear::mat_vec(transform, &linear::sub(e, m));
+        if mask.is_none_or(|q| problem.quadrature.inside(&linear::add(q, &v))) {
+            window.push((j, v));
+        }
     });
     let mut total = 0.0;
     for &(i, vi) in &window {
