@@ -271,6 +271,40 @@ impl Level {
         total
     }
 
+    /// [`distance_from`](Self::distance_from), but for 3×3 patches without early exit: their
+    /// rows are loaded together and up to two unpredictable branches fewer are taken, which costs
+    /// less than the rows saved. The callers compare the result with `limit`, and a sum that
+    /// stopped early is ≥ `limit` as the full one is, so the decisions are the same; a full sum
+    /// adds the same terms in the same order, so it is the same value.
+    #[inline(always)]
+    pub fn distance_small<const ROW: usize>(
+        &self,
+        s: u32,
+        x: usize,
+        y: usize,
+        first_row: usize,
+        partial: f32,
+        limit: f32,
+    ) -> f32 {
+        if self.patch > 3 {
+            return self.distance_from::<ROW>(s, x, y, first_row, partial, limit);
+        }
+        let channels = self.channels;
+        let row_len = self.patch * channels;
+        let source_stride = self.source_width * channels;
+        let target_stride = self.padded_width * channels;
+        let source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
+        let target_offset = (y * self.padded_width + x) * channels;
+        let mut total = partial;
+        for row in first_row..self.patch {
+            let (source, target) = (source_offset + row * source_stride, target_offset + row * target_stride);
+            total += self.weight
+                * row_distance_n::<ROW>(&self.source[source..source + row_len], &self.target[target..target + row_len])
+                    as f32;
+        }
+        total
+    }
+
     /// Like [`distance`](Self::distance) without early exit, split into the style part and the
     /// guide part (for the report; not a hot path).
     pub fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32) {

@@ -155,16 +155,49 @@ fn box_filter(input: &[f32], scratch: &mut [f32], output: &mut [f32], w: usize, 
             }
         }
     }
-    for x in 0..w {
-        let mut sum: f32 = (0..r.min(h)).map(|y| scratch[y * w + x]).sum();
-        for y in 0..h {
-            if y + r < h {
-                sum += scratch[(y + r) * w + x];
+    // Vertical pass: the same running sum per column, in the same order, but all columns
+    // advanced together row by row (contiguous, vectorized) instead of one column at a time (a
+    // stride of a whole row per step).
+    let mut sums = vec![0.0_f32; w];
+    for y in 0..r.min(h) {
+        for (sum, value) in sums.iter_mut().zip(&scratch[y * w..(y + 1) * w]) {
+            *sum += value;
+        }
+    }
+    for y in 0..h {
+        if y + r < h {
+            for (sum, value) in sums.iter_mut().zip(&scratch[(y + r) * w..(y + r + 1) * w]) {
+                *sum += value;
             }
-            output[y * w + x] = sum;
-            if y >= r {
-                sum -= scratch[(y - r) * w + x];
+        }
+        output[y * w..(y + 1) * w].copy_from_slice(&sums);
+        if y >= r {
+            for (sum, value) in sums.iter_mut().zip(&scratch[(y - r) * w..(y - r + 1) * w]) {
+                *sum -= value;
             }
+        }
+    }
+}
+
+/// Adds the `SIDE × SIDE` table `steps` (row-major) to the window of `values` at its start (row
+/// stride `stride`), row by row.
+#[inline(always)]
+fn add_window<const SIDE: usize>(values: &mut [f32], steps: &[f32], stride: usize) {
+    for (row, steps) in steps.chunks_exact(SIDE).enumerate() {
+        let values: &mut [f32; SIDE] =
+            (&mut values[row * stride..row * stride + SIDE]).try_into().expect("a whole window row");
+        let steps: &[f32; SIDE] = steps.try_into().expect("a whole table row");
+        for (value, step) in values.iter_mut().zip(steps) {
+            *value += step;
+        }
+    }
+}
+
+/// [`add_window`] for any side.
+fn add_window_n(values: &mut [f32], steps: &[f32], stride: usize, side: usize) {
+    for (row, steps) in steps.chunks_exact(side).enumerate() {
+        for (value, step) in values[row * stride..row * stride + side].iter_mut().zip(steps) {
+            *value += step;
         }
     }
 }
@@ -178,6 +211,10 @@ pub(crate) struct OmegaDelta<'a> {
     factors: &'a [f32],
     /// The factor when all centres share one (no segments): saves a memory stream per move.
     uniform: Option<f32>,
+    /// With a uniform factor: the change of every entry of a move's window, precomputed
+    /// (`(factor · overlap_y · sign) · overlap_x`, the very products the general case forms, so
+    /// the sums are the same), removal (`sign` −1) first, then addition; `(2·patch − 1)²` each.
+    steps: Vec<f32>,
     log: Vec<u32>,
     /// Overlap of two patches whose centres differ by `k − (patch − 1)` on an axis:
     /// `patch − |k − (patch − 1)|`, for `k` in `0..2·patch − 1`.
@@ -195,13 +232,25 @@ impl<'a> OmegaDelta<'a> {
         let factors: &'a [f32] = enabled.map_or(&[], |o| &o.factors);
         let snapshot: &'a [f32] = enabled.map_or(&[], |o| &o.penalty);
         let uniform = occurrence.and_then(|o| o.uniform);
+        let overlaps: Vec<f32> =
+            (0..2 * level.patch - 1).map(|k| (level.patch - k.abs_diff(level.patch - 1)) as f32).collect();
+        let mut steps = Vec::new();
+        if let Some(factor) = uniform {
+            for sign in [-1.0_f32, 1.0] {
+                for &overlap_y in &overlaps {
+                    let scale = factor * (overlap_y * sign);
+                    steps.extend(overlaps.iter().map(|&overlap_x| scale * overlap_x));
+                }
+            }
+        }
         OmegaDelta {
             values: snapshot.to_vec(),
             snapshot,
             factors,
             uniform,
+            steps,
             log: Vec::new(),
-            overlaps: (0..2 * level.patch - 1).map(|k| (level.patch - k.abs_diff(level.patch - 1)) as f32).collect(),
+            overlaps,
             width: level.source_width,
             height: level.source_height,
             patch: level.patch,
@@ -225,21 +274,39 @@ impl<'a> OmegaDelta<'a> {
         let (cx, cy) = (centre as usize % w, centre as usize / w);
         // Overlap of two patches whose centres differ by d on an axis: p − |d|, |d| < p.
         let (x0, x1) = ((cx + 1).saturating_sub(p), (cx + p).min(w));
+        let (y0, y1) = ((cy + 1).saturating_sub(p), (cy + p).min(h));
+        if self.uniform.is_some() {
+            let side = 2 * p - 1;
+            let table = if sign < 0.0 { &self.steps[..side * side] } else { &self.steps[side * side..] };
+            if x1 - x0 == side && y1 - y0 == side {
+                // The whole window lies inside (nearly always): fixed-size rows for 3×3 and 5×5
+                // patches, unrolled without per-element loop control or bounds checks.
+                let start = y0 * w + x0;
+                match side {
+                    5 => add_window::<5>(&mut self.values[start..], table, w),
+                    9 => add_window::<9>(&mut self.values[start..], table, w),
+                    _ => add_window_n(&mut self.values[start..], table, w, side),
+                }
+                return;
+            }
+            for y in y0..y1 {
+                let start = (y + p - 1 - cy) * side + x0 + p - 1 - cx;
+                let steps = &table[start..start + (x1 - x0)];
+                let row = y * w;
+                for (value, step) in self.values[row + x0..row + x1].iter_mut().zip(steps) {
+                    *value += step;
+                }
+            }
+            return;
+        }
         let overlap_x = &self.overlaps[x0 + p - 1 - cx..x1 + p - 1 - cx];
-        for y in (cy + 1).saturating_sub(p)..(cy + p).min(h) {
+        for y in y0..y1 {
             let weight_y = self.overlaps[y + p - 1 - cy] * sign;
             let row = y * w;
             let values = &mut self.values[row + x0..row + x1];
-            if let Some(factor) = self.uniform {
-                let scale = factor * weight_y;
-                for (value, overlap) in values.iter_mut().zip(overlap_x) {
-                    *value += scale * overlap;
-                }
-            } else {
-                let factors = &self.factors[row + x0..row + x1];
-                for ((value, factor), overlap) in values.iter_mut().zip(factors).zip(overlap_x) {
-                    *value += factor * weight_y * overlap;
-                }
+            let factors = &self.factors[row + x0..row + x1];
+            for ((value, factor), overlap) in values.iter_mut().zip(factors).zip(overlap_x) {
+                *value += factor * weight_y * overlap;
             }
         }
     }

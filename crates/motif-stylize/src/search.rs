@@ -211,7 +211,7 @@ impl Best {
         if limit <= 0.0 {
             return;
         }
-        let distance = level.distance::<ROW>(candidate, x, y, limit);
+        let distance = level.distance_small::<ROW>(candidate, x, y, 0, 0.0, limit);
         if distance < limit {
             self.centre = candidate;
             self.distance = distance;
@@ -238,7 +238,7 @@ impl Candidates {
     /// processed in passes with no data-dependent branch between their memory reads, so the cache
     /// misses of all of them overlap instead of queueing one after another.
     #[inline(always)]
-    fn random_search<const ROW: usize>(
+    fn random_search<const ROW: usize, const SMALL: bool>(
         &mut self,
         level: &Level,
         occurrence: &Occurrence,
@@ -285,18 +285,31 @@ impl Candidates {
         for (penalty, &candidate) in self.penalties.iter_mut().zip(centres) {
             *penalty = occurrence.cost(candidate, delta);
         }
-        // Touch every row of every candidate whose penalty alone does not already lose (a
-        // software prefetch without `unsafe`).
-        let touched = centres
-            .iter()
-            .zip(&self.penalties)
-            .filter(|&(_, &penalty)| penalty < best.total)
-            .fold(0_u32, |sum, (&c, _)| sum.wrapping_add(level.touch(c)));
-        std::hint::black_box(touched);
         // Pass 3: first rows, skipped where the penalty alone already loses (it is most of the
         // energy once matches settle).
-        for ((partial, &penalty), &candidate) in self.partials.iter_mut().zip(&self.penalties).zip(centres) {
-            *partial = if penalty < best.total { level.first_row::<ROW>(candidate, x, y) } else { f32::INFINITY };
+        let rows = self.partials.iter_mut().zip(&self.penalties).zip(centres);
+        if SMALL {
+            // 3×3 patches span a few cache lines: the first rows of all candidates are read at
+            // once, without waiting for the penalties, and nothing is prefetched (the other rows
+            // are read only for the third of candidates that get that far; touching them all
+            // costs more than it hides).
+            for ((partial, &penalty), &candidate) in rows {
+                let first = level.first_row::<ROW>(candidate, x, y);
+                *partial = if penalty < best.total { first } else { f32::INFINITY };
+            }
+        } else {
+            // Larger patches: first every row of every candidate whose penalty alone does not
+            // already lose is touched, so their many cache misses overlap (a software prefetch
+            // without `unsafe`).
+            let touched = centres
+                .iter()
+                .zip(&self.penalties)
+                .filter(|&(_, &penalty)| penalty < best.total)
+                .fold(0_u32, |sum, (&c, _)| sum.wrapping_add(level.touch(c)));
+            std::hint::black_box(touched);
+            for ((partial, &penalty), &candidate) in rows {
+                *partial = if penalty < best.total { level.first_row::<ROW>(candidate, x, y) } else { f32::INFINITY };
+            }
         }
         // Pass 4: finish the survivors in order, with early exit against the best so far.
         for ((&partial, &penalty), &candidate) in self.partials.iter().zip(&self.penalties).zip(centres) {
@@ -304,7 +317,7 @@ impl Candidates {
             if partial >= limit {
                 continue;
             }
-            let distance = level.distance_from::<ROW>(candidate, x, y, 1, partial, limit);
+            let distance = level.distance_small::<ROW>(candidate, x, y, 1, partial, limit);
             if distance < limit {
                 best.centre = candidate;
                 best.distance = distance;
@@ -334,6 +347,25 @@ pub(crate) fn patchmatch_iteration(
 
 /// [`patchmatch_iteration`] with the patch row length `ROW` (bytes) fixed at compile time, or 0.
 pub(crate) fn patchmatch_tiles<const ROW: usize>(
+    level: &Level,
+    field: &mut Field,
+    previous: &[u32],
+    occurrence: &Occurrence,
+    streams: &SeedStreams,
+    iteration: usize,
+    converged: Option<&[bool]>,
+) {
+    // 3×3 patches get their own copy of the loop: how their candidates are read differs (see
+    // `Candidates::random_search`), and a run-time switch inside the loop costs more than it.
+    if level.patch <= 3 {
+        patchmatch_tiles_with::<ROW, true>(level, field, previous, occurrence, streams, iteration, converged);
+    } else {
+        patchmatch_tiles_with::<ROW, false>(level, field, previous, occurrence, streams, iteration, converged);
+    }
+}
+
+/// [`patchmatch_tiles`] for 3×3 patches (`SMALL`) or larger ones.
+fn patchmatch_tiles_with<const ROW: usize, const SMALL: bool>(
     level: &Level,
     field: &mut Field,
     previous: &[u32],
@@ -402,7 +434,7 @@ pub(crate) fn patchmatch_tiles<const ROW: usize>(
                                 best.consider::<ROW>(level, occurrence, delta, candidate as u32, here);
                             }
                         }
-                        scratch.random_search::<ROW>(level, occurrence, delta, &mut stream, &mut best, here);
+                        scratch.random_search::<ROW, SMALL>(level, occurrence, delta, &mut stream, &mut best, here);
                         if best.centre != start {
                             delta.moved(start, best.centre);
                             matches[local] = best.centre;

@@ -194,6 +194,74 @@ fn omega_delta_tracks_a_full_refresh() {
     }
 }
 
+/// The precomputed window of a move (and its unrolled interior path) changes Ω by exactly the
+/// products the direct formula forms, in the same order: the same bits, not just close.
+#[test]
+fn omega_delta_windows_add_exactly_the_direct_products() {
+    for patch in [3, 5] {
+        let (level, ..) = small_level(patch);
+        let field = Field::random(&level, &SeedStreams::new(3));
+        let mut occurrence = Occurrence::new(&level, 3500.0);
+        occurrence.refresh(&level, &field.matches);
+        let mut delta = OmegaDelta::new(&level, Some(&occurrence));
+        let (w, h, p) = (level.source_width, level.source_height, patch);
+        let len = (w * h) as u32;
+        let mut expected: Vec<f32> = (0..len).map(|s| occurrence.snapshot_cost(s)).collect();
+        // ω_best = patch² · 99 / (14 · 12); factor = λ / (patch² · ω_best).
+        let area = (p * p) as f32;
+        let factor = 3500.0 / (area * (area * 99.0 / (w * h) as f32));
+        let overlap = |d: usize, c: usize| (p - d.abs_diff(c)) as f32;
+        let mut apply = |centre: u32, sign: f32| {
+            let (cx, cy) = (centre as usize % w, centre as usize / w);
+            for y in (cy + 1).saturating_sub(p)..(cy + p).min(h) {
+                let scale = factor * (overlap(y, cy) * sign);
+                for x in (cx + 1).saturating_sub(p)..(cx + p).min(w) {
+                    expected[y * w + x] += scale * overlap(x, cx);
+                }
+            }
+        };
+        let other = Field::random(&level, &SeedStreams::new(4));
+        for t in 0..40 {
+            delta.moved(field.matches[t], other.matches[t]);
+            apply(field.matches[t], -1.0);
+            apply(other.matches[t], 1.0);
+        }
+        for s in 0..len {
+            assert_eq!(occurrence.cost(s, &delta).to_bits(), expected[s as usize].to_bits(), "patch {patch}, {s}");
+        }
+    }
+}
+
+/// The 3×3 distance without early exit takes the same decisions as the one with it, and equals
+/// it whenever it is below the limit.
+#[test]
+fn distance_without_early_exit_decides_alike() {
+    for patch in [3, 5] {
+        let (level, ..) = small_level(patch);
+        let (x0, x1) = level.valid_x();
+        let (y0, y1) = level.valid_y();
+        for (x, y) in [(0, 0), (5, 4), (10, 8)] {
+            for sy in y0..y1 {
+                for sx in x0..x1 {
+                    let s = (sy * level.source_width + sx) as u32;
+                    let full = level.distance::<0>(s, x, y, f32::INFINITY);
+                    for limit in [0.0, 0.5 * full, full, 1.5 * full + 1.0] {
+                        let exiting = level.distance::<0>(s, x, y, limit);
+                        let small = level.distance_small::<0>(s, x, y, 0, 0.0, limit);
+                        assert_eq!(small < limit, exiting < limit);
+                        if small < limit {
+                            assert_eq!(small, exiting);
+                        }
+                        let first = level.first_row::<0>(s, x, y);
+                        let rest = level.distance_small::<0>(s, x, y, 1, first, limit);
+                        assert_eq!(rest < limit, exiting < limit);
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// With λ = 0 every accepted candidate lowers its own pixel's distance, so the field's energy
 /// can only fall (with the penalty, one pixel's cost depends on the others' choices and the sum
 /// is not monotone by construction, in ebsynth either).

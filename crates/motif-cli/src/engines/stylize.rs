@@ -666,13 +666,20 @@ fn timed(input: &StylizeInput, params: &StylizeParams) -> anyhow::Result<(Output
 /// Figures for `motif bench`: CPU-seconds per megapixel on the two ebsynth-like workloads,
 /// Table 1 (band 0/2/4/8/full on a 360×360 5-segment map, one thread), PatchMatch/exact energy.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    // MOTIF_BENCH_STYLIZE_CASE=0.15mp,1mp,table1,exact (comma-separated) times only those parts
+    // (default: all four).
+    let only = std::env::var("MOTIF_BENCH_STYLIZE_CASE").ok();
+    let selected = |key: &str| only.as_deref().is_none_or(|o| o.split(',').any(|c| c.trim() == key));
     let mut figures = Map::new();
-    let cases: [(&str, usize, usize, usize); 2] = if bench.quick {
-        [("rgb_guide_patch3", 64, 3, 3), ("ten_guide_channels_patch5", 64, 10, 5)]
+    let cases: [(&str, &str, usize, usize, usize); 2] = if bench.quick {
+        [("0.15mp", "rgb_guide_patch3", 64, 3, 3), ("1mp", "ten_guide_channels_patch5", 64, 10, 5)]
     } else {
-        [("rgb_guide_patch3_0.15mp", 388, 3, 3), ("ten_guide_channels_patch5_1mp", 1000, 10, 5)]
+        [("0.15mp", "rgb_guide_patch3_0.15mp", 388, 3, 3), ("1mp", "ten_guide_channels_patch5_1mp", 1000, 10, 5)]
     };
-    for (name, size, guide_channels, patch) in cases {
+    for (key, name, size, guide_channels, patch) in cases {
+        if !selected(key) {
+            continue;
+        }
         let input = bench_pair(size, guide_channels, bench.seed);
         let mut params = StylizeParams::default();
         params.patch_size = patch;
@@ -696,7 +703,17 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         );
     }
 
-    // Table 1: pre-synthesized textures, band sizes, on one thread.
+    if selected("table1") {
+        figures.insert("table_1".into(), table_1(bench)?);
+    }
+    if selected("exact") {
+        figures.insert("patchmatch_vs_exact".into(), patchmatch_vs_exact(bench)?);
+    }
+    Ok(Value::Object(figures))
+}
+
+/// Table 1: pre-synthesized textures, band sizes, on one thread.
+fn table_1(bench: &Bench) -> anyhow::Result<Value> {
     let size = if bench.quick { 96 } else { 360 };
     let source_guide = samples::map_guide(size, size, 5, bench.seed + 10);
     let target_guide = samples::map_guide(size, size, 5, bench.seed + 11);
@@ -747,10 +764,12 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
             "paper_single_core_ms": { "band_0": 2, "band_2": 2376, "band_4": 9342, "band_8": 20859, "full": 600000 },
         }))
     })?;
-    figures.insert("table_1".into(), table);
+    Ok(table)
+}
 
-    // PatchMatch against the exact search on a small case, with the occurrence penalty (the
-    // default) and without it (where the exact search is a true per-iteration optimum).
+/// PatchMatch against the exact search on a small case, with the occurrence penalty (the
+/// default) and without it (where the exact search is a true per-iteration optimum).
+fn patchmatch_vs_exact(bench: &Bench) -> anyhow::Result<Value> {
     let small = if bench.quick { 40 } else { 64 };
     let input = bench_pair(small, 3, bench.seed + 20);
     let mut comparison = Map::new();
@@ -775,6 +794,5 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         );
     }
     comparison.insert("size".into(), json!([small, small]));
-    figures.insert("patchmatch_vs_exact".into(), Value::Object(comparison));
-    Ok(Value::Object(figures))
+    Ok(Value::Object(comparison))
 }
