@@ -157,6 +157,7 @@ impl<const D: usize> Pass<'_, '_, D> {
         let mut neighbours: Vec<u32> = Vec::new();
         let mut scratch = crate::energy::RowScratch::default();
         let mut tables = Vec::new();
+        let mut own_terms = Vec::with_capacity(members.len());
         let gaussian = kernel.window == crate::params::Window::Gaussian;
         for &p in members {
             let p = p as usize;
@@ -184,14 +185,15 @@ impl<const D: usize> Pass<'_, '_, D> {
                         problem.point_row(state, matches, p, list, &mut g, None, &mut scratch, false, (part, 2));
                     (b, g)
                 };
-                let ((lower, upper), (row_a, pair_gradient)) = rayon::join(
+                let ((lower, upper), (row_a, own, pair_gradient)) = rayon::join(
                     || rayon::join(|| half(0), || half(1)),
                     || {
                         let mut g = [0.0; D];
-                        let (a, _) = problem.pair_row(state, p, list, &mut g, &mut Vec::new());
-                        (a, g)
+                        let (a, own) = problem.pair_row(state, p, list, &mut g, &mut Vec::new());
+                        (a, own, g)
                     },
                 );
+                own_terms.push(own);
                 for part in [lower.1, upper.1, pair_gradient] {
                     linear::axpy(&mut gradient, 1.0, &part);
                 }
@@ -214,10 +216,12 @@ impl<const D: usize> Pass<'_, '_, D> {
         }
         // Pairs inside the unit were counted twice above (once per end, twice each): take one copy off.
         if gaussian {
-            for &p in members {
+            for (&p, &own) in members.iter().zip(&own_terms) {
                 let a = state.feature(p as usize);
                 for &r in members {
-                    let (value, _) = self.problem.pair_of(state, p as usize, r as usize, &mut tables);
+                    // A point's own term came with its row.
+                    let value =
+                        if r == p { own } else { self.problem.pair_of(state, p as usize, r as usize, &mut tables).0 };
                     total -= feature_dot(a, state.feature(r as usize)) * value;
                 }
             }
