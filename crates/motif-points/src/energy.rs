@@ -124,9 +124,7 @@ pub struct Evaluation<const D: usize> {
 impl<const D: usize> Problem<'_, D> {
     /// The row of output point `i`: `(Σ_k Σ_j a_i·a_j K(u_i, u_j), −2 Σ_k Σ_j a_i·b_j K(u_i, v_j))`,
     /// adding `∂T/∂x_i` to `gradient` and, when `quadratic` is given, writing the row's
-    /// coefficients of the attribute form (see [`crate::quadratic`]) into it. `slab = (part,
-    /// parts)` restricts the row to one of `parts` equal bands of node layers along the last axis,
-    /// so that one row can be shared between threads (`(0, 1)`: the whole row).
+    /// coefficients of the attribute form (see [`crate::quadratic`]) into it.
     ///
     /// The pair factor of `K` does not depend on the quadrature point, so it is computed once per
     /// neighbour (into `scratch`); the exemplar side is evaluated in exemplar coordinates, where the
@@ -145,7 +143,6 @@ impl<const D: usize> Problem<'_, D> {
         mut quadratic: Option<&mut RowQuadratic>,
         scratch: &mut RowScratch<D>,
         with_pairs: bool,
-        slab: (usize, usize),
     ) -> (f64, f64) {
         let kernel = &self.kernel;
         let x = state.positions[i];
@@ -157,20 +154,9 @@ impl<const D: usize> Problem<'_, D> {
             row.linear.clear();
             row.linear.resize(state.channels, 0.0);
         }
-        let Some(mut range) = self.quadrature.node_range(&x, kernel.gather) else {
+        let Some(range) = self.quadrature.node_range(&x, kernel.gather) else {
             return (0.0, 0.0);
         };
-        // Only the slab's share of the node layers along the last axis.
-        let (part, parts) = slab;
-        if parts > 1 {
-            let (first, layers) = (range.0[D - 1], range.1[D - 1] + 1 - range.0[D - 1]);
-            let (from, to) = (first + part * layers / parts, first + (part + 1) * layers / parts);
-            if from >= to {
-                return (0.0, 0.0);
-            }
-            range.0[D - 1] = from;
-            range.1[D - 1] = to - 1;
-        }
         // Pairs (i, j), the point itself first.
         let RowScratch { pairs: scratch, windows, found } = scratch;
         scratch.clear();
@@ -351,7 +337,6 @@ impl<const D: usize> Problem<'_, D> {
                     q.as_deref_mut(),
                     scratch,
                     pairs.is_none(),
-                    (0, 1),
                 );
                 let pa = pairs
                     .as_ref()

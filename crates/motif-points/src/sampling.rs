@@ -174,30 +174,20 @@ impl<const D: usize> Pass<'_, '_, D> {
             neighbours.sort_unstable();
             let mut gradient = [0.0; D];
             if gaussian {
-                // Output pairs pair by pair (see `crate::pairs`), the exemplar side by the row. The
-                // proposals are sequential, so the row itself is shared: two halves of its node
-                // layers and the pairs run as three tasks, summed in a fixed order.
-                let (problem, matches, list) = (self.problem, self.matches, &neighbours);
-                let half = |part: usize| {
-                    let mut g = [0.0; D];
-                    let mut scratch = crate::energy::RowScratch::default();
-                    let (_, b) =
-                        problem.point_row(state, matches, p, list, &mut g, None, &mut scratch, false, (part, 2));
-                    (b, g)
-                };
-                let ((lower, upper), (row_a, own, pair_gradient)) = rayon::join(
-                    || rayon::join(|| half(0), || half(1)),
-                    || {
-                        let mut g = [0.0; D];
-                        let (a, own) = problem.pair_row(state, p, list, &mut g, &mut Vec::new());
-                        (a, own, g)
-                    },
+                // Output pairs pair by pair (see `crate::pairs`), the exemplar side by the row.
+                let (_, row_b) = self.problem.point_row(
+                    state,
+                    self.matches,
+                    p,
+                    &neighbours,
+                    &mut gradient,
+                    None,
+                    &mut scratch,
+                    false,
                 );
+                let (row_a, own) = self.problem.pair_row(state, p, &neighbours, &mut gradient, &mut tables);
+                total += 2.0 * row_a + row_b;
                 own_terms.push(own);
-                for part in [lower.1, upper.1, pair_gradient] {
-                    linear::axpy(&mut gradient, 1.0, &part);
-                }
-                total += 2.0 * row_a + (lower.0 + upper.0);
             } else {
                 let (row_a, row_b) = self.problem.point_row(
                     state,
@@ -208,7 +198,6 @@ impl<const D: usize> Pass<'_, '_, D> {
                     None,
                     &mut scratch,
                     true,
-                    (0, 1),
                 );
                 total += 2.0 * row_a + row_b;
             }
