@@ -303,16 +303,21 @@ impl<const D: usize> CellLists<D> {
             found.resize(self.longest, (0, 0.0));
         }
         let r2 = radius * radius;
+        let center = *center;
+        let positions = &self.positions[..];
+        // A plain slice keeps the buffer's address in a register (writes through the `Vec` would make
+        // the compiler reload it on every candidate).
+        let out = &mut found[..list.len()];
         let mut count = 0;
         for &id in list {
-            let p = &self.positions[id as usize];
+            let p = &positions[id as usize];
             let mut d2 = 0.0;
             for a in 0..D {
                 let d = p[a] - center[a];
                 d2 += d * d;
             }
             // Every candidate is written at `count`; a hit keeps it by moving `count` on.
-            found[count] = (id, d2);
+            out[count] = (id, d2);
             count += usize::from(d2 < r2);
         }
         count
