@@ -204,7 +204,6 @@ impl<const D: usize> Problem<'_, D> {
                 }
             }
         }
-        let cutoff = kernel.cutoff;
         let collect = quadratic.is_some();
         let identity = self.quadrature.identity_frames;
         self.quadrature.for_each_in_range(&x, kernel.gather, &range, |k, node| {
@@ -243,63 +242,23 @@ impl<const D: usize> Problem<'_, D> {
                 }
             }
             let m = matches[k];
-            let s = self.quadrature.scale[k];
-            let s2 = s * s;
             let inverse = &self.quadrature.inverse[k];
             let offset = if identity { u } else { linear::mat_vec(inverse, &u) };
             let y = linear::add(&m, &offset);
-            let interior = self.interior[k];
-            let transform = &self.quadrature.transform[k];
             let mut gy = [0.0; D];
-            let count = self.exemplar_cells.collect_within(&y, cutoff / s, found);
-            for &(j, distance2) in &found[..count] {
-                let j = j as usize;
-                let e = &self.exemplar.positions[j];
-                let d2 = s2 * distance2;
-                if d2 >= kernel.cutoff2 {
-                    continue;
-                }
-                // The window tests come before the masking test and the exponentials: they are
-                // cheap and reject about a third of the candidates near the rim of the reach.
-                let sum: Vector<D> = std::array::from_fn(|c| offset[c] + e[c] - m[c]);
-                let mid2 = 0.25 * s2 * linear::norm2(&sum);
-                if gaussian {
-                    if mid2 >= kernel.window2 {
-                        continue;
-                    }
-                } else if u2 >= kernel.window2 || s2 * linear::norm2(&linear::sub(e, &m)) >= kernel.window2 {
-                    continue;
-                }
-                if !interior
-                    && !self.quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, &m))))
-                {
-                    continue;
-                }
-                let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
-                let pair = pair_exp - kernel.pair_floor;
-                let dex = linear::sub(&y, e);
-                // ∂/∂y in exemplar coordinates.
-                let (value, dy) = if gaussian {
-                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
-                    let window = window_exp - kernel.window_floor;
-                    let p = pair_exp * s2 * kernel.inv_sigma2 * window;
-                    let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;
-                    let dy: Vector<D> = std::array::from_fn(|c| -p * dex[c] - w * sum[c]);
-                    (pair * window, dy)
-                } else {
-                    let p = pair_exp * s2 * kernel.inv_sigma2;
-                    (pair, std::array::from_fn(|c| -p * dex[c]))
-                };
+            self.for_each_exemplar_term(k, &y, &m, u2, found, |j, value, by_offset, by_sum| {
                 let b = self.exemplar.feature(j);
                 let weight = feature_dot(a, b);
                 row_b -= 2.0 * weight * value;
+                // ∂/∂y: y moves both the offset y − e and the sum y + e − 2m.
+                let dy = linear::add(&by_offset, &by_sum);
                 linear::axpy(&mut gy, -2.0 * weight, &dy);
                 if let Some(row) = quadratic.as_deref_mut() {
                     for (l, &bc) in row.linear.iter_mut().zip(b) {
                         *l += bc * value;
                     }
                 }
-            }
+            });
             // y = m + (sR)⁻¹ u, so ∂/∂u = ((sR)⁻¹)ᵀ ∂/∂y.
             if identity {
                 linear::axpy(gradient, 1.0, &gy);
@@ -499,6 +458,70 @@ impl<const D: usize> Problem<'_, D> {
         total
     }
 
+    /// Calls `visit(j, K, ∂K/∂(y − e), ∂K/∂(y + e − 2m))` for every exemplar point `e_j` that takes
+    /// part in the cross term at quadrature point `k` for the output offset whose place in exemplar
+    /// coordinates is `y` (`m` the match, `u2` the squared output offset, for the box window): within
+    /// the pair cut-off, inside the window, and, for a window that reaches out of Ω, placed inside Ω.
+    /// Works in exemplar coordinates, where the frame `sR` reduces to the scale (`|u − v|² = s²|y −
+    /// e|²`, `|u + v|² = s²|y + e − 2m|²`); the evaluation rows and the matching share it.
+    #[inline(always)]
+    fn for_each_exemplar_term(
+        &self,
+        k: usize,
+        y: &Vector<D>,
+        m: &Vector<D>,
+        u2: f64,
+        found: &mut Vec<(u32, f64)>,
+        mut visit: impl FnMut(usize, f64, Vector<D>, Vector<D>),
+    ) {
+        let kernel = &self.kernel;
+        let gaussian = kernel.window == Window::Gaussian;
+        if !gaussian && u2 >= kernel.window2 {
+            return;
+        }
+        let s = self.quadrature.scale[k];
+        let s2 = s * s;
+        let count = self.exemplar_cells.collect_within(y, kernel.cutoff / s, found);
+        for &(j, distance2) in &found[..count] {
+            let j = j as usize;
+            let e = &self.exemplar.positions[j];
+            let d2 = s2 * distance2;
+            if d2 >= kernel.cutoff2 {
+                continue;
+            }
+            // The window tests come before the masking test and the exponentials: they are cheap
+            // and reject about a third of the candidates near the rim of the reach.
+            let sum: Vector<D> = std::array::from_fn(|c| y[c] + e[c] - 2.0 * m[c]);
+            let mid2 = 0.25 * s2 * linear::norm2(&sum);
+            if gaussian {
+                if mid2 >= kernel.window2 {
+                    continue;
+                }
+            } else if s2 * linear::norm2(&linear::sub(e, m)) >= kernel.window2 {
+                continue;
+            }
+            if !self.interior[k] {
+                let place = linear::mat_vec(&self.quadrature.transform[k], &linear::sub(e, m));
+                if !self.quadrature.inside(&linear::add(&self.quadrature.points[k], &place)) {
+                    continue;
+                }
+            }
+            let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+            let pair = pair_exp - kernel.pair_floor;
+            let offset = linear::sub(y, e);
+            if gaussian {
+                let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                let window = window_exp - kernel.window_floor;
+                let p = pair_exp * s2 * kernel.inv_sigma2 * window;
+                let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;
+                visit(j, pair * window, linear::scale(&offset, -p), linear::scale(&sum, -w));
+            } else {
+                let p = pair_exp * s2 * kernel.inv_sigma2;
+                visit(j, pair, linear::scale(&offset, -p), [0.0; D]);
+            }
+        }
+    }
+
     /// `−2 B_k(m) = −2 Σ a_i·b_j K(u_i, v_j)` for the output window `window` (offsets `u_i` from
     /// `q_k` with their point ids), adding `∂/∂m` to `gradient` when given.
     pub fn cross(
@@ -509,73 +532,25 @@ impl<const D: usize> Problem<'_, D> {
         state: &State<D>,
         gradient: Option<&mut Vector<D>>,
     ) -> f64 {
-        let kernel = &self.kernel;
-        let transform = &self.quadrature.transform[k];
         let inverse = &self.quadrature.inverse[k];
-        let s = self.quadrature.scale[k];
-        let q = self.quadrature.points[k];
-        let interior = self.interior[k];
-        let gaussian = kernel.window == Window::Gaussian;
-        let s2 = s * s;
+        // In exemplar coordinates, as in `point_row`.
         let mut total = 0.0;
         let mut g = [0.0; D];
         let mut found = Vec::new();
-        // In exemplar coordinates, where the frame reduces to the scale (as in `point_row`):
-        // with y = m + (sR)⁻¹u, |u − v|² = s²|y − e|² and |u + v|² = s²|y + e − 2m|².
+        let collect = gradient.is_some();
         for (u, i) in window {
             let a = state.feature(*i as usize);
             let u2 = linear::norm2(u);
-            if !gaussian && u2 >= kernel.window2 {
-                continue;
-            }
             let offset = if self.quadrature.identity_frames { *u } else { linear::mat_vec(inverse, u) };
             let y = linear::add(m, &offset);
-            let count = self.exemplar_cells.collect_within(&y, kernel.cutoff / s, &mut found);
-            for &(j, distance2) in &found[..count] {
-                let j = j as usize;
-                let e = &self.exemplar.positions[j];
-                let d2 = s2 * distance2;
-                if d2 >= kernel.cutoff2 {
-                    continue;
-                }
-                let sum: Vector<D> = std::array::from_fn(|c| y[c] + e[c] - 2.0 * m[c]);
-                let mid2 = 0.25 * s2 * linear::norm2(&sum);
-                if gaussian {
-                    if mid2 >= kernel.window2 {
-                        continue;
-                    }
-                } else if s2 * linear::norm2(&linear::sub(e, m)) >= kernel.window2 {
-                    continue;
-                }
-                if !interior
-                    && !self.quadrature.inside(&linear::add(&q, &linear::mat_vec(transform, &linear::sub(e, m))))
-                {
-                    continue;
-                }
-                let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
-                let pair = pair_exp - kernel.pair_floor;
+            self.for_each_exemplar_term(k, &y, m, u2, &mut found, |j, value, by_offset, by_sum| {
                 let weight = feature_dot(a, self.exemplar.feature(j));
-                // ∂y/∂m = I and ∂(y + e − 2m)/∂m = −I.
-                let p = -pair_exp * s2 * kernel.inv_sigma2;
-                if gaussian {
-                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
-                    let window = window_exp - kernel.window_floor;
-                    total -= 2.0 * weight * pair * window;
-                    if gradient.is_some() {
-                        let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;
-                        for c in 0..D {
-                            g[c] -= 2.0 * weight * (p * window * (y[c] - e[c]) + w * sum[c]);
-                        }
-                    }
-                } else {
-                    total -= 2.0 * weight * pair;
-                    if gradient.is_some() {
-                        for c in 0..D {
-                            g[c] -= 2.0 * weight * p * (y[c] - e[c]);
-                        }
-                    }
+                total -= 2.0 * weight * value;
+                if collect {
+                    // ∂/∂m: m moves the offset y − e by +1 (y = m + …) and the sum y + e − 2m by −1.
+                    linear::axpy(&mut g, -2.0 * weight, &linear::sub(&by_offset, &by_sum));
                 }
-            }
+            });
         }
         if let Some(gradient) = gradient {
             linear::axpy(gradient, 1.0, &g);
