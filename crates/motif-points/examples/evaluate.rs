@@ -2,7 +2,7 @@
 //! `cargo run --release -p motif-points --example evaluate -- [box side, default 14] [repeats, default 3]`.
 //! Prints points, quadrature points, the energy (same bytes every run) and the fastest time.
 
-#![allow(clippy::print_stdout)]
+use std::io::Write;
 
 use motif_points::samples::lattice_exemplar;
 use motif_points::{Domain, EnergyCase, Evaluator, Input, Params};
@@ -25,12 +25,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             energy = case.evaluate(Evaluator::Fast, attributes);
             best = best.min(start.elapsed().as_secs_f64());
         }
-        println!(
+        // Written with `?` so a closed pipe (`| head`) ends the program with an error, not a panic.
+        writeln!(
+            std::io::stdout().lock(),
             "points {} quadrature {} attributes {attributes}: T = {energy:.9e}, {:.1} ms",
             case.points(),
             case.quadrature_points(),
             best * 1000.0
-        );
+        )?;
     }
     Ok(())
 }
