@@ -173,34 +173,24 @@ impl<const D: usize> Pass<'_, '_, D> {
             });
             neighbours.sort_unstable();
             let mut gradient = [0.0; D];
+            // With the Gaussian window the row does the exemplar side only and the output pairs come
+            // pair by pair (see `crate::pairs`); the box window's row keeps them.
+            let (mut row_a, row_b) = self.problem.point_row(
+                state,
+                self.matches,
+                p,
+                &neighbours,
+                &mut gradient,
+                None,
+                &mut scratch,
+                !gaussian,
+            );
             if gaussian {
-                // Output pairs pair by pair (see `crate::pairs`), the exemplar side by the row.
-                let (_, row_b) = self.problem.point_row(
-                    state,
-                    self.matches,
-                    p,
-                    &neighbours,
-                    &mut gradient,
-                    None,
-                    &mut scratch,
-                    false,
-                );
-                let (row_a, own) = self.problem.pair_row(state, p, &neighbours, &mut gradient, &mut tables);
-                total += 2.0 * row_a + row_b;
+                let (pairs, own) = self.problem.pair_row(state, p, &neighbours, &mut gradient, &mut tables);
+                row_a = pairs;
                 own_terms.push(own);
-            } else {
-                let (row_a, row_b) = self.problem.point_row(
-                    state,
-                    self.matches,
-                    p,
-                    &neighbours,
-                    &mut gradient,
-                    None,
-                    &mut scratch,
-                    true,
-                );
-                total += 2.0 * row_a + row_b;
             }
+            total += 2.0 * row_a + row_b;
             gradients.push(gradient);
         }
         // Pairs inside the unit were counted twice above (once per end, twice each): take one copy off.
