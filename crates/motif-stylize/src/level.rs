@@ -235,6 +235,20 @@ impl Level {
         (0..self.patch).map(|row| u32::from(self.source[start + row * stride])).sum()
     }
 
+    /// Where the rows of the source patch centred on `s` and of the target patch at `(x, y)` lie.
+    #[inline(always)]
+    fn patch_rows(&self, s: u32, x: usize, y: usize) -> PatchRows {
+        let channels = self.channels;
+        PatchRows {
+            row_len: self.patch * channels,
+            source_stride: self.source_width * channels,
+            target_stride: self.padded_width * channels,
+            // Top-left of the source patch: `s − radius · (width + 1)` (no division needed).
+            source: (s as usize - self.radius * (self.source_width + 1)) * channels,
+            target: (y * self.padded_width + x) * channels,
+        }
+    }
+
     /// [`distance`](Self::distance) continued from patch row `first_row`, with `partial` the sum
     /// of the rows before it; `ROW` as in [`first_row`](Self::first_row).
     #[inline(always)]
@@ -247,14 +261,9 @@ impl Level {
         partial: f32,
         limit: f32,
     ) -> f32 {
-        let channels = self.channels;
-        let row_len = self.patch * channels;
-        let source_stride = self.source_width * channels;
-        let target_stride = self.padded_width * channels;
-        // Top-left of the source patch: `s − radius · (width + 1)` (no division needed).
-        let mut source_offset =
-            (s as usize - self.radius * (self.source_width + 1)) * channels + first_row * source_stride;
-        let mut target_offset = (y * self.padded_width + x) * channels + first_row * target_stride;
+        let PatchRows { row_len, source_stride, target_stride, source, target } = self.patch_rows(s, x, y);
+        let mut source_offset = source + first_row * source_stride;
+        let mut target_offset = target + first_row * target_stride;
         let mut total = partial;
         for _ in first_row..self.patch {
             total += self.weight
@@ -289,12 +298,8 @@ impl Level {
         if self.patch > 3 {
             return self.distance_from::<ROW>(s, x, y, first_row, partial, limit);
         }
-        let channels = self.channels;
-        let row_len = self.patch * channels;
-        let source_stride = self.source_width * channels;
-        let target_stride = self.padded_width * channels;
-        let source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
-        let target_offset = (y * self.padded_width + x) * channels;
+        let PatchRows { row_len, source_stride, target_stride, source: source_offset, target: target_offset } =
+            self.patch_rows(s, x, y);
         let mut total = partial;
         for row in first_row..self.patch {
             let (source, target) = (source_offset + row * source_stride, target_offset + row * target_stride);
@@ -397,4 +402,13 @@ pub(crate) fn row_distance(a: &[u8], b: &[u8]) -> u32 {
             (d * d) as u32
         })
         .sum()
+}
+
+/// The first rows (byte offsets) and row steps of a source and a target patch.
+struct PatchRows {
+    row_len: usize,
+    source_stride: usize,
+    target_stride: usize,
+    source: usize,
+    target: usize,
 }
