@@ -93,8 +93,14 @@ fn a_2d_box_synthesis_writes_points_preview_and_report() {
         assert!(!report[key].is_null(), "report lacks {key}");
     }
     assert!(report["stages_ms"]["matching"].as_f64().unwrap() > 0.0);
-    let fidelity = report["fidelity"]["nearest_neighbour_histogram_distance"].as_f64().unwrap();
-    assert!((0.0..=1.0).contains(&fidelity));
+    let fidelity = &report["fidelity"];
+    let output = fidelity["output"]["nearest_neighbour"].as_f64().unwrap();
+    assert!(output >= 0.0 && output < fidelity["random"]["nearest_neighbour"].as_f64().unwrap());
+    // The report carries the curves themselves: 40 rings of g(r) and 40 histogram bins.
+    for curve in ["radial_distribution", "nearest_histogram"] {
+        assert_eq!(fidelity["output_statistics"][curve].as_array().unwrap().len(), 40, "{curve}");
+        assert_eq!(fidelity["exemplar_statistics"][curve].as_array().unwrap().len(), 40, "{curve}");
+    }
 }
 
 #[test]

@@ -1,110 +1,300 @@
-//! Structure fidelity: how closely the output's local point statistics follow the exemplar's.
+//! Structure fidelity: how closely the output's point statistics follow the exemplar's, with the two
+//! baselines that frame the figures (a uniform random set and a tiled copy of the exemplar over the
+//! same domain).
 //!
-//! Two figures, both computed on interior points only (points at least `margin` inside their
-//! domain) so that the border's missing neighbours do not count as a difference:
-//! the total-variation distance between the nearest-neighbour-distance histograms (0 = identical,
-//! 1 = disjoint) and the mean absolute difference between the radial distribution functions g(r).
+//! All distances are in units of the exemplar's mean nearest-neighbour spacing `s`, so figures from
+//! different data sets compare. Border effects are removed by reduced-sample estimators rather than
+//! by discarding a fixed margin (which would leave a small exemplar with no interior at all):
+//! - **nearest-neighbour distances** count a point only when it lies deeper inside its domain than
+//!   its nearest neighbour is far (then that neighbour is certainly its true one); the figure is the
+//!   Wasserstein-1 distance between the two distributions, `∫ |F_a(r) − F_b(r)| dr`;
+//! - **the radial distribution function** `g(r)` counts, for each ring `[r, r + Δr)`, only the
+//!   centres at least `r + Δr` inside the domain; the figure is the mean `|g_a − g_b|` over
+//!   `r ∈ [0.5 s, 4 s]` (below half a spacing both are mostly zero and only noise differs).
 
+use motif_core::SeedStreams;
+use motif_core::random::Rng;
 use serde::Serialize;
 
 use crate::grid::StaticGrid;
 use crate::linear::{self, Vector};
 
-/// Histogram bins over `[0, 3σ)` for nearest-neighbour distances.
-const NN_BINS: usize = 30;
-/// RDF bins over `(0, 4σ]`.
-const RDF_BINS: usize = 20;
+/// Width of a g(r) ring and of a nearest-neighbour histogram bin, in spacings.
+const BIN: f64 = 0.1;
+/// g(r) and the nearest-neighbour histogram cover `[0, 4 s)`.
+const RANGE: f64 = 4.0;
+/// The g(r) distance is taken over `[0.5 s, 4 s)`.
+const RDF_FROM: f64 = 0.5;
 
-/// Statistics of one point set.
+/// Point statistics of one set, distances in spacings.
 #[derive(Debug, Clone, Serialize)]
 pub struct Statistics {
-    /// Interior points used.
-    pub interior_points: usize,
-    /// Mean nearest-neighbour distance of interior points (in units of σ).
+    /// Points in the set.
+    pub points: usize,
+    /// Points whose nearest neighbour counted (deeper than it is far).
+    pub nearest_counted: usize,
+    /// Mean nearest-neighbour distance of the counted points.
     pub mean_nearest: f64,
-    /// Normalized histogram of nearest-neighbour distances, bins of 0.1σ from 0.
+    /// Nearest-neighbour distance histogram: bins of 0.1 spacing from 0 to 4, normalized to sum 1.
     pub nearest_histogram: Vec<f64>,
-    /// Radial distribution function g(r), bins of 0.2σ from 0.
+    /// g(r) at ring `b` covering `[0.1 b, 0.1 (b + 1))` spacings, `b < 40` (1 = uncorrelated).
     pub radial_distribution: Vec<f64>,
+    /// Counted nearest-neighbour distances, sorted (for the Wasserstein distance; not reported).
+    #[serde(skip)]
+    nearest: Vec<f64>,
 }
 
-/// The fidelity figure of a synthesis.
+/// Distances of one set's statistics to the exemplar's.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct Distances {
+    /// Wasserstein-1 distance between the nearest-neighbour distance distributions (spacings).
+    pub nearest_neighbour: f64,
+    /// Mean `|g_exemplar(r) − g(r)|` over `[0.5, 4)` spacings.
+    pub radial_distribution: f64,
+}
+
+/// The fidelity figures of a synthesis.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fidelity {
-    /// Total-variation distance between the nearest-neighbour histograms, in [0, 1].
-    pub nearest_histogram_distance: f64,
-    /// Mean |g_exemplar(r) − g_output(r)| over the RDF bins.
-    pub radial_distribution_distance: f64,
+    /// The unit of every distance: the exemplar's mean nearest-neighbour spacing (output units).
+    pub spacing: f64,
+    /// Output points over the count the exemplar's density asks for in the domain.
+    pub density_ratio: f64,
+    /// The output against the exemplar.
+    pub output: Distances,
+    /// A uniform random set of the expected count over the same domain, against the exemplar.
+    pub random: Distances,
+    /// Copies of the exemplar's box tiled over the domain, against the exemplar.
+    pub tiled: Distances,
     /// Exemplar statistics.
-    pub exemplar: Statistics,
+    pub exemplar_statistics: Statistics,
     /// Output statistics.
-    pub output: Statistics,
+    pub output_statistics: Statistics,
 }
 
-/// Statistics of `points`; `depth(p)` is the distance of `p` from the border of its domain (the
-/// point is interior when it is ≥ `margin`), `volume` the domain's volume.
-pub fn statistics<const D: usize>(
-    points: &[Vector<D>],
-    depth: &dyn Fn(&Vector<D>) -> f64,
-    margin: f64,
-    volume: f64,
-    sigma: f64,
-) -> Statistics {
-    let r_max = 4.0 * sigma;
-    let grid = StaticGrid::new(points, r_max);
-    let mut nearest_histogram = vec![0.0; NN_BINS];
-    let mut rdf = vec![0.0; RDF_BINS];
-    let mut interior = 0usize;
-    let mut nearest_sum = 0.0;
+/// A point set with what its estimators need: where the border is and how dense it is.
+pub struct Sample<'a, const D: usize> {
+    /// The points.
+    pub points: &'a [Vector<D>],
+    /// Distance from a point to the border of the set's domain (≤ 0 outside).
+    pub depth: &'a dyn Fn(&Vector<D>) -> f64,
+    /// Volume of the domain.
+    pub volume: f64,
+}
+
+/// Statistics of `sample`, distances in units of `spacing`.
+pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Statistics {
+    let points = sample.points;
+    let bins = (RANGE / BIN).round() as usize;
+    let reach = RANGE * spacing;
+    let grid = StaticGrid::new(points, reach);
+    let mut pair_counts = vec![0.0; bins];
+    // centres_beyond[b]: centres deep enough for ring b (depth ≥ its outer radius).
+    let mut centres_beyond = vec![0usize; bins + 1];
+    let mut nearest = Vec::new();
+    let mut histogram = vec![0.0; bins];
+    let mut ring_counts = vec![0.0; bins];
     for (i, p) in points.iter().enumerate() {
-        if depth(p) < margin {
+        let depth = (sample.depth)(p) / spacing;
+        if depth <= 0.0 {
             continue;
         }
-        interior += 1;
-        let mut nearest = f64::INFINITY;
-        grid.for_each_within(p, r_max, |j, _, d2| {
+        ring_counts.iter_mut().for_each(|c| *c = 0.0);
+        let mut closest = f64::INFINITY;
+        grid.for_each_within(p, reach, |j, _, d2| {
             if j != i {
-                let d = d2.sqrt();
-                nearest = nearest.min(d);
-                let bin = (d / r_max * RDF_BINS as f64) as usize;
-                if bin < RDF_BINS {
-                    rdf[bin] += 1.0;
+                let r = d2.sqrt() / spacing;
+                closest = closest.min(r);
+                let bin = (r / BIN) as usize;
+                if bin < bins {
+                    ring_counts[bin] += 1.0;
                 }
             }
         });
-        if nearest.is_finite() {
-            nearest_sum += nearest / sigma;
-            let bin = (nearest / (3.0 * sigma) * NN_BINS as f64) as usize;
-            nearest_histogram[bin.min(NN_BINS - 1)] += 1.0;
+        // Ring b counts when the centre is at least its outer radius deep.
+        let deep_rings = ((depth / BIN).floor() as usize).min(bins);
+        centres_beyond[deep_rings] += 1;
+        for b in 0..deep_rings {
+            pair_counts[b] += ring_counts[b];
+        }
+        if closest <= depth {
+            nearest.push(closest);
+            let bin = (closest / BIN) as usize;
+            histogram[bin.min(bins - 1)] += 1.0;
         }
     }
-    if interior > 0 {
-        nearest_histogram.iter_mut().for_each(|h| *h /= interior as f64);
-        let density = points.len() as f64 / volume.max(1e-300);
-        let unit_ball = if D == 2 { std::f64::consts::PI } else { 4.0 / 3.0 * std::f64::consts::PI };
-        for (b, value) in rdf.iter_mut().enumerate() {
-            let r0 = b as f64 * r_max / RDF_BINS as f64;
-            let r1 = (b + 1) as f64 * r_max / RDF_BINS as f64;
+    // Centres usable for ring b: those with deep_rings > b.
+    let mut usable = vec![0usize; bins];
+    let mut running = centres_beyond[bins];
+    for b in (0..bins).rev() {
+        usable[b] = running;
+        running += centres_beyond[b];
+    }
+    let density = points.len() as f64 / sample.volume.max(1e-300) * spacing.powi(D as i32);
+    let unit_ball = if D == 2 { std::f64::consts::PI } else { 4.0 / 3.0 * std::f64::consts::PI };
+    let radial_distribution = (0..bins)
+        .map(|b| {
+            let (r0, r1) = (b as f64 * BIN, (b + 1) as f64 * BIN);
             let shell = unit_ball * (r1.powi(D as i32) - r0.powi(D as i32));
-            *value /= interior as f64 * density * shell;
-        }
+            if usable[b] == 0 { 0.0 } else { pair_counts[b] / (usable[b] as f64 * density * shell) }
+        })
+        .collect();
+    nearest.sort_by(f64::total_cmp);
+    let counted = nearest.len();
+    if counted > 0 {
+        histogram.iter_mut().for_each(|h| *h /= counted as f64);
     }
     Statistics {
-        interior_points: interior,
-        mean_nearest: if interior > 0 { nearest_sum / interior as f64 } else { 0.0 },
-        nearest_histogram,
-        radial_distribution: rdf,
+        points: points.len(),
+        nearest_counted: counted,
+        mean_nearest: if counted > 0 { nearest.iter().sum::<f64>() / counted as f64 } else { 0.0 },
+        nearest_histogram: histogram,
+        radial_distribution,
+        nearest,
     }
 }
 
-/// Compares two sets of statistics.
-pub fn compare(exemplar: Statistics, output: Statistics) -> Fidelity {
-    let nearest_histogram_distance =
-        0.5 * exemplar.nearest_histogram.iter().zip(&output.nearest_histogram).map(|(a, b)| (a - b).abs()).sum::<f64>();
-    let radial_distribution_distance =
-        exemplar.radial_distribution.iter().zip(&output.radial_distribution).map(|(a, b)| (a - b).abs()).sum::<f64>()
-            / RDF_BINS as f64;
-    Fidelity { nearest_histogram_distance, radial_distribution_distance, exemplar, output }
+/// Distances of `other` to `reference`.
+pub fn distances(reference: &Statistics, other: &Statistics) -> Distances {
+    let from = (RDF_FROM / BIN).round() as usize;
+    let rings = reference.radial_distribution.len() - from;
+    let radial_distribution = reference.radial_distribution[from..]
+        .iter()
+        .zip(&other.radial_distribution[from..])
+        .map(|(a, b)| (a - b).abs())
+        .sum::<f64>()
+        / rings as f64;
+    Distances { nearest_neighbour: wasserstein(&reference.nearest, &other.nearest), radial_distribution }
+}
+
+/// `∫ |F_a − F_b|` of two sorted samples; the largest possible distance (the range) when one is
+/// empty and the other is not.
+fn wasserstein(a: &[f64], b: &[f64]) -> f64 {
+    match (a.is_empty(), b.is_empty()) {
+        (true, true) => return 0.0,
+        (true, false) | (false, true) => return RANGE,
+        _ => {}
+    }
+    let (mut i, mut j) = (0, 0);
+    let mut last = a[0].min(b[0]);
+    let mut total = 0.0;
+    while i < a.len() || j < b.len() {
+        let next = match (a.get(i), b.get(j)) {
+            (Some(&x), Some(&y)) => x.min(y),
+            (Some(&x), None) => x,
+            (None, Some(&y)) => y,
+            (None, None) => break,
+        };
+        let fa = i as f64 / a.len() as f64;
+        let fb = j as f64 / b.len() as f64;
+        total += (fa - fb).abs() * (next - last);
+        last = next;
+        while a.get(i).is_some_and(|&x| x <= next) {
+            i += 1;
+        }
+        while b.get(j).is_some_and(|&y| y <= next) {
+            j += 1;
+        }
+    }
+    total
+}
+
+/// The domain of a comparison: membership, depth, bounds and volume.
+pub struct Domain<'a, const D: usize> {
+    /// Whether a point is inside.
+    pub contains: &'a dyn Fn(&Vector<D>) -> bool,
+    /// Distance to the border from inside.
+    pub depth: &'a dyn Fn(&Vector<D>) -> f64,
+    /// Bounding box.
+    pub low: Vector<D>,
+    /// Bounding box.
+    pub high: Vector<D>,
+    /// Volume.
+    pub volume: f64,
+}
+
+/// The exemplar's window: its bounding box padded by half a spacing on every side, so that each
+/// point owns a spacing-sized cell (a 14 × 14 grid of spacing 1 has density 1, not 196/169).
+pub fn exemplar_window<const D: usize>(points: &[Vector<D>], spacing: f64) -> (Vector<D>, Vector<D>) {
+    let (low, high) = crate::grid::bounds(points);
+    (std::array::from_fn(|a| low[a] - 0.5 * spacing), std::array::from_fn(|a| high[a] + 0.5 * spacing))
+}
+
+/// Compares `output` over `domain` with `exemplar`, and computes both baselines (seeded).
+pub fn compare<const D: usize>(
+    exemplar: &[Vector<D>],
+    output: &[Vector<D>],
+    domain: &Domain<'_, D>,
+    spacing: f64,
+    seed: u64,
+) -> Fidelity {
+    let (low, high) = exemplar_window(exemplar, spacing);
+    let window_volume: f64 = (0..D).map(|a| high[a] - low[a]).product();
+    let window_depth = |p: &Vector<D>| box_depth(p, &low, &high);
+    let exemplar_statistics =
+        statistics(&Sample { points: exemplar, depth: &window_depth, volume: window_volume }, spacing);
+    let on_domain = |points: &[Vector<D>]| {
+        statistics(&Sample { points, depth: domain.depth, volume: domain.volume }, spacing)
+    };
+    let output_statistics = on_domain(output);
+    let expected = exemplar.len() as f64 / window_volume * domain.volume;
+    let random = random_set(domain, expected.round() as usize, seed);
+    let tiled = tiled_copy(exemplar, &low, &high, domain);
+    Fidelity {
+        spacing,
+        density_ratio: output.len() as f64 / expected.max(1e-300),
+        output: distances(&exemplar_statistics, &output_statistics),
+        random: distances(&exemplar_statistics, &on_domain(&random)),
+        tiled: distances(&exemplar_statistics, &on_domain(&tiled)),
+        exemplar_statistics,
+        output_statistics,
+    }
+}
+
+/// `count` uniform points in the domain (rejection from its bounding box, bounded tries).
+pub fn random_set<const D: usize>(domain: &Domain<'_, D>, count: usize, seed: u64) -> Vec<Vector<D>> {
+    let mut stream = SeedStreams::new(seed).stream("fidelity random baseline", 0);
+    let mut points = Vec::with_capacity(count);
+    let mut tries = 0usize;
+    while points.len() < count && tries < 1000 * count.max(1) {
+        tries += 1;
+        let p: Vector<D> =
+            std::array::from_fn(|a| domain.low[a] + stream.random::<f64>() * (domain.high[a] - domain.low[a]));
+        if (domain.contains)(&p) {
+            points.push(p);
+        }
+    }
+    points
+}
+
+/// Copies of the exemplar window `[low, high]` laid edge to edge from the domain's lower corner,
+/// kept where they fall inside the domain.
+pub fn tiled_copy<const D: usize>(
+    exemplar: &[Vector<D>],
+    low: &Vector<D>,
+    high: &Vector<D>,
+    domain: &Domain<'_, D>,
+) -> Vec<Vector<D>> {
+    let size: Vector<D> = std::array::from_fn(|a| high[a] - low[a]);
+    let counts: [usize; D] =
+        std::array::from_fn(|a| ((domain.high[a] - domain.low[a]) / size[a]).ceil().clamp(1.0, 1e4) as usize);
+    let tiles: usize = counts.iter().product();
+    let mut points = Vec::new();
+    for t in 0..tiles {
+        let mut rest = t;
+        let offset: Vector<D> = std::array::from_fn(|a| {
+            let index = rest % counts[a];
+            rest /= counts[a];
+            domain.low[a] + index as f64 * size[a] - low[a]
+        });
+        for e in exemplar {
+            let p = linear::add(e, &offset);
+            if (domain.contains)(&p) {
+                points.push(p);
+            }
+        }
+    }
+    points
 }
 
 /// Depth of `p` inside the box `[low, high]`.
@@ -147,4 +337,63 @@ pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
         }
     }
     total / points.len() as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wasserstein_of_shifted_samples_is_the_shift() {
+        let a = [1.0, 2.0, 3.0];
+        let b = [1.5, 2.5, 3.5];
+        assert!((wasserstein(&a, &b) - 0.5).abs() < 1e-12);
+        assert_eq!(wasserstein(&a, &a), 0.0);
+        assert!((wasserstein(&[1.0], &[1.0, 3.0]) - 1.0).abs() < 1e-12);
+    }
+
+    fn uniform(count: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
+        let mut stream = SeedStreams::new(seed).stream("test", 0);
+        (0..count).map(|_| [stream.random::<f64>() * side, stream.random::<f64>() * side]).collect()
+    }
+
+    #[test]
+    fn uniform_points_have_flat_g_and_lattices_do_not() {
+        let side = 60.0;
+        let low = [0.0, 0.0];
+        let high = [side, side];
+        let depth = |p: &Vector<2>| box_depth(p, &low, &high);
+        let random = uniform(3600, side, 3);
+        let spacing = mean_spacing(&random);
+        let s = statistics(&Sample { points: &random, depth: &depth, volume: side * side }, spacing);
+        let tail: Vec<f64> = s.radial_distribution[10..].to_vec();
+        let mean = tail.iter().sum::<f64>() / tail.len() as f64;
+        assert!((mean - 1.0).abs() < 0.05, "g of a uniform set averages {mean}");
+        // A square lattice has no pair closer than its period: g is 0 below it.
+        let lattice: Vec<Vector<2>> = (0..3600).map(|i| [(i % 60) as f64 + 0.5, (i / 60) as f64 + 0.5]).collect();
+        let l = statistics(&Sample { points: &lattice, depth: &depth, volume: side * side }, 1.0);
+        assert!(l.radial_distribution[..9].iter().all(|&g| g == 0.0));
+        assert!(l.radial_distribution[10] > 3.0);
+        assert!((l.mean_nearest - 1.0).abs() < 1e-9);
+        // The distance of a uniform set to the lattice is large, of the lattice to itself zero.
+        assert_eq!(distances(&l, &l).radial_distribution, 0.0);
+        let u = statistics(&Sample { points: &random, depth: &depth, volume: side * side }, 1.0);
+        assert!(distances(&l, &u).radial_distribution > 0.3);
+    }
+
+    #[test]
+    fn tiled_copy_of_a_lattice_matches_it_and_random_does_not() {
+        let lattice: Vec<Vector<2>> = (0..400).map(|i| [(i % 20) as f64 + 0.5, (i / 20) as f64 + 0.5]).collect();
+        let (low, high) = ([0.0, 0.0], [50.0, 50.0]);
+        let contains = |p: &Vector<2>| (0..2).all(|a| p[a] >= low[a] && p[a] < high[a]);
+        let depth = |p: &Vector<2>| box_depth(p, &low, &high);
+        let domain = Domain { contains: &contains, depth: &depth, low, high, volume: 2500.0 };
+        let fidelity = compare(&lattice, &lattice, &domain, 1.0, 7);
+        assert!(fidelity.tiled.radial_distribution < 0.05, "{:?}", fidelity.tiled);
+        assert!(fidelity.tiled.nearest_neighbour < 1e-9);
+        assert!(fidelity.random.radial_distribution > 0.3);
+        assert!(fidelity.random.nearest_neighbour > 0.3);
+        // 400 points in a 20 × 20 window ask for 2 500 in the domain.
+        assert!((fidelity.density_ratio - 400.0 / 2500.0).abs() < 1e-9);
+    }
 }

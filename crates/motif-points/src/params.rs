@@ -178,6 +178,10 @@ pub struct Params {
     /// A quadrature point asks for a point to be added (removed) when P < -t (P > t), P measured in
     /// peak contributions of one point (0.05–10, default 0.5; the paper's ε).
     pub sampling_threshold: f64,
+    /// Sampling control keeps the point count within this fraction of the count the exemplar's
+    /// density asks for (0.01–1, default 0.1). T alone would empty the parts of the domain matched
+    /// to the gaps of a clustered exemplar, one removal inviting the next.
+    pub count_tolerance: f64,
     /// Initialization (§5.2). Default random.
     pub initialization: Initialization,
     /// Output domain (required: `None` is reported as an empty domain).
@@ -189,11 +193,20 @@ pub struct Params {
     /// Attributes to synthesize, by name; `None` uses all of the exemplar's attributes.
     pub attributes: Option<Vec<String>>,
     /// Attributes that take discrete values: snapped to the nearest exemplar value after each step
-    /// (§4.4). Default none.
+    /// (§4.4). Default none besides those `detect_discrete` finds.
     pub discrete_attributes: Vec<String>,
-    /// Weight of attributes relative to point density in `f` (attributes are first divided by their
-    /// exemplar standard deviation; 0–100, default 1).
+    /// Also treat as discrete every attribute whose exemplar values are all whole numbers with at
+    /// most 32 distinct values (labels, types, rows), unless listed in `continuous_attributes`.
+    /// Default true.
+    pub detect_discrete: bool,
+    /// Attributes never treated as discrete by detection. Default none.
+    pub continuous_attributes: Vec<String>,
+    /// Weight of attributes relative to point density in `f` (0–100, default 1). Each attribute is
+    /// first divided by its exemplar standard deviation, so its unit and range do not matter
+    /// (diameters in cm next to positions in m weigh as much as labels 0/1).
     pub attribute_weight: f64,
+    /// Per-attribute weights that replace `attribute_weight` for the named attributes (0–100).
+    pub attribute_weights: Vec<(String, f64)>,
     /// Progressive synthesis: existing points farther than this from the new domain stay fixed
     /// (output units ≥ 0; default `None` = 3δ).
     pub keep_margin: Option<f64>,
@@ -226,13 +239,17 @@ impl Default for Params {
             matching_polish: 1,
             sampling_control: true,
             sampling_threshold: 0.5,
+            count_tolerance: 0.1,
             initialization: Initialization::Random,
             domain: None,
             rotation: Field::None,
             scale: Field::None,
             attributes: None,
             discrete_attributes: Vec::new(),
+            detect_discrete: true,
+            continuous_attributes: Vec::new(),
             attribute_weight: 1.0,
+            attribute_weights: Vec::new(),
             keep_margin: None,
             evaluator: Evaluator::Fast,
             seed: 0,

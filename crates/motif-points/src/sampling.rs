@@ -22,6 +22,17 @@ pub struct SamplingOutcome {
     pub added: usize,
     pub removed: usize,
     pub rejected: usize,
+    /// Changes T accepted but the count bounds refused.
+    pub held_by_bound: usize,
+}
+
+/// The least and the most points sampling control may leave (T alone can prefer an emptier
+/// output: an empty window matches an empty part of a clustered exemplar at no cost, and every
+/// removal then makes the next matching choose emptier parts).
+#[derive(Debug, Clone, Copy)]
+pub struct CountBounds {
+    pub least: usize,
+    pub most: usize,
 }
 
 struct Pass<'a, 'p, const D: usize> {
@@ -31,6 +42,9 @@ struct Pass<'a, 'p, const D: usize> {
     density: Vec<f64>,
     width: Option<f64>,
     allowed: &'a dyn Fn(&Vector<D>) -> bool,
+    /// Alive points now.
+    alive: usize,
+    bounds: CountBounds,
 }
 
 /// The sampling error density `P_k` of every quadrature point.
@@ -77,6 +91,7 @@ pub fn control<const D: usize>(
     state: &mut State<D>,
     matches: &[Vector<D>],
     threshold: f64,
+    bounds: CountBounds,
     allowed: &dyn Fn(&Vector<D>) -> bool,
 ) -> SamplingOutcome {
     let density = sampling_density(problem, state, matches);
@@ -88,7 +103,8 @@ pub fn control<const D: usize>(
         }
     }
     let width = problem.kernel.density_width();
-    let mut pass = Pass { problem, matches, grid, density, width, allowed };
+    let alive = state.alive.iter().filter(|&&a| a).count();
+    let mut pass = Pass { problem, matches, grid, density, width, allowed, alive, bounds };
     let mut outcome = SamplingOutcome::default();
     let mut deficits: Vec<usize> = (0..pass.density.len()).filter(|&k| pass.density[k] < -threshold).collect();
     deficits.sort_by(|&a, &b| pass.density[a].total_cmp(&pass.density[b]).then(a.cmp(&b)));
@@ -97,8 +113,9 @@ pub fn control<const D: usize>(
             continue;
         }
         match pass.propose_addition(exemplar, state, k) {
-            Some(true) => outcome.added += 1,
-            Some(false) => outcome.rejected += 1,
+            Some(Proposal::Accepted) => outcome.added += 1,
+            Some(Proposal::Rejected) => outcome.rejected += 1,
+            Some(Proposal::HeldByBound) => outcome.held_by_bound += 1,
             None => {}
         }
     }
@@ -109,13 +126,21 @@ pub fn control<const D: usize>(
             continue;
         }
         match pass.propose_removal(state, k) {
-            Some(true) => outcome.removed += 1,
-            Some(false) => outcome.rejected += 1,
+            Some(Proposal::Accepted) => outcome.removed += 1,
+            Some(Proposal::Rejected) => outcome.rejected += 1,
+            Some(Proposal::HeldByBound) => outcome.held_by_bound += 1,
             None => {}
         }
     }
     state.compact();
     outcome
+}
+
+/// What became of one proposal.
+enum Proposal {
+    Accepted,
+    Rejected,
+    HeldByBound,
 }
 
 impl<const D: usize> Pass<'_, '_, D> {
@@ -236,7 +261,7 @@ impl<const D: usize> Pass<'_, '_, D> {
     }
 
     /// Proposes a unit at quadrature point `k`; `None` when nothing fits there.
-    fn propose_addition(&mut self, exemplar: &Exemplar<D>, state: &mut State<D>, k: usize) -> Option<bool> {
+    fn propose_addition(&mut self, exemplar: &Exemplar<D>, state: &mut State<D>, k: usize) -> Option<Proposal> {
         let problem = self.problem;
         let kernel = &problem.kernel;
         let quadrature = problem.quadrature;
@@ -277,12 +302,14 @@ impl<const D: usize> Pass<'_, '_, D> {
             }
         }
         let (energy, unit) = best?;
-        if energy < 0.0 {
+        let size = state.units[unit].points.len();
+        if energy < 0.0 && self.alive + size <= self.bounds.most {
             self.update_density(state, unit, 1.0);
-            Some(true)
+            self.alive += size;
+            Some(Proposal::Accepted)
         } else {
             self.discard(state, unit);
-            Some(false)
+            Some(if energy < 0.0 { Proposal::HeldByBound } else { Proposal::Rejected })
         }
     }
 
@@ -385,7 +412,7 @@ impl<const D: usize> Pass<'_, '_, D> {
 
     /// Proposes removing, among the units near quadrature point `k`, the one whose removal lowers T
     /// the most.
-    fn propose_removal(&mut self, state: &mut State<D>, k: usize) -> Option<bool> {
+    fn propose_removal(&mut self, state: &mut State<D>, k: usize) -> Option<Proposal> {
         let kernel = &self.problem.kernel;
         let q = self.problem.quadrature.points[k];
         let radius = kernel.delta.max(kernel.sigma);
@@ -415,13 +442,17 @@ impl<const D: usize> Pass<'_, '_, D> {
             }
         }
         let (energy, unit) = best?;
-        if energy > 0.0 {
-            self.update_density(state, unit, -1.0);
-            self.remove_unit(state, unit);
-            state.kill(unit);
-            Some(true)
-        } else {
-            Some(false)
+        let size = state.units[unit].points.len();
+        if energy <= 0.0 {
+            return Some(Proposal::Rejected);
         }
+        if self.alive < self.bounds.least + size {
+            return Some(Proposal::HeldByBound);
+        }
+        self.update_density(state, unit, -1.0);
+        self.remove_unit(state, unit);
+        state.kill(unit);
+        self.alive -= size;
+        Some(Proposal::Accepted)
     }
 }

@@ -59,6 +59,12 @@ pub struct Report {
     pub removed: usize,
     /// Proposals of sampling control that did not lower T.
     pub rejected: usize,
+    /// Proposals that lowered T but would have taken the count outside its bounds.
+    pub held_by_bound: usize,
+    /// Points the exemplar's density asks for over the domain.
+    pub expected_points: f64,
+    /// Attributes snapped to the exemplar's values (given or detected).
+    pub discrete_attributes: Vec<String>,
     /// T per outer iteration.
     pub energy: Vec<IterationEnergy>,
     /// The last T.
@@ -134,6 +140,7 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     check_count("matching-iterations", params.matching_iterations, 1, 200)?;
     check_count("matching-polish", params.matching_polish, 0, 50)?;
     check_range("sampling-threshold", params.sampling_threshold, 0.05, 10.0)?;
+    check_range("count-tolerance", params.count_tolerance, 0.01, 1.0)?;
     check_range("attribute-weight", params.attribute_weight, 1e-6, 100.0)?;
     if let Some(margin) = params.keep_margin {
         check_range("keep-margin", margin, 0.0, f64::MAX)?;
@@ -187,6 +194,8 @@ pub(crate) struct Setup<const D: usize> {
     pub fill: Vec<usize>,
     pub margin: Option<f64>,
     pub has_elements: bool,
+    /// Points the exemplar's density asks for over the quadrature domain.
+    pub expected_points: f64,
 }
 
 fn vector<const D: usize>(values: &[f64]) -> Vector<D> {
@@ -214,10 +223,22 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
             }
         }
     }
-    for name in &params.discrete_attributes {
+    for name in params.discrete_attributes.iter().chain(&params.continuous_attributes) {
         if !names.contains(name) {
-            return Err(Error::Input(format!("discrete attribute {name:?} is not among the synthesized attributes")));
+            return Err(Error::Input(format!(
+                "attribute {name:?} (named as discrete or continuous) is not among the synthesized attributes ({})",
+                names.join(", ")
+            )));
         }
+    }
+    for (name, weight) in &params.attribute_weights {
+        if !names.contains(name) {
+            return Err(Error::Input(format!(
+                "attribute weight for {name:?}: no such synthesized attribute ({})",
+                names.join(", ")
+            )));
+        }
+        check_range(&format!("attribute weight of {name}"), *weight, 1e-6, 100.0)?;
     }
     let channels = 1 + columns.len();
     let mut mean = Vec::new();
@@ -228,10 +249,25 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         let mu = values.iter().sum::<f64>() / n as f64;
         let variance = values.iter().map(|v| (v - mu).powi(2)).sum::<f64>() / n as f64;
         let std = variance.sqrt();
-        let f = params.attribute_weight / if std > 1e-12 { std } else { 1.0 };
+        if std <= 1e-12 * mu.abs().max(1.0) {
+            return Err(Error::Input(format!(
+                "attribute {:?} has the same value ({mu}) at every exemplar point; it carries no structure: leave it \
+                 out (choose the others with the attribute list)",
+                names[c]
+            )));
+        }
+        let weight = params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);
+        let f = weight / std;
         mean.push(mu);
         factor.push(f);
-        if params.discrete_attributes.contains(&names[c]) {
+        let whole = values.iter().all(|v| v.fract() == 0.0) && {
+            let mut distinct = values.clone();
+            distinct.sort_by(f64::total_cmp);
+            distinct.dedup();
+            distinct.len() <= 32
+        };
+        let detected = params.detect_discrete && whole && !params.continuous_attributes.contains(&names[c]);
+        if params.discrete_attributes.contains(&names[c]) || detected {
             let mut allowed: Vec<f64> = values.iter().map(|v| (v - mu) * f).collect();
             allowed.sort_by(f64::total_cmp);
             allowed.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
@@ -380,6 +416,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         fill,
         margin,
         has_elements,
+        expected_points: expected,
     })
 }
 
@@ -471,10 +508,12 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     };
     let mut energies = Vec::new();
     let mut matches: Vec<Vector<D>> = Vec::new();
-    let (mut added, mut removed, mut rejected) = (0, 0, 0);
+    let (mut added, mut removed, mut rejected, mut held_by_bound) = (0, 0, 0, 0);
+
     let mut final_energy = f64::NAN;
     let mut done = 0;
     let mut state = std::mem::take(&mut setup.state);
+    let bounds = count_bounds(&setup, &state, params.count_tolerance);
     let mut fields: Option<SearchFields<D>> = None;
     for (scale, &delta) in deltas.iter().enumerate() {
         let problem = setup.problem(delta, params);
@@ -527,6 +566,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                     &mut state,
                     &matches,
                     params.sampling_threshold,
+                    bounds,
                     &allowed,
                 );
                 if let Some(last) = energies.last_mut() {
@@ -536,34 +576,20 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                 added += outcome.added;
                 removed += outcome.removed;
                 rejected += outcome.rejected;
+                held_by_bound += outcome.held_by_bound;
             }
         }
     }
     progress.report("synthesis", 1.0);
     timer.start("fidelity");
-    let output_positions = state.positions.clone();
-    let volume = setup.quadrature.len() as f64 * setup.quadrature.spacing().powi(D as i32);
-    let sigma = setup.sigma;
-    let interior = 2.0 * sigma;
-    let region = &setup.region;
-    let output_statistics = fidelity::statistics(&output_positions, &|p| region.depth(p), interior, volume, sigma);
-    let (low, high) = (setup.exemplar.low, setup.exemplar.high);
-    let exemplar_volume: f64 = (0..D).map(|a| (high[a] - low[a]).max(sigma)).product();
-    let exemplar_statistics = fidelity::statistics(
-        &setup.exemplar.positions,
-        &|p| fidelity::box_depth(p, &low, &high),
-        interior,
-        exemplar_volume,
-        sigma,
-    );
-    let fidelity = fidelity::compare(exemplar_statistics, output_statistics);
+    let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
     let points = to_point_set(&setup, &state);
     let fixed_points = state.units.iter().filter(|u| u.frozen).map(|u| u.points.len()).sum();
     let stages_ms = timer.finish();
     Ok(Output {
         points,
         report: Report {
-            sigma,
+            sigma: setup.sigma,
             neighbourhood: setup.delta,
             quadrature_points: setup.quadrature.len(),
             initial_points,
@@ -571,6 +597,16 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             added,
             removed,
             rejected,
+            held_by_bound,
+            expected_points: setup.expected_points,
+            discrete_attributes: setup
+                .attributes
+                .names
+                .iter()
+                .enumerate()
+                .filter(|(c, _)| !setup.attributes.discrete[c + 1].is_empty())
+                .map(|(_, n)| n.clone())
+                .collect(),
             energy: energies,
             final_energy,
             fixed_points,
@@ -578,6 +614,40 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             stages_ms,
         },
     })
+}
+
+/// The count bounds of sampling control: the expected count ± `tolerance` for a fresh synthesis;
+/// for a progressive one, relative to the points it starts with (frozen ones included).
+fn count_bounds<const D: usize>(setup: &Setup<D>, state: &State<D>, tolerance: f64) -> sampling::CountBounds {
+    let alive = state.alive.iter().filter(|&&a| a).count() as f64;
+    let frozen = state.units.iter().filter(|u| u.frozen && u.alive).map(|u| u.points.len()).sum::<usize>() as f64;
+    let (least, most) = if setup.margin.is_none() {
+        (setup.expected_points, setup.expected_points)
+    } else {
+        (alive, alive.max(frozen + setup.expected_points))
+    };
+    sampling::CountBounds {
+        least: ((1.0 - tolerance) * least).ceil() as usize,
+        most: ((1.0 + tolerance) * most).floor() as usize,
+    }
+}
+
+/// The output's fidelity figures, in output units: the exemplar is scaled by the domain's mean scale.
+fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vector<D>], seed: u64) -> Fidelity {
+    let quadrature = &setup.quadrature;
+    let scale = quadrature.scale.iter().sum::<f64>() / quadrature.len().max(1) as f64;
+    let exemplar: Vec<Vector<D>> = setup.exemplar.positions.iter().map(|p| linear::scale(p, scale)).collect();
+    let region = &setup.region;
+    let (low, high) = region.bounds();
+    let volume = quadrature.len() as f64 * quadrature.spacing().powi(D as i32);
+    let domain = fidelity::Domain {
+        contains: &|p: &Vector<D>| region.contains(p),
+        depth: &|p: &Vector<D>| region.depth(p),
+        low,
+        high,
+        volume,
+    };
+    fidelity::compare(&exemplar, output, &domain, setup.exemplar.spacing * scale, seed)
 }
 
 fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet {

@@ -677,8 +677,8 @@ fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
     assert!(n > 0.9 * 64.0 && n < 1.1 * omega, "{n} points for a volume between 64 and {omega}");
     // Spacing kept: the mean nearest-neighbour distance of the interior matches the exemplar's.
     let fidelity = &output.report.fidelity;
-    let (a, b) = (fidelity.exemplar.mean_nearest, fidelity.output.mean_nearest);
-    assert!(fidelity.output.interior_points > 0 && (a - b).abs() < 0.15 * a, "{a} vs {b}");
+    let (a, b) = (fidelity.exemplar_statistics.mean_nearest, fidelity.output_statistics.mean_nearest);
+    assert!(fidelity.output_statistics.nearest_counted > 0 && (a - b).abs() < 0.15 * a, "{a} vs {b}");
 }
 
 #[test]

@@ -79,6 +79,15 @@ pub struct PointsArgs {
     /// comma-separated. Integer columns are always discrete.
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
     pub discrete: Vec<String>,
+    /// Attributes never treated as discrete, comma-separated. Without it, attributes whose exemplar
+    /// values are all whole numbers (at most 32 distinct) are detected as discrete labels.
+    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
+    pub continuous: Vec<String>,
+    /// Weight of an attribute against point density, `NAME=W` (0–100; repeatable). Every attribute
+    /// is divided by its exemplar standard deviation first, so units and ranges do not matter;
+    /// the default weight is 1.
+    #[arg(long, value_name = "NAME=W")]
+    pub attribute_weight: Vec<String>,
     /// Window shape.
     #[arg(long, value_enum, default_value = "gaussian")]
     pub window: WindowArg,
@@ -293,7 +302,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut discrete = args.discrete.clone();
     for name in &integer {
         let used = args.attributes.as_ref().is_none_or(|list| list.contains(name));
-        if used && !discrete.contains(name) {
+        if used && !discrete.contains(name) && !args.continuous.contains(name) {
             discrete.push(name.clone());
         }
     }
@@ -319,6 +328,15 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     params.attributes = args.attributes.clone();
     params.discrete_attributes = discrete;
+    params.continuous_attributes = args.continuous.clone();
+    params.attribute_weights = args
+        .attribute_weight
+        .iter()
+        .map(|spec| {
+            let parsed = spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
+            parsed.ok_or_else(|| anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5"))
+        })
+        .collect::<anyhow::Result<_>>()?;
     params.keep_margin = args.keep_margin;
     params.seed = context.seed;
     let input = Input { exemplar, existing };
@@ -334,12 +352,19 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     record_figures(context, &output);
     context.summary(&format!(
-        "motif points: {} points ({} added, {} removed), T = {:.4}, nearest-neighbour histogram distance {:.3}",
+        "motif points: {} points ({} added, {} removed; density {:.0} % of the exemplar's), T = {:.4}, \
+         nearest-neighbour distance {:.3} (random {:.3}, tiled {:.3}), g(r) distance {:.3} (random {:.3}, tiled {:.3})",
         output.points.len(),
         output.report.added,
         output.report.removed,
+        100.0 * output.report.fidelity.density_ratio,
         output.report.final_energy,
-        output.report.fidelity.nearest_histogram_distance
+        output.report.fidelity.output.nearest_neighbour,
+        output.report.fidelity.random.nearest_neighbour,
+        output.report.fidelity.tiled.nearest_neighbour,
+        output.report.fidelity.output.radial_distribution,
+        output.report.fidelity.random.radial_distribution,
+        output.report.fidelity.tiled.radial_distribution,
     ));
     Ok(())
 }
@@ -352,22 +377,16 @@ fn record_figures(context: &mut Context, output: &Output) {
     context.figure("points_added", report.added);
     context.figure("points_removed", report.removed);
     context.figure("proposals_rejected", report.rejected);
+    context.figure("proposals_held_by_count_bound", report.held_by_bound);
+    context.figure("expected_points", report.expected_points);
+    context.figure("discrete_attributes", &report.discrete_attributes);
     context.figure("initial_points", report.initial_points);
     context.figure("output_points", report.final_points);
     context.figure("fixed_points", report.fixed_points);
     context.figure("sigma", report.sigma);
     context.figure("neighbourhood", report.neighbourhood);
     context.figure("quadrature_points", report.quadrature_points);
-    context.figure(
-        "fidelity",
-        json!({
-            "nearest_neighbour_histogram_distance": report.fidelity.nearest_histogram_distance,
-            "radial_distribution_distance": report.fidelity.radial_distribution_distance,
-            "exemplar_mean_nearest_sigma": report.fidelity.exemplar.mean_nearest,
-            "output_mean_nearest_sigma": report.fidelity.output.mean_nearest,
-            "interior_points": report.fidelity.output.interior_points,
-        }),
-    );
+    context.figure("fidelity", &report.fidelity);
 }
 
 /// A colour for `t` in [0, 1] (dark blue → teal → yellow).
@@ -658,8 +677,8 @@ fn bench_case(
             "seconds": start.elapsed().as_secs_f64(),
             "final_energy": output.report.final_energy,
             "output_points": output.points.len(),
-            "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
-            "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
+            "nearest_neighbour_distance": output.report.fidelity.output.nearest_neighbour,
+            "radial_distribution_distance": output.report.fidelity.output.radial_distribution,
         })
     } else {
         Value::Null
@@ -673,8 +692,9 @@ fn bench_case(
         "quadrature_points": output.report.quadrature_points,
         "seconds": seconds,
         "final_energy": output.report.final_energy,
-        "nearest_neighbour_histogram_distance": output.report.fidelity.nearest_histogram_distance,
-        "radial_distribution_distance": output.report.fidelity.radial_distribution_distance,
+        "density_ratio": output.report.fidelity.density_ratio,
+        "nearest_neighbour_distance": output.report.fidelity.output.nearest_neighbour,
+        "radial_distribution_distance": output.report.fidelity.output.radial_distribution,
         "stages_ms": crate::context::stages_object(&output.report.stages_ms),
         "merge_steps_per_scale": output.report.energy.iter().map(|e| e.merge_steps).collect::<Vec<_>>(),
         "energy_evaluation": {
