@@ -15,6 +15,7 @@ use crate::demo::Demo;
 
 pub mod curve;
 pub mod points;
+pub mod points_corpus;
 pub mod strokes;
 pub mod stylize;
 

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{Point, Polygon, Polyline};
-use motif_io::{Column, ColumnKind, PointFormat, PointTable, SvgWriter};
+use motif_io::{Column, ColumnKind, PointFormat, PointTable, Stroke as SvgStroke, SvgWriter};
 use motif_points::samples::{hex_exemplar, lattice_exemplar, leaf_exemplar, ripple_exemplar};
 use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Stroke, Window};
 use serde_json::{Value, json};
@@ -347,7 +347,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
     if let Some(preview) = &args.preview {
-        let image = preview_image(&input.exemplar, &output.points, args.colour_by.as_deref())?;
+        let image = preview_image(&input.exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
         motif_io::write_png(preview, &image)?;
     }
     record_figures(context, &output);
@@ -505,18 +505,65 @@ fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f6
     svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
 }
 
-/// The preview image: exemplar and output side by side.
+/// One plot of the statistics panel: curves of the exemplar (black) and the output (orange) over
+/// `[0, 4)` spacings, in the box `(left, top, width, height)`.
+fn draw_curves(svg: &mut SvgWriter, (left, top, width, height): (f64, f64, f64, f64), curves: [&[f64]; 2], title: &str) {
+    svg.rect(left, top, width, height, Some(SvgStroke { width: 1.0, colour: [200, 200, 200, 255] }), None);
+    let peak = curves.iter().flat_map(|c| c.iter()).copied().fold(1e-12, f64::max) * 1.1;
+    for (curve, colour) in curves.iter().zip([[30, 30, 30, 255], [230, 120, 20, 255]]) {
+        let points: Vec<Point> = curve
+            .iter()
+            .enumerate()
+            .map(|(b, v)| {
+                let x = left + (b as f64 + 0.5) / curve.len() as f64 * width;
+                Point::new(x, top + height - v / peak * height)
+            })
+            .collect();
+        svg.polyline(&points, false, Some(SvgStroke { width: 1.5, colour }), None);
+    }
+    svg.text(Point::new(left + 4.0, top + 12.0), 10.0, [90, 90, 90, 255], title);
+}
+
+/// The statistics panel: g(r) and the nearest-neighbour histogram of exemplar and output, and the
+/// figures against both baselines.
+fn draw_statistics(svg: &mut SvgWriter, fidelity: &motif_points::fidelity::Fidelity, left: f64, size: f64) {
+    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
+    let (e, o) = (&fidelity.exemplar_statistics, &fidelity.output_statistics);
+    let plot = (left + 10.0, 24.0, size - 20.0, 0.5 * size - 60.0);
+    draw_curves(svg, plot, [&e.radial_distribution, &o.radial_distribution], "g(r), r in 0–4 spacings");
+    let plot = (left + 10.0, 0.5 * size - 20.0, size - 20.0, 0.5 * size - 60.0);
+    draw_curves(svg, plot, [&e.nearest_histogram, &o.nearest_histogram], "nearest-neighbour distances, 0–4 spacings");
+    let lines = [
+        "black: exemplar, orange: output".to_string(),
+        format!("density {:.0} % of the exemplar's", 100.0 * fidelity.density_ratio),
+        format!(
+            "NN distance {:.3} (random {:.3}, tiled copy {:.3})",
+            fidelity.output.nearest_neighbour, fidelity.random.nearest_neighbour, fidelity.tiled.nearest_neighbour
+        ),
+        format!(
+            "g(r) distance {:.3} (random {:.3}, tiled copy {:.3})",
+            fidelity.output.radial_distribution, fidelity.random.radial_distribution, fidelity.tiled.radial_distribution
+        ),
+    ];
+    for (row, line) in lines.iter().enumerate() {
+        svg.text(Point::new(left + 10.0, size - 64.0 + 16.0 * row as f64), 11.0, [60, 60, 60, 255], line);
+    }
+}
+
+/// The preview image: exemplar and output side by side, then their statistics.
 pub fn preview_image(
     exemplar: &PointSet,
     output: &PointSet,
+    fidelity: &motif_points::fidelity::Fidelity,
     colour_by: Option<&str>,
 ) -> anyhow::Result<motif_core::RgbaImage> {
     let size = 420.0;
-    let mut svg = SvgWriter::new(2.0 * size + 10.0, size);
+    let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
     let (exemplar_colours, range) = colours(exemplar, colour_by, None)?;
     let (output_colours, _) = colours(output, colour_by, range)?;
     draw_panel(&mut svg, exemplar, &exemplar_colours, 0.0, size, &format!("exemplar ({} points)", exemplar.len()));
     draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &format!("output ({} points)", output.len()));
+    draw_statistics(&mut svg, fidelity, 2.0 * size + 20.0, size);
     Ok(motif_io::render_svg(&svg.finish(), 1.0, Path::new("preview"))?)
 }
 
@@ -706,18 +753,33 @@ fn bench_case(
     }))
 }
 
-/// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars.
+/// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars, and every
+/// case of the real-data corpus with its fidelity against the random and tiled baselines.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if bench.quick {
         let exemplar = hex_exemplar(8, 8, 0.1, bench.seed);
         let box2 = Domain::Box { min: vec![0.0; 2], max: vec![4.0, 4.0] };
-        return Ok(json!({ "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)? }));
+        let quick_case = |name: &str| name == "swedishpines";
+        return Ok(json!({
+            "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)?,
+            "real_data": super::points_corpus::bench(bench.seed, &quick_case)?,
+        }));
     }
-    // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box).
-    // MOTIF_BENCH_POINTS_CASE=helix|sand|chair times one case alone (default: all three).
+    // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box),
+    // then the corpus cases by name. MOTIF_BENCH_POINTS_CASE=helix,longleaf,... runs those alone;
+    // `generated` and `corpus` stand for each group (default: everything).
     let only = std::env::var("MOTIF_BENCH_POINTS_CASE").ok();
-    let selected = |name: &str| only.as_deref().is_none_or(|o| o.split(',').any(|c| c.trim() == name));
+    let generated = ["helix", "sand", "chair"];
+    let selected = |name: &str| {
+        only.as_deref().is_none_or(|o| {
+            o.split(',').map(str::trim).any(|c| {
+                c == name || (c == "generated" && generated.contains(&name)) || (c == "corpus" && !generated.contains(&name))
+            })
+        })
+    };
     let mut figures = serde_json::Map::new();
+    let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name))?;
+    figures.insert("real_data".into(), corpus);
     if selected("helix") {
         let helix = hex_exemplar(30, 20, 0.1, bench.seed);
         let domain = Domain::Box { min: vec![0.0; 2], max: vec![11.5, 7.5] };

@@ -1,0 +1,100 @@
+//! `motif bench --engine points` on the real-data corpus (`data/real/points/`): for every case,
+//! the time, the output count against the expected one, and the two fidelity distances next to
+//! those of a uniform random set and of a tiled copy of the exemplar over the same domain.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use motif_points::{Domain, Input, Params};
+use serde::Deserialize;
+use serde_json::{Value, json};
+
+use super::points::table_to_points;
+
+/// One case of `cases.json` (written by `data/real/points/make_manifest.py`).
+#[derive(Debug, Deserialize)]
+pub struct CorpusCase {
+    pub name: String,
+    pub file: String,
+    pub kind: String,
+    pub neighbourhood: f64,
+    pub domain: Vec<f64>,
+    #[serde(rename = "use")]
+    pub purpose: String,
+}
+
+/// The corpus folder of this source tree (the bench is a developer's tool run from a checkout).
+pub fn corpus_folder() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/points")
+}
+
+/// The cases of the corpus manifest.
+pub fn read_cases(folder: &Path) -> anyhow::Result<Vec<CorpusCase>> {
+    let path = folder.join("cases.json");
+    let value: Value = motif_io::read_json(&path)?;
+    serde_json::from_value(value).with_context(|| format!("{}: not a list of corpus cases", path.display()))
+}
+
+/// Runs one corpus case and returns its figures, with the targets checked.
+pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
+    let table = motif_io::read_points(&folder.join(&case.file))?;
+    let (exemplar, discrete) = table_to_points(&table, &format!("corpus case {}", case.name))?;
+    if case.domain.len() != exemplar.dimension {
+        bail!("corpus case {}: a {}D domain for a {}D exemplar", case.name, case.domain.len(), exemplar.dimension);
+    }
+    let mut params = Params::default();
+    params.neighbourhood = Some(case.neighbourhood);
+    params.domain = Some(Domain::Box { min: vec![0.0; case.domain.len()], max: case.domain.clone() });
+    params.discrete_attributes = discrete;
+    params.seed = seed;
+    let input = Input { exemplar, existing: None };
+    let start = std::time::Instant::now();
+    let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let fidelity = &output.report.fidelity;
+    let (o, r, t) = (&fidelity.output, &fidelity.random, &fidelity.tiled);
+    Ok(json!({
+        "kind": case.kind,
+        "use": case.purpose,
+        "seconds": seconds,
+        "exemplar_points": input.exemplar.len(),
+        "output_points": output.points.len(),
+        "expected_points": output.report.expected_points,
+        "density_ratio": fidelity.density_ratio,
+        "nearest_neighbour": { "output": o.nearest_neighbour, "random": r.nearest_neighbour, "tiled": t.nearest_neighbour },
+        "radial_distribution": { "output": o.radial_distribution, "random": r.radial_distribution, "tiled": t.radial_distribution },
+        "targets": {
+            "density_within_10_percent": (fidelity.density_ratio - 1.0).abs() <= 0.1,
+            "half_of_random": o.nearest_neighbour <= 0.5 * r.nearest_neighbour && o.radial_distribution <= 0.5 * r.radial_distribution,
+            "within_1_5_of_tiled": o.nearest_neighbour <= 1.5 * t.nearest_neighbour && o.radial_distribution <= 1.5 * t.radial_distribution,
+        },
+        "stages_ms": crate::context::stages_object(&output.report.stages_ms),
+    }))
+}
+
+/// The corpus figures: every case of the manifest that `selected` accepts, and a summary of how
+/// many meet each target.
+pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+    let folder = corpus_folder();
+    let cases = read_cases(&folder)?;
+    let mut figures = serde_json::Map::new();
+    let mut counts = [0usize; 4];
+    for case in cases.iter().filter(|c| selected(&c.name)) {
+        let value = run_case(&folder, case, seed)?;
+        counts[0] += 1;
+        for (slot, key) in ["density_within_10_percent", "half_of_random", "within_1_5_of_tiled"].iter().enumerate() {
+            counts[slot + 1] += usize::from(value["targets"][key].as_bool() == Some(true));
+        }
+        figures.insert(case.name.clone(), value);
+    }
+    figures.insert(
+        "summary".into(),
+        json!({
+            "cases": counts[0],
+            "density_within_10_percent": counts[1],
+            "half_of_random": counts[2],
+            "within_1_5_of_tiled": counts[3],
+        }),
+    );
+    Ok(Value::Object(figures))
+}
