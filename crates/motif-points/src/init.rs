@@ -111,7 +111,10 @@ pub fn random<const D: usize>(
 }
 
 /// Patch initialization: the domain is tiled with cubes of side `patch`; each receives a copy of a
-/// random exemplar patch placed with the frame of its nearest quadrature point.
+/// random exemplar patch placed with the frame of its nearest quadrature point. Returns, for every
+/// quadrature point in a tile, the exemplar location its tile was copied from: the exact match of
+/// the copy, which the first matching step starts from (without it, the first merging step follows
+/// random matches and undoes the copies before any match has been found).
 pub fn patches<const D: usize>(
     exemplar: &Exemplar<D>,
     quadrature: &Quadrature<D>,
@@ -120,9 +123,10 @@ pub fn patches<const D: usize>(
     state: &mut State<D>,
     streams: &SeedStreams,
     allowed: &dyn Fn(&Vector<D>) -> bool,
-) {
+) -> Vec<Option<Vector<D>>> {
+    let mut sources = vec![None; quadrature.len()];
     if fill.is_empty() {
-        return;
+        return sources;
     }
     let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
     let (low, high) = crate::grid::bounds(&points);
@@ -143,6 +147,8 @@ pub fn patches<const D: usize>(
         representative[t].get_or_insert(k);
     }
     let extent: Vector<D> = std::array::from_fn(|a| exemplar.high[a] - exemplar.low[a]);
+    // Per tile: (output centre, exemplar origin, representative quadrature point).
+    let mut copies: Vec<Option<(Vector<D>, Vector<D>, usize)>> = vec![None; total];
     for (tile, k) in representative.iter().enumerate() {
         let Some(k) = *k else { continue };
         let mut stream = streams.stream("initial patch", tile as u64);
@@ -159,6 +165,7 @@ pub fn patches<const D: usize>(
             let margin = half.min(0.5 * extent[a]);
             exemplar.low[a] + margin + stream.random::<f64>() * (extent[a] - 2.0 * margin).max(0.0)
         });
+        copies[tile] = Some((centre, origin, k));
         for j in 0..exemplar.positions.len() {
             let anchor = match exemplar.element_of[j] {
                 None => exemplar.positions[j],
@@ -177,4 +184,11 @@ pub fn patches<const D: usize>(
             place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed);
         }
     }
+    for &k in fill {
+        if let Some((centre, origin, representative)) = copies[tile_of(&quadrature.points[k])] {
+            let offset = linear::sub(&quadrature.points[k], &centre);
+            sources[k] = Some(linear::add(&origin, &linear::mat_vec(&quadrature.inverse[representative], &offset)));
+        }
+    }
+    sources
 }

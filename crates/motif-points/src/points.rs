@@ -72,7 +72,12 @@ impl PointSet {
             return Err(Error::Input(format!("{what}: point {i} has a non-finite coordinate (NaN or infinity)")));
         }
         if let Some(i) = (0..n).find(|&i| self.attributes_of(i).iter().any(|v| !v.is_finite())) {
-            return Err(Error::Input(format!("{what}: point {i} has a non-finite attribute value")));
+            let column = self.attributes_of(i).iter().position(|v| !v.is_finite()).unwrap_or(0);
+            return Err(Error::Input(format!(
+                "{what}: point {i} has a non-finite value (NaN or infinity) in attribute {:?}; every attribute needs a \
+                 number at every point",
+                self.attribute_names[column]
+            )));
         }
         Ok(())
     }

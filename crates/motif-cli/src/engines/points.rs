@@ -68,9 +68,14 @@ pub struct PointsArgs {
     /// default 3δ).
     #[arg(long, value_name = "M", requires = "existing")]
     pub keep_margin: Option<f64>,
-    /// Initialization.
-    #[arg(long, value_enum, default_value = "random")]
+    /// Initialization: exemplar patches (default; each starts matched to where it came from) or
+    /// random points (the paper's robustness claim does not hold on real, irregular exemplars).
+    #[arg(long, value_enum, default_value = "patches")]
     pub init: InitArg,
+    /// Side of the copied patches, in units of the neighbourhood δ (1–20; capped at 0.7 of the
+    /// exemplar's smallest side).
+    #[arg(long, value_name = "F", default_value_t = 6.0)]
+    pub patch_size: f64,
     /// Attributes to synthesize, comma-separated (default: every float column other than x, y, z,
     /// element, plus integer columns).
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
@@ -328,6 +333,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     params.attributes = args.attributes.clone();
     params.discrete_attributes = discrete;
+    params.patch_size = args.patch_size;
     params.continuous_attributes = args.continuous.clone();
     params.attribute_weights = args
         .attribute_weight
