@@ -233,9 +233,8 @@ pub fn compare<const D: usize>(
     let window_depth = |p: &Vector<D>| box_depth(p, &low, &high);
     let exemplar_statistics =
         statistics(&Sample { points: exemplar, depth: &window_depth, volume: window_volume }, spacing);
-    let on_domain = |points: &[Vector<D>]| {
-        statistics(&Sample { points, depth: domain.depth, volume: domain.volume }, spacing)
-    };
+    let on_domain =
+        |points: &[Vector<D>]| statistics(&Sample { points, depth: domain.depth, volume: domain.volume }, spacing);
     let output_statistics = on_domain(output);
     let expected = exemplar.len() as f64 / window_volume * domain.volume;
     let random = random_set(domain, expected.round() as usize, seed);

@@ -1,5 +1,7 @@
 //! Sampling control (§5.1, Eq. 7): add points where the output lacks density, remove them where it
-//! has too much, each change kept only if T decreases.
+//! has too much, each change kept only if T decreases — within count bounds around the exemplar's
+//! density ([`CountBounds`]): outside them a change goes the bound's way even if T rises, and no
+//! change leaves them.
 //!
 //! `P_k = ∫ (f(q_k + s) − e(m_k + s)) w(s) ds` with all attributes set to 1. For the Gaussian window
 //! it is `Σ_i g(u_i, σ_P) − Σ_j g(v_j, σ_P)` with `σ_P² = σ² + δ²` (the constant factor dropped),
@@ -303,7 +305,10 @@ impl<const D: usize> Pass<'_, '_, D> {
         }
         let (energy, unit) = best?;
         let size = state.units[unit].points.len();
-        if energy < 0.0 && self.alive + size <= self.bounds.most {
+        // Below the least count the best candidate goes in even when T rises (a start with too
+        // few points, e.g. patches copied from a sparse part of the exemplar).
+        let needed = self.alive < self.bounds.least;
+        if (energy < 0.0 || needed) && self.alive + size <= self.bounds.most {
             self.update_density(state, unit, 1.0);
             self.alive += size;
             Some(Proposal::Accepted)
@@ -443,7 +448,8 @@ impl<const D: usize> Pass<'_, '_, D> {
         }
         let (energy, unit) = best?;
         let size = state.units[unit].points.len();
-        if energy <= 0.0 {
+        let surplus = self.alive > self.bounds.most;
+        if energy <= 0.0 && !surplus {
             return Some(Proposal::Rejected);
         }
         if self.alive < self.bounds.least + size {

@@ -257,7 +257,8 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
                 names[c]
             )));
         }
-        let weight = params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);
+        let weight =
+            params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);
         let f = weight / std;
         mean.push(mu);
         factor.push(f);

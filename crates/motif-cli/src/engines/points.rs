@@ -339,8 +339,11 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         .attribute_weight
         .iter()
         .map(|spec| {
-            let parsed = spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
-            parsed.ok_or_else(|| anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5"))
+            let parsed =
+                spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
+            parsed.ok_or_else(|| {
+                anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5")
+            })
         })
         .collect::<anyhow::Result<_>>()?;
     params.keep_margin = args.keep_margin;
@@ -513,7 +516,12 @@ fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f6
 
 /// One plot of the statistics panel: curves of the exemplar (black) and the output (orange) over
 /// `[0, 4)` spacings, in the box `(left, top, width, height)`.
-fn draw_curves(svg: &mut SvgWriter, (left, top, width, height): (f64, f64, f64, f64), curves: [&[f64]; 2], title: &str) {
+fn draw_curves(
+    svg: &mut SvgWriter,
+    (left, top, width, height): (f64, f64, f64, f64),
+    curves: [&[f64]; 2],
+    title: &str,
+) {
     svg.rect(left, top, width, height, Some(SvgStroke { width: 1.0, colour: [200, 200, 200, 255] }), None);
     let peak = curves.iter().flat_map(|c| c.iter()).copied().fold(1e-12, f64::max) * 1.1;
     for (curve, colour) in curves.iter().zip([[30, 30, 30, 255], [230, 120, 20, 255]]) {
@@ -548,7 +556,9 @@ fn draw_statistics(svg: &mut SvgWriter, fidelity: &motif_points::fidelity::Fidel
         ),
         format!(
             "g(r) distance {:.3} (random {:.3}, tiled copy {:.3})",
-            fidelity.output.radial_distribution, fidelity.random.radial_distribution, fidelity.tiled.radial_distribution
+            fidelity.output.radial_distribution,
+            fidelity.random.radial_distribution,
+            fidelity.tiled.radial_distribution
         ),
     ];
     for (row, line) in lines.iter().enumerate() {
@@ -768,7 +778,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         let quick_case = |name: &str| name == "swedishpines";
         return Ok(json!({
             "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)?,
-            "real_data": super::points_corpus::bench(bench.seed, &quick_case)?,
+            "real_data": super::points_corpus::bench(bench.seed, &quick_case, &quick_case)?,
         }));
     }
     // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box),
@@ -779,12 +789,15 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let selected = |name: &str| {
         only.as_deref().is_none_or(|o| {
             o.split(',').map(str::trim).any(|c| {
-                c == name || (c == "generated" && generated.contains(&name)) || (c == "corpus" && !generated.contains(&name))
+                c == name
+                    || (c == "generated" && generated.contains(&name))
+                    || (c == "corpus" && !generated.contains(&name))
             })
         })
     };
     let mut figures = serde_json::Map::new();
-    let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name))?;
+    let named = |name: &str| only.as_deref().is_some_and(|o| o.split(',').any(|c| c.trim() == name));
+    let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name), &named)?;
     figures.insert("real_data".into(), corpus);
     if selected("helix") {
         let helix = hex_exemplar(30, 20, 0.1, bench.seed);

@@ -72,14 +72,28 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     }))
 }
 
-/// The corpus figures: every case of the manifest that `selected` accepts, and a summary of how
-/// many meet each target.
-pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+/// Cases that run only when named: the traced contour (825 points, δ = 35 σ) does not finish in
+/// 10 minutes, because every window holds ~230 output points on a fine quadrature grid.
+const SLOW_CASES: [&str; 1] = ["chain_contours"];
+
+/// The corpus figures: every case of the manifest that `selected` accepts (slow cases only when
+/// `named` accepts them), and a summary of how many meet each target.
+pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
     let folder = corpus_folder();
     let cases = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();
     let mut counts = [0usize; 4];
-    for case in cases.iter().filter(|c| selected(&c.name)) {
+    for case in &cases {
+        if !selected(&case.name) {
+            continue;
+        }
+        if SLOW_CASES.contains(&case.name.as_str()) && !named(&case.name) {
+            figures.insert(
+                case.name.clone(),
+                json!({ "skipped": "slow: runs only when named in MOTIF_BENCH_POINTS_CASE" }),
+            );
+            continue;
+        }
         let value = run_case(&folder, case, seed)?;
         counts[0] += 1;
         for (slot, key) in ["density_within_10_percent", "half_of_random", "within_1_5_of_tiled"].iter().enumerate() {
