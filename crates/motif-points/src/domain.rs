@@ -134,6 +134,16 @@ impl<const D: usize> Region<D> {
         best
     }
 
+    /// The exact volume (area in 2D) of a box or polygon; `None` for a stroke, whose tube the
+    /// quadrature grid measures instead.
+    pub fn volume(&self) -> Option<f64> {
+        match self {
+            Region::Box { min, max } => Some((0..D).map(|a| (max[a] - min[a]).max(0.0)).product()),
+            Region::Polygon(polygon) => Some(polygon.area()),
+            Region::Stroke { .. } => None,
+        }
+    }
+
     /// Distance from `p` to the domain (0 inside).
     pub fn distance(&self, p: &Vector<D>) -> f64 {
         match self {

@@ -66,6 +66,11 @@ pub struct Fidelity {
     pub random: Distances,
     /// Copies of the exemplar's box tiled over the domain, against the exemplar.
     pub tiled: Distances,
+    /// One half of the exemplar against the other (split across its longest side): how far two
+    /// samples of the same structure, each half the exemplar's size, already differ. A synthesis
+    /// is a new sample, so its distances cannot be expected far below these; the tiled copy's
+    /// can, because it holds the exemplar's own pairs.
+    pub halves: Distances,
     /// Exemplar statistics.
     pub exemplar_statistics: Statistics,
     /// Output statistics.
@@ -241,6 +246,7 @@ pub fn compare<const D: usize>(
     let tiled = tiled_copy(exemplar, &low, &high, domain);
     Fidelity {
         spacing,
+        halves: halves(exemplar, &low, &high, spacing),
         density_ratio: output.len() as f64 / expected.max(1e-300),
         output: distances(&exemplar_statistics, &output_statistics),
         random: distances(&exemplar_statistics, &on_domain(&random)),
@@ -248,6 +254,25 @@ pub fn compare<const D: usize>(
         exemplar_statistics,
         output_statistics,
     }
+}
+
+/// The distances between the two halves of the exemplar window, split across its longest side.
+fn halves<const D: usize>(exemplar: &[Vector<D>], low: &Vector<D>, high: &Vector<D>, spacing: f64) -> Distances {
+    let axis = (0..D).max_by(|&a, &b| (high[a] - low[a]).total_cmp(&(high[b] - low[b]))).unwrap_or(0);
+    let middle = 0.5 * (low[axis] + high[axis]);
+    let half_statistics = |first: bool| {
+        let (mut lo, mut hi) = (*low, *high);
+        if first {
+            hi[axis] = middle;
+        } else {
+            lo[axis] = middle;
+        }
+        let points: Vec<Vector<D>> = exemplar.iter().copied().filter(|p| (p[axis] < middle) == first).collect();
+        let volume: f64 = (0..D).map(|a| hi[a] - lo[a]).product();
+        let depth = |p: &Vector<D>| box_depth(p, &lo, &hi);
+        statistics(&Sample { points: &points, depth: &depth, volume }, spacing)
+    };
+    distances(&half_statistics(true), &half_statistics(false))
 }
 
 /// `count` uniform points in the domain (rejection from its bounding box, bounded tries).

@@ -53,6 +53,8 @@ mod sampling;
 mod solver;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_attributes;
 
 pub use params::{Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Stroke, Window};
 pub use points::PointSet;

@@ -44,7 +44,7 @@ struct Pass<'a, 'p, const D: usize> {
     density: Vec<f64>,
     width: Option<f64>,
     allowed: &'a dyn Fn(&Vector<D>) -> bool,
-    /// Alive points now.
+    /// Points that sampling control may remove (alive and not frozen) now.
     alive: usize,
     bounds: CountBounds,
 }
@@ -105,7 +105,7 @@ pub fn control<const D: usize>(
         }
     }
     let width = problem.kernel.density_width();
-    let alive = state.alive.iter().filter(|&&a| a).count();
+    let alive = state.units.iter().filter(|u| u.alive && !u.frozen).map(|u| u.points.len()).sum();
     let mut pass = Pass { problem, matches, grid, density, width, allowed, alive, bounds };
     let mut outcome = SamplingOutcome::default();
     let mut deficits: Vec<usize> = (0..pass.density.len()).filter(|&k| pass.density[k] < -threshold).collect();
@@ -121,6 +121,22 @@ pub fn control<const D: usize>(
             None => {}
         }
     }
+    // Still below the least count (a start with too few points, where no window shows a deficit
+    // beyond the threshold): the quadrature points with the lowest P take one more point each.
+    if pass.alive < pass.bounds.least {
+        let mut order: Vec<usize> = (0..pass.density.len()).collect();
+        order.sort_by(|&a, &b| pass.density[a].total_cmp(&pass.density[b]).then(a.cmp(&b)));
+        let mut tries = 2 * (pass.bounds.least - pass.alive) + 8;
+        for k in order {
+            if pass.alive >= pass.bounds.least || tries == 0 {
+                break;
+            }
+            tries -= 1;
+            if let Some(Proposal::Accepted) = pass.propose_addition(exemplar, state, k) {
+                outcome.added += 1;
+            }
+        }
+    }
     let mut excesses: Vec<usize> = (0..pass.density.len()).filter(|&k| pass.density[k] > threshold).collect();
     excesses.sort_by(|&a, &b| pass.density[b].total_cmp(&pass.density[a]).then(a.cmp(&b)));
     for k in excesses {
@@ -132,6 +148,21 @@ pub fn control<const D: usize>(
             Some(Proposal::Rejected) => outcome.rejected += 1,
             Some(Proposal::HeldByBound) => outcome.held_by_bound += 1,
             None => {}
+        }
+    }
+    // Still above the most: the quadrature points with the highest P give one point each.
+    if pass.alive > pass.bounds.most {
+        let mut order: Vec<usize> = (0..pass.density.len()).collect();
+        order.sort_by(|&a, &b| pass.density[b].total_cmp(&pass.density[a]).then(a.cmp(&b)));
+        let mut tries = 2 * (pass.alive - pass.bounds.most) + 8;
+        for k in order {
+            if pass.alive <= pass.bounds.most || tries == 0 {
+                break;
+            }
+            tries -= 1;
+            if let Some(Proposal::Accepted) = pass.propose_removal(state, k) {
+                outcome.removed += 1;
+            }
         }
     }
     state.compact();

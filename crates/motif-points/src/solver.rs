@@ -177,6 +177,8 @@ pub(crate) struct AttributeMap {
     pub factor: Vec<f64>,
     /// Allowed normalized values per channel (index = channel; channel 0 is the density).
     pub discrete: Vec<Vec<f64>>,
+    /// The exemplar values behind `discrete` (same order), written back exactly.
+    pub discrete_values: Vec<Vec<f64>>,
 }
 
 /// Everything fixed for a synthesis.
@@ -245,6 +247,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let mut mean = Vec::new();
     let mut factor = Vec::new();
     let mut discrete = vec![Vec::new(); channels];
+    let mut discrete_values = vec![Vec::new(); channels];
     for (c, &column) in columns.iter().enumerate() {
         let values: Vec<f64> = (0..n).map(|i| source.attributes_of(i)[column]).collect();
         let mu = values.iter().sum::<f64>() / n as f64;
@@ -270,13 +273,14 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         };
         let detected = params.detect_discrete && whole && !params.continuous_attributes.contains(&names[c]);
         if params.discrete_attributes.contains(&names[c]) || detected {
-            let mut allowed: Vec<f64> = values.iter().map(|v| (v - mu) * f).collect();
-            allowed.sort_by(f64::total_cmp);
-            allowed.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
-            discrete[c + 1] = allowed;
+            let mut raw = values.clone();
+            raw.sort_by(f64::total_cmp);
+            raw.dedup_by(|a, b| (*a - *b).abs() < 1e-12 * a.abs().max(1.0));
+            discrete[c + 1] = raw.iter().map(|v| (v - mu) * f).collect();
+            discrete_values[c + 1] = raw;
         }
     }
-    let attributes = AttributeMap { names, columns, mean, factor, discrete };
+    let attributes = AttributeMap { names, columns, mean, factor, discrete, discrete_values };
     let features_of = |set: &PointSet, i: usize, map: &[usize]| -> Vec<f64> {
         let mut f = vec![1.0];
         for (c, &column) in map.iter().enumerate() {
@@ -346,7 +350,14 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
     };
     let quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
-    let expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
+    // The grid measures Ω with a boundary layer of half a cell on every side; where the region's
+    // volume is known exactly (a fresh box or polygon) the expected count follows it instead (a
+    // 9 × 9 box of a unit-density exemplar holds 81 points, not the grid's 91).
+    let mut expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
+    let grid_volume = quadrature.len() as f64 * h.powi(D as i32);
+    if let (Some(volume), None) = (region.volume(), margin) {
+        expected *= volume / grid_volume.max(1e-300);
+    }
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
         return Err(Error::EmptyDomain(format!(
             "the domain holds {expected:.2} points at the exemplar's density; make it larger"
@@ -529,7 +540,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     let mut final_energy = f64::NAN;
     let mut done = 0;
     let mut state = std::mem::take(&mut setup.state);
-    let bounds = count_bounds(&setup, &state, params.count_tolerance);
+    let bounds = count_bounds(&setup, params.count_tolerance);
     let mut fields: Option<SearchFields<D>> = None;
     for (scale, &delta) in deltas.iter().enumerate() {
         let problem = setup.problem(delta, params);
@@ -632,19 +643,13 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     })
 }
 
-/// The count bounds of sampling control: the expected count ± `tolerance` for a fresh synthesis;
-/// for a progressive one, relative to the points it starts with (frozen ones included).
-fn count_bounds<const D: usize>(setup: &Setup<D>, state: &State<D>, tolerance: f64) -> sampling::CountBounds {
-    let alive = state.alive.iter().filter(|&&a| a).count() as f64;
-    let frozen = state.units.iter().filter(|u| u.frozen && u.alive).map(|u| u.points.len()).sum::<usize>() as f64;
-    let (least, most) = if setup.margin.is_none() {
-        (setup.expected_points, setup.expected_points)
-    } else {
-        (alive, alive.max(frozen + setup.expected_points))
-    };
+/// The count bounds of sampling control, on the points it may add or remove (those not frozen):
+/// the count the exemplar's density asks for over the quadrature domain (which, in a progressive
+/// synthesis, is the new region and the band of existing points that may move) ± `tolerance`.
+fn count_bounds<const D: usize>(setup: &Setup<D>, tolerance: f64) -> sampling::CountBounds {
     sampling::CountBounds {
-        least: ((1.0 - tolerance) * least).ceil() as usize,
-        most: ((1.0 + tolerance) * most).floor() as usize,
+        least: ((1.0 - tolerance) * setup.expected_points).ceil() as usize,
+        most: ((1.0 + tolerance) * setup.expected_points).floor() as usize,
     }
 }
 
@@ -655,7 +660,7 @@ fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vector<D>], seed
     let exemplar: Vec<Vector<D>> = setup.exemplar.positions.iter().map(|p| linear::scale(p, scale)).collect();
     let region = &setup.region;
     let (low, high) = region.bounds();
-    let volume = quadrature.len() as f64 * quadrature.spacing().powi(D as i32);
+    let volume = region.volume().unwrap_or(quadrature.len() as f64 * quadrature.spacing().powi(D as i32));
     let domain = fidelity::Domain {
         contains: &|p: &Vector<D>| region.contains(p),
         depth: &|p: &Vector<D>| region.depth(p),
@@ -674,7 +679,13 @@ fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet 
         positions.extend_from_slice(p);
         let f = state.feature(i);
         for c in 0..map.names.len() {
-            attributes.push(f[c + 1] / map.factor[c] + map.mean[c]);
+            let allowed = &map.discrete[c + 1];
+            let value = match allowed.iter().position(|&a| a == f[c + 1]) {
+                // A snapped label: the exemplar's own value, without the round trip's rounding.
+                Some(index) => map.discrete_values[c + 1][index],
+                None => f[c + 1] / map.factor[c] + map.mean[c],
+            };
+            attributes.push(value);
         }
     }
     PointSet {

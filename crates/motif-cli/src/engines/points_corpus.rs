@@ -52,7 +52,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
     let seconds = start.elapsed().as_secs_f64();
     let fidelity = &output.report.fidelity;
-    let (o, r, t) = (&fidelity.output, &fidelity.random, &fidelity.tiled);
+    let (o, r, t, h) = (&fidelity.output, &fidelity.random, &fidelity.tiled, &fidelity.halves);
     Ok(json!({
         "kind": case.kind,
         "use": case.purpose,
@@ -61,8 +61,14 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
         "output_points": output.points.len(),
         "expected_points": output.report.expected_points,
         "density_ratio": fidelity.density_ratio,
-        "nearest_neighbour": { "output": o.nearest_neighbour, "random": r.nearest_neighbour, "tiled": t.nearest_neighbour },
-        "radial_distribution": { "output": o.radial_distribution, "random": r.radial_distribution, "tiled": t.radial_distribution },
+        "nearest_neighbour": {
+            "output": o.nearest_neighbour, "random": r.nearest_neighbour, "tiled": t.nearest_neighbour,
+            "exemplar_halves": h.nearest_neighbour,
+        },
+        "radial_distribution": {
+            "output": o.radial_distribution, "random": r.radial_distribution, "tiled": t.radial_distribution,
+            "exemplar_halves": h.radial_distribution,
+        },
         "targets": {
             "density_within_10_percent": (fidelity.density_ratio - 1.0).abs() <= 0.1,
             "half_of_random": o.nearest_neighbour <= 0.5 * r.nearest_neighbour && o.radial_distribution <= 0.5 * r.radial_distribution,
