@@ -39,6 +39,8 @@ pub struct Statistics {
     pub nearest_histogram: Vec<f64>,
     /// g(r) at ring `b` covering `[0.1 b, 0.1 (b + 1))` spacings, `b < 40` (1 = uncorrelated).
     pub radial_distribution: Vec<f64>,
+    /// Centres deep enough to count for each ring (0: the ring's g is unknown, reported as 0).
+    pub ring_centres: Vec<usize>,
     /// Counted nearest-neighbour distances, sorted (for the Wasserstein distance; not reported).
     #[serde(skip)]
     nearest: Vec<f64>,
@@ -49,8 +51,11 @@ pub struct Statistics {
 pub struct Distances {
     /// Wasserstein-1 distance between the nearest-neighbour distance distributions (spacings).
     pub nearest_neighbour: f64,
-    /// Mean `|g_exemplar(r) − g(r)|` over `[0.5, 4)` spacings.
+    /// Mean `|g_exemplar(r) − g(r)|` over the rings of `[0.5, 4)` spacings that both sets can
+    /// estimate (a domain or exemplar too small for the outer rings compares the inner ones).
     pub radial_distribution: f64,
+    /// Rings compared for `radial_distribution` (35 when both sets are large enough).
+    pub rings_compared: usize,
 }
 
 /// The fidelity figures of a synthesis.
@@ -155,6 +160,7 @@ pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Stati
         mean_nearest: if counted > 0 { nearest.iter().sum::<f64>() / counted as f64 } else { 0.0 },
         nearest_histogram: histogram,
         radial_distribution,
+        ring_centres: usable,
         nearest,
     }
 }
@@ -162,14 +168,16 @@ pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Stati
 /// Distances of `other` to `reference`.
 pub fn distances(reference: &Statistics, other: &Statistics) -> Distances {
     let from = (RDF_FROM / BIN).round() as usize;
-    let rings = reference.radial_distribution.len() - from;
-    let radial_distribution = reference.radial_distribution[from..]
-        .iter()
-        .zip(&other.radial_distribution[from..])
-        .map(|(a, b)| (a - b).abs())
-        .sum::<f64>()
-        / rings as f64;
-    Distances { nearest_neighbour: wasserstein(&reference.nearest, &other.nearest), radial_distribution }
+    let rings: Vec<usize> = (from..reference.radial_distribution.len())
+        .filter(|&b| reference.ring_centres[b] > 0 && other.ring_centres[b] > 0)
+        .collect();
+    let total: f64 =
+        rings.iter().map(|&b| (reference.radial_distribution[b] - other.radial_distribution[b]).abs()).sum();
+    Distances {
+        nearest_neighbour: wasserstein(&reference.nearest, &other.nearest),
+        radial_distribution: if rings.is_empty() { 0.0 } else { total / rings.len() as f64 },
+        rings_compared: rings.len(),
+    }
 }
 
 /// `∫ |F_a − F_b|` of two sorted samples; the largest possible distance (the range) when one is

@@ -204,8 +204,8 @@ pub struct Params {
     /// (§4.4). Default none besides those `detect_discrete` finds.
     pub discrete_attributes: Vec<String>,
     /// Also treat as discrete every attribute whose exemplar values are all whole numbers with at
-    /// most 32 distinct values (labels, types, rows), unless listed in `continuous_attributes`.
-    /// Default true.
+    /// most 32 distinct values (labels, types, rows), or that takes at most 4 distinct values over
+    /// 20 or more points, unless listed in `continuous_attributes`. Default true.
     pub detect_discrete: bool,
     /// Attributes never treated as discrete by detection. Default none.
     pub continuous_attributes: Vec<String>,

@@ -265,13 +265,14 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         let f = weight / std;
         mean.push(mu);
         factor.push(f);
-        let whole = values.iter().all(|v| v.fract() == 0.0) && {
-            let mut distinct = values.clone();
-            distinct.sort_by(f64::total_cmp);
-            distinct.dedup();
-            distinct.len() <= 32
-        };
-        let detected = params.detect_discrete && whole && !params.continuous_attributes.contains(&names[c]);
+        let mut distinct = values.clone();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup();
+        // Labels: whole numbers with at most 32 values, or at most 4 values of any kind among 20
+        // or more points (the demo lattice's radius 0.5/1).
+        let labels = (values.iter().all(|v| v.fract() == 0.0) && distinct.len() <= 32)
+            || (distinct.len() <= 4 && values.len() >= 20);
+        let detected = params.detect_discrete && labels && !params.continuous_attributes.contains(&names[c]);
         if params.discrete_attributes.contains(&names[c]) || detected {
             let mut raw = values.clone();
             raw.sort_by(f64::total_cmp);
