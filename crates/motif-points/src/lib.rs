@@ -16,13 +16,17 @@
 //!   positions, minimized by conjugate gradients in the attribute half of the merging step.
 //! - `domain` (§6.2): boxes, polygon regions, brush strokes; the regular quadrature grid; rotation
 //!   and scale fields stored at the quadrature points (Eq. 8).
-//! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts.
+//! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts and
+//!   from the grid neighbours' last matches (propagation, as in PatchMatch).
 //! - `merging` (§5.1, global step): gradient descent on positions (rigid motions for elements), then
 //!   attributes, discrete attributes snapped (§4.4).
-//! - `sampling` (§5.1, Eq. 7): sampling control by the signed density difference P.
-//! - `init` (§5.2): random or patch initialization.
+//! - `sampling` (§5.1, Eq. 7): sampling control by the signed density difference P, within count
+//!   bounds around the exemplar's density.
+//! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its
+//!   copy's source) or random points.
 //! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
-//! - [`fidelity`]: nearest-neighbour histogram and radial distribution comparisons.
+//! - [`fidelity`]: nearest-neighbour and g(r) distances to the exemplar in units of its spacing,
+//!   with a random set, a tiled copy and the exemplar's halves as baselines.
 //! - [`samples`]: generated exemplars (demo, benchmarks); [`EnergyCase`]: single evaluations of T
 //!   for benchmarks.
 //! - `grid`, `raster`, `linear`: uniform-grid and per-cell-list neighbour queries, multilinear

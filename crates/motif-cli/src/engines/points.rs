@@ -593,9 +593,10 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
     write_set(&demo.path("points-hex.ply"), &hex_exemplar(16, 16, 0.12, 3))?;
     demo.case(DemoCase {
         title: "points: a jittered hexagonal grid in a box".into(),
-        description: "A 256-point hexagonal exemplar with a striped `shade` attribute is synthesized into a 14×10 box \
-                      from random points: matching by gradient descent from 5 random starts per quadrature point, \
-                      merging of positions then attributes, multi-scale window shrinking and sampling control."
+        description: "A 256-point hexagonal exemplar with a striped `shade` attribute (detected as discrete: whole \
+                      numbers) is synthesized into a 14×10 box from copied exemplar patches: matching by gradient \
+                      descent from 5 random starts and the neighbours' matches per quadrature point, merging of \
+                      positions then attributes, multi-scale window shrinking and sampling control."
             .into(),
         inputs: vec![("exemplar".into(), "points-hex.ply".into())],
         outputs: vec![("preview".into(), "points-hex-box.png".into()), ("points".into(), "points-hex-box.ply".into())],
