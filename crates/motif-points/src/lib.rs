@@ -24,6 +24,9 @@
 //!   bounds around the exemplar's density.
 //! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its
 //!   copy's source) or random points.
+//! - `setup`: the exemplar as features (attributes normalized, labels detected), the domain and
+//!   its quadrature, the initial output; the output set, sampling control's count bounds and the
+//!   fidelity figures read off the final state.
 //! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
 //! - [`fidelity`]: nearest-neighbour and g(r) distances to the exemplar in units of its spacing,
 //!   with a random set, a tiled copy and the exemplar's halves as baselines.
@@ -54,6 +57,7 @@ mod raster;
 mod reference;
 pub mod samples;
 mod sampling;
+mod setup;
 mod solver;
 #[cfg(test)]
 mod tests;

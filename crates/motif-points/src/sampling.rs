@@ -145,18 +145,7 @@ pub fn control<const D: usize>(
         if streak.exhausted() {
             break;
         }
-        match pass.propose_addition(exemplar, state, k) {
-            Some(Proposal::Accepted) => {
-                outcome.added += 1;
-                streak.reset();
-            }
-            Some(Proposal::Rejected) => {
-                outcome.rejected += 1;
-                streak.miss();
-            }
-            Some(Proposal::HeldByBound) => outcome.held_by_bound += 1,
-            None => {}
-        }
+        outcome.tally(pass.propose_addition(exemplar, state, k), true, &mut streak);
     }
     // Still below the least count (a start with too few points, where no window shows a deficit
     // beyond the threshold): the quadrature points with the lowest P take one more point each.
@@ -184,18 +173,7 @@ pub fn control<const D: usize>(
         if streak.exhausted() {
             break;
         }
-        match pass.propose_removal(state, k) {
-            Some(Proposal::Accepted) => {
-                outcome.removed += 1;
-                streak.reset();
-            }
-            Some(Proposal::Rejected) => {
-                outcome.rejected += 1;
-                streak.miss();
-            }
-            Some(Proposal::HeldByBound) => outcome.held_by_bound += 1,
-            None => {}
-        }
+        outcome.tally(pass.propose_removal(state, k), false, &mut streak);
     }
     // Still above the most: the quadrature points with the highest P give one point each.
     if pass.alive > pass.bounds.most {
@@ -239,6 +217,28 @@ impl Streak {
 
     fn exhausted(&self) -> bool {
         self.misses >= self.limit
+    }
+}
+
+impl SamplingOutcome {
+    /// Counts one proposal (an addition when `adding`) and feeds the run of rejections.
+    fn tally(&mut self, proposal: Option<Proposal>, adding: bool, streak: &mut Streak) {
+        match proposal {
+            Some(Proposal::Accepted) => {
+                if adding {
+                    self.added += 1;
+                } else {
+                    self.removed += 1;
+                }
+                streak.reset();
+            }
+            Some(Proposal::Rejected) => {
+                self.rejected += 1;
+                streak.miss();
+            }
+            Some(Proposal::HeldByBound) => self.held_by_bound += 1,
+            None => {}
+        }
     }
 }
 

@@ -9,7 +9,8 @@ use crate::linear::{self, Vector};
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::model::State;
 use crate::params::{Domain, Error, Evaluator, Field, Initialization, Input, Params, Stroke, Window};
-use crate::solver::{evaluate_with, prepare};
+use crate::setup::prepare;
+use crate::solver::evaluate_with;
 use crate::{PointSet, synthesize};
 
 /// A jittered square grid of `side × side` points with spacing 1, and one attribute "shade" that
@@ -80,7 +81,7 @@ fn quick_params(domain: Domain) -> Params {
 
 /// A prepared problem with a random output and matches, for derivative checks.
 struct Fixture<const D: usize> {
-    setup: crate::solver::Setup<D>,
+    setup: crate::setup::Setup<D>,
     matches: Vec<Vector<D>>,
     exemplar_self: f64,
 }
@@ -111,7 +112,7 @@ fn fixture_2d(window: Window, attributes: bool) -> (Fixture<2>, Params) {
     (Fixture { setup, matches, exemplar_self }, params)
 }
 
-fn match_once<const D: usize>(setup: &crate::solver::Setup<D>, params: &Params) -> (Vec<Vector<D>>, f64) {
+fn match_once<const D: usize>(setup: &crate::setup::Setup<D>, params: &Params) -> (Vec<Vector<D>>, f64) {
     let problem = setup.problem(setup.delta, params);
     let fields = SearchFields::new(&problem);
     let settings = MatchSettings { starts: 5, iterations: 10, polish: 1 };

@@ -16,6 +16,7 @@ use crate::demo::Demo;
 pub mod curve;
 pub mod points;
 pub mod points_corpus;
+pub mod points_preview;
 pub mod strokes;
 pub mod stylize;
 

@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
-use motif_core::{Point, Polygon, Polyline};
-use motif_io::{Column, ColumnKind, PointFormat, PointTable, Stroke as SvgStroke, SvgWriter};
+use motif_core::{Polygon, Polyline};
+use motif_io::{Column, ColumnKind, PointFormat, PointTable};
 use motif_points::samples::{hex_exemplar, lattice_exemplar, leaf_exemplar, ripple_exemplar};
 use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Stroke, Window};
 use serde_json::{Value, json};
@@ -356,7 +356,12 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
     if let Some(preview) = &args.preview {
-        let image = preview_image(&input.exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
+        let image = super::points_preview::preview_image(
+            &input.exemplar,
+            &output.points,
+            &output.report.fidelity,
+            args.colour_by.as_deref(),
+        )?;
         motif_io::write_png(preview, &image)?;
     }
     record_figures(context, &output);
@@ -396,191 +401,6 @@ fn record_figures(context: &mut Context, output: &Output) {
     context.figure("neighbourhood", report.neighbourhood);
     context.figure("quadrature_points", report.quadrature_points);
     context.figure("fidelity", &report.fidelity);
-}
-
-/// A colour for `t` in [0, 1] (dark blue → teal → yellow).
-fn ramp(t: f64) -> [u8; 4] {
-    let t = t.clamp(0.0, 1.0);
-    let stops = [[40.0, 30.0, 110.0], [30.0, 150.0, 140.0], [250.0, 220.0, 40.0]];
-    let (a, b, f) = if t < 0.5 { (stops[0], stops[1], t * 2.0) } else { (stops[1], stops[2], t * 2.0 - 1.0) };
-    [(a[0] + (b[0] - a[0]) * f) as u8, (a[1] + (b[1] - a[1]) * f) as u8, (a[2] + (b[2] - a[2]) * f) as u8, 255]
-}
-
-/// Per-point colours, and the value range an attribute was mapped from (to colour the output
-/// like the exemplar).
-type Colours = (Vec<[u8; 4]>, Option<(f64, f64)>);
-
-/// Per-point colours of a set.
-fn colours(set: &PointSet, colour_by: Option<&str>, range: Option<(f64, f64)>) -> anyhow::Result<Colours> {
-    let names = &set.attribute_names;
-    let find = |name: &str| names.iter().position(|n| n == name);
-    if colour_by.is_none()
-        && let (Some(r), Some(g), Some(b)) = (find("red"), find("green"), find("blue"))
-    {
-        let max = (0..set.len()).flat_map(|i| [r, g, b].map(|c| set.attributes_of(i)[c])).fold(0.0, f64::max);
-        let scale = if max > 1.0 { 1.0 } else { 255.0 };
-        let list = (0..set.len())
-            .map(|i| {
-                let a = set.attributes_of(i);
-                [a[r], a[g], a[b]].map(|v| (v * scale).clamp(0.0, 255.0) as u8)
-            })
-            .map(|[r, g, b]| [r, g, b, 255])
-            .collect();
-        return Ok((list, None));
-    }
-    let column = match colour_by {
-        Some(name) => Some(find(name).with_context(|| format!("--colour-by {name}: no such attribute"))?),
-        None => (!names.is_empty()).then_some(0),
-    };
-    if let Some(c) = column {
-        let values: Vec<f64> = (0..set.len()).map(|i| set.attributes_of(i)[c]).collect();
-        let (low, high) = range.unwrap_or_else(|| {
-            (
-                values.iter().copied().fold(f64::INFINITY, f64::min),
-                values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            )
-        });
-        let span = (high - low).max(1e-12);
-        return Ok((values.iter().map(|v| ramp((v - low) / span)).collect(), Some((low, high))));
-    }
-    if let Some(elements) = &set.elements {
-        return Ok((
-            elements
-                .iter()
-                .map(|&e| {
-                    if e < 0 {
-                        [60, 60, 60, 255]
-                    } else {
-                        ramp(((e as u64).wrapping_mul(2654435761) % 1000) as f64 / 1000.0)
-                    }
-                })
-                .collect(),
-            None,
-        ));
-    }
-    Ok((vec![[40, 40, 60, 255]; set.len()], None))
-}
-
-/// Projects a set for drawing: 2D as is, 3D by an orthographic view (turned 35° about z and
-/// tilted 30°), returning screen points and depth shades.
-fn project(set: &PointSet) -> Vec<(f64, f64, f64)> {
-    (0..set.len())
-        .map(|i| {
-            let p = set.position(i);
-            if set.dimension == 2 {
-                (p[0], p[1], 1.0)
-            } else {
-                let (sa, ca) = 35f64.to_radians().sin_cos();
-                let (sb, cb) = 30f64.to_radians().sin_cos();
-                let x = ca * p[0] - sa * p[1];
-                let y1 = sa * p[0] + ca * p[1];
-                let depth = cb * y1 + sb * p[2];
-                let up = -sb * y1 + cb * p[2];
-                (x, -up, depth)
-            }
-        })
-        .collect()
-}
-
-fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f64, size: f64, title: &str) {
-    let projected = project(set);
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    let (mut d0, mut d1) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &(x, y, d) in &projected {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-        d0 = d0.min(d);
-        d1 = d1.max(d);
-    }
-    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
-    let margin = 16.0;
-    let scale = (size - 2.0 * margin) / extent;
-    let spacing = (extent * extent / set.len().max(1) as f64).sqrt();
-    let radius = (0.3 * spacing * scale).clamp(1.0, 8.0);
-    let mut order: Vec<usize> = (0..projected.len()).collect();
-    // Far points first (painter's order); 2D points all have the same depth.
-    order.sort_by(|&a, &b| projected[b].2.total_cmp(&projected[a].2).then(a.cmp(&b)));
-    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
-    for i in order {
-        let (x, y, d) = projected[i];
-        let shade = if set.dimension == 3 { 1.0 - 0.5 * (d - d0) / (d1 - d0).max(1e-12) } else { 1.0 };
-        let c = colours[i];
-        let fill = [(c[0] as f64 * shade) as u8, (c[1] as f64 * shade) as u8, (c[2] as f64 * shade) as u8, 255];
-        let centre = Point::new(left + margin + (x - x0) * scale, margin + (y - y0) * scale);
-        svg.circle(centre, radius, None, Some(fill));
-    }
-    svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
-}
-
-/// One plot of the statistics panel: curves of the exemplar (black) and the output (orange) over
-/// `[0, 4)` spacings, in the box `(left, top, width, height)`.
-fn draw_curves(
-    svg: &mut SvgWriter,
-    (left, top, width, height): (f64, f64, f64, f64),
-    curves: [&[f64]; 2],
-    title: &str,
-) {
-    svg.rect(left, top, width, height, Some(SvgStroke { width: 1.0, colour: [200, 200, 200, 255] }), None);
-    let peak = curves.iter().flat_map(|c| c.iter()).copied().fold(1e-12, f64::max) * 1.1;
-    for (curve, colour) in curves.iter().zip([[30, 30, 30, 255], [230, 120, 20, 255]]) {
-        let points: Vec<Point> = curve
-            .iter()
-            .enumerate()
-            .map(|(b, v)| {
-                let x = left + (b as f64 + 0.5) / curve.len() as f64 * width;
-                Point::new(x, top + height - v / peak * height)
-            })
-            .collect();
-        svg.polyline(&points, false, Some(SvgStroke { width: 1.5, colour }), None);
-    }
-    svg.text(Point::new(left + 4.0, top + 12.0), 10.0, [90, 90, 90, 255], title);
-}
-
-/// The statistics panel: g(r) and the nearest-neighbour histogram of exemplar and output, and the
-/// figures against both baselines.
-fn draw_statistics(svg: &mut SvgWriter, fidelity: &motif_points::fidelity::Fidelity, left: f64, size: f64) {
-    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
-    let (e, o) = (&fidelity.exemplar_statistics, &fidelity.output_statistics);
-    let plot = (left + 10.0, 24.0, size - 20.0, 0.5 * size - 60.0);
-    draw_curves(svg, plot, [&e.radial_distribution, &o.radial_distribution], "g(r), r in 0–4 spacings");
-    let plot = (left + 10.0, 0.5 * size - 20.0, size - 20.0, 0.5 * size - 60.0);
-    draw_curves(svg, plot, [&e.nearest_histogram, &o.nearest_histogram], "nearest-neighbour distances, 0–4 spacings");
-    let lines = [
-        "black: exemplar, orange: output".to_string(),
-        format!("density {:.0} % of the exemplar's", 100.0 * fidelity.density_ratio),
-        format!(
-            "NN distance {:.3} (random {:.3}, tiled copy {:.3})",
-            fidelity.output.nearest_neighbour, fidelity.random.nearest_neighbour, fidelity.tiled.nearest_neighbour
-        ),
-        format!(
-            "g(r) distance {:.3} (random {:.3}, tiled copy {:.3})",
-            fidelity.output.radial_distribution,
-            fidelity.random.radial_distribution,
-            fidelity.tiled.radial_distribution
-        ),
-    ];
-    for (row, line) in lines.iter().enumerate() {
-        svg.text(Point::new(left + 10.0, size - 64.0 + 16.0 * row as f64), 11.0, [60, 60, 60, 255], line);
-    }
-}
-
-/// The preview image: exemplar and output side by side, then their statistics.
-pub fn preview_image(
-    exemplar: &PointSet,
-    output: &PointSet,
-    fidelity: &motif_points::fidelity::Fidelity,
-    colour_by: Option<&str>,
-) -> anyhow::Result<motif_core::RgbaImage> {
-    let size = 420.0;
-    let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
-    let (exemplar_colours, range) = colours(exemplar, colour_by, None)?;
-    let (output_colours, _) = colours(output, colour_by, range)?;
-    draw_panel(&mut svg, exemplar, &exemplar_colours, 0.0, size, &format!("exemplar ({} points)", exemplar.len()));
-    draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &format!("output ({} points)", output.len()));
-    draw_statistics(&mut svg, fidelity, 2.0 * size + 20.0, size);
-    Ok(motif_io::render_svg(&svg.finish(), 1.0, Path::new("preview"))?)
 }
 
 fn write_set(path: &Path, set: &PointSet) -> anyhow::Result<()> {

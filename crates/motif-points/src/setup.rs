@@ -1,0 +1,393 @@
+//! What is fixed for a synthesis (the exemplar as features, the domain and its quadrature, the
+//! exemplar's neighbour structures), the initial output, and what is read off the final state
+//! (the output point set, the count bounds of sampling control, the fidelity figures).
+
+use motif_core::SeedStreams;
+use motif_core::error::check_range;
+
+use crate::domain::{Quadrature, Region};
+use crate::energy::{Neighbours, Problem};
+use crate::exemplar_pairs::ExemplarPairs;
+use crate::fidelity::{self, Fidelity};
+use crate::grid::{CellLists, StaticGrid};
+use crate::linear::{self, Vector};
+use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
+use crate::params::{Error, Initialization, Input, Params};
+use crate::{PointSet, init, sampling};
+
+/// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
+#[derive(Debug, Clone)]
+pub(crate) struct AttributeMap {
+    pub names: Vec<String>,
+    pub columns: Vec<usize>,
+    pub mean: Vec<f64>,
+    /// Feature = (value − mean) · factor.
+    pub factor: Vec<f64>,
+    /// Allowed normalized values per channel (index = channel; channel 0 is the density).
+    pub discrete: Vec<Vec<f64>>,
+    /// The exemplar values behind `discrete` (same order), written back exactly.
+    pub discrete_values: Vec<Vec<f64>>,
+}
+
+/// Everything fixed for a synthesis.
+pub(crate) struct Setup<const D: usize> {
+    pub exemplar: Exemplar<D>,
+    pub attributes: AttributeMap,
+    pub sigma: f64,
+    pub delta: f64,
+    pub region: Region<D>,
+    pub quadrature: Quadrature<D>,
+    pub exemplar_grid: StaticGrid<D>,
+    pub exemplar_cells: CellLists<D>,
+    pub exemplar_pairs: ExemplarPairs<D>,
+    pub exemplar_neighbours: Neighbours,
+    pub state: State<D>,
+    pub fill: Vec<usize>,
+    pub margin: Option<f64>,
+    pub has_elements: bool,
+    /// Points the exemplar's density asks for over the quadrature domain.
+    pub expected_points: f64,
+}
+
+fn vector<const D: usize>(values: &[f64]) -> Vector<D> {
+    std::array::from_fn(|a| values[a])
+}
+
+pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<Setup<D>, Error> {
+    let source = &input.exemplar;
+    let n = source.len();
+    let positions: Vec<Vector<D>> = (0..n).map(|i| vector(source.position(i))).collect();
+    // Attributes.
+    let names: Vec<String> = match &params.attributes {
+        Some(names) => names.clone(),
+        None => source.attribute_names.clone(),
+    };
+    let mut columns = Vec::new();
+    for name in &names {
+        match source.attribute_names.iter().position(|c| c == name) {
+            Some(c) => columns.push(c),
+            None => {
+                return Err(Error::Input(format!(
+                    "the exemplar has no attribute {name:?} (it has: {})",
+                    source.attribute_names.join(", ")
+                )));
+            }
+        }
+    }
+    for name in params.discrete_attributes.iter().chain(&params.continuous_attributes) {
+        if !names.contains(name) {
+            return Err(Error::Input(format!(
+                "attribute {name:?} (named as discrete or continuous) is not among the synthesized attributes ({})",
+                names.join(", ")
+            )));
+        }
+    }
+    for (name, weight) in &params.attribute_weights {
+        if !names.contains(name) {
+            return Err(Error::Input(format!(
+                "attribute weight for {name:?}: no such synthesized attribute ({})",
+                names.join(", ")
+            )));
+        }
+        check_range(&format!("attribute weight of {name}"), *weight, 1e-6, 100.0)?;
+    }
+    let channels = 1 + columns.len();
+    let mut mean = Vec::new();
+    let mut factor = Vec::new();
+    let mut discrete = vec![Vec::new(); channels];
+    let mut discrete_values = vec![Vec::new(); channels];
+    for (c, &column) in columns.iter().enumerate() {
+        let values: Vec<f64> = (0..n).map(|i| source.attributes_of(i)[column]).collect();
+        let mu = values.iter().sum::<f64>() / n as f64;
+        let variance = values.iter().map(|v| (v - mu).powi(2)).sum::<f64>() / n as f64;
+        let std = variance.sqrt();
+        if std <= 1e-12 * mu.abs().max(1.0) {
+            return Err(Error::Input(format!(
+                "attribute {:?} has the same value ({mu}) at every exemplar point; it carries no structure: leave it \
+                 out (choose the others with the attribute list)",
+                names[c]
+            )));
+        }
+        let weight =
+            params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);
+        let f = weight / std;
+        mean.push(mu);
+        factor.push(f);
+        let mut distinct = values.clone();
+        distinct.sort_by(f64::total_cmp);
+        distinct.dedup();
+        // Labels: whole numbers with at most 32 values, or at most 4 values of any kind among 20
+        // or more points (the demo lattice's radius 0.5/1).
+        let labels = (values.iter().all(|v| v.fract() == 0.0) && distinct.len() <= 32)
+            || (distinct.len() <= 4 && values.len() >= 20);
+        let detected = params.detect_discrete && labels && !params.continuous_attributes.contains(&names[c]);
+        if params.discrete_attributes.contains(&names[c]) || detected {
+            let mut raw = values.clone();
+            raw.sort_by(f64::total_cmp);
+            raw.dedup_by(|a, b| (*a - *b).abs() < 1e-12 * a.abs().max(1.0));
+            discrete[c + 1] = raw.iter().map(|v| (v - mu) * f).collect();
+            discrete_values[c + 1] = raw;
+        }
+    }
+    let attributes = AttributeMap { names, columns, mean, factor, discrete, discrete_values };
+    let features_of = |set: &PointSet, i: usize, map: &[usize]| -> Vec<f64> {
+        let mut f = vec![1.0];
+        for (c, &column) in map.iter().enumerate() {
+            f.push((set.attributes_of(i)[column] - attributes.mean[c]) * attributes.factor[c]);
+        }
+        f
+    };
+    let mut features = Vec::with_capacity(n * channels);
+    for i in 0..n {
+        features.extend(features_of(source, i, &attributes.columns));
+    }
+    // Elements.
+    let mut element_of = vec![None; n];
+    let mut elements: Vec<ExemplarElement<D>> = Vec::new();
+    if let Some(ids) = &source.elements {
+        let mut index: std::collections::BTreeMap<i64, u32> = std::collections::BTreeMap::new();
+        for (i, &id) in ids.iter().enumerate() {
+            if id < 0 {
+                continue;
+            }
+            let e = *index.entry(id).or_insert_with(|| {
+                elements.push(ExemplarElement { centre: [0.0; D], members: Vec::new() });
+                (elements.len() - 1) as u32
+            });
+            element_of[i] = Some(e);
+            elements[e as usize].members.push(i);
+        }
+        for element in &mut elements {
+            let mut centre = [0.0; D];
+            for &p in &element.members {
+                linear::axpy(&mut centre, 1.0, &positions[p]);
+            }
+            element.centre = linear::scale(&centre, 1.0 / element.members.len() as f64);
+        }
+    }
+    let spacing = fidelity::mean_spacing(&positions);
+    if spacing <= 0.0 || !spacing.is_finite() {
+        return Err(Error::Input("the exemplar's points all coincide; they need a positive spacing".into()));
+    }
+    let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
+    let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
+    let (low, high) = crate::grid::bounds(&positions);
+    let exemplar = Exemplar { positions, features, channels, element_of, elements, low, high, spacing };
+    // Domain and quadrature.
+    let domain = params.domain.as_ref().ok_or_else(|| Error::EmptyDomain("no domain given".into()))?;
+    let region = Region::<D>::new(domain).map_err(Error::EmptyDomain)?;
+    let existing: Vec<Vector<D>> = match &input.existing {
+        Some(set) => (0..set.len()).map(|i| vector(set.position(i))).collect(),
+        None => Vec::new(),
+    };
+    let margin = input.existing.as_ref().map(|_| params.keep_margin.unwrap_or(3.0 * delta));
+    let existing_grid = StaticGrid::new(&existing, 2.0 * sigma);
+    let near_existing = |q: &Vector<D>| {
+        let mut found = false;
+        existing_grid.for_each_within(q, 2.0 * sigma, |_, _, _| found = true);
+        found
+    };
+    let (mut low, mut high) = region.bounds();
+    if let Some(margin) = margin {
+        for a in 0..D {
+            low[a] -= margin;
+            high[a] += margin;
+        }
+    }
+    let h = params.quadrature_spacing * sigma;
+    let keep = |q: &Vector<D>| {
+        region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
+    };
+    let quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
+    // The grid measures Ω with a boundary layer of half a cell on every side; where the region's
+    // volume is known exactly (a fresh box or polygon) the expected count follows it instead (a
+    // 9 × 9 box of a unit-density exemplar holds 81 points, not the grid's 91).
+    let mut expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
+    let grid_volume = quadrature.len() as f64 * h.powi(D as i32);
+    if let (Some(volume), None) = (region.volume(), margin) {
+        expected *= volume / grid_volume.max(1e-300);
+    }
+    if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
+        return Err(Error::EmptyDomain(format!(
+            "the domain holds {expected:.2} points at the exemplar's density; make it larger"
+        )));
+    }
+    let s_min = quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
+    let cutoff = params.kernel_cutoff * sigma;
+    // Cells of the pair cut-off: a query of that radius scans 3 rows (2D) or 9 rows (3D) of 3 cells.
+    // Half-size cells scan less volume but, measured in 3D, cost more in per-row overhead.
+    let exemplar_grid = StaticGrid::new(&exemplar.positions, cutoff / s_min);
+    let exemplar_cells = CellLists::new(&exemplar.positions, cutoff / s_min);
+    let exemplar_neighbours = Neighbours::build(&exemplar.positions, cutoff / s_min);
+    let exemplar_pairs = ExemplarPairs::new(&exemplar, &exemplar_neighbours, cutoff / s_min, 3.0 * delta / s_min);
+    // Existing points (progressive synthesis): fixed unless near the new region.
+    let mut state = State::new(channels);
+    if let Some(set) = &input.existing {
+        let mut map = Vec::new();
+        for name in &attributes.names {
+            match set.attribute_names.iter().position(|c| c == name) {
+                Some(c) => map.push(c),
+                None => return Err(Error::Input(format!("the existing points have no attribute {name:?}"))),
+            }
+        }
+        let margin = margin.unwrap_or(0.0);
+        let mut groups: std::collections::BTreeMap<i64, Vec<usize>> = std::collections::BTreeMap::new();
+        for i in 0..set.len() {
+            let id = set.elements.as_ref().map_or(-1, |e| e[i]);
+            let x = existing[i];
+            if id < 0 {
+                let frozen = region.distance(&x) > margin;
+                state.add_free(x, &features_of(set, i, &map), frozen);
+            } else {
+                groups.entry(id).or_default().push(i);
+            }
+        }
+        for (_, members) in groups {
+            let mut centre = [0.0; D];
+            for &p in &members {
+                linear::axpy(&mut centre, 1.0, &existing[p]);
+            }
+            let centre = linear::scale(&centre, 1.0 / members.len() as f64);
+            let body = members.iter().map(|&p| linear::sub(&existing[p], &centre)).collect();
+            let mut features = Vec::new();
+            for &p in &members {
+                features.extend(features_of(set, p, &map));
+            }
+            let frozen = region.distance(&centre) > margin;
+            let rigid = Rigid { centre, rotation: linear::identity(), body };
+            state.add_rigid(rigid, &features, 0, frozen);
+        }
+    }
+    let fill: Vec<usize> = (0..quadrature.len())
+        .filter(|&k| region.contains(&quadrature.points[k]) && !near_existing(&quadrature.points[k]))
+        .collect();
+    let has_elements = !exemplar.elements.is_empty()
+        || input.existing.as_ref().is_some_and(|e| e.elements.as_ref().is_some_and(|ids| ids.iter().any(|&i| i >= 0)));
+    Ok(Setup {
+        exemplar,
+        attributes,
+        sigma,
+        delta,
+        region,
+        quadrature,
+        exemplar_grid,
+        exemplar_cells,
+        exemplar_pairs,
+        exemplar_neighbours,
+        state,
+        fill,
+        margin,
+        has_elements,
+        expected_points: expected,
+    })
+}
+
+impl<const D: usize> Setup<D> {
+    pub fn allowed(&self, p: &Vector<D>) -> bool {
+        // Existing points near the new region may move within the band of Ω around it.
+        self.region.contains(p) || self.margin.is_some_and(|m| self.region.distance(p) < m && self.quadrature.inside(p))
+    }
+
+    /// Creates the initial output; returns the matches the initialization knows (the source of
+    /// each copied patch; empty for random points).
+    pub fn initialize(&mut self, params: &Params, streams: &SeedStreams) -> Vec<Vector<D>> {
+        let mut state = std::mem::take(&mut self.state);
+        let allowed = |p: &Vector<D>| self.allowed(p);
+        let matches = match params.initialization {
+            Initialization::Random => {
+                init::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed);
+                Vec::new()
+            }
+            Initialization::Patches => {
+                // Patches of 6δ (capped at 0.7 of the exemplar's smallest side): a window reaches
+                // about 2δ, so with the 2δ patches of the first version every window straddled
+                // several copies, no match could explain it, and the first merging step tore the
+                // copies apart (longleaf pines: g(r) distance 0.35 against 0.15 now).
+                let extent = (0..D).map(|a| self.exemplar.high[a] - self.exemplar.low[a]).fold(f64::INFINITY, f64::min);
+                let s_min = self.quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
+                let patch = (params.patch_size * self.delta).min(0.7 * extent * s_min).max(3.0 * self.sigma);
+                let sources =
+                    init::patches(&self.exemplar, &self.quadrature, &self.fill, patch, &mut state, streams, &allowed);
+                // Points outside every copied tile start from the exemplar's centre; the searched
+                // match replaces it at the first matching.
+                let centre = std::array::from_fn(|a| 0.5 * (self.exemplar.low[a] + self.exemplar.high[a]));
+                sources.into_iter().map(|m| m.unwrap_or(centre)).collect()
+            }
+        };
+        state.compact();
+        self.state = state;
+        matches
+    }
+
+    pub fn problem(&self, delta: f64, params: &Params) -> Problem<'_, D> {
+        let kernel = Kernel::new(params.window, self.sigma, delta, params.kernel_cutoff);
+        // A window is interior when everything it reaches (and the grid node each place rounds to)
+        // is inside Ω; then the exemplar needs no masking there.
+        let h = self.quadrature.spacing();
+        let interior = self.quadrature.depth.iter().map(|&d| d as f64 * h > kernel.gather + h).collect();
+        Problem {
+            kernel,
+            interior,
+            exemplar: &self.exemplar,
+            exemplar_grid: &self.exemplar_grid,
+            exemplar_cells: &self.exemplar_cells,
+            exemplar_pairs: &self.exemplar_pairs,
+            exemplar_neighbours: &self.exemplar_neighbours,
+            quadrature: &self.quadrature,
+        }
+    }
+}
+
+/// The count bounds of sampling control, on the points it may add or remove (those not frozen):
+/// the count the exemplar's density asks for over the quadrature domain (which, in a progressive
+/// synthesis, is the new region and the band of existing points that may move) ± `tolerance`.
+pub(crate) fn count_bounds<const D: usize>(setup: &Setup<D>, tolerance: f64) -> sampling::CountBounds {
+    sampling::CountBounds {
+        least: ((1.0 - tolerance) * setup.expected_points).ceil() as usize,
+        most: ((1.0 + tolerance) * setup.expected_points).floor() as usize,
+    }
+}
+
+/// The output's fidelity figures, in output units: the exemplar is scaled by the domain's mean scale.
+pub(crate) fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vector<D>], seed: u64) -> Fidelity {
+    let quadrature = &setup.quadrature;
+    let scale = quadrature.scale.iter().sum::<f64>() / quadrature.len().max(1) as f64;
+    let exemplar: Vec<Vector<D>> = setup.exemplar.positions.iter().map(|p| linear::scale(p, scale)).collect();
+    let region = &setup.region;
+    let (low, high) = region.bounds();
+    let volume = region.volume().unwrap_or(quadrature.len() as f64 * quadrature.spacing().powi(D as i32));
+    let domain = fidelity::Domain {
+        contains: &|p: &Vector<D>| region.contains(p),
+        depth: &|p: &Vector<D>| region.depth(p),
+        low,
+        high,
+        volume,
+    };
+    fidelity::compare(&exemplar, output, &domain, setup.exemplar.spacing * scale, seed)
+}
+
+pub(crate) fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet {
+    let map = &setup.attributes;
+    let mut positions = Vec::with_capacity(state.positions.len() * D);
+    let mut attributes = Vec::with_capacity(state.positions.len() * map.names.len());
+    for (i, p) in state.positions.iter().enumerate() {
+        positions.extend_from_slice(p);
+        let f = state.feature(i);
+        for c in 0..map.names.len() {
+            let allowed = &map.discrete[c + 1];
+            let value = match allowed.iter().position(|&a| a == f[c + 1]) {
+                // A snapped label: the exemplar's own value, without the round trip's rounding.
+                Some(index) => map.discrete_values[c + 1][index],
+                None => f[c + 1] / map.factor[c] + map.mean[c],
+            };
+            attributes.push(value);
+        }
+    }
+    PointSet {
+        dimension: D,
+        positions,
+        attribute_names: map.names.clone(),
+        attributes,
+        elements: setup.has_elements.then(|| state.element_id.clone()),
+    }
+}
