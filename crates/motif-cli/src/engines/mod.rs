@@ -15,6 +15,7 @@ use crate::demo::Demo;
 
 pub mod curve;
 pub mod points;
+pub mod points_bench;
 pub mod points_corpus;
 pub mod points_preview;
 pub mod strokes;
@@ -89,7 +90,7 @@ pub fn benches(bench: &Bench, only: &[String]) -> anyhow::Result<Map<String, Val
         }
         let value = match name {
             "curve" => curve::bench(bench)?,
-            "points" => points::bench(bench)?,
+            "points" => points_bench::bench(bench)?,
             "strokes" => strokes::bench(bench)?,
             "stylize" => stylize::bench(bench)?,
             _ => continue,

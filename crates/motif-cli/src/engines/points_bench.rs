@@ -1,0 +1,116 @@
+//! `motif bench --engine points`: the paper's three sizes (Table 1) on generated exemplars, and the
+//! real-data corpus (`points_corpus`).
+
+use motif_points::samples::{hex_exemplar, lattice_exemplar, ripple_exemplar};
+use motif_points::{Domain, Evaluator, Input, Params, PointSet};
+use serde_json::{Value, json};
+
+use crate::bench::Bench;
+
+/// One benchmark case: seconds, final T, fidelity.
+fn bench_case(
+    exemplar: &PointSet,
+    domain: Domain,
+    neighbourhood: f64,
+    quadrature: f64,
+    seed: u64,
+    with_reference: bool,
+) -> anyhow::Result<Value> {
+    let mut params = Params::default();
+    params.neighbourhood = Some(neighbourhood);
+    params.domain = Some(domain);
+    params.quadrature_spacing = quadrature;
+    params.seed = seed;
+    let input = Input { exemplar: exemplar.clone(), existing: None };
+    let start = std::time::Instant::now();
+    let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let comparison = motif_points::compare_evaluators(&input, &params)?;
+    // The whole synthesis again with the plain reference energy (small cases only): the fast path
+    // must give the same structure fidelity.
+    let reference = if with_reference {
+        params.evaluator = Evaluator::Reference;
+        let start = std::time::Instant::now();
+        let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+        json!({
+            "seconds": start.elapsed().as_secs_f64(),
+            "final_energy": output.report.final_energy,
+            "output_points": output.points.len(),
+            "nearest_neighbour_distance": output.report.fidelity.output.nearest_neighbour,
+            "radial_distribution_distance": output.report.fidelity.output.radial_distribution,
+        })
+    } else {
+        Value::Null
+    };
+    Ok(json!({
+        "reference_synthesis": reference,
+        "exemplar_points": exemplar.len(),
+        "output_points": output.points.len(),
+        "neighbourhood": neighbourhood,
+        "quadrature_spacing_sigma": quadrature,
+        "quadrature_points": output.report.quadrature_points,
+        "seconds": seconds,
+        "final_energy": output.report.final_energy,
+        "density_ratio": output.report.fidelity.density_ratio,
+        "nearest_neighbour_distance": output.report.fidelity.output.nearest_neighbour,
+        "radial_distribution_distance": output.report.fidelity.output.radial_distribution,
+        "stages_ms": crate::context::stages_object(&output.report.stages_ms),
+        "merge_steps_per_scale": output.report.energy.iter().map(|e| e.merge_steps).collect::<Vec<_>>(),
+        "energy_evaluation": {
+            "fast_ms": comparison.fast_ms,
+            "reference_ms": comparison.reference_ms,
+            "speedup": comparison.reference_ms / comparison.fast_ms.max(1e-9),
+            "relative_difference": (comparison.fast_energy - comparison.reference_energy).abs() / comparison.reference_energy.abs().max(1e-300),
+        },
+    }))
+}
+
+/// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars, and every
+/// case of the real-data corpus with its fidelity against the random and tiled baselines.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    if bench.quick {
+        let exemplar = hex_exemplar(8, 8, 0.1, bench.seed);
+        let box2 = Domain::Box { min: vec![0.0; 2], max: vec![4.0, 4.0] };
+        let quick_case = |name: &str| name == "swedishpines";
+        return Ok(json!({
+            "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)?,
+            "real_data": super::points_corpus::bench(bench.seed, &quick_case, &quick_case)?,
+        }));
+    }
+    // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box),
+    // then the corpus cases by name. MOTIF_BENCH_POINTS_CASE=helix,longleaf,... runs those alone;
+    // `generated` and `corpus` stand for each group (default: everything).
+    let only = std::env::var("MOTIF_BENCH_POINTS_CASE").ok();
+    let generated = ["helix", "sand", "chair"];
+    let selected = |name: &str| {
+        only.as_deref().is_none_or(|o| {
+            o.split(',').map(str::trim).any(|c| {
+                c == name
+                    || (c == "generated" && generated.contains(&name))
+                    || (c == "corpus" && !generated.contains(&name))
+            })
+        })
+    };
+    let mut figures = serde_json::Map::new();
+    let named = |name: &str| only.as_deref().is_some_and(|o| o.split(',').any(|c| c.trim() == name));
+    let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name), &named)?;
+    figures.insert("real_data".into(), corpus);
+    if selected("helix") {
+        let helix = hex_exemplar(30, 20, 0.1, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 2], max: vec![11.5, 7.5] };
+        figures.insert("helix_600_to_100".into(), bench_case(&helix, domain, 1.0, 2.0, bench.seed, true)?);
+    }
+    if selected("sand") {
+        let sand = ripple_exemplar(1600, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 2], max: vec![90.0, 80.0] };
+        figures.insert("sand_1600_to_7200".into(), bench_case(&sand, domain, 1.0, 2.0, bench.seed, false)?);
+    }
+    if selected("chair") {
+        let chair = lattice_exemplar(1100, bench.seed);
+        let domain = Domain::Box { min: vec![0.0; 3], max: vec![31.0, 31.0, 27.2] };
+        figures.insert("chair_1100_to_23000".into(), bench_case(&chair, domain, 0.75, 2.0, bench.seed, false)?);
+    }
+    figures.insert("paper_seconds".into(), json!({ "helix": 4.0, "sand": 120.0, "chair": 360.0 }));
+    figures.insert("target_seconds".into(), json!({ "helix": 0.3, "sand": 10.0, "chair": 60.0 }));
+    Ok(Value::Object(figures))
+}
