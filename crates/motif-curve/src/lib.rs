@@ -28,6 +28,7 @@ pub mod closed;
 pub mod cost;
 pub mod dp;
 mod exemplar;
+pub mod fidelity;
 pub mod overlay;
 pub mod piece;
 mod render;
