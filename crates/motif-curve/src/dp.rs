@@ -34,6 +34,7 @@ use crate::cost::{
 };
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
+use crate::variety::Penalty;
 
 /// Which dynamic-programming solver to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -46,11 +47,20 @@ pub enum Solver {
     Reference,
 }
 
-/// One row of the DP table: a piece and its candidate positions.
+/// One row of the DP table: a piece, its candidate positions and the repetition charge of its
+/// positions (see `variety`), added to `P` as a per-position cost.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RowSpec<'a> {
     pub frame: &'a PieceFrame,
     pub positions: &'a [Position],
+    pub penalty: Option<&'a Penalty>,
+}
+
+impl RowSpec<'_> {
+    /// The per-position cost of the `j`-th position (0 without a penalty).
+    pub fn charge(&self, j: usize) -> u64 {
+        self.penalty.map_or(0, |penalty| penalty.cost(self.positions[j]))
+    }
 }
 
 /// Work counters of the DP.
@@ -123,7 +133,7 @@ pub(crate) fn solve(
     solver: Solver,
     on_row: &mut dyn FnMut(usize),
 ) -> DpTable {
-    let mut costs = vec![0_u64; rows[0].positions.len()];
+    let mut costs: Vec<u64> = (0..rows[0].positions.len()).map(|j| rows[0].charge(j)).collect();
     let mut predecessors = Vec::with_capacity(rows.len().saturating_sub(1));
     let mut row_ms = Vec::with_capacity(rows.len().saturating_sub(1));
     let mut counters = DpCounters::default();
@@ -151,7 +161,7 @@ pub(crate) fn step(
 ) -> RowResult {
     let rights = right_edges(exemplar, model, before.frame, before.positions);
     let lefts = left_edges(exemplar, model, current.positions, current.frame.samples);
-    match solver {
+    let (mut costs, best, counters) = match solver {
         Solver::Reference => reference_row(model, previous, &rights, &lefts),
         Solver::Exact => {
             let top_right = before.frame.top_right;
@@ -160,7 +170,13 @@ pub(crate) fn step(
                 Seeds::new(before.positions, current.positions, shift, predecessors, successors)
             })
         }
+    };
+    if current.penalty.is_some() {
+        for (j, cost) in costs.iter_mut().enumerate() {
+            *cost += current.charge(j);
+        }
     }
+    (costs, best, counters)
 }
 
 /// The backward table: `Q[r][u]`, the cheapest cost from position `u` of row `r` to the end of
@@ -672,10 +688,11 @@ pub(crate) fn path_cost(exemplar: &Exemplar, model: &CostModel, rows: &[RowSpec<
             let lefts = left_edges(exemplar, model, &[rows[r].positions[path[r]]], rows[r].frame.samples);
             u64::from(edge_distance(model, &rights, 0, &lefts, 0))
         })
-        .sum()
+        .sum::<u64>()
+        + (0..rows.len()).map(|r| rows[r].charge(path[r])).sum::<u64>()
 }
 
-/// Brute force for tests: the minimum of `Ω` over every combination of positions, optionally
+/// Brute force for tests: the minimum of `Ω` plus the rows' charges over every combination of positions, optionally
 /// only over cycles (last position equal to the first). `None` when no combination qualifies.
 #[cfg(test)]
 pub(crate) fn brute_force(
@@ -707,8 +724,9 @@ pub(crate) fn brute_force(
             return;
         }
         for i in 0..rows[r].positions.len() {
-            let step =
+            let seam =
                 if r == 0 { 0 } else { u64::from(edge_distance(model, &rights[r - 1], path[r - 1], &lefts[r], i)) };
+            let step = seam + rows[r].charge(i);
             path[r] = i;
             visit(r + 1, cost + step, path, best, context);
         }

@@ -19,8 +19,16 @@ use motif_core::{Point, RgbaImage};
 use rayon::prelude::*;
 use serde::Serialize;
 
-/// Side of the compared patches, exemplar pixels.
+/// Side of the compared patches, in cells of `CELL × CELL` exemplar pixels (averaged, so that
+/// the resampling of rotated pieces does not drown the structure in noise).
 pub const PATCH_SIZE: usize = 8;
+/// Side of a cell, exemplar pixels.
+pub const CELL: usize = 2;
+/// Side of a patch, exemplar pixels.
+const SPAN: usize = PATCH_SIZE * CELL;
+/// Distance beyond which an output patch counts as broken (found nowhere in the exemplar). The
+/// resampling of the rendering alone keeps 99 % of the patches of an undistorted copy below 0.03.
+pub const BROKEN: f64 = 0.05;
 /// Step between output patches along and across the ribbon, exemplar pixels.
 const STEP: usize = 4;
 /// Largest number of output patches compared (evenly spaced along the curve beyond that), so that
@@ -35,6 +43,9 @@ pub struct PatchFidelity {
     pub mean_distance: f64,
     /// The 90th percentile of the same distances.
     pub p90_distance: f64,
+    /// Fraction of output patches farther than [`BROKEN`] from every exemplar patch: seams that
+    /// break the pattern, motifs cut in half, wrap-around seams of a tiled copy.
+    pub broken_fraction: f64,
     /// Output patches showing some pattern (the ones measured).
     pub patches: usize,
     /// Fraction of the exemplar's pattern pixels (alpha > 0) covered by the nearest exemplar
@@ -87,6 +98,21 @@ struct PatchIndex {
 }
 
 const PATCH_BYTES: usize = PATCH_SIZE * PATCH_SIZE * 4;
+
+/// The cell averages of a `SPAN × SPAN` block given pixel by pixel (`pixel(col, row)`).
+fn cell_patch(pixel: impl Fn(usize, usize) -> [u8; 4]) -> [u8; PATCH_BYTES] {
+    let mut sums = [0_u32; PATCH_BYTES];
+    for row in 0..SPAN {
+        for col in 0..SPAN {
+            let at = ((row / CELL) * PATCH_SIZE + col / CELL) * 4;
+            for (k, value) in pixel(col, row).into_iter().enumerate() {
+                sums[at + k] += u32::from(value);
+            }
+        }
+    }
+    let area = (CELL * CELL) as u32;
+    sums.map(|sum| ((sum + area / 2) / area) as u8)
+}
 
 impl PatchIndex {
     fn new(patches: &[([i64; 2], [u8; PATCH_BYTES])]) -> Self {
@@ -153,28 +179,21 @@ fn bounded_distance(a: &[u8], b: &[u8], bound: u32) -> u32 {
     total
 }
 
-/// Every `P × P` patch of the exemplar whose top-left corner lies in `[0, W − P] × [1 − P, H − 1]`
+/// Every patch of the exemplar whose top-left corner lies in `[0, W − S] × [1 − S, H − 1]` (`S`
+/// the patch side in pixels)
 /// (patches may reach into the transparent space above and below the strip, never past its left
 /// and right borders, where the exemplar is cut).
 fn exemplar_patches(exemplar: &RgbaImage) -> Vec<([i64; 2], [u8; PATCH_BYTES])> {
     let (w, h) = (exemplar.width(), exemplar.height());
     let pixels = premultiplied(exemplar);
-    let p = PATCH_SIZE as i64;
+    let span = SPAN as i64;
     let mut patches = Vec::new();
-    for y in (1 - p)..h as i64 {
-        for x in 0..=(w as i64 - p) {
-            let mut patch = [0_u8; PATCH_BYTES];
-            for b in 0..p {
-                let row = y + b;
-                if row < 0 || row >= h as i64 {
-                    continue;
-                }
-                for a in 0..p {
-                    let pixel = pixels[row as usize * w + (x + a) as usize];
-                    let at = ((b * p + a) * 4) as usize;
-                    patch[at..at + 4].copy_from_slice(&pixel);
-                }
-            }
+    for y in (1 - span)..h as i64 {
+        for x in 0..=(w as i64 - span) {
+            let patch = cell_patch(|col, row| {
+                let at_row = y + row as i64;
+                if at_row < 0 || at_row >= h as i64 { [0; 4] } else { pixels[at_row as usize * w + x as usize + col] }
+            });
             patches.push(([x, y], patch));
         }
     }
@@ -194,16 +213,14 @@ fn output_patches(image: &RgbaImage, top: &[Point], bottom: &[Point], scale: f64
     let length: f64 =
         top.windows(2).zip(bottom.windows(2)).map(|(t, b)| t[0].midpoint(b[0]).distance(t[1].midpoint(b[1]))).sum();
     let spacing = length / (count - 1) as f64;
-    let half = PATCH_SIZE as f64 / 2.0;
+    let half = SPAN as f64 / 2.0;
     // Keep whole patches on the curve: skip half a patch at each end.
     let margin = (half / scale / spacing).ceil() as usize;
     let step = ((STEP as f64 / scale / spacing).round() as usize).max(1);
     let along: Vec<usize> = (margin..count.saturating_sub(margin)).step_by(step).collect();
     let ribbon_width = top[0].distance(bottom[0]) * scale;
-    let across: Vec<f64> = (0..)
-        .map(|i| (i * STEP) as f64)
-        .take_while(|&y0| y0 + PATCH_SIZE as f64 <= ribbon_width.ceil() + half)
-        .collect();
+    let across: Vec<f64> =
+        (0..).map(|i| (i * STEP) as f64).take_while(|&y0| y0 + SPAN as f64 <= ribbon_width.ceil() + half).collect();
     let stride = (along.len() * across.len()).div_ceil(MAX_PATCHES).max(1);
     let along: Vec<usize> = along.into_iter().step_by(stride).collect();
     along
@@ -214,16 +231,12 @@ fn output_patches(image: &RgbaImage, top: &[Point], bottom: &[Point], scale: f64
             let tangent = motif_core::Vec2::new(normal.y, -normal.x);
             let pixels = &pixels;
             across.iter().filter_map(move |&y0| {
-                let mut patch = [0_u8; PATCH_BYTES];
-                for row in 0..PATCH_SIZE {
-                    for col in 0..PATCH_SIZE {
-                        let along_offset = (col as f64 + 0.5 - half) / scale;
-                        let across_offset = (y0 + row as f64 + 0.5) / scale;
-                        let p = t + tangent * along_offset + normal * across_offset;
-                        let at = (row * PATCH_SIZE + col) * 4;
-                        patch[at..at + 4].copy_from_slice(&sample(pixels, w, h, p.x, p.y));
-                    }
-                }
+                let patch = cell_patch(|col, row| {
+                    let along_offset = (col as f64 + 0.5 - half) / scale;
+                    let across_offset = (y0 + row as f64 + 0.5) / scale;
+                    let p = t + tangent * along_offset + normal * across_offset;
+                    sample(pixels, w, h, p.x, p.y)
+                });
                 (patch.iter().skip(3).step_by(4).any(|&a| a > 0)).then_some(patch)
             })
         })
@@ -243,7 +256,13 @@ pub fn patch_fidelity(
     let queries = output_patches(image, top, bottom, scale);
     let exemplar_set = exemplar_patches(exemplar);
     if queries.is_empty() || exemplar_set.is_empty() {
-        return PatchFidelity { mean_distance: 1.0, p90_distance: 1.0, patches: 0, exemplar_coverage: 0.0 };
+        return PatchFidelity {
+            mean_distance: 1.0,
+            p90_distance: 1.0,
+            broken_fraction: 1.0,
+            patches: 0,
+            exemplar_coverage: 0.0,
+        };
     }
     let index = PatchIndex::new(&exemplar_set);
     let matches: Vec<(u32, [i64; 2])> = queries.par_iter().map(|q| index.nearest(q)).collect();
@@ -254,17 +273,19 @@ pub fn patch_fidelity(
     let (w, h) = (exemplar.width(), exemplar.height());
     let mut covered = vec![false; w * h];
     for &(_, [x, y]) in &matches {
-        for row in y.max(0)..(y + PATCH_SIZE as i64).min(h as i64) {
-            for col in x..x + PATCH_SIZE as i64 {
+        for row in y.max(0)..(y + SPAN as i64).min(h as i64) {
+            for col in x..x + SPAN as i64 {
                 covered[row as usize * w + col as usize] = true;
             }
         }
     }
     let pattern = (0..w * h).filter(|&i| exemplar.get(i % w, i / w)[3] > 0);
     let (hit, total) = pattern.fold((0_usize, 0_usize), |(hit, total), i| (hit + usize::from(covered[i]), total + 1));
+    let broken = distances.iter().filter(|&&d| d > BROKEN).count();
     PatchFidelity {
         mean_distance,
         p90_distance,
+        broken_fraction: broken as f64 / distances.len() as f64,
         patches: distances.len(),
         exemplar_coverage: hit as f64 / total.max(1) as f64,
     }
@@ -304,6 +325,8 @@ mod tests {
         });
         let garbage = patch_fidelity(&exemplar, &noise, &top, &bottom, 1.0);
         assert!(garbage.mean_distance > 0.1, "{garbage:?}");
+        assert!(garbage.broken_fraction > 0.9, "{garbage:?}");
+        assert_eq!(copy.broken_fraction, 0.0);
     }
 
     #[test]

@@ -30,19 +30,21 @@ pub mod dp;
 mod exemplar;
 pub mod fidelity;
 pub mod overlay;
+mod params;
 pub mod piece;
 mod render;
 mod repeat;
+mod report;
 pub mod ribbon;
 pub mod samples;
+mod solve;
 pub mod stitch;
+mod variety;
 
-use motif_core::error::{check_positive, check_range};
 use motif_core::kurbo::Affine;
 use motif_core::timing::StageTimer;
 use motif_core::{InvalidParameter, Point, Polyline, Progress, RgbaImage, Vec2};
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
 pub use crate::cost::AlphaMode;
@@ -51,130 +53,14 @@ pub use crate::dp::Solver;
 use crate::dp::{DpCounters, RowSpec};
 use crate::exemplar::Exemplar;
 pub use crate::overlay::debug_overlay;
+use crate::params::validate;
+pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method};
 use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::Shape;
+pub use crate::report::{CurveOutput, CurveReport, PlacedPiece};
 use crate::ribbon::Ribbon;
+pub use crate::solve::VarietyReport;
 use crate::stitch::Stitch;
-
-/// How a closed curve is treated (§1.5).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ClosedMode {
-    /// `Approximate` for a closed curve, `Open` for an open one.
-    Auto,
-    /// The paper's single DP with backtracking from every terminal position.
-    Approximate,
-    /// Branch and bound over start positions with a certificate of optimality.
-    Exact,
-    /// Treat the curve as open (a closed curve is cut at its first point).
-    Open,
-}
-
-/// Which pattern generator to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Method {
-    /// The paper's synthesis: undistorted pieces placed by dynamic programming.
-    Synthesis,
-    /// The classic baseline: the exemplar repeated along the arc length and bent with the ribbon.
-    Repeat,
-}
-
-/// Size of the output canvas.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub enum Canvas {
-    /// Fitted to the ribbon's bounds plus `margin` pixels; the curve is translated accordingly.
-    Fit {
-        /// Empty border around the ribbon, in pixels.
-        margin: f64,
-    },
-    /// A fixed size; canvas pixel `(0, 0)` is the curve's document origin.
-    Size {
-        /// Width in pixels.
-        width: usize,
-        /// Height in pixels.
-        height: usize,
-    },
-}
-
-/// Parameters of the curve engine.
-#[derive(Debug, Clone, PartialEq)]
-#[non_exhaustive]
-pub struct CurveParams {
-    /// Ribbon width `b` in canvas pixels (§1.1). Finite, > 0. Default 64. With scale `s`, each
-    /// edge takes `C = ⌈s·b⌉` samples, so `s·b` should exceed the pattern's height in the exemplar.
-    pub width: f64,
-    /// Piece length `δ` along the curve, canvas pixels (§1.3). Finite, > 0, at most the curve's
-    /// length. Default 24. Shorter pieces follow bends better but repeat more.
-    pub piece_length: f64,
-    /// Scale `s`: exemplar pixels per canvas pixel (§1.3). Finite, in `[0.05, 20]`. Default 1;
-    /// 2 draws the pattern at half size.
-    pub scale: f64,
-    /// Closed-curve handling (§1.5). Default [`ClosedMode::Auto`].
-    pub closed: ClosedMode,
-    /// Synthesis or the repeat baseline. Default [`Method::Synthesis`].
-    pub method: Method,
-    /// DP solver (§1.4, §2). Default [`Solver::Exact`]; both give the same optimum.
-    pub solver: Solver,
-    /// Binary (the paper's ξ) or continuous alpha in ξ (§1). Default [`AlphaMode::Continuous`].
-    pub alpha_mode: AlphaMode,
-    /// `γ`, the cost of matching an opaque with a transparent pixel (§1). Finite, in
-    /// `[1, 100000]`. Default 1024 (the paper's value).
-    pub mismatch_penalty: f64,
-    /// Run the stitching post-process (§3.2). Default false.
-    pub stitch: bool,
-    /// `P`, the stitching penalty for moving opaque samples (Eq. 3). Finite, in `[0, 100000]`.
-    /// Default 32 (the paper's value).
-    pub stitch_penalty: f64,
-    /// Detect fold-overs and overlaps of the ribbon and keep the pattern out of them (§3.1).
-    /// Default true.
-    pub foldover_avoidance: bool,
-    /// Pin the exemplar position of the first piece (`[x, y]`, top-left corner; must be a valid
-    /// position). Default none: the first piece is free (§2).
-    pub pin_first: Option<[i32; 2]>,
-    /// Output canvas. Default fitted with a margin of 4 pixels.
-    pub canvas: Canvas,
-    /// Render samples per pixel along each axis (anti-aliasing; the forbidden-area test uses the
-    /// same samples). Integer in `[1, 8]`. Default 3.
-    pub samples_per_axis: usize,
-    /// Alpha at or below which a pixel counts as transparent for the slicing test (§1.3). In
-    /// `[0, 254]`. Default 8, so faint anti-aliasing fringes may be cut.
-    pub cut_alpha: u8,
-    /// Exact closed mode: most start positions tried with a pinned DP before giving up the
-    /// certificate. Integer in `[1, 100000]`. Default 64.
-    pub closed_max_starts: usize,
-    /// Minimum coverage (§1.3, an addition to the paper's validity test): a piece position is
-    /// valid only if the pattern pixels inside the piece number at least `min_coverage` × the
-    /// piece's typical coverage (the median over the exemplar windows that are cut cleanly and
-    /// hold the pattern's whole height). Without it the global optimum may copy one thin sliver
-    /// of the pattern (the edge of one ring of a chain) along the whole curve: it is valid and its
-    /// seams cost almost nothing. Finite, in `[0, 1]`; 0 is the paper's rule. Default 0.5.
-    pub min_coverage: f64,
-}
-
-impl Default for CurveParams {
-    fn default() -> Self {
-        Self {
-            width: 64.0,
-            piece_length: 24.0,
-            scale: 1.0,
-            closed: ClosedMode::Auto,
-            method: Method::Synthesis,
-            solver: Solver::Exact,
-            alpha_mode: AlphaMode::Continuous,
-            mismatch_penalty: 1024.0,
-            stitch: false,
-            stitch_penalty: 32.0,
-            foldover_avoidance: true,
-            pin_first: None,
-            canvas: Canvas::Fit { margin: 4.0 },
-            samples_per_axis: 3,
-            cut_alpha: 8,
-            closed_max_starts: 64,
-            min_coverage: 0.5,
-        }
-    }
-}
 
 /// What the engine works on.
 #[derive(Debug, Clone, Copy)]
@@ -217,210 +103,6 @@ pub enum Error {
         /// Number of valid positions of the first piece.
         count: usize,
     },
-}
-
-/// One placed piece, as written to the pieces JSON.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct PlacedPiece {
-    /// Index along the curve.
-    pub index: usize,
-    /// Arc length range `[x_i, x_{i+1}]` on the curve.
-    pub arc: [f64; 2],
-    /// Canvas corners: top-left, bottom-left, bottom-right, top-right.
-    pub quad: [[f64; 2]; 4],
-    /// `u_i`: exemplar position of the top-left corner (the corner sits at `(x + 0.5, y)`);
-    /// `None` for a piece left empty because avoidance forbade every position.
-    pub position: Option<[i32; 2]>,
-    /// Rotation canvas → exemplar, radians.
-    pub rotation: f64,
-    /// Scale `s` (exemplar pixels per canvas pixel).
-    pub scale: f64,
-    /// Number of valid positions of this piece.
-    pub valid_positions: usize,
-    /// True when the piece has a seam to a next piece (all but the last of an open curve).
-    pub has_seam: bool,
-    /// Seam cost `D` to the next piece (paper units), after stitching when enabled.
-    pub seam_cost: f64,
-    /// Seam cost before stitching (paper units).
-    pub seam_cost_unstitched: f64,
-    /// Stitch remapping `T` of the right edge (identity without stitching).
-    pub stitch: Vec<usize>,
-}
-
-/// Figures of a run.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CurveReport {
-    /// Synthesis or repeat.
-    pub method: Method,
-    /// Solver used.
-    pub solver: Solver,
-    /// Number of pieces.
-    pub pieces: usize,
-    /// `C`, samples per edge.
-    pub samples_per_edge: usize,
-    /// Canvas size.
-    pub canvas: [usize; 2],
-    /// Document coordinates of canvas pixel (0, 0)'s corner.
-    pub canvas_origin: [f64; 2],
-    /// `Ω` of the result (paper units), after stitching when enabled (the DP optimum is
-    /// `total_cost_unstitched`).
-    pub total_cost: f64,
-    /// `Ω` of the DP optimum (paper units).
-    pub total_cost_unstitched: f64,
-    /// Mean seam cost (paper units).
-    pub mean_seam_cost: f64,
-    /// `Ω` as found by the dynamic program (paper units); equals `total_cost_unstitched`.
-    pub dp_optimum: f64,
-    /// Mean over pieces of (valid positions / `U`).
-    pub valid_fraction: f64,
-    /// Milliseconds per DP row.
-    pub dp_row_ms: Vec<f64>,
-    /// Median of `dp_row_ms`.
-    pub dp_row_ms_median: f64,
-    /// Maximum of `dp_row_ms`.
-    pub dp_row_ms_max: f64,
-    /// Milliseconds per stage.
-    pub stages_ms: Vec<(String, f64)>,
-    /// True when the curve was handled as closed.
-    pub closed: bool,
-    /// Exact closed mode: whether the optimum was proven.
-    pub closed_certified: Option<bool>,
-    /// Closed curves: start positions evaluated by pinned DPs.
-    pub closed_starts_tried: usize,
-    /// Closed curves: whether the single DP found a cycle directly.
-    pub closed_directly: bool,
-    /// Pieces left empty because avoidance forbade every position.
-    pub empty_pieces: usize,
-    /// Forbidden canvas pixels (avoidance map and fold-overs).
-    pub forbidden_pixels: usize,
-    /// Canvas pixels flagged by fold-over detection.
-    pub foldover_pixels: usize,
-    /// DP work counters.
-    pub dp_counters: DpCounters,
-    /// Fraction of predecessor/position pairs whose columns were never compared.
-    pub columns_skipped_fraction: f64,
-    /// Seams whose stitch is not the identity.
-    pub stitched_seams: usize,
-    /// Repeat baseline: mean |stretch − 1| of the ribbon borders (0 for synthesis: pieces are rigid).
-    pub distortion_mean: f64,
-    /// Repeat baseline: max |stretch − 1| of the ribbon borders.
-    pub distortion_max: f64,
-    /// Repeat baseline: number of places where the tiled exemplar wraps around.
-    pub wrap_seams: usize,
-}
-
-/// The result of [`synthesize`].
-#[derive(Debug, Clone)]
-pub struct CurveOutput {
-    /// The rendered canvas (transparent background).
-    pub image: RgbaImage,
-    /// The placed pieces (empty for the repeat baseline).
-    pub pieces: Vec<PlacedPiece>,
-    /// Figures.
-    pub report: CurveReport,
-    /// Forbidden canvas pixels.
-    pub forbidden: ForbiddenMask,
-    /// Top border of the ribbon, canvas coordinates.
-    pub ribbon_top: Vec<Point>,
-    /// Bottom border of the ribbon, canvas coordinates.
-    pub ribbon_bottom: Vec<Point>,
-}
-
-/// Largest canvas side accepted.
-pub const MAX_CANVAS_SIDE: usize = 16384;
-
-/// Checks the parameters and inputs; returns the resolved closed flag.
-fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error> {
-    check_positive("width", params.width)?;
-    check_positive("piece-length", params.piece_length)?;
-    check_range("scale", params.scale, 0.05, 20.0)?;
-    check_range("mismatch-penalty", params.mismatch_penalty, 1.0, 100_000.0)?;
-    check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
-    motif_core::error::check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
-    motif_core::error::check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
-    check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
-    if params.cut_alpha == 255 {
-        return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
-    }
-    // Pieces live in exemplar space: keep them (and the transparent margin around the exemplar
-    // that their positions need) to a sane size.
-    if params.width * params.scale > 1024.0 {
-        return Err(
-            InvalidParameter::new("width", params.width, "width × scale must be at most 1024 exemplar pixels").into()
-        );
-    }
-    if params.piece_length * params.scale > 1024.0 {
-        return Err(InvalidParameter::new(
-            "piece-length",
-            params.piece_length,
-            "piece-length × scale must be at most 1024 exemplar pixels",
-        )
-        .into());
-    }
-    let exemplar = input.exemplar;
-    if exemplar.is_empty() {
-        return Err(InvalidParameter::new("exemplar", "0×0", "must have pixels").into());
-    }
-    if exemplar.width() > 2048 || exemplar.height() > 2048 {
-        return Err(InvalidParameter::new(
-            "exemplar",
-            format!("{}×{}", exemplar.width(), exemplar.height()),
-            "must be at most 2048×2048 (the dynamic program grows with the square of the pixel count)",
-        )
-        .into());
-    }
-    if exemplar.is_fully_transparent() {
-        return Err(InvalidParameter::new(
-            "exemplar",
-            "fully transparent",
-            "must contain opaque pixels (the pattern) on a transparent background",
-        )
-        .into());
-    }
-    if exemplar.is_fully_opaque() {
-        return Err(InvalidParameter::new(
-            "exemplar",
-            "fully opaque",
-            "must have a transparent background around the pattern (pieces are cut in transparent pixels)",
-        )
-        .into());
-    }
-    if let Canvas::Size { width, height } = params.canvas {
-        if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
-            return Err(InvalidParameter::new(
-                "canvas",
-                format!("{width}×{height}"),
-                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
-            )
-            .into());
-        }
-    }
-    if let Canvas::Fit { margin } = params.canvas {
-        check_range("margin", margin, 0.0, 4096.0)?;
-    }
-    let length = input.curve.length();
-    if params.piece_length > length {
-        return Err(InvalidParameter::new(
-            "piece-length",
-            params.piece_length,
-            format!("must not exceed the curve's length ({length:.2})"),
-        )
-        .into());
-    }
-    let closed = match (params.closed, input.curve.is_closed()) {
-        (ClosedMode::Auto, closed) => closed,
-        (ClosedMode::Open, _) => false,
-        (ClosedMode::Approximate | ClosedMode::Exact, true) => true,
-        (mode, false) => {
-            return Err(InvalidParameter::new(
-                "closed",
-                format!("{mode:?}").to_lowercase(),
-                "the curve is open; use auto or no (close the path with Z in SVG)",
-            )
-            .into());
-        }
-    };
-    Ok(closed)
 }
 
 /// The curve as used: cut open when a closed curve is treated as open.
@@ -506,6 +188,50 @@ fn pattern_height(image: &RgbaImage) -> usize {
     image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
 }
 
+/// Valid fraction below which the run warns that the pieces hardly fit the pattern.
+const FEW_VALID: f64 = 0.01;
+
+/// What looks wrong with a run before it is solved, with what to change.
+fn warnings(
+    exemplar: &Exemplar,
+    params: &CurveParams,
+    samples: usize,
+    valid_fraction: f64,
+    empty: usize,
+) -> Vec<String> {
+    let mut warnings = Vec::new();
+    // The top edge reads the row above the corner's and the bottom edge the row below the last,
+    // so a piece holds the pattern's whole height only with two clear rows to spare.
+    let needed = exemplar.pattern_rows.map_or(0, |(top, bottom)| (bottom - top + 3) as usize);
+    let smallest_width = needed as f64 / params.scale;
+    if samples < needed {
+        warnings.push(format!(
+            "the ribbon is {samples} exemplar pixels wide (width × scale) but the pattern is {} pixels tall: no piece \
+             can hold its whole height, so pieces cut it where it has horizontal gaps; for whole motifs use --width {} \
+             or more (at scale {})",
+            needed - 2,
+            smallest_width.ceil(),
+            params.scale
+        ));
+    }
+    if valid_fraction < FEW_VALID {
+        warnings.push(format!(
+            "only {:.2}% of exemplar positions are valid for an average piece: pieces must cut the pattern in \
+             transparent pixels at their top and bottom edges; try a wider ribbon (--width {} or more), shorter \
+             pieces or a lower --min-coverage",
+            100.0 * valid_fraction,
+            smallest_width.ceil().max(params.width.ceil() + 1.0)
+        ));
+    }
+    if empty > 0 {
+        warnings.push(format!(
+            "{empty} piece(s) left empty: fold-overs at sharp bends or the avoidance map forbade every position; \
+             shorter pieces (--piece-length) or a narrower ribbon follow sharp bends better"
+        ));
+    }
+    warnings
+}
+
 /// Synthesizes the pattern of `input.exemplar` along `input.curve`.
 pub fn synthesize(
     input: &CurveInput<'_>,
@@ -570,6 +296,10 @@ pub fn synthesize(
         distortion_mean: 0.0,
         distortion_max: 0.0,
         wrap_seams: 0,
+        repeated_pairs: 0,
+        distinct_windows: 0,
+        variety: None,
+        warnings: Vec::new(),
     };
 
     if params.method == Method::Repeat {
@@ -621,6 +351,7 @@ pub fn synthesize(
         .map(|(positions, &is_empty)| if is_empty { 0.0 } else { positions.len() as f64 / candidates as f64 })
         .sum::<f64>()
         / valid.len() as f64;
+    report.warnings = warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces);
     let pin_storage: Vec<Position>;
     let first_positions: &[Position] = match params.pin_first {
         Some(pin) => {
@@ -639,26 +370,37 @@ pub fn synthesize(
 
     timer.start("dynamic program");
     let mut rows: Vec<RowSpec<'_>> =
-        frames.iter().zip(&valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
+        frames.iter().zip(&valid).map(|(frame, positions)| RowSpec { frame, positions, penalty: None }).collect();
     rows[0].positions = first_positions;
     if closed {
-        rows.push(RowSpec { frame: &frames[0], positions: first_positions });
+        rows.push(RowSpec { frame: &frames[0], positions: first_positions, penalty: None });
     }
     let total_rows = rows.len();
     let mut on_row = |row: usize| progress.report("dynamic program", row as f64 / total_rows.max(1) as f64);
-    let (path, optimum, row_ms, counters) = if closed {
-        let exact = params.closed == ClosedMode::Exact;
-        let cycle =
-            closed::solve_closed(&exemplar, &model, &rows, params.solver, exact, params.closed_max_starts, &mut on_row);
-        report.closed_certified = if params.pin_first.is_some() && exact { Some(true) } else { cycle.certified };
-        report.closed_starts_tried = cycle.starts_tried;
-        report.closed_directly = cycle.closed_directly;
-        (cycle.path, cycle.cost, cycle.row_ms, cycle.counters)
-    } else {
-        let table = dp::solve(&exemplar, &model, &rows, params.solver, &mut on_row);
-        let last = (0..table.last_costs.len()).min_by_key(|&i| (table.last_costs[i], i)).expect("non-empty row");
-        (table.backtrack(last), table.last_costs[last], table.row_ms, table.counters)
+    let setup = solve::Setup {
+        solver: params.solver,
+        closed,
+        exact_closed: params.closed == ClosedMode::Exact,
+        closed_max_starts: params.closed_max_starts,
     };
+    let rule = variety::Rule {
+        weight: (params.variety * COST_SCALE).round() as u64,
+        radius: params.variety_radius,
+        reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
+        closed,
+    };
+    let optimised = solve::optimise(&exemplar, &model, &rows, setup, rule, &empty, &mut on_row);
+    let solve::Optimised { solution, repeated_pairs, distinct_windows, variety } = optimised;
+    if closed {
+        report.closed_certified =
+            if params.pin_first.is_some() && setup.exact_closed { Some(true) } else { solution.closed_certified };
+        report.closed_starts_tried = solution.closed_starts_tried;
+        report.closed_directly = solution.closed_directly;
+    }
+    report.repeated_pairs = repeated_pairs;
+    report.distinct_windows = distinct_windows;
+    report.variety = variety;
+    let (path, optimum, row_ms, counters) = (solution.path, solution.cost, solution.row_ms, solution.counters);
     let positions: Vec<Position> = (0..frames.len()).map(|i| rows[i].positions[path[i]]).collect();
     report.dp_row_ms_median = median(&row_ms);
     report.dp_row_ms_max = row_ms.iter().copied().fold(0.0, f64::max);

@@ -10,6 +10,7 @@ use crate::dp::{RowSpec, Solver, brute_force, path_cost, solve};
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
 use crate::ribbon::{Ribbon, slice};
+use crate::variety::Rule;
 use crate::{Canvas, ClosedMode, CurveInput, CurveParams, Error, Method, synthesize};
 
 /// A small problem built from raw parts, for solver tests.
@@ -32,10 +33,14 @@ impl Problem {
     }
 
     fn rows(&self, terminal: bool) -> Vec<RowSpec<'_>> {
-        let mut rows: Vec<RowSpec<'_>> =
-            self.frames.iter().zip(&self.valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
+        let mut rows: Vec<RowSpec<'_>> = self
+            .frames
+            .iter()
+            .zip(&self.valid)
+            .map(|(frame, positions)| RowSpec { frame, positions, penalty: None })
+            .collect();
         if terminal {
-            rows.push(RowSpec { frame: &self.frames[0], positions: &self.valid[0] });
+            rows.push(RowSpec { frame: &self.frames[0], positions: &self.valid[0], penalty: None });
         }
         rows
     }
@@ -116,6 +121,53 @@ proptest! {
             prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &exact_cycle.path), exact_cycle.cost);
         }
     }
+
+    /// With repetition charges on every row (the variety rounds), the exact solver still finds
+    /// the reference's and brute force's optimum of `Ω` plus the charges, open and closed.
+    #[test]
+    fn exact_solver_is_optimal_with_repetition_charges(
+        width in 10_usize..16,
+        height in 4_usize..7,
+        cells in proptest::collection::vec(any::<u8>(), 64),
+        points in proptest::collection::vec((0.0_f64..12.0, 0.0_f64..12.0), 3),
+        pieces in 1.6_f64..2.9,
+        weight in 1_u64..400_000,
+        picks in proptest::collection::vec(any::<prop::sample::Index>(), 4),
+    ) {
+        let image = random_exemplar(width, height, &cells);
+        prop_assume!(!image.is_fully_transparent());
+        let curve = Polyline::new(points.iter().map(|&(x, y)| Point::new(x, y)).collect(), true);
+        prop_assume!(curve.is_ok());
+        let curve = curve.unwrap();
+        prop_assume!(curve.length() > 4.0);
+        let problem = Problem::new(&image, &curve, height as f64 + 1.0, curve.length() / pieces, AlphaMode::Continuous);
+        prop_assume!(problem.valid.iter().all(|v| !v.is_empty()));
+        prop_assume!(problem.combinations() <= 30_000);
+        let pieces = problem.frames.len();
+        let current: Vec<Option<Position>> =
+            (0..pieces).map(|i| Some(problem.valid[i][picks[i % picks.len()].index(problem.valid[i].len())])).collect();
+        for closed in [false, true] {
+            let rule = Rule { weight, radius: 2, reach: [2, 2], closed };
+            let penalties = rule.penalties(&current);
+            let mut rows = problem.rows(closed);
+            for (i, row) in rows.iter_mut().enumerate().take(pieces) {
+                row.penalty = penalties[i].as_ref();
+            }
+            let (brute, _) = brute_force(&problem.exemplar, &problem.model, &rows, closed).unwrap();
+            if closed {
+                let exact = solve_closed(&problem.exemplar, &problem.model, &rows, Solver::Exact, true, 100_000, &mut |_| {});
+                prop_assert_eq!(exact.cost, brute);
+                prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &exact.path), brute);
+            } else {
+                let table = solve(&problem.exemplar, &problem.model, &rows, Solver::Exact, &mut |_| {});
+                let reference = solve(&problem.exemplar, &problem.model, &rows, Solver::Reference, &mut |_| {});
+                let last = (0..table.last_costs.len()).min_by_key(|&i| (table.last_costs[i], i)).unwrap();
+                prop_assert_eq!(table.last_costs[last], brute);
+                prop_assert_eq!(&table.last_costs, &reference.last_costs);
+                prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &table.backtrack(last)), brute);
+            }
+        }
+    }
 }
 
 /// A chain-like strip: rings every `period` pixels, with anti-aliased alpha, in rows
@@ -163,6 +215,45 @@ fn a_periodic_exemplar_along_a_straight_line_has_no_seam_cost() {
         assert!(output.report.pieces >= 9);
         assert!(output.image.count_alpha_at_least(128) > 500, "the pattern is drawn");
         assert_eq!(output.report.distortion_max, 0.0);
+    }
+}
+
+#[test]
+fn variety_uses_more_windows_on_a_straight_line() {
+    // Rings of growing size: every window differs, and the plain optimum repeats a few of them.
+    let image = RgbaImage::from_fn(160, 28, |x, y| {
+        let cell = x / 16;
+        let (cx, cy) = (cell as f64 * 16.0 + 8.0, 14.0);
+        let radius = 3.0 + (cell % 5) as f64;
+        let ring = ((x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) - radius).abs();
+        if ring < 1.5 || (y as f64 + 0.5 - cy).abs() < 1.0 { [180, 120 + cell as u8 * 9, 40, 255] } else { [0; 4] }
+    });
+    let curve = line(10.0, 40.0, 330.0, 40.0);
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let plain = synthesize(&input, &params(28.0, 16.0), &mut NoProgress).unwrap();
+    let mut varied_params = params(28.0, 16.0);
+    varied_params.variety = 50.0;
+    let varied = synthesize(&input, &varied_params, &mut NoProgress).unwrap();
+    let figures = varied.report.variety.clone().unwrap();
+    assert!(plain.report.repeated_pairs > 0, "{:?}", plain.report.repeated_pairs);
+    assert!(varied.report.repeated_pairs < plain.report.repeated_pairs, "{figures:?}");
+    assert!(
+        varied.report.distinct_windows > plain.report.distinct_windows,
+        "{} vs {}",
+        varied.report.distinct_windows,
+        plain.report.distinct_windows
+    );
+    assert!(figures.energy <= figures.energy_unpenalised);
+    assert_eq!(figures.lower_bound, plain.report.dp_optimum);
+    assert!(figures.energy >= figures.lower_bound);
+    assert_eq!(varied.report.dp_optimum, varied.report.total_cost_unstitched, "Ω of the result, without charges");
+    // Bad values are refused with the parameter named.
+    for (weight, radius) in [(-1.0, 8), (f64::NAN, 8), (1.0, 0), (1.0, 5000)] {
+        let mut bad = params(28.0, 16.0);
+        bad.variety = weight;
+        bad.variety_radius = radius;
+        let message = synthesize(&input, &bad, &mut NoProgress).unwrap_err().to_string();
+        assert!(message.contains("variety"), "{message}");
     }
 }
 

@@ -123,6 +123,18 @@ pub struct CurveArgs {
     /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule.
     #[arg(long, value_name = "F", default_value_t = 0.5)]
     pub min_coverage: f64,
+    /// Repetition penalty W (not in the paper), in seam-cost units, 0–10^6: each pair of pieces at
+    /// most --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the
+    /// paper's energy, which may alternate two windows along a straight line.
+    #[arg(long, value_name = "W", default_value_t = 0.0)]
+    pub variety: f64,
+    /// How many pieces apart a repeated window is penalised by --variety, 1–1000.
+    #[arg(long, value_name = "R", default_value_t = 8)]
+    pub variety_radius: usize,
+    /// Measure the result against the exemplar (patches read back along the curve, nearest
+    /// exemplar patch) and add the figures to the report and the summary.
+    #[arg(long)]
+    pub fidelity: bool,
     /// Exact closed mode: start positions tried at most before giving up the certificate.
     #[arg(long, value_name = "N", default_value_t = 64)]
     pub closed_max_starts: usize,
@@ -221,6 +233,8 @@ fn params_of(args: &CurveArgs) -> CurveParams {
     params.cut_alpha = args.cut_alpha;
     params.min_coverage = args.min_coverage;
     params.closed_max_starts = args.closed_max_starts;
+    params.variety = args.variety;
+    params.variety_radius = args.variety_radius;
     params
 }
 
@@ -258,7 +272,12 @@ fn record(context: &mut Context, output: &CurveOutput) {
     context.figure("distortion_max", report.distortion_max);
     if report.method == Method::Repeat {
         context.figure("wrap_seams", report.wrap_seams);
+    } else {
+        context.figure("repeated_pairs", report.repeated_pairs);
+        context.figure("distinct_windows", report.distinct_windows);
+        context.figure("variety", &report.variety);
     }
+    context.figure("warnings", &report.warnings);
 }
 
 /// Runs `motif curve`.
@@ -294,13 +313,33 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_io::write_png(path, &motif_curve::debug_overlay(&output))?;
     }
     record(context, &output);
+    for warning in &output.report.warnings {
+        context.summary(&format!("warning: {warning}"));
+    }
+    let fidelity = args.fidelity.then(|| {
+        let figures = motif_curve::fidelity::patch_fidelity(
+            &exemplar,
+            &output.image,
+            &output.ribbon_top,
+            &output.ribbon_bottom,
+            params.scale,
+        );
+        context.figure("fidelity", figures);
+        format!(
+            ", patch distance {:.4} (exemplar coverage {:.0}%)",
+            figures.mean_distance,
+            100.0 * figures.exemplar_coverage
+        )
+    });
     context.summary(&format!(
-        "curve: {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, DP {:.1} ms/row (median) -> {}",
+        "curve: {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
         output.report.pieces,
         output.report.total_cost,
         output.report.mean_seam_cost,
         100.0 * output.report.valid_fraction,
+        output.report.distinct_windows,
         output.report.dp_row_ms_median,
+        fidelity.unwrap_or_default(),
         args.out.display()
     ));
     Ok(())

@@ -1,0 +1,238 @@
+//! The parameters of the curve engine, their defaults and their validation.
+
+use motif_core::InvalidParameter;
+use motif_core::error::{check_count, check_positive, check_range};
+use serde::Serialize;
+
+use crate::cost::AlphaMode;
+use crate::dp::Solver;
+use crate::{CurveInput, Error};
+
+/// How a closed curve is treated (§1.5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ClosedMode {
+    /// `Approximate` for a closed curve, `Open` for an open one.
+    Auto,
+    /// The paper's single DP with backtracking from every terminal position.
+    Approximate,
+    /// Branch and bound over start positions with a certificate of optimality.
+    Exact,
+    /// Treat the curve as open (a closed curve is cut at its first point).
+    Open,
+}
+
+/// Which pattern generator to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// The paper's synthesis: undistorted pieces placed by dynamic programming.
+    Synthesis,
+    /// The classic baseline: the exemplar repeated along the arc length and bent with the ribbon.
+    Repeat,
+}
+
+/// Size of the output canvas.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Canvas {
+    /// Fitted to the ribbon's bounds plus `margin` pixels; the curve is translated accordingly.
+    Fit {
+        /// Empty border around the ribbon, in pixels.
+        margin: f64,
+    },
+    /// A fixed size; canvas pixel `(0, 0)` is the curve's document origin.
+    Size {
+        /// Width in pixels.
+        width: usize,
+        /// Height in pixels.
+        height: usize,
+    },
+}
+
+/// Parameters of the curve engine.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct CurveParams {
+    /// Ribbon width `b` in canvas pixels (§1.1). Finite, > 0. Default 64. With scale `s`, each
+    /// edge takes `C = ⌈s·b⌉` samples, so `s·b` should exceed the pattern's height in the exemplar.
+    pub width: f64,
+    /// Piece length `δ` along the curve, canvas pixels (§1.3). Finite, > 0, at most the curve's
+    /// length. Default 24. Shorter pieces follow bends better but repeat more.
+    pub piece_length: f64,
+    /// Scale `s`: exemplar pixels per canvas pixel (§1.3). Finite, in `[0.05, 20]`. Default 1;
+    /// 2 draws the pattern at half size.
+    pub scale: f64,
+    /// Closed-curve handling (§1.5). Default [`ClosedMode::Auto`].
+    pub closed: ClosedMode,
+    /// Synthesis or the repeat baseline. Default [`Method::Synthesis`].
+    pub method: Method,
+    /// DP solver (§1.4, §2). Default [`Solver::Exact`]; both give the same optimum.
+    pub solver: Solver,
+    /// Binary (the paper's ξ) or continuous alpha in ξ (§1). Default [`AlphaMode::Continuous`].
+    pub alpha_mode: AlphaMode,
+    /// `γ`, the cost of matching an opaque with a transparent pixel (§1). Finite, in
+    /// `[1, 100000]`. Default 1024 (the paper's value).
+    pub mismatch_penalty: f64,
+    /// Run the stitching post-process (§3.2). Default false.
+    pub stitch: bool,
+    /// `P`, the stitching penalty for moving opaque samples (Eq. 3). Finite, in `[0, 100000]`.
+    /// Default 32 (the paper's value).
+    pub stitch_penalty: f64,
+    /// Detect fold-overs and overlaps of the ribbon and keep the pattern out of them (§3.1).
+    /// Default true.
+    pub foldover_avoidance: bool,
+    /// Pin the exemplar position of the first piece (`[x, y]`, top-left corner; must be a valid
+    /// position). Default none: the first piece is free (§2).
+    pub pin_first: Option<[i32; 2]>,
+    /// Output canvas. Default fitted with a margin of 4 pixels.
+    pub canvas: Canvas,
+    /// Render samples per pixel along each axis (anti-aliasing; the forbidden-area test uses the
+    /// same samples). Integer in `[1, 8]`. Default 3.
+    pub samples_per_axis: usize,
+    /// Alpha at or below which a pixel counts as transparent for the slicing test (§1.3). In
+    /// `[0, 254]`. Default 8, so faint anti-aliasing fringes may be cut.
+    pub cut_alpha: u8,
+    /// Exact closed mode: most start positions tried with a pinned DP before giving up the
+    /// certificate. Integer in `[1, 100000]`. Default 64.
+    pub closed_max_starts: usize,
+    /// Minimum coverage (§1.3, an addition to the paper's validity test): a piece position is
+    /// valid only if the pattern pixels inside the piece number at least `min_coverage` × the
+    /// piece's typical coverage (the median over the exemplar windows that are cut cleanly and
+    /// hold the pattern's whole height). Without it the global optimum may copy one thin sliver
+    /// of the pattern (the edge of one ring of a chain) along the whole curve: it is valid and its
+    /// seams cost almost nothing. Finite, in `[0, 1]`; 0 is the paper's rule. Default 0.5.
+    pub min_coverage: f64,
+    /// `W`, the repetition penalty (not in the paper): each pair of pieces at most
+    /// `variety_radius` pieces apart that copy the same exemplar window adds `W` to the energy,
+    /// in the units of the seam cost (the report's `mean_seam_cost`). Finite, in `[0, 10^6]`.
+    /// Default 0 (the paper's energy, which may repeat two windows along a straight line).
+    pub variety: f64,
+    /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
+    /// Default 8.
+    pub variety_radius: usize,
+}
+
+impl Default for CurveParams {
+    fn default() -> Self {
+        Self {
+            width: 64.0,
+            piece_length: 24.0,
+            scale: 1.0,
+            closed: ClosedMode::Auto,
+            method: Method::Synthesis,
+            solver: Solver::Exact,
+            alpha_mode: AlphaMode::Continuous,
+            mismatch_penalty: 1024.0,
+            stitch: false,
+            stitch_penalty: 32.0,
+            foldover_avoidance: true,
+            pin_first: None,
+            canvas: Canvas::Fit { margin: 4.0 },
+            samples_per_axis: 3,
+            cut_alpha: 8,
+            closed_max_starts: 64,
+            min_coverage: 0.5,
+            variety: 0.0,
+            variety_radius: 8,
+        }
+    }
+}
+
+/// Largest canvas side accepted.
+pub const MAX_CANVAS_SIDE: usize = 16384;
+
+/// Checks the parameters and inputs; returns the resolved closed flag.
+pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error> {
+    check_positive("width", params.width)?;
+    check_positive("piece-length", params.piece_length)?;
+    check_range("scale", params.scale, 0.05, 20.0)?;
+    check_range("mismatch-penalty", params.mismatch_penalty, 1.0, 100_000.0)?;
+    check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
+    check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
+    check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
+    check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
+    check_range("variety", params.variety, 0.0, 1e6)?;
+    check_count("variety-radius", params.variety_radius, 1, 1000)?;
+    if params.cut_alpha == 255 {
+        return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
+    }
+    // Pieces live in exemplar space: keep them (and the transparent margin around the exemplar
+    // that their positions need) to a sane size.
+    if params.width * params.scale > 1024.0 {
+        return Err(
+            InvalidParameter::new("width", params.width, "width × scale must be at most 1024 exemplar pixels").into()
+        );
+    }
+    if params.piece_length * params.scale > 1024.0 {
+        return Err(InvalidParameter::new(
+            "piece-length",
+            params.piece_length,
+            "piece-length × scale must be at most 1024 exemplar pixels",
+        )
+        .into());
+    }
+    let exemplar = input.exemplar;
+    if exemplar.is_empty() {
+        return Err(InvalidParameter::new("exemplar", "0×0", "must have pixels").into());
+    }
+    if exemplar.width() > 2048 || exemplar.height() > 2048 {
+        return Err(InvalidParameter::new(
+            "exemplar",
+            format!("{}×{}", exemplar.width(), exemplar.height()),
+            "must be at most 2048×2048 (the dynamic program grows with the square of the pixel count)",
+        )
+        .into());
+    }
+    if exemplar.is_fully_transparent() {
+        return Err(InvalidParameter::new(
+            "exemplar",
+            "fully transparent",
+            "must contain opaque pixels (the pattern) on a transparent background",
+        )
+        .into());
+    }
+    if exemplar.is_fully_opaque() {
+        return Err(InvalidParameter::new(
+            "exemplar",
+            "fully opaque",
+            "must have a transparent background around the pattern (pieces are cut in transparent pixels)",
+        )
+        .into());
+    }
+    if let Canvas::Size { width, height } = params.canvas {
+        if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
+            return Err(InvalidParameter::new(
+                "canvas",
+                format!("{width}×{height}"),
+                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
+            )
+            .into());
+        }
+    }
+    if let Canvas::Fit { margin } = params.canvas {
+        check_range("margin", margin, 0.0, 4096.0)?;
+    }
+    let length = input.curve.length();
+    if params.piece_length > length {
+        return Err(InvalidParameter::new(
+            "piece-length",
+            params.piece_length,
+            format!("must not exceed the curve's length ({length:.2})"),
+        )
+        .into());
+    }
+    let closed = match (params.closed, input.curve.is_closed()) {
+        (ClosedMode::Auto, closed) => closed,
+        (ClosedMode::Open, _) => false,
+        (ClosedMode::Approximate | ClosedMode::Exact, true) => true,
+        (mode, false) => {
+            return Err(InvalidParameter::new(
+                "closed",
+                format!("{mode:?}").to_lowercase(),
+                "the curve is open; use auto or no (close the path with Z in SVG)",
+            )
+            .into());
+        }
+    };
+    Ok(closed)
+}
