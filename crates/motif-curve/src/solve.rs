@@ -138,8 +138,8 @@ pub(crate) fn optimise(
     let mut row_ms = best.row_ms.clone();
     let mut counters = best.counters;
     let mut solves = 1;
-    for _ in 0..variety::ROUNDS {
-        let penalties: Vec<Option<Penalty>> = rule.penalties(&current);
+    for fraction in variety::ROUND_WEIGHTS {
+        let penalties: Vec<Option<Penalty>> = rule.penalties(&current, fraction);
         let charged: Vec<RowSpec<'_>> = rows
             .iter()
             .enumerate()
@@ -154,7 +154,7 @@ pub(crate) fn optimise(
         let next = windows(&solution.path);
         let pairs = rule.repeated_pairs(&next);
         let energy = energy_of(seams, pairs);
-        let settled = next == current;
+        let settled = next == current && fraction == 1.0;
         if energy < best_energy {
             best_energy = energy;
             best_pairs = pairs;

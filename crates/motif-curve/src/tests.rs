@@ -148,7 +148,7 @@ proptest! {
             (0..pieces).map(|i| Some(problem.valid[i][picks[i % picks.len()].index(problem.valid[i].len())])).collect();
         for closed in [false, true] {
             let rule = Rule { weight, radius: 2, reach: [2, 2], closed };
-            let penalties = rule.penalties(&current);
+            let penalties = rule.penalties(&current, 1.0);
             let mut rows = problem.rows(closed);
             for (i, row) in rows.iter_mut().enumerate().take(pieces) {
                 row.penalty = penalties[i].as_ref();

@@ -5,7 +5,8 @@
 //! pieces at most `R` pieces apart that copy the same exemplar window (positions closer than half
 //! a piece length horizontally and a quarter of the ribbon vertically) costs `W`. A pair term
 //! between pieces that are not neighbours breaks the chain structure of the dynamic program, so
-//! `E` is minimised by rounds: each round charges every position of piece `i` with `W` times the
+//! `E` is minimised by rounds: each round charges every position of piece `i` with (a growing share
+//! of) `W` times the
 //! number of pieces within `R` whose current window it repeats (a per-position cost, which the DP
 //! still minimises exactly together with Ω), re-solves, and keeps the path of lowest `E`. The
 //! unpenalised optimum `Ω*` bounds `E` from below (penalties are never negative), so the report
@@ -13,8 +14,10 @@
 
 use crate::piece::Position;
 
-/// Rounds of re-solving with the penalties of the current path.
-pub(crate) const ROUNDS: usize = 4;
+/// Weights of the rounds of re-solving, as fractions of `W`: charging the full `W` at once makes
+/// whole groups of pieces leave their windows together and land on each other's, so the charge
+/// grows round by round and the path changes a little at a time.
+pub(crate) const ROUND_WEIGHTS: [f64; 6] = [0.125, 0.25, 0.5, 1.0, 1.0, 1.0];
 
 /// The per-position repetition charge of one piece: `weight` for each window in `centres` that a
 /// position repeats.
@@ -61,7 +64,8 @@ pub(crate) struct Rule {
 impl Rule {
     /// The penalty of each piece given the current `positions` (`None` for empty pieces, which
     /// copy nothing and are never charged).
-    pub fn penalties(&self, positions: &[Option<Position>]) -> Vec<Option<Penalty>> {
+    pub fn penalties(&self, positions: &[Option<Position>], fraction: f64) -> Vec<Option<Penalty>> {
+        let weight = (self.weight as f64 * fraction).round() as u64;
         let count = positions.len();
         (0..count)
             .map(|i| {
@@ -70,7 +74,7 @@ impl Rule {
                     .filter(|&j| within(i, j, count, self.radius, self.closed))
                     .filter_map(|j| positions[j])
                     .collect();
-                Some(Penalty { weight: self.weight, centres, reach: self.reach })
+                Some(Penalty { weight, centres, reach: self.reach })
             })
             .collect()
     }
@@ -118,7 +122,7 @@ mod tests {
         // A B A B A: pairs at distance 2 repeat (A–A twice, B–B once).
         let path = [a, b, a, b, a];
         assert_eq!(rule.repeated_pairs(&path), 3);
-        let penalties = rule.penalties(&path);
+        let penalties = rule.penalties(&path, 1.0);
         // Piece 2 (A) sees pieces 0 and 4 (A) within 2 pieces.
         assert_eq!(penalties[2].as_ref().unwrap().cost([11, 1]), 10);
         assert_eq!(penalties[2].as_ref().unwrap().cost([20, 0]), 0);
@@ -130,6 +134,6 @@ mod tests {
         // Empty pieces neither charge nor are charged.
         let with_empty = [a, None, a];
         assert_eq!(rule.repeated_pairs(&with_empty), 1);
-        assert!(rule.penalties(&with_empty)[1].is_none());
+        assert!(rule.penalties(&with_empty, 1.0)[1].is_none());
     }
 }
