@@ -19,6 +19,12 @@ pub struct BenchArgs {
     /// Tiny workloads that finish in seconds (for smoke tests; the figures are not comparable).
     #[arg(long)]
     pub quick: bool,
+    /// Run only the cases of this name (repeat for several): a corpus case (e.g. longleaf,
+    /// chain_round), a generated workload (curve: 199x82, 325x64; points: helix, sand, chair;
+    /// stylize: 0.15mp, 1mp, table1, exact), or a group: corpus, generated. Slow cases run only
+    /// when named. Default: every case but the slow ones.
+    #[arg(long = "case", value_name = "NAME")]
+    pub cases: Vec<String>,
     /// Also write the JSON object to this file.
     #[arg(long, value_name = "FILE.json")]
     pub out: Option<PathBuf>,
@@ -32,12 +38,27 @@ pub struct Bench {
     pub quick: bool,
     /// Worker threads in use.
     pub threads: usize,
+    /// Cases named with `--case` (empty: all).
+    pub cases: Vec<String>,
+}
+
+impl Bench {
+    /// True when case `name` of group `group` (`corpus` or `generated`) should run: no `--case`
+    /// given, or the name or its group named.
+    pub fn selects(&self, name: &str, group: &str) -> bool {
+        self.cases.is_empty() || self.names(name) || self.names(group)
+    }
+
+    /// True when case `name` was named with `--case` (slow cases run only then).
+    pub fn names(&self, name: &str) -> bool {
+        self.cases.iter().any(|c| c == name)
+    }
 }
 
 /// Runs `motif bench` and prints the figures on stdout.
 #[allow(clippy::print_stdout)]
 pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
-    let bench = Bench { seed: global.seed, quick: args.quick, threads };
+    let bench = Bench { seed: global.seed, quick: args.quick, threads, cases: args.cases.clone() };
     let start = std::time::Instant::now();
     let engines = crate::engines::benches(&bench, &args.engines)?;
     let figures = json!({
@@ -45,6 +66,7 @@ pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Res
         "seed": global.seed,
         "threads": bench.threads,
         "quick": args.quick,
+        "cases": args.cases,
         "profile": if cfg!(debug_assertions) { "debug" } else { "release" },
         "total_s": start.elapsed().as_secs_f64(),
         "engines": Value::Object(engines),

@@ -78,21 +78,15 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         }));
     }
     // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box),
-    // then the corpus cases by name. MOTIF_BENCH_POINTS_CASE=helix,longleaf,... runs those alone;
-    // `generated` and `corpus` stand for each group (default: everything).
-    let only = std::env::var("MOTIF_BENCH_POINTS_CASE").ok();
+    // then the corpus cases by name; `--case helix`, `--case longleaf`, ... runs those alone, and
+    // `--case generated` or `--case corpus` each group (default: everything but the slow cases).
     let generated = ["helix", "sand", "chair"];
     let selected = |name: &str| {
-        only.as_deref().is_none_or(|o| {
-            o.split(',').map(str::trim).any(|c| {
-                c == name
-                    || (c == "generated" && generated.contains(&name))
-                    || (c == "corpus" && !generated.contains(&name))
-            })
-        })
+        let group = if generated.contains(&name) { "generated" } else { "corpus" };
+        bench.selects(name, group)
     };
     let mut figures = serde_json::Map::new();
-    let named = |name: &str| only.as_deref().is_some_and(|o| o.split(',').any(|c| c.trim() == name));
+    let named = |name: &str| bench.names(name);
     let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name), &named)?;
     figures.insert("real_data".into(), corpus);
     if selected("helix") {

@@ -96,7 +96,7 @@ pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) ->
         if SLOW_CASES.contains(&case.name.as_str()) && !named(&case.name) {
             figures.insert(
                 case.name.clone(),
-                json!({ "skipped": "slow: runs only when named in MOTIF_BENCH_POINTS_CASE" }),
+                json!({ "skipped": "slow: runs only when named with --case" }),
             );
             continue;
         }

@@ -666,10 +666,8 @@ fn timed(input: &StylizeInput, params: &StylizeParams) -> anyhow::Result<(Output
 /// Figures for `motif bench`: CPU-seconds per megapixel on the two ebsynth-like workloads,
 /// Table 1 (band 0/2/4/8/full on a 360×360 5-segment map, one thread), PatchMatch/exact energy.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
-    // MOTIF_BENCH_STYLIZE_CASE=0.15mp,1mp,table1,exact (comma-separated) times only those parts
-    // (default: all four).
-    let only = std::env::var("MOTIF_BENCH_STYLIZE_CASE").ok();
-    let selected = |key: &str| only.as_deref().is_none_or(|o| o.split(',').any(|c| c.trim() == key));
+    // `--case 0.15mp`, `1mp`, `table1` or `exact` times only those parts (default: all four).
+    let selected = |key: &str| bench.selects(key, "generated");
     let mut figures = Map::new();
     let cases: [(&str, &str, usize, usize, usize); 2] = if bench.quick {
         [("0.15mp", "rgb_guide_patch3", 64, 3, 3), ("1mp", "ten_guide_channels_patch5", 64, 10, 5)]
