@@ -82,13 +82,13 @@ fn pinned_cycle(
     let mut alive: Vec<Vec<usize>> = vec![vec![start]];
     let mut alive_positions: Vec<Vec<Position>> = vec![vec![rows[0].positions[start]]];
     let mut predecessors: Vec<Vec<u32>> = vec![Vec::new()];
-    let mut costs = vec![rows[0].charge(start)];
+    let mut costs = vec![0_u64];
     for r in 1..rows.len() {
         let clock = Clock::now();
         let candidates: Vec<usize> = if r == last { vec![start] } else { (0..rows[r].positions.len()).collect() };
         let candidate_positions: Vec<Position> = candidates.iter().map(|&i| rows[r].positions[i]).collect();
-        let before = RowSpec { frame: rows[r - 1].frame, positions: &alive_positions[r - 1], penalty: None };
-        let current = RowSpec { frame: rows[r].frame, positions: &candidate_positions, penalty: rows[r].penalty };
+        let before = RowSpec { frame: rows[r - 1].frame, positions: &alive_positions[r - 1] };
+        let current = RowSpec { frame: rows[r].frame, positions: &candidate_positions };
         let (next, row_predecessors, row_counters) = step(exemplar, model, &before, &costs, &current, solver);
         work.counters = work.counters.plus(row_counters);
         let keep: Vec<usize> = (0..candidates.len())

@@ -34,7 +34,6 @@ use crate::cost::{
 };
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
-use crate::variety::Penalty;
 
 /// Which dynamic-programming solver to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -47,20 +46,11 @@ pub enum Solver {
     Reference,
 }
 
-/// One row of the DP table: a piece, its candidate positions and the repetition charge of its
-/// positions (see `variety`), added to `P` as a per-position cost.
+/// One row of the DP table: a piece and its candidate positions.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RowSpec<'a> {
     pub frame: &'a PieceFrame,
     pub positions: &'a [Position],
-    pub penalty: Option<&'a Penalty>,
-}
-
-impl RowSpec<'_> {
-    /// The per-position cost of the `j`-th position (0 without a penalty).
-    pub fn charge(&self, j: usize) -> u64 {
-        self.penalty.map_or(0, |penalty| penalty.cost(self.positions[j]))
-    }
 }
 
 /// Work counters of the DP.
@@ -133,7 +123,7 @@ pub(crate) fn solve(
     solver: Solver,
     on_row: &mut dyn FnMut(usize),
 ) -> DpTable {
-    let mut costs: Vec<u64> = (0..rows[0].positions.len()).map(|j| rows[0].charge(j)).collect();
+    let mut costs = vec![0_u64; rows[0].positions.len()];
     let mut predecessors = Vec::with_capacity(rows.len().saturating_sub(1));
     let mut row_ms = Vec::with_capacity(rows.len().saturating_sub(1));
     let mut counters = DpCounters::default();
@@ -161,7 +151,7 @@ pub(crate) fn step(
 ) -> RowResult {
     let rights = right_edges(exemplar, model, before.frame, before.positions);
     let lefts = left_edges(exemplar, model, current.positions, current.frame.samples);
-    let (mut costs, best, counters) = match solver {
+    match solver {
         Solver::Reference => reference_row(model, previous, &rights, &lefts),
         Solver::Exact => {
             let top_right = before.frame.top_right;
@@ -170,13 +160,7 @@ pub(crate) fn step(
                 Seeds::new(before.positions, current.positions, shift, predecessors, successors)
             })
         }
-    };
-    if current.penalty.is_some() {
-        for (j, cost) in costs.iter_mut().enumerate() {
-            *cost += current.charge(j);
-        }
     }
-    (costs, best, counters)
 }
 
 /// The backward table: `Q[r][u]`, the cheapest cost from position `u` of row `r` to the end of
@@ -680,7 +664,6 @@ fn exact_row(model: &CostModel, previous: &[u64], rights: &EdgeSet, lefts: &Edge
 }
 
 /// The cost `Ω` of a given choice of positions (one index per row), summing `D` over all seams.
-#[cfg(test)]
 pub(crate) fn path_cost(exemplar: &Exemplar, model: &CostModel, rows: &[RowSpec<'_>], path: &[usize]) -> u64 {
     (1..rows.len())
         .map(|r| {
@@ -688,11 +671,10 @@ pub(crate) fn path_cost(exemplar: &Exemplar, model: &CostModel, rows: &[RowSpec<
             let lefts = left_edges(exemplar, model, &[rows[r].positions[path[r]]], rows[r].frame.samples);
             u64::from(edge_distance(model, &rights, 0, &lefts, 0))
         })
-        .sum::<u64>()
-        + (0..rows.len()).map(|r| rows[r].charge(path[r])).sum::<u64>()
+        .sum()
 }
 
-/// Brute force for tests: the minimum of `Ω` plus the rows' charges over every combination of positions, optionally
+/// Brute force for tests: the minimum of `Ω` over every combination of positions, optionally
 /// only over cycles (last position equal to the first). `None` when no combination qualifies.
 #[cfg(test)]
 pub(crate) fn brute_force(
@@ -724,9 +706,8 @@ pub(crate) fn brute_force(
             return;
         }
         for i in 0..rows[r].positions.len() {
-            let seam =
+            let step =
                 if r == 0 { 0 } else { u64::from(edge_distance(model, &rights[r - 1], path[r - 1], &lefts[r], i)) };
-            let step = seam + rows[r].charge(i);
             path[r] = i;
             visit(r + 1, cost + step, path, best, context);
         }

@@ -370,10 +370,10 @@ pub fn synthesize(
 
     timer.start("dynamic program");
     let mut rows: Vec<RowSpec<'_>> =
-        frames.iter().zip(&valid).map(|(frame, positions)| RowSpec { frame, positions, penalty: None }).collect();
+        frames.iter().zip(&valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
     rows[0].positions = first_positions;
     if closed {
-        rows.push(RowSpec { frame: &frames[0], positions: first_positions, penalty: None });
+        rows.push(RowSpec { frame: &frames[0], positions: first_positions });
     }
     let total_rows = rows.len();
     let mut on_row = |row: usize| progress.report("dynamic program", row as f64 / total_rows.max(1) as f64);

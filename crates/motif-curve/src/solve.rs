@@ -4,11 +4,13 @@
 use serde::Serialize;
 
 use crate::closed;
-use crate::cost::{COST_SCALE, CostModel};
-use crate::dp::{self, DpCounters, RowSpec, Solver};
+use rayon::prelude::*;
+
+use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges};
+use crate::dp::{self, DpCounters, RowSpec, Solver, path_cost};
 use crate::exemplar::Exemplar;
 use crate::piece::Position;
-use crate::variety::{self, Penalty, Rule};
+use crate::variety::Rule;
 
 /// One solved DP: the position index of every row on the optimal path and its cost.
 pub(crate) struct Solution {
@@ -80,8 +82,6 @@ pub struct VarietyReport {
     pub weight: f64,
     /// `R`, pieces.
     pub radius: usize,
-    /// DP solves run (the unpenalised one included).
-    pub solves: usize,
     /// `E = Ω + W · repeated pairs` of the result (paper units).
     pub energy: f64,
     /// `Ω*`, the unpenalised optimum: no result can have a lower `E` (paper units).
@@ -89,6 +89,8 @@ pub struct VarietyReport {
     /// `(E − Ω*) / E`: how far above the lower bound the result is at most, as a fraction of `E`
     /// (0: proven optimal).
     pub gap: f64,
+    /// Pieces moved by the descent.
+    pub descent_moves: usize,
     /// Repeated pairs in the unpenalised optimum.
     pub repeated_pairs_unpenalised: usize,
     /// `E` of the unpenalised optimum (paper units).
@@ -103,9 +105,9 @@ pub(crate) struct Optimised {
     pub variety: Option<VarietyReport>,
 }
 
-/// Solves `rows`; with a repetition `rule`, re-solves in rounds with the charges of the current
-/// path and keeps the path of lowest penalised energy. `empty[i]` marks pieces left empty (their
-/// single position copies nothing).
+/// Solves `rows` (the exact optimum of `Ω`); with a repetition `rule` of positive weight, then
+/// lowers `E` from there by single-piece descent (see `variety`). `empty[i]` marks pieces left
+/// empty (their single position copies nothing).
 pub(crate) fn optimise(
     exemplar: &Exemplar,
     model: &CostModel,
@@ -119,65 +121,110 @@ pub(crate) fn optimise(
     let windows = |path: &[usize]| -> Vec<Option<Position>> {
         (0..pieces).map(|i| (!empty[i]).then(|| rows[i].positions[path[i]])).collect()
     };
-    let first = solve_once(exemplar, model, rows, setup, on_row);
-    let first_windows = windows(&first.path);
-    let first_pairs = rule.repeated_pairs(&first_windows);
+    let mut solution = solve_once(exemplar, model, rows, setup, on_row);
+    let first_pairs = rule.repeated_pairs(&windows(&solution.path));
     if rule.weight == 0 {
         return Optimised {
             repeated_pairs: first_pairs,
-            distinct_windows: rule.distinct_windows(&first_windows),
-            solution: first,
+            distinct_windows: rule.distinct_windows(&windows(&solution.path)),
+            solution,
             variety: None,
         };
     }
-    let lower_bound = first.cost;
+    let lower_bound = solution.cost;
     let energy_of = |cost: u64, pairs: usize| cost + rule.weight * pairs as u64;
-    let first_energy = energy_of(first.cost, first_pairs);
-    let (mut best, mut best_energy, mut best_pairs) = (first, first_energy, first_pairs);
-    let mut current = windows(&best.path);
-    let mut row_ms = best.row_ms.clone();
-    let mut counters = best.counters;
-    let mut solves = 1;
-    for fraction in variety::ROUND_WEIGHTS {
-        let penalties: Vec<Option<Penalty>> = rule.penalties(&current, fraction);
-        let charged: Vec<RowSpec<'_>> = rows
-            .iter()
-            .enumerate()
-            .map(|(i, row)| RowSpec { penalty: penalties.get(i).and_then(Option::as_ref), ..*row })
-            .collect();
-        let solution = solve_once(exemplar, model, &charged, setup, &mut |_| {});
-        solves += 1;
-        row_ms.extend_from_slice(&solution.row_ms);
-        counters = counters.plus(solution.counters);
-        let charges: u64 = (0..pieces).map(|i| charged[i].charge(solution.path[i])).sum();
-        let seams = solution.cost - charges;
-        let next = windows(&solution.path);
-        let pairs = rule.repeated_pairs(&next);
-        let energy = energy_of(seams, pairs);
-        let settled = next == current && fraction == 1.0;
-        if energy < best_energy {
-            best_energy = energy;
-            best_pairs = pairs;
-            best = Solution { cost: seams, ..solution };
-        }
-        if settled {
-            break;
-        }
-        current = next;
-    }
-    let distinct_windows = rule.distinct_windows(&windows(&best.path));
+    let first_energy = energy_of(solution.cost, first_pairs);
+    let descent_moves = descend(exemplar, model, rows, rule, empty, &mut solution.path);
+    solution.cost = path_cost(exemplar, model, rows, &solution.path);
+    let repeated_pairs = rule.repeated_pairs(&windows(&solution.path));
+    let energy = energy_of(solution.cost, repeated_pairs);
     let to_paper = |cost: u64| cost as f64 / COST_SCALE;
     let variety = VarietyReport {
         weight: to_paper(rule.weight),
         radius: rule.radius,
-        solves,
-        energy: to_paper(best_energy),
+        energy: to_paper(energy),
         lower_bound: to_paper(lower_bound),
-        gap: if best_energy == 0 { 0.0 } else { (best_energy - lower_bound) as f64 / best_energy as f64 },
+        gap: if energy == 0 { 0.0 } else { (energy - lower_bound) as f64 / energy as f64 },
+        descent_moves,
         repeated_pairs_unpenalised: first_pairs,
         energy_unpenalised: to_paper(first_energy),
     };
-    best.row_ms = row_ms;
-    best.counters = counters;
-    Optimised { solution: best, repeated_pairs: best_pairs, distinct_windows, variety: Some(variety) }
+    Optimised {
+        distinct_windows: rule.distinct_windows(&windows(&solution.path)),
+        repeated_pairs,
+        solution,
+        variety: Some(variety),
+    }
+}
+
+/// Sweeps of the single-piece descent at most.
+const DESCENT_SWEEPS: usize = 12;
+
+/// Exact coordinate descent on `E`: piece by piece, the position minimising its two seams plus
+/// `W` times the windows it repeats within `R`, all other pieces fixed; a piece moves only when
+/// that lowers `E`, so `E` decreases strictly and the descent ends. Returns the number of moves.
+fn descend(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    rows: &[RowSpec<'_>],
+    rule: Rule,
+    empty: &[bool],
+    path: &mut [usize],
+) -> usize {
+    let pieces = empty.len();
+    let closed = rule.closed;
+    let mut moves = 0;
+    for _ in 0..DESCENT_SWEEPS {
+        let mut moved = false;
+        for i in 0..pieces {
+            if empty[i] || (i == 0 && rows[0].positions.len() == 1) {
+                continue;
+            }
+            let candidates = rows[i].positions;
+            let previous = if i > 0 { Some(i - 1) } else { closed.then(|| pieces - 1) };
+            let next = if i + 1 < pieces { Some(i + 1) } else { closed.then_some(0) };
+            let left_cost: Vec<u64> = match previous {
+                Some(p) => {
+                    let rights = right_edges(exemplar, model, rows[p].frame, &[rows[p].positions[path[p]]]);
+                    let lefts = left_edges(exemplar, model, candidates, rows[i].frame.samples);
+                    (0..candidates.len())
+                        .into_par_iter()
+                        .map(|u| u64::from(edge_distance(model, &rights, 0, &lefts, u)))
+                        .collect()
+                }
+                None => vec![0; candidates.len()],
+            };
+            let right_cost: Vec<u64> = match next {
+                Some(n) => {
+                    let lefts = left_edges(exemplar, model, &[rows[n].positions[path[n]]], rows[n].frame.samples);
+                    let rights = right_edges(exemplar, model, rows[i].frame, candidates);
+                    (0..candidates.len())
+                        .into_par_iter()
+                        .map(|u| u64::from(edge_distance(model, &rights, u, &lefts, 0)))
+                        .collect()
+                }
+                None => vec![0; candidates.len()],
+            };
+            let current: Vec<Option<Position>> =
+                (0..pieces).map(|j| (!empty[j]).then(|| rows[j].positions[path[j]])).collect();
+            let penalty = &rule.penalties(&current)[i];
+            let total = |u: usize| left_cost[u] + right_cost[u] + penalty.as_ref().map_or(0, |p| p.cost(candidates[u]));
+            let best = (0..candidates.len()).min_by_key(|&u| (total(u), u)).expect("a valid position");
+            if total(best) < total(path[i]) {
+                path[i] = best;
+                moves += 1;
+                moved = true;
+            }
+        }
+        if closed {
+            // The terminal row repeats the first piece.
+            if path.len() > pieces {
+                path[pieces] = path[0];
+            }
+        }
+        if !moved {
+            break;
+        }
+    }
+    moves
 }

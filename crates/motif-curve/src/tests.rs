@@ -10,7 +10,6 @@ use crate::dp::{RowSpec, Solver, brute_force, path_cost, solve};
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
 use crate::ribbon::{Ribbon, slice};
-use crate::variety::Rule;
 use crate::{Canvas, ClosedMode, CurveInput, CurveParams, Error, Method, synthesize};
 
 /// A small problem built from raw parts, for solver tests.
@@ -33,14 +32,10 @@ impl Problem {
     }
 
     fn rows(&self, terminal: bool) -> Vec<RowSpec<'_>> {
-        let mut rows: Vec<RowSpec<'_>> = self
-            .frames
-            .iter()
-            .zip(&self.valid)
-            .map(|(frame, positions)| RowSpec { frame, positions, penalty: None })
-            .collect();
+        let mut rows: Vec<RowSpec<'_>> =
+            self.frames.iter().zip(&self.valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
         if terminal {
-            rows.push(RowSpec { frame: &self.frames[0], positions: &self.valid[0], penalty: None });
+            rows.push(RowSpec { frame: &self.frames[0], positions: &self.valid[0] });
         }
         rows
     }
@@ -121,53 +116,6 @@ proptest! {
             prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &exact_cycle.path), exact_cycle.cost);
         }
     }
-
-    /// With repetition charges on every row (the variety rounds), the exact solver still finds
-    /// the reference's and brute force's optimum of `Ω` plus the charges, open and closed.
-    #[test]
-    fn exact_solver_is_optimal_with_repetition_charges(
-        width in 10_usize..16,
-        height in 4_usize..7,
-        cells in proptest::collection::vec(any::<u8>(), 64),
-        points in proptest::collection::vec((0.0_f64..12.0, 0.0_f64..12.0), 3),
-        pieces in 1.6_f64..2.9,
-        weight in 1_u64..400_000,
-        picks in proptest::collection::vec(any::<prop::sample::Index>(), 4),
-    ) {
-        let image = random_exemplar(width, height, &cells);
-        prop_assume!(!image.is_fully_transparent());
-        let curve = Polyline::new(points.iter().map(|&(x, y)| Point::new(x, y)).collect(), true);
-        prop_assume!(curve.is_ok());
-        let curve = curve.unwrap();
-        prop_assume!(curve.length() > 4.0);
-        let problem = Problem::new(&image, &curve, height as f64 + 1.0, curve.length() / pieces, AlphaMode::Continuous);
-        prop_assume!(problem.valid.iter().all(|v| !v.is_empty()));
-        prop_assume!(problem.combinations() <= 30_000);
-        let pieces = problem.frames.len();
-        let current: Vec<Option<Position>> =
-            (0..pieces).map(|i| Some(problem.valid[i][picks[i % picks.len()].index(problem.valid[i].len())])).collect();
-        for closed in [false, true] {
-            let rule = Rule { weight, radius: 2, reach: [2, 2], closed };
-            let penalties = rule.penalties(&current, 1.0);
-            let mut rows = problem.rows(closed);
-            for (i, row) in rows.iter_mut().enumerate().take(pieces) {
-                row.penalty = penalties[i].as_ref();
-            }
-            let (brute, _) = brute_force(&problem.exemplar, &problem.model, &rows, closed).unwrap();
-            if closed {
-                let exact = solve_closed(&problem.exemplar, &problem.model, &rows, Solver::Exact, true, 100_000, &mut |_| {});
-                prop_assert_eq!(exact.cost, brute);
-                prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &exact.path), brute);
-            } else {
-                let table = solve(&problem.exemplar, &problem.model, &rows, Solver::Exact, &mut |_| {});
-                let reference = solve(&problem.exemplar, &problem.model, &rows, Solver::Reference, &mut |_| {});
-                let last = (0..table.last_costs.len()).min_by_key(|&i| (table.last_costs[i], i)).unwrap();
-                prop_assert_eq!(table.last_costs[last], brute);
-                prop_assert_eq!(&table.last_costs, &reference.last_costs);
-                prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &table.backtrack(last)), brute);
-            }
-        }
-    }
 }
 
 /// A chain-like strip: rings every `period` pixels, with anti-aliased alpha, in rows
@@ -232,7 +180,7 @@ fn variety_uses_more_windows_on_a_straight_line() {
     let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
     let plain = synthesize(&input, &params(28.0, 16.0), &mut NoProgress).unwrap();
     let mut varied_params = params(28.0, 16.0);
-    varied_params.variety = 50.0;
+    varied_params.variety = 5000.0;
     let varied = synthesize(&input, &varied_params, &mut NoProgress).unwrap();
     let figures = varied.report.variety.clone().unwrap();
     assert!(plain.report.repeated_pairs > 0, "{:?}", plain.report.repeated_pairs);

@@ -5,19 +5,18 @@
 //! pieces at most `R` pieces apart that copy the same exemplar window (positions closer than half
 //! a piece length horizontally and a quarter of the ribbon vertically) costs `W`. A pair term
 //! between pieces that are not neighbours breaks the chain structure of the dynamic program, so
-//! `E` is minimised by rounds: each round charges every position of piece `i` with (a growing share
-//! of) `W` times the
-//! number of pieces within `R` whose current window it repeats (a per-position cost, which the DP
-//! still minimises exactly together with Ω), re-solves, and keeps the path of lowest `E`. The
-//! unpenalised optimum `Ω*` bounds `E` from below (penalties are never negative), so the report
-//! says how far the result can be from the optimum of `E` at most.
+//! `E` is lowered from the exact optimum of `Ω` by exact coordinate descent: piece by piece, the
+//! best position given all the others (its two seams plus its repeats), moving only when `E`
+//! drops. The unpenalised optimum `Ω*` bounds `E` from below (penalties are never negative), so
+//! the report says how far the result can be from the optimum of `E` at most.
+//!
+//! Tried and dropped: re-solving the whole DP in rounds, each charging the positions that repeat
+//! the previous path's windows (an exact DP per round). A round cannot see a piece repeating
+//! itself, so a straight line went from alternating two windows to alternating two others; with
+//! growing charges over six rounds it found a 4.5 % lower `E` than the descent on a real chain
+//! along an S-curve, at six times the time (43 s against 7 s).
 
 use crate::piece::Position;
-
-/// Weights of the rounds of re-solving, as fractions of `W`: charging the full `W` at once makes
-/// whole groups of pieces leave their windows together and land on each other's, so the charge
-/// grows round by round and the path changes a little at a time.
-pub(crate) const ROUND_WEIGHTS: [f64; 6] = [0.125, 0.25, 0.5, 1.0, 1.0, 1.0];
 
 /// The per-position repetition charge of one piece: `weight` for each window in `centres` that a
 /// position repeats.
@@ -64,8 +63,7 @@ pub(crate) struct Rule {
 impl Rule {
     /// The penalty of each piece given the current `positions` (`None` for empty pieces, which
     /// copy nothing and are never charged).
-    pub fn penalties(&self, positions: &[Option<Position>], fraction: f64) -> Vec<Option<Penalty>> {
-        let weight = (self.weight as f64 * fraction).round() as u64;
+    pub fn penalties(&self, positions: &[Option<Position>]) -> Vec<Option<Penalty>> {
         let count = positions.len();
         (0..count)
             .map(|i| {
@@ -74,7 +72,7 @@ impl Rule {
                     .filter(|&j| within(i, j, count, self.radius, self.closed))
                     .filter_map(|j| positions[j])
                     .collect();
-                Some(Penalty { weight, centres, reach: self.reach })
+                Some(Penalty { weight: self.weight, centres, reach: self.reach })
             })
             .collect()
     }
@@ -122,7 +120,7 @@ mod tests {
         // A B A B A: pairs at distance 2 repeat (A–A twice, B–B once).
         let path = [a, b, a, b, a];
         assert_eq!(rule.repeated_pairs(&path), 3);
-        let penalties = rule.penalties(&path, 1.0);
+        let penalties = rule.penalties(&path);
         // Piece 2 (A) sees pieces 0 and 4 (A) within 2 pieces.
         assert_eq!(penalties[2].as_ref().unwrap().cost([11, 1]), 10);
         assert_eq!(penalties[2].as_ref().unwrap().cost([20, 0]), 0);
@@ -134,6 +132,6 @@ mod tests {
         // Empty pieces neither charge nor are charged.
         let with_empty = [a, None, a];
         assert_eq!(rule.repeated_pairs(&with_empty), 1);
-        assert!(rule.penalties(&with_empty, 1.0)[1].is_none());
+        assert!(rule.penalties(&with_empty)[1].is_none());
     }
 }

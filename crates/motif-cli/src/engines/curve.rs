@@ -126,7 +126,7 @@ pub struct CurveArgs {
     /// Repetition penalty W (not in the paper), in seam-cost units, 0–10^6: each pair of pieces at
     /// most --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the
     /// paper's energy, which may alternate two windows along a straight line.
-    #[arg(long, value_name = "W", default_value_t = 0.0)]
+    #[arg(long, value_name = "W", default_value_t = 0.0, allow_hyphen_values = true)]
     pub variety: f64,
     /// How many pieces apart a repeated window is penalised by --variety, 1–1000.
     #[arg(long, value_name = "R", default_value_t = 8)]
@@ -172,7 +172,7 @@ fn parse_size(text: &str) -> Result<[usize; 2], String> {
 }
 
 /// Reads the curve: an SVG path or a point list.
-fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
+pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if extension == "svg" {
         let document = motif_io::read_svg(path)?;
@@ -558,13 +558,20 @@ fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value>
 /// Figures for `motif bench`: DP milliseconds per row of both solvers on generated exemplars of
 /// the paper's two sizes (199×82 and 325×64), with C equal to the exemplar height.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    let corpus_selected = |name: &str| bench.selects(name, "corpus");
     if bench.quick {
-        return Ok(json!({ "quick_48x24": bench_case(48, 24, 3)? }));
+        return Ok(json!({
+            "quick_48x24": bench_case(48, 24, 3)?,
+            "real_data": super::curve_corpus::bench(&corpus_selected, true)?,
+        }));
     }
-    Ok(json!({
-        "exemplar_199x82": bench_case(199, 82, 4)?,
-        "exemplar_325x64": bench_case(325, 64, 4)?,
-        "paper_gpu_ms_per_row": { "199x82": 30.0, "325x64": 650.0 },
-        "target_ms_per_row": { "199x82": 15.0, "325x64": 130.0 },
-    }))
+    let mut figures = serde_json::Map::new();
+    figures.insert("real_data".into(), super::curve_corpus::bench(&corpus_selected, false)?);
+    for (name, width, height) in [("199x82", 199, 82), ("325x64", 325, 64)] {
+        if bench.selects(name, "generated") {
+            figures.insert(format!("exemplar_{name}"), bench_case(width, height, 4)?);
+        }
+    }
+    figures.insert("paper_gpu_ms_per_row".into(), json!({ "199x82": 30.0, "325x64": 650.0 }));
+    Ok(Value::Object(figures))
 }

@@ -14,6 +14,7 @@ use crate::context::Context;
 use crate::demo::Demo;
 
 pub mod curve;
+pub mod curve_corpus;
 pub mod points;
 pub mod points_bench;
 pub mod points_corpus;

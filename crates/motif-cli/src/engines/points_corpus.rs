@@ -94,10 +94,7 @@ pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) ->
             continue;
         }
         if SLOW_CASES.contains(&case.name.as_str()) && !named(&case.name) {
-            figures.insert(
-                case.name.clone(),
-                json!({ "skipped": "slow: runs only when named with --case" }),
-            );
+            figures.insert(case.name.clone(), json!({ "skipped": "slow: runs only when named with --case" }));
             continue;
         }
         let value = run_case(&folder, case, seed)?;
