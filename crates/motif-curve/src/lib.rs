@@ -24,6 +24,7 @@
 //! The entry point is [`synthesize`]. The crate does no I/O and builds for `wasm32`.
 
 pub mod avoidance;
+mod bends;
 pub mod closed;
 pub mod cost;
 pub mod dp;
@@ -242,6 +243,9 @@ pub fn synthesize(
     let mut timer = StageTimer::new();
     timer.start("ribbon");
     let curve = working_curve(input.curve, closed)?;
+    // Rounding moves the curve by at most half the ribbon's width.
+    let rounded = bends::round_bends(&curve, params.round_bends * params.width, 0.5 * params.width)?;
+    let curve = rounded.curve;
     let (canvas_width, canvas_height, shift) = canvas_geometry(&curve, params, input.avoidance)?;
     let curve = curve.transformed(Affine::translate(shift))?;
     let ribbon = Ribbon::new(&curve, params.width)?;
@@ -300,7 +304,17 @@ pub fn synthesize(
         distinct_windows: 0,
         variety: None,
         warnings: Vec::new(),
+        rounded_bends: rounded.bends,
+        bend_shift_max: rounded.max_shift,
     };
+    if rounded.unresolved {
+        report.warnings.push(format!(
+            "a bend of the curve is tighter than {:.1} px and rounding it would move the curve more than half \
+             the ribbon's width: the ribbon may fold there and leave pieces empty; use a narrower ribbon or a \
+             smoother curve",
+            params.round_bends * params.width
+        ));
+    }
 
     if params.method == Method::Repeat {
         timer.start("render");
@@ -351,7 +365,7 @@ pub fn synthesize(
         .map(|(positions, &is_empty)| if is_empty { 0.0 } else { positions.len() as f64 / candidates as f64 })
         .sum::<f64>()
         / valid.len() as f64;
-    report.warnings = warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces);
+    report.warnings.extend(warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces));
     let pin_storage: Vec<Position>;
     let first_positions: &[Position] = match params.pin_first {
         Some(pin) => {

@@ -107,6 +107,11 @@ pub struct CurveParams {
     /// in the units of the seam cost (the report's `mean_seam_cost`). Finite, in `[0, 10^6]`.
     /// Default 0 (the paper's energy, which may repeat two windows along a straight line).
     pub variety: f64,
+    /// Bends of the curve with a radius below `round_bends × width` are rounded to that radius
+    /// before slicing (not in the paper, which leaves the pattern out where the ribbon folds,
+    /// §3.1: whole pieces stay empty at cusps and corners). Below 0.5 the inner side of the
+    /// ribbon may still fold. Finite, in `[0, 8]`; 0 keeps the curve as given. Default 0.6.
+    pub round_bends: f64,
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
     /// Default 8.
     pub variety_radius: usize,
@@ -134,6 +139,7 @@ impl Default for CurveParams {
             min_coverage: 0.5,
             variety: 0.0,
             variety_radius: 8,
+            round_bends: 0.6,
         }
     }
 }
@@ -152,6 +158,7 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
     check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
     check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
     check_range("variety", params.variety, 0.0, 1e6)?;
+    check_range("round-bends", params.round_bends, 0.0, 8.0)?;
     check_count("variety-radius", params.variety_radius, 1, 1000)?;
     if params.cut_alpha == 255 {
         return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());

@@ -103,6 +103,10 @@ pub struct CurveReport {
     pub distinct_windows: usize,
     /// Repetition control figures (with `variety` > 0).
     pub variety: Option<VarietyReport>,
+    /// Bends of the curve tighter than `round_bends × width` that were rounded.
+    pub rounded_bends: usize,
+    /// Largest distance the rounding moved a point of the curve, canvas pixels.
+    pub bend_shift_max: f64,
     /// What looks wrong with the run and what to change (few valid positions, empty pieces, a
     /// ribbon no wider than the pattern).
     pub warnings: Vec<String>,

@@ -131,6 +131,11 @@ pub struct CurveArgs {
     /// How many pieces apart a repeated window is penalised by --variety, 1–1000.
     #[arg(long, value_name = "R", default_value_t = 8)]
     pub variety_radius: usize,
+    /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
+    /// not fold at cusps and corners (where the paper leaves pieces empty), 0–8; 0 keeps the
+    /// curve as given.
+    #[arg(long, value_name = "F", default_value_t = 0.6)]
+    pub round_bends: f64,
     /// Measure the result against the exemplar (patches read back along the curve, nearest
     /// exemplar patch) and add the figures to the report and the summary.
     #[arg(long)]
@@ -235,6 +240,7 @@ fn params_of(args: &CurveArgs) -> CurveParams {
     params.closed_max_starts = args.closed_max_starts;
     params.variety = args.variety;
     params.variety_radius = args.variety_radius;
+    params.round_bends = args.round_bends;
     params
 }
 
@@ -276,6 +282,8 @@ fn record(context: &mut Context, output: &CurveOutput) {
         context.figure("repeated_pairs", report.repeated_pairs);
         context.figure("distinct_windows", report.distinct_windows);
         context.figure("variety", &report.variety);
+        context.figure("rounded_bends", report.rounded_bends);
+        context.figure("bend_shift_max", report.bend_shift_max);
     }
     context.figure("warnings", &report.warnings);
 }
