@@ -53,6 +53,9 @@ pub(crate) struct Exemplar {
     /// First and last exemplar rows holding a pixel with alpha > `cut_alpha` (the pattern's
     /// vertical extent), `None` when there is none.
     pub pattern_rows: Option<(i32, i32)>,
+    /// First and last exemplar columns holding a pixel with alpha > `cut_alpha` (the pattern's
+    /// horizontal extent); the exemplar's width when there is none.
+    pub pattern_columns: (i32, i32),
 }
 
 impl Exemplar {
@@ -96,6 +99,11 @@ impl Exemplar {
         let first = (0..h).find(|&y| row_total(y) > 0);
         let last = (0..h).rev().find(|&y| row_total(y) > 0);
         let pattern_rows = first.zip(last).map(|(a, b)| (a as i32, b as i32));
+        let column_occupied = |x: usize| (0..h).any(|y| image.get(x, y)[3] > cut_alpha);
+        let pattern_columns = match ((0..w).find(|&x| column_occupied(x)), (0..w).rev().find(|&x| column_occupied(x))) {
+            (Some(a), Some(b)) => (a as i32, b as i32),
+            _ => (0, w as i32 - 1),
+        };
         Self {
             width: w as i32,
             height: h as i32,
@@ -107,6 +115,7 @@ impl Exemplar {
             occupied_prefix,
             visible_prefix,
             pattern_rows,
+            pattern_columns,
         }
     }
 

@@ -197,12 +197,15 @@ impl PieceFrame {
         2 * (extent.ceil() as i32 + self.samples as i32) + 8
     }
 
-    /// The slicing part of the validity test (§1.3) at `u`: the piece stays inside the exemplar
-    /// horizontally (the exemplar is cut at its left and right borders) and its top and bottom
+    /// The slicing part of the validity test (§1.3) at `u`: the piece stays inside the pattern's
+    /// horizontal extent (the exemplar is cut at its left and right borders, and transparent
+    /// columns beside the pattern are margin, not pattern: a piece reaching into them draws a gap
+    /// that its seams, transparent against transparent, do not pay for) and its top and bottom
     /// edges stay in transparent pixels.
     fn is_cut(&self, exemplar: &Exemplar, u: Position) -> bool {
         let left = f64::from(u[0]) + 0.5;
-        if left + self.x_range.0 < -1e-9 || left + self.x_range.1 > f64::from(exemplar.width) + 1e-9 {
+        let (first, last) = exemplar.pattern_columns;
+        if left + self.x_range.0 < f64::from(first) - 1e-9 || left + self.x_range.1 > f64::from(last + 1) + 1e-9 {
             return false;
         }
         self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))
@@ -353,6 +356,22 @@ mod tests {
         assert!(!positions.is_empty());
         let empty = frame.empty_position();
         assert!(frame.interior_runs.iter().all(|run| exemplar.run_is_invisible(run, empty[0], empty[1])));
+    }
+
+    #[test]
+    fn pieces_stay_out_of_the_transparent_side_margins() {
+        // A bar in columns 6..24 of a 30-wide exemplar: the columns beside it are margin.
+        let image = RgbaImage::from_fn(30, 12, |x, y| {
+            if (4..8).contains(&y) && (6..24).contains(&x) { [9, 9, 9, 255] } else { [0; 4] }
+        });
+        let frame = PieceFrame::new(&straight_quad(8.0, 5.0), 1.0, 8);
+        let exemplar = Exemplar::new(&image, frame.required_margin() as usize, 0);
+        assert_eq!(exemplar.pattern_columns, (6, 23));
+        let positions = frame.valid_positions(&exemplar, &[], 0.0);
+        assert!(!positions.is_empty());
+        // The piece spans [u.x + 0.5, u.x + 5.5]: inside [6, 24].
+        assert!(positions.iter().all(|p| p[0] >= 6 && p[0] + 5 <= 23), "{positions:?}");
+        assert!(positions.iter().any(|p| p[0] == 6) && positions.iter().any(|p| p[0] == 18));
     }
 
     proptest::proptest! {
