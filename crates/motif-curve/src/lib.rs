@@ -25,6 +25,7 @@
 
 pub mod avoidance;
 mod bends;
+mod bent;
 pub mod closed;
 pub mod cost;
 pub mod dp;
@@ -55,7 +56,7 @@ use crate::dp::{DpCounters, RowSpec};
 use crate::exemplar::Exemplar;
 pub use crate::overlay::debug_overlay;
 use crate::params::validate;
-pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method};
+pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method, PieceShape};
 use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::Shape;
 pub use crate::report::{CurveOutput, CurveReport, PlacedPiece};
@@ -189,6 +190,31 @@ fn pattern_height(image: &RgbaImage) -> usize {
     image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
 }
 
+/// The shape drawing a rigid piece at exemplar position `u` (§1.3), deformed by its stitch.
+fn rigid_shape<'a>(
+    frame: &'a PieceFrame,
+    u: Position,
+    remap: Option<Vec<usize>>,
+    exemplar: &'a Exemplar,
+    canvas: (usize, usize),
+) -> Shape<'a> {
+    Shape {
+        bounds: avoidance::canvas_box(frame, canvas.0, canvas.1),
+        sampler: Box::new(move |p: Point| {
+            let local = frame.to_local(p);
+            if !frame.contains_local(local) {
+                return None;
+            }
+            let local = match &remap {
+                Some(remap) => stitch::deform(frame, remap, local),
+                None => local,
+            };
+            let (x, y) = PieceFrame::exemplar_point(u, local);
+            Some(exemplar.sample_premultiplied(x, y))
+        }),
+    }
+}
+
 /// Valid fraction below which the run warns that the pieces hardly fit the pattern.
 const FEW_VALID: f64 = 0.01;
 
@@ -251,7 +277,15 @@ pub fn synthesize(
     let ribbon = Ribbon::new(&curve, params.width)?;
     let quads = ribbon::slice(&ribbon, params.piece_length);
     let samples = ((params.width * params.scale).ceil() as usize).max(1);
-    let frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
+    // The canvas geometry of the pieces (fold-overs, rotation) is always the rigid frame's; the
+    // exemplar side is the rigid or the straightened frame.
+    let rigid_frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
+    let bent = params.piece_shape == PieceShape::Bent;
+    let frames: Vec<PieceFrame> = if bent {
+        quads.iter().map(|quad| bent::straight_frame(quad, params.width, params.scale, samples)).collect()
+    } else {
+        rigid_frames.clone()
+    };
     let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
     let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
     let exemplar = Exemplar::new(input.exemplar, margin as usize, params.cut_alpha);
@@ -265,7 +299,7 @@ pub fn synthesize(
         forbidden.add_map(map);
     }
     if params.foldover_avoidance && params.method == Method::Synthesis {
-        forbidden.add_foldovers(&frames, n_samples);
+        forbidden.add_foldovers(&rigid_frames, n_samples);
     }
     let foldover_pixels = forbidden.flags.iter().filter(|&&f| f & FROM_FOLDOVER != 0).count();
     let forbidden_pixels = forbidden.count();
@@ -333,10 +367,28 @@ pub fn synthesize(
 
     timer.start("valid positions");
     progress.report("valid positions", 0.0);
-    let piece_forbidden: Vec<Vec<Vec2>> = frames
-        .par_iter()
-        .map(|frame| {
-            if forbidden_pixels == 0 { Vec::new() } else { avoidance::forbidden_samples(frame, &forbidden, n_samples) }
+    // Bent pieces are drawn (and tested against forbidden pixels) through the ribbon's triangles.
+    let (triangles, stretch, spacing) = if bent {
+        let (triangles, stretch) = repeat::triangulate(&ribbon);
+        let spacing = ribbon.length() / (triangles.len() / 2).max(1) as f64;
+        (triangles, stretch, spacing)
+    } else {
+        (Vec::new(), Vec::new(), 1.0)
+    };
+    let piece_forbidden: Vec<Vec<Vec2>> = (0..frames.len())
+        .into_par_iter()
+        .map(|i| match (forbidden_pixels, bent) {
+            (0, _) => Vec::new(),
+            (_, true) => bent::forbidden_samples(
+                &triangles,
+                spacing,
+                &quads[i],
+                params.width,
+                params.scale,
+                &forbidden,
+                n_samples,
+            ),
+            (_, false) => avoidance::forbidden_samples(&frames[i], &forbidden, n_samples),
         })
         .collect();
     let valid: Vec<(Vec<Position>, bool)> = frames
@@ -460,30 +512,32 @@ pub fn synthesize(
 
     timer.start("render");
     progress.report("render", 0.0);
-    let shapes: Vec<Shape<'_>> = (0..n)
-        .filter(|&i| !empty[i])
-        .map(|i| {
-            let frame = &frames[i];
-            let u = positions[i];
-            let remap = stitches.get(i).filter(|s| !s.is_identity()).map(|s| s.remap.clone());
-            let exemplar = &exemplar;
-            Shape {
-                bounds: avoidance::canvas_box(frame, canvas_width, canvas_height),
-                sampler: Box::new(move |p: Point| {
-                    let local = frame.to_local(p);
-                    if !frame.contains_local(local) {
-                        return None;
-                    }
-                    let local = match &remap {
-                        Some(remap) => stitch::deform(frame, remap, local),
-                        None => local,
-                    };
-                    let (x, y) = PieceFrame::exemplar_point(u, local);
-                    Some(exemplar.sample_premultiplied(x, y))
-                }),
-            }
-        })
-        .collect();
+    let remap_of = |i: usize| stitches.get(i).filter(|s| !s.is_identity()).map(|s| s.remap.clone());
+    if bent {
+        let deviations: Vec<f64> = stretch.iter().map(|s| (s - 1.0).abs()).collect();
+        report.distortion_mean = deviations.iter().sum::<f64>() / deviations.len().max(1) as f64;
+        report.distortion_max = deviations.iter().copied().fold(0.0, f64::max);
+    }
+    let bent_pieces: Vec<bent::BentPiece<'_>> = if bent {
+        (0..n)
+            .map(|i| bent::BentPiece {
+                start: quads[i].start,
+                position: (!empty[i]).then_some(positions[i]),
+                frame: &frames[i],
+                remap: remap_of(i),
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let shapes: Vec<Shape<'_>> = if bent {
+        bent::shapes(&triangles, &bent_pieces, &exemplar, params.width, params.scale, (canvas_width, canvas_height))
+    } else {
+        (0..n)
+            .filter(|&i| !empty[i])
+            .map(|i| rigid_shape(&frames[i], positions[i], remap_of(i), &exemplar, (canvas_width, canvas_height)))
+            .collect()
+    };
     let image = render::render(canvas_width, canvas_height, n_samples, &shapes);
     progress.report("render", 1.0);
 
@@ -495,7 +549,7 @@ pub fn synthesize(
                 arc: [quads[i].start, quads[i].end],
                 quad: quads[i].corners.map(|c| [c.x, c.y]),
                 position: if empty[i] { None } else { Some(positions[i]) },
-                rotation: frames[i].angle(),
+                rotation: rigid_frames[i].angle(),
                 scale: params.scale,
                 valid_positions: if empty[i] { 0 } else { valid[i].len() },
                 has_seam: stitch.is_some(),

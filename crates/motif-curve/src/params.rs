@@ -32,6 +32,19 @@ pub enum Method {
     Repeat,
 }
 
+/// How a piece maps the exemplar onto the ribbon.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PieceShape {
+    /// The paper's rigid pieces (§1.3): undistorted copies, rotated with their left edge; on a
+    /// curve each seam compares a tilted column with a vertical one.
+    Rigid,
+    /// Pieces that bend with the ribbon (not in the paper): read in ribbon coordinates like the
+    /// repeat baseline, so every seam compares vertical columns and continuing the exemplar is
+    /// free; stretched outside bends and squeezed inside them.
+    Bent,
+}
+
 /// Size of the output canvas.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub enum Canvas {
@@ -112,6 +125,8 @@ pub struct CurveParams {
     /// §3.1: whole pieces stay empty at cusps and corners). Below 0.5 the inner side of the
     /// ribbon may still fold. Finite, in `[0, 8]`; 0 keeps the curve as given. Default 0.6.
     pub round_bends: f64,
+    /// Rigid pieces (the paper) or pieces bent with the ribbon. Default [`PieceShape::Bent`].
+    pub piece_shape: PieceShape,
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
     /// Default 8.
     pub variety_radius: usize,
@@ -140,6 +155,7 @@ impl Default for CurveParams {
             variety: 0.0,
             variety_radius: 8,
             round_bends: 0.6,
+            piece_shape: PieceShape::Bent,
         }
     }
 }

@@ -45,7 +45,7 @@ pub(crate) fn triangulate(ribbon: &Ribbon) -> (Vec<Triangle>, Vec<f64>) {
 }
 
 /// Barycentric interpolation of the triangle's coordinates at `p`, or `None` outside.
-fn interpolate(triangle: &Triangle, p: Point) -> Option<Vec2> {
+pub(crate) fn interpolate(triangle: &Triangle, p: Point) -> Option<Vec2> {
     let [a, b, c] = triangle.corners;
     let (v0, v1, v2) = (b - a, c - a, p - a);
     let det = v0.cross(v1);
@@ -90,6 +90,19 @@ fn sample_wrapped(exemplar: &Exemplar, x: f64, y: f64) -> [f32; 4] {
     out
 }
 
+/// The canvas pixel box of a triangle, clipped to the canvas.
+pub(crate) fn triangle_bounds(triangle: &Triangle, canvas: (usize, usize)) -> (usize, usize, usize, usize) {
+    let xs = triangle.corners.map(|c| c.x);
+    let ys = triangle.corners.map(|c| c.y);
+    let clip = |v: f64, limit: usize| v.clamp(0.0, limit as f64) as usize;
+    (
+        clip(xs.iter().copied().fold(f64::INFINITY, f64::min).floor(), canvas.0),
+        clip(ys.iter().copied().fold(f64::INFINITY, f64::min).floor(), canvas.1),
+        clip(xs.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil() + 1.0, canvas.0),
+        clip(ys.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil() + 1.0, canvas.1),
+    )
+}
+
 /// Shapes drawing the repeated exemplar along the ribbon at scale `scale`.
 pub(crate) fn shapes<'a>(
     triangles: &'a [Triangle],
@@ -102,25 +115,14 @@ pub(crate) fn shapes<'a>(
     let half = 0.5 * ribbon_width;
     triangles
         .iter()
-        .map(|triangle| {
-            let xs = triangle.corners.map(|c| c.x);
-            let ys = triangle.corners.map(|c| c.y);
-            let clip = |v: f64, limit: usize| v.clamp(0.0, limit as f64) as usize;
-            let bounds = (
-                clip(xs.iter().copied().fold(f64::INFINITY, f64::min).floor(), canvas.0),
-                clip(ys.iter().copied().fold(f64::INFINITY, f64::min).floor(), canvas.1),
-                clip(xs.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil() + 1.0, canvas.0),
-                clip(ys.iter().copied().fold(f64::NEG_INFINITY, f64::max).ceil() + 1.0, canvas.1),
-            );
-            Shape {
-                bounds,
-                sampler: Box::new(move |p: Point| {
-                    let coordinates = interpolate(triangle, p)?;
-                    let x = scale * coordinates.x;
-                    let y = centre_offset + scale * (half - coordinates.y);
-                    Some(sample_wrapped(exemplar, x, y))
-                }),
-            }
+        .map(|triangle| Shape {
+            bounds: triangle_bounds(triangle, canvas),
+            sampler: Box::new(move |p: Point| {
+                let coordinates = interpolate(triangle, p)?;
+                let x = scale * coordinates.x;
+                let y = centre_offset + scale * (half - coordinates.y);
+                Some(sample_wrapped(exemplar, x, y))
+            }),
         })
         .collect()
 }

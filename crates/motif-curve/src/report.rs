@@ -20,7 +20,8 @@ pub struct PlacedPiece {
     /// `u_i`: exemplar position of the top-left corner (the corner sits at `(x + 0.5, y)`);
     /// `None` for a piece left empty because avoidance forbade every position.
     pub position: Option<[i32; 2]>,
-    /// Rotation canvas → exemplar, radians.
+    /// Rotation canvas → exemplar of the piece's left edge, radians (a bent piece turns with the
+    /// ribbon from there).
     pub rotation: f64,
     /// Scale `s` (exemplar pixels per canvas pixel).
     pub scale: f64,

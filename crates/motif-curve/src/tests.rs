@@ -10,7 +10,7 @@ use crate::dp::{RowSpec, Solver, brute_force, path_cost, solve};
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
 use crate::ribbon::{Ribbon, slice};
-use crate::{Canvas, ClosedMode, CurveInput, CurveParams, Error, Method, synthesize};
+use crate::{Canvas, ClosedMode, CurveInput, CurveParams, Error, Method, PieceShape, synthesize};
 
 /// A small problem built from raw parts, for solver tests.
 struct Problem {
@@ -346,6 +346,8 @@ fn stitching_never_increases_seam_cost_and_keeps_matching_edges() {
     let curve = circle(60.0, 60.0, 25.0, 80);
     let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
     let mut p = params(20.0, 12.0);
+    // Rigid pieces: bent ones continue this periodic chain around the circle at no cost at all.
+    p.piece_shape = PieceShape::Rigid;
     let plain = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.stitch = true;
     let stitched = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -400,8 +402,62 @@ fn repeat_baseline_bends_the_pattern_and_synthesis_does_not() {
     assert!(repeat.pieces.is_empty());
     assert!(repeat.image.count_alpha_at_least(128) > 300);
     p.method = Method::Synthesis;
-    let synthesis = synthesize(&input, &p, &mut NoProgress).unwrap();
-    assert_eq!(synthesis.report.distortion_max, 0.0);
+    p.piece_shape = PieceShape::Rigid;
+    let rigid = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert_eq!(rigid.report.distortion_max, 0.0);
+    // Bent pieces stretch as the repeat baseline does, but seams sit where the optimum puts them.
+    p.piece_shape = PieceShape::Bent;
+    let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert!((bent.report.distortion_max - repeat.report.distortion_max).abs() < 1e-9);
+}
+
+#[test]
+fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
+    let image = chain_strip(96, 24, 12, 6, 12);
+    let curve = circle(80.0, 80.0, 50.0, 120);
+    // Forbid a block straddling the ribbon on the right of the circle.
+    let map = RgbaImage::from_fn(170, 170, |x, y| {
+        if (115..145).contains(&x) && (60..100).contains(&y) { [255, 255, 255, 255] } else { [0, 0, 0, 0] }
+    });
+    for shape in [PieceShape::Rigid, PieceShape::Bent] {
+        let mut p = params(24.0, 14.0);
+        p.piece_shape = shape;
+        let output =
+            synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map) }, &p, &mut NoProgress)
+                .unwrap();
+        for y in 60..100 {
+            for x in 115..145 {
+                assert_eq!(output.image.get(x, y)[3], 0, "{shape:?}: pattern at forbidden pixel ({x}, {y})");
+            }
+        }
+        assert!(output.image.count_alpha_at_least(128) > 1000, "{shape:?}");
+    }
+}
+
+#[test]
+fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
+    // A periodic chain around a circle: a bent piece that continues the exemplar matches its
+    // neighbour exactly, so the optimum costs nothing; rigid pieces pay for the tilt of every seam.
+    let image = chain_strip(96, 24, 12, 6, 12);
+    let curve = circle(80.0, 80.0, 50.0, 120);
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let mut p = params(24.0, 18.0);
+    p.closed = ClosedMode::Open;
+    let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
+    p.piece_shape = PieceShape::Rigid;
+    let rigid = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert_eq!(bent.report.total_cost, 0.0);
+    assert!(rigid.report.total_cost > 0.0);
+    assert!(bent.image.count_alpha_at_least(128) > 1000, "the pattern is drawn");
+    // On a straight line both shapes place the same pieces.
+    let straight = line(10.0, 40.0, 200.0, 40.0);
+    let input = CurveInput { exemplar: &image, curve: &straight, avoidance: None };
+    let rigid = synthesize(&input, &p, &mut NoProgress).unwrap();
+    p.piece_shape = PieceShape::Bent;
+    let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
+    assert_eq!(bent.pieces, rigid.pieces);
+    let differing = bent.image.pixels().iter().zip(rigid.image.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differing * 100 < bent.image.pixels().len(), "{differing} pixels differ");
 }
 
 #[test]

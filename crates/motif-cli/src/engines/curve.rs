@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
-use motif_curve::{AlphaMode, Canvas, ClosedMode, CurveInput, CurveOutput, CurveParams, Method, Solver};
+use motif_curve::{AlphaMode, Canvas, ClosedMode, CurveInput, CurveOutput, CurveParams, Method, PieceShape, Solver};
 use serde_json::{Value, json};
 
 use crate::bench::Bench;
@@ -131,6 +131,11 @@ pub struct CurveArgs {
     /// How many pieces apart a repeated window is penalised by --variety, 1–1000.
     #[arg(long, value_name = "R", default_value_t = 8)]
     pub variety_radius: usize,
+    /// Piece shape: bent pieces follow the ribbon (seams compare vertical columns, so the
+    /// exemplar continues across them; stretched outside bends); rigid pieces are the paper's
+    /// undistorted, rotated copies.
+    #[arg(long, value_enum, default_value = "bent")]
+    pub pieces_shape: PieceShapeArg,
     /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
     /// not fold at cusps and corners (where the paper leaves pieces empty), 0–8; 0 keeps the
     /// curve as given.
@@ -157,6 +162,15 @@ pub struct CurveArgs {
     /// stitch remapping T.
     #[arg(long, value_name = "OUT.json")]
     pub pieces: Option<PathBuf>,
+}
+
+/// Piece shapes (`--pieces-shape`).
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum PieceShapeArg {
+    /// Pieces bend with the ribbon.
+    Bent,
+    /// The paper's rigid pieces.
+    Rigid,
 }
 
 fn parse_pin(text: &str) -> Result<[i32; 2], String> {
@@ -241,6 +255,10 @@ fn params_of(args: &CurveArgs) -> CurveParams {
     params.variety = args.variety;
     params.variety_radius = args.variety_radius;
     params.round_bends = args.round_bends;
+    params.piece_shape = match args.pieces_shape {
+        PieceShapeArg::Bent => PieceShape::Bent,
+        PieceShapeArg::Rigid => PieceShape::Rigid,
+    };
     params
 }
 
