@@ -94,6 +94,7 @@ CASES = [
         "path": "letter_s.svg",
         "width": 62,
         "piece_length": 30,
+        "variety": 300,
         "kind": "vine (intertwined stems with leaves, thin) on a glyph outline (closed, with corners)",
         "notes": (
             "59 pieces; dp_row_ms median 25-36, total 1.4-2.1 s; valid_fraction 0.131; 2 empty pieces at corners of the terminals of the S. Output: one stem along the outline (the optimum avoids the intertwined part), slightly zigzag at seams, a few leaves; gaps at two corners."
@@ -174,6 +175,7 @@ def main() -> None:
                 "width": case["width"],
                 "piece_length": case["piece_length"],
                 "scale": 1.0,
+                "variety": case.get("variety", 0),
                 "kind": case["kind"],
                 "exemplar_size": list(size),
                 "pattern_height": pattern_height,

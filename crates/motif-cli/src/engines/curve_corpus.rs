@@ -21,6 +21,9 @@ pub struct CorpusCase {
     pub piece_length: f64,
     #[serde(default = "one")]
     pub scale: f64,
+    /// `--variety` of the case (0 when absent).
+    #[serde(default)]
+    pub variety: f64,
     #[serde(default)]
     pub kind: String,
     /// Small and fast: run by the tests and by `--quick`.
@@ -51,6 +54,7 @@ pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
     params.piece_length = case.piece_length;
     params.scale = case.scale;
     params.method = method;
+    params.variety = case.variety;
     params
 }
 
@@ -87,6 +91,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
         "kind": case.kind,
         "width": case.width,
         "piece_length": case.piece_length,
+        "variety": case.variety,
         "samples_per_edge": report.samples_per_edge,
         "pieces": report.pieces,
         "seconds": seconds,
