@@ -23,6 +23,8 @@ use crate::ribbon::PieceQuad;
 
 /// The frame of a bent piece: the frame of the same piece laid straight (a `length × b`
 /// rectangle), which is what it looks like in ribbon coordinates.
+/// With a width profile the piece's width is `width × factor` and its scale `scale / factor`: the
+/// pattern grows with the ribbon and still spans `C` samples.
 pub(crate) fn straight_frame(quad: &PieceQuad, width: f64, scale: f64, samples: usize) -> PieceFrame {
     let length = quad.end - quad.start;
     let straight = PieceQuad {
@@ -42,7 +44,7 @@ pub(crate) fn forbidden_samples(
     spacing: f64,
     quad: &PieceQuad,
     ribbon_width: f64,
-    scale: f64,
+    [along_scale, scale]: [f64; 2],
     mask: &ForbiddenMask,
     samples_per_axis: usize,
 ) -> Vec<Vec2> {
@@ -61,7 +63,7 @@ pub(crate) fn forbidden_samples(
                 for p in sample_points(x, y, samples_per_axis) {
                     if let Some(c) = crate::repeat::interpolate(triangle, p) {
                         if c.x >= quad.start && c.x <= quad.end {
-                            points.push(Vec2::new(scale * (c.x - quad.start), scale * (half - c.y)));
+                            points.push(Vec2::new(along_scale * (c.x - quad.start), scale * (half - c.y)));
                         }
                     }
                 }
@@ -79,6 +81,8 @@ pub(crate) struct BentPiece<'a> {
     pub position: Option<Position>,
     pub frame: &'a PieceFrame,
     pub remap: Option<Vec<usize>>,
+    /// Exemplar pixels per canvas pixel along the piece (the scale over the width factor).
+    pub along_scale: f64,
 }
 
 /// Shapes drawing bent pieces: the ribbon's triangles, each sample read from the piece whose arc
@@ -101,7 +105,8 @@ pub(crate) fn shapes<'a>(
                 let index = pieces.partition_point(|piece| piece.start <= coordinates.x).max(1) - 1;
                 let piece = &pieces[index];
                 let position = piece.position?;
-                let mut local = Vec2::new(scale * (coordinates.x - piece.start), scale * (half - coordinates.y));
+                let mut local =
+                    Vec2::new(piece.along_scale * (coordinates.x - piece.start), scale * (half - coordinates.y));
                 if let Some(remap) = &piece.remap {
                     local = crate::stitch::deform(piece.frame, remap, local);
                 }

@@ -156,7 +156,7 @@ fn canvas_geometry(
     match params.canvas {
         Canvas::Size { width, height } => Ok((width, height, Vec2::ZERO)),
         Canvas::Fit { margin } => {
-            let ribbon = Ribbon::new(curve, params.width)?;
+            let ribbon = Ribbon::new(curve, params.width)?.with_profile(&params.width_profile);
             let (top, bottom) = ribbon_borders(&ribbon);
             let bounds = motif_core::geometry::bounds_of(&[top, bottom].concat());
             let origin = Vec2::new((bounds.x0 - margin).floor(), (bounds.y0 - margin).floor());
@@ -274,15 +274,20 @@ pub fn synthesize(
     let curve = rounded.curve;
     let (canvas_width, canvas_height, shift) = canvas_geometry(&curve, params, input.avoidance)?;
     let curve = curve.transformed(Affine::translate(shift))?;
-    let ribbon = Ribbon::new(&curve, params.width)?;
+    let ribbon = Ribbon::new(&curve, params.width)?.with_profile(&params.width_profile);
     let quads = ribbon::slice(&ribbon, params.piece_length);
     let samples = ((params.width * params.scale).ceil() as usize).max(1);
     // The canvas geometry of the pieces (fold-overs, rotation) is always the rigid frame's; the
     // exemplar side is the rigid or the straightened frame.
     let rigid_frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
     let bent = params.piece_shape == PieceShape::Bent;
+    let along_scales: Vec<f64> = quads.iter().map(|quad| params.scale / ribbon.factor(quad.start)).collect();
     let frames: Vec<PieceFrame> = if bent {
-        quads.iter().map(|quad| bent::straight_frame(quad, params.width, params.scale, samples)).collect()
+        quads
+            .iter()
+            .zip(&along_scales)
+            .map(|(quad, &along)| bent::straight_frame(quad, params.width * params.scale / along, along, samples))
+            .collect()
     } else {
         rigid_frames.clone()
     };
@@ -384,7 +389,7 @@ pub fn synthesize(
                 spacing,
                 &quads[i],
                 params.width,
-                params.scale,
+                [along_scales[i], params.scale],
                 &forbidden,
                 n_samples,
             ),
@@ -525,6 +530,7 @@ pub fn synthesize(
                 position: (!empty[i]).then_some(positions[i]),
                 frame: &frames[i],
                 remap: remap_of(i),
+                along_scale: along_scales[i],
             })
             .collect()
     } else {

@@ -125,6 +125,11 @@ pub struct CurveParams {
     /// §3.1: whole pieces stay empty at cusps and corners). Below 0.5 the inner side of the
     /// ribbon may still fold. Finite, in `[0, 8]`; 0 keeps the curve as given. Default 0.6.
     pub round_bends: f64,
+    /// Width profile (the paper: "the width b could vary freely along the ribbon", §1.1):
+    /// `(t, factor)` pairs, `t` the fraction of the curve's arc length in `[0, 1]`, ascending,
+    /// `factor` in `[0.1, 10]`; the ribbon's width at `t` is `width ×` the interpolated factor and
+    /// the pattern scales with it. Needs bent pieces. Default empty (constant width).
+    pub width_profile: Vec<(f64, f64)>,
     /// Rigid pieces (the paper) or pieces bent with the ribbon. Default [`PieceShape::Bent`].
     pub piece_shape: PieceShape,
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
@@ -156,6 +161,7 @@ impl Default for CurveParams {
             variety_radius: 8,
             round_bends: 0.6,
             piece_shape: PieceShape::Bent,
+            width_profile: Vec::new(),
         }
     }
 }
@@ -164,6 +170,37 @@ impl Default for CurveParams {
 pub const MAX_CANVAS_SIDE: usize = 16384;
 
 /// Checks the parameters and inputs; returns the resolved closed flag.
+/// Checks the width profile: ascending fractions in `[0, 1]`, factors in `[0.1, 10]`, bent pieces,
+/// and the widest part within the exemplar-space limit.
+fn check_width_profile(params: &CurveParams) -> Result<(), InvalidParameter> {
+    let profile = &params.width_profile;
+    if profile.is_empty() {
+        return Ok(());
+    }
+    if params.piece_shape != PieceShape::Bent {
+        return Err(InvalidParameter::new(
+            "width-profile",
+            "with rigid pieces",
+            "a varying width needs bent pieces (--pieces-shape bent)",
+        ));
+    }
+    if profile.len() > 10_000 {
+        return Err(InvalidParameter::new("width-profile", profile.len(), "must have at most 10000 entries"));
+    }
+    for (k, &(t, factor)) in profile.iter().enumerate() {
+        check_range("width-profile position", t, 0.0, 1.0)?;
+        check_range("width-profile factor", factor, 0.1, 10.0)?;
+        if k > 0 && t < profile[k - 1].0 {
+            return Err(InvalidParameter::new(
+                "width-profile",
+                format!("{t} after {}", profile[k - 1].0),
+                "positions must be in ascending order",
+            ));
+        }
+    }
+    Ok(())
+}
+
 pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error> {
     check_positive("width", params.width)?;
     check_positive("piece-length", params.piece_length)?;
@@ -175,6 +212,7 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
     check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
     check_range("variety", params.variety, 0.0, 1e6)?;
     check_range("round-bends", params.round_bends, 0.0, 8.0)?;
+    check_width_profile(params)?;
     check_count("variety-radius", params.variety_radius, 1, 1000)?;
     if params.cut_alpha == 255 {
         return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());

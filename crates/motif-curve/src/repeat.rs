@@ -37,6 +37,8 @@ pub(crate) fn triangulate(ribbon: &Ribbon) -> (Vec<Triangle>, Vec<f64>) {
         let centre = ribbon.point(a).distance(ribbon.point(b)).max(1e-12);
         stretch.push(ta.distance(tb) / centre);
         stretch.push(ba.distance(bb) / centre);
+        // The offset coordinate is in units of the base width (a width profile is divided out:
+        // `top` and `bottom` carry it), so that the pattern's height always spans the ribbon.
         let (cta, cba, ctb, cbb) = (Vec2::new(a, half), Vec2::new(a, -half), Vec2::new(b, half), Vec2::new(b, -half));
         triangles.push(Triangle { corners: [ta, ba, bb], coordinates: [cta, cba, cbb] });
         triangles.push(Triangle { corners: [ta, bb, tb], coordinates: [cta, cbb, ctb] });

@@ -9,12 +9,16 @@
 
 use motif_core::{InvalidParameter, Point, Polyline, Vec2};
 
-/// The ribbon: a finely resampled centre curve with smooth normals, and a width.
+/// The ribbon: a finely resampled centre curve with smooth normals, and a width, constant or
+/// varying along the curve by a profile of factors.
 #[derive(Debug, Clone)]
 pub struct Ribbon {
     centre: Polyline,
     up: Vec<Vec2>,
     width: f64,
+    /// `(t, factor)` pairs, `t` the fraction of the arc length, ascending; empty for a constant
+    /// width. The width at `t` is `width ×` the linearly interpolated factor.
+    profile: Vec<(f64, f64)>,
 }
 
 impl Ribbon {
@@ -25,7 +29,32 @@ impl Ribbon {
         let centre = curve.resample(step)?;
         // up = −(core normal) = (t.y, −t.x): the top of a left-to-right curve is the top of the screen.
         let up = centre.vertex_tangents().into_iter().map(|t| Vec2::new(t.y, -t.x)).collect();
-        Ok(Self { centre, up, width })
+        Ok(Self { centre, up, width, profile: Vec::new() })
+    }
+
+    /// The same ribbon with the width varying by `profile` (see [`Ribbon::factor`]).
+    pub fn with_profile(mut self, profile: &[(f64, f64)]) -> Self {
+        self.profile = profile.to_vec();
+        self
+    }
+
+    /// The width factor at arc length `x`: 1 without a profile; else the profile's factors
+    /// interpolated linearly in the fraction of the arc length, held constant beyond its ends.
+    pub fn factor(&self, x: f64) -> f64 {
+        let Some(&(first_t, first)) = self.profile.first() else {
+            return 1.0;
+        };
+        let t = x / self.length().max(1e-12);
+        if t <= first_t {
+            return first;
+        }
+        for pair in self.profile.windows(2) {
+            let ((t0, f0), (t1, f1)) = (pair[0], pair[1]);
+            if t <= t1 {
+                return if t1 > t0 { f0 + (f1 - f0) * (t - t0) / (t1 - t0) } else { f1 };
+            }
+        }
+        self.profile.last().map_or(1.0, |&(_, f)| f)
     }
 
     /// Arc length of the curve.
@@ -38,7 +67,7 @@ impl Ribbon {
         self.centre.is_closed()
     }
 
-    /// Ribbon width `b`.
+    /// Ribbon width `b` (times [`Ribbon::factor`] along a profile).
     pub fn width(&self) -> f64 {
         self.width
     }
@@ -60,12 +89,12 @@ impl Ribbon {
 
     /// `T(x)`, the top offset curve.
     pub fn top(&self, x: f64) -> Point {
-        self.point(x) + self.up(x) * (0.5 * self.width)
+        self.point(x) + self.up(x) * (0.5 * self.width * self.factor(x))
     }
 
     /// `B(x)`, the bottom offset curve.
     pub fn bottom(&self, x: f64) -> Point {
-        self.point(x) - self.up(x) * (0.5 * self.width)
+        self.point(x) - self.up(x) * (0.5 * self.width * self.factor(x))
     }
 
     /// The centre curve as resampled internally.

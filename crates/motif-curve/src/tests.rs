@@ -435,6 +435,33 @@ fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
 }
 
 #[test]
+fn a_width_profile_swells_the_ribbon_and_the_pattern_with_it() {
+    let image = chain_strip(96, 24, 12, 6, 12);
+    let curve = line(10.0, 60.0, 250.0, 60.0);
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let mut p = params(24.0, 12.0);
+    p.canvas = Canvas::Size { width: 260, height: 120 };
+    p.width_profile = vec![(0.0, 1.0), (0.5, 2.0), (1.0, 1.0)];
+    let output = synthesize(&input, &p, &mut NoProgress).unwrap();
+    let column_height = |x: usize| (0..120).filter(|&y| output.image.get(x, y)[3] > 128).count();
+    let (end, middle) = (column_height(20), (125..135).map(column_height).max().unwrap());
+    assert!(end > 0 && middle as f64 > 1.6 * end as f64, "end {end}, middle {middle}");
+    // The exemplar keeps C samples per edge everywhere: the DP compares like with like.
+    assert_eq!(output.report.samples_per_edge, 24);
+    // Bad profiles are refused with the flag named.
+    for profile in [vec![(0.5, 1.0), (0.2, 1.0)], vec![(0.0, 0.0)], vec![(1.5, 1.0)], vec![(0.0, f64::NAN)]] {
+        let mut bad = params(24.0, 12.0);
+        bad.width_profile = profile;
+        let message = synthesize(&input, &bad, &mut NoProgress).unwrap_err().to_string();
+        assert!(message.contains("width-profile"), "{message}");
+    }
+    let mut rigid = params(24.0, 12.0);
+    rigid.width_profile = vec![(0.0, 2.0)];
+    rigid.piece_shape = PieceShape::Rigid;
+    assert!(synthesize(&input, &rigid, &mut NoProgress).unwrap_err().to_string().contains("bent"));
+}
+
+#[test]
 fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     // A periodic chain around a circle: a bent piece that continues the exemplar matches its
     // neighbour exactly, so the optimum costs nothing; rigid pieces pay for the tilt of every seam.

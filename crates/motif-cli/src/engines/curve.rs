@@ -136,6 +136,12 @@ pub struct CurveArgs {
     /// undistorted, rotated copies.
     #[arg(long, value_enum, default_value = "bent")]
     pub pieces_shape: PieceShapeArg,
+    /// Width profile: comma-separated T:F pairs, T the fraction of the curve's length (0–1,
+    /// ascending) and F the factor (0.1–10) multiplying --width there, interpolated in between;
+    /// the pattern scales with the width (e.g. 0:0.5,0.5:1.5,1:0.5 swells in the middle). Needs
+    /// bent pieces.
+    #[arg(long, value_name = "T:F,...", value_parser = parse_profile)]
+    pub width_profile: Option<WidthProfile>,
     /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
     /// not fold at cusps and corners (where the paper leaves pieces empty), 0–8; 0 keeps the
     /// curve as given.
@@ -171,6 +177,21 @@ pub enum PieceShapeArg {
     Bent,
     /// The paper's rigid pieces.
     Rigid,
+}
+
+/// A parsed `--width-profile` (a newtype, so that clap takes it as one value).
+#[derive(Debug, Clone)]
+pub struct WidthProfile(pub Vec<(f64, f64)>);
+
+fn parse_profile(text: &str) -> Result<WidthProfile, String> {
+    text.split(',')
+        .map(|pair| {
+            let (t, f) = pair.split_once(':').ok_or_else(|| format!("{pair:?} is not T:F (e.g. 0.5:2)"))?;
+            let number = |v: &str| v.trim().parse::<f64>().map_err(|_| format!("{v:?} in {pair:?} is not a number"));
+            Ok((number(t)?, number(f)?))
+        })
+        .collect::<Result<_, _>>()
+        .map(WidthProfile)
 }
 
 fn parse_pin(text: &str) -> Result<[i32; 2], String> {
@@ -255,6 +276,7 @@ fn params_of(args: &CurveArgs) -> CurveParams {
     params.variety = args.variety;
     params.variety_radius = args.variety_radius;
     params.round_bends = args.round_bends;
+    params.width_profile = args.width_profile.clone().map(|p| p.0).unwrap_or_default();
     params.piece_shape = match args.pieces_shape {
         PieceShapeArg::Bent => PieceShape::Bent,
         PieceShapeArg::Rigid => PieceShape::Rigid,
