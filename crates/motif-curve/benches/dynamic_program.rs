@@ -22,7 +22,7 @@ fn run(exemplar: &RgbaImage, solver: Solver, pieces: usize) -> f64 {
         })
         .collect();
     let curve = Polyline::new(points, false).expect("curve");
-    let input = CurveInput { exemplar, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
     synthesize(&input, &params, &mut NoProgress).expect("synthesis").report.total_cost
 }
 

@@ -28,9 +28,12 @@ fn main() {
         })
         .collect();
     let curve = Polyline::new(points, false).expect("curve");
-    let output =
-        synthesize(&CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None }, &params, &mut NoProgress)
-            .expect("synthesis");
+    let output = synthesize(
+        &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] },
+        &params,
+        &mut NoProgress,
+    )
+    .expect("synthesis");
     let report = &output.report;
     println!(
         "{width}x{height} {solver:?}: median {:.1} ms/row, rows {:?}, valid {:.3}, counters {:?}, cost {}",

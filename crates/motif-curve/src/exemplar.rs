@@ -30,6 +30,16 @@ pub(crate) fn runs_from_offsets(mut offsets: Vec<(i32, i32)>) -> Vec<Run> {
     runs
 }
 
+/// First and last columns of `[x0, x1)` holding a pixel with alpha > `cut_alpha` (the whole range
+/// when none does).
+fn pattern_extent(image: &RgbaImage, x0: usize, x1: usize, cut_alpha: u8) -> (i32, i32) {
+    let occupied = |x: usize| (0..image.height()).any(|y| image.get(x, y)[3] > cut_alpha);
+    match ((x0..x1).find(|&x| occupied(x)), (x0..x1).rev().find(|&x| occupied(x))) {
+        (Some(a), Some(b)) => (a as i32, b as i32),
+        _ => (x0 as i32, x1 as i32 - 1),
+    }
+}
+
 /// The exemplar with a transparent margin, straight-alpha bytes (colour zeroed where alpha is 0)
 /// and premultiplied floats for rendering.
 #[derive(Debug, Clone)]
@@ -54,8 +64,9 @@ pub(crate) struct Exemplar {
     /// vertical extent), `None` when there is none.
     pub pattern_rows: Option<(i32, i32)>,
     /// First and last exemplar columns holding a pixel with alpha > `cut_alpha` (the pattern's
-    /// horizontal extent); the exemplar's width when there is none.
-    pub pattern_columns: (i32, i32),
+    /// horizontal extent; the exemplar's width when there is none). Several exemplars laid side by
+    /// side have one range each, and a piece stays inside one of them.
+    pub pattern_columns: Vec<(i32, i32)>,
 }
 
 impl Exemplar {
@@ -99,11 +110,7 @@ impl Exemplar {
         let first = (0..h).find(|&y| row_total(y) > 0);
         let last = (0..h).rev().find(|&y| row_total(y) > 0);
         let pattern_rows = first.zip(last).map(|(a, b)| (a as i32, b as i32));
-        let column_occupied = |x: usize| (0..h).any(|y| image.get(x, y)[3] > cut_alpha);
-        let pattern_columns = match ((0..w).find(|&x| column_occupied(x)), (0..w).rev().find(|&x| column_occupied(x))) {
-            (Some(a), Some(b)) => (a as i32, b as i32),
-            _ => (0, w as i32 - 1),
-        };
+        let pattern_columns = vec![pattern_extent(image, 0, w, cut_alpha)];
         Self {
             width: w as i32,
             height: h as i32,
@@ -117,6 +124,13 @@ impl Exemplar {
             pattern_rows,
             pattern_columns,
         }
+    }
+
+    /// The same exemplar seen as several sources side by side: `sources` are the column ranges
+    /// `[x0, x1)` of each, whose pattern extents replace the whole image's.
+    pub fn with_sources(mut self, image: &RgbaImage, sources: &[(usize, usize)], cut_alpha: u8) -> Self {
+        self.pattern_columns = sources.iter().map(|&(x0, x1)| pattern_extent(image, x0, x1, cut_alpha)).collect();
+        self
     }
 
     /// Index into the padded arrays of exemplar pixel `(x, y)` (which may lie in the margin).

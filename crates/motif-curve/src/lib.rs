@@ -71,6 +71,10 @@ pub struct CurveInput<'a> {
     pub exemplar: &'a RgbaImage,
     /// The curve, in document coordinates (pixels); open or closed.
     pub curve: &'a Polyline,
+    /// More exemplars to mix with the first (§4, the paper's future work: "matches across
+    /// exemplars"): pieces may come from any of them and seams across exemplars cost the same ξ.
+    /// Empty for one exemplar; the repeat baseline uses the first only.
+    pub more_exemplars: &'a [RgbaImage],
     /// Optional avoidance map over the canvas (white = forbidden, §3.1); it must have the canvas
     /// size, and with a fitted canvas it sets the canvas size (origin at the document origin).
     pub avoidance: Option<&'a RgbaImage>,
@@ -215,6 +219,48 @@ fn rigid_shape<'a>(
     }
 }
 
+/// Several exemplars side by side in one image, two transparent columns apart (pieces stay inside
+/// one source's pattern extent, see `Exemplar::with_sources`), top-aligned.
+struct Atlas {
+    image: RgbaImage,
+    /// Column range `[x0, x1)` of each source.
+    sources: Vec<(usize, usize)>,
+}
+
+/// Transparent columns between two exemplars of an atlas.
+const ATLAS_GAP: usize = 2;
+
+impl Atlas {
+    fn new(first: &RgbaImage, more: &[RgbaImage]) -> Self {
+        if more.is_empty() {
+            return Self { image: first.clone(), sources: vec![(0, first.width())] };
+        }
+        let all: Vec<&RgbaImage> = std::iter::once(first).chain(more).collect();
+        let mut sources = Vec::with_capacity(all.len());
+        let mut x = 0;
+        for image in &all {
+            sources.push((x, x + image.width()));
+            x += image.width() + ATLAS_GAP;
+        }
+        let width = x - ATLAS_GAP;
+        let height = all.iter().map(|image| image.height()).max().unwrap_or(0);
+        let image = RgbaImage::from_fn(width, height, |x, y| {
+            let source = sources.iter().position(|&(x0, x1)| (x0..x1).contains(&x));
+            match source {
+                Some(k) if y < all[k].height() => all[k].get(x - sources[k].0, y),
+                _ => [0; 4],
+            }
+        });
+        Self { image, sources }
+    }
+
+    /// The source of atlas position `u` and the position in that source's coordinates.
+    fn local(&self, u: Position) -> (usize, Position) {
+        let k = self.sources.iter().rposition(|&(x0, _)| u[0] >= x0 as i32).unwrap_or(0);
+        (k, [u[0] - self.sources[k].0 as i32, u[1]])
+    }
+}
+
 /// Valid fraction below which the run warns that the pieces hardly fit the pattern.
 const FEW_VALID: f64 = 0.01;
 
@@ -293,7 +339,12 @@ pub fn synthesize(
     };
     let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
     let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
-    let exemplar = Exemplar::new(input.exemplar, margin as usize, params.cut_alpha);
+    let atlas = Atlas::new(input.exemplar, input.more_exemplars);
+    let exemplar = Exemplar::new(&atlas.image, margin as usize, params.cut_alpha).with_sources(
+        &atlas.image,
+        &atlas.sources,
+        params.cut_alpha,
+    );
     let model = CostModel::new(params.alpha_mode, params.mismatch_penalty);
     let n_samples = params.samples_per_axis;
 
@@ -309,7 +360,7 @@ pub fn synthesize(
     let foldover_pixels = forbidden.flags.iter().filter(|&&f| f & FROM_FOLDOVER != 0).count();
     let forbidden_pixels = forbidden.count();
 
-    let candidates = candidate_count(input.exemplar.width(), input.exemplar.height(), samples);
+    let candidates = candidate_count(atlas.image.width(), atlas.image.height(), samples);
     let mut report = CurveReport {
         method: params.method,
         solver: params.solver,
@@ -554,7 +605,8 @@ pub fn synthesize(
                 index: i,
                 arc: [quads[i].start, quads[i].end],
                 quad: quads[i].corners.map(|c| [c.x, c.y]),
-                position: if empty[i] { None } else { Some(positions[i]) },
+                position: if empty[i] { None } else { Some(atlas.local(positions[i]).1) },
+                exemplar: if empty[i] { 0 } else { atlas.local(positions[i]).0 },
                 rotation: rigid_frames[i].angle(),
                 scale: params.scale,
                 valid_positions: if empty[i] { 0 } else { valid[i].len() },

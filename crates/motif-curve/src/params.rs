@@ -201,6 +201,39 @@ fn check_width_profile(params: &CurveParams) -> Result<(), InvalidParameter> {
     Ok(())
 }
 
+/// Most exemplars besides the first that one synthesis mixes.
+pub const MAX_MORE_EXEMPLARS: usize = 15;
+
+/// Checks one exemplar (`index` 0 is the first, named `exemplar`; the others `exemplar N`).
+fn check_exemplar(exemplar: &motif_core::RgbaImage, index: usize) -> Result<(), InvalidParameter> {
+    let name = if index == 0 { "exemplar".to_string() } else { format!("exemplar {}", index + 1) };
+    if exemplar.is_empty() {
+        return Err(InvalidParameter::new(&name, "0×0", "must have pixels"));
+    }
+    if exemplar.width() > 2048 || exemplar.height() > 2048 {
+        return Err(InvalidParameter::new(
+            &name,
+            format!("{}×{}", exemplar.width(), exemplar.height()),
+            "must be at most 2048×2048 (the dynamic program grows with the square of the pixel count)",
+        ));
+    }
+    if exemplar.is_fully_transparent() {
+        return Err(InvalidParameter::new(
+            &name,
+            "fully transparent",
+            "must contain opaque pixels (the pattern) on a transparent background",
+        ));
+    }
+    if exemplar.is_fully_opaque() {
+        return Err(InvalidParameter::new(
+            &name,
+            "fully opaque",
+            "must have a transparent background around the pattern (pieces are cut in transparent pixels)",
+        ));
+    }
+    Ok(())
+}
+
 pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error> {
     check_positive("width", params.width)?;
     check_positive("piece-length", params.piece_length)?;
@@ -232,33 +265,16 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
         )
         .into());
     }
-    let exemplar = input.exemplar;
-    if exemplar.is_empty() {
-        return Err(InvalidParameter::new("exemplar", "0×0", "must have pixels").into());
-    }
-    if exemplar.width() > 2048 || exemplar.height() > 2048 {
+    if input.more_exemplars.len() > MAX_MORE_EXEMPLARS {
         return Err(InvalidParameter::new(
             "exemplar",
-            format!("{}×{}", exemplar.width(), exemplar.height()),
-            "must be at most 2048×2048 (the dynamic program grows with the square of the pixel count)",
+            input.more_exemplars.len() + 1,
+            format!("at most {} exemplars can be mixed", MAX_MORE_EXEMPLARS + 1),
         )
         .into());
     }
-    if exemplar.is_fully_transparent() {
-        return Err(InvalidParameter::new(
-            "exemplar",
-            "fully transparent",
-            "must contain opaque pixels (the pattern) on a transparent background",
-        )
-        .into());
-    }
-    if exemplar.is_fully_opaque() {
-        return Err(InvalidParameter::new(
-            "exemplar",
-            "fully opaque",
-            "must have a transparent background around the pattern (pieces are cut in transparent pixels)",
-        )
-        .into());
+    for (index, exemplar) in std::iter::once(input.exemplar).chain(input.more_exemplars).enumerate() {
+        check_exemplar(exemplar, index)?;
     }
     if let Canvas::Size { width, height } = params.canvas {
         if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {

@@ -204,8 +204,9 @@ impl PieceFrame {
     /// edges stay in transparent pixels.
     fn is_cut(&self, exemplar: &Exemplar, u: Position) -> bool {
         let left = f64::from(u[0]) + 0.5;
-        let (first, last) = exemplar.pattern_columns;
-        if left + self.x_range.0 < f64::from(first) - 1e-9 || left + self.x_range.1 > f64::from(last + 1) + 1e-9 {
+        let (low, high) = (left + self.x_range.0, left + self.x_range.1);
+        let inside = |&(first, last): &(i32, i32)| low >= f64::from(first) - 1e-9 && high <= f64::from(last + 1) + 1e-9;
+        if !exemplar.pattern_columns.iter().any(inside) {
             return false;
         }
         self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))
@@ -366,7 +367,7 @@ mod tests {
         });
         let frame = PieceFrame::new(&straight_quad(8.0, 5.0), 1.0, 8);
         let exemplar = Exemplar::new(&image, frame.required_margin() as usize, 0);
-        assert_eq!(exemplar.pattern_columns, (6, 23));
+        assert_eq!(exemplar.pattern_columns, vec![(6, 23)]);
         let positions = frame.valid_positions(&exemplar, &[], 0.0);
         assert!(!positions.is_empty());
         // The piece spans [u.x + 0.5, u.x + 5.5]: inside [6, 24].

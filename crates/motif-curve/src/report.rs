@@ -17,6 +17,8 @@ pub struct PlacedPiece {
     pub arc: [f64; 2],
     /// Canvas corners: top-left, bottom-left, bottom-right, top-right.
     pub quad: [[f64; 2]; 4],
+    /// Which exemplar the piece copies (0: the first; see `CurveInput::more_exemplars`).
+    pub exemplar: usize,
     /// `u_i`: exemplar position of the top-left corner (the corner sits at `(x + 0.5, y)`);
     /// `None` for a piece left empty because avoidance forbade every position.
     pub position: Option<[i32; 2]>,

@@ -157,8 +157,12 @@ fn a_periodic_exemplar_along_a_straight_line_has_no_seam_cost() {
     for mode in [AlphaMode::Binary, AlphaMode::Continuous] {
         let mut p = params(24.0, 20.0);
         p.alpha_mode = mode;
-        let output =
-            synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: None }, &p, &mut NoProgress).unwrap();
+        let output = synthesize(
+            &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+            &p,
+            &mut NoProgress,
+        )
+        .unwrap();
         assert_eq!(output.report.total_cost, 0.0, "{mode:?}");
         assert!(output.report.pieces >= 9);
         assert!(output.image.count_alpha_at_least(128) > 500, "the pattern is drawn");
@@ -177,7 +181,7 @@ fn variety_uses_more_windows_on_a_straight_line() {
         if ring < 1.5 || (y as f64 + 0.5 - cy).abs() < 1.0 { [180, 120 + cell as u8 * 9, 40, 255] } else { [0; 4] }
     });
     let curve = line(10.0, 40.0, 330.0, 40.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let plain = synthesize(&input, &params(28.0, 16.0), &mut NoProgress).unwrap();
     let mut varied_params = params(28.0, 16.0);
     varied_params.variety = 5000.0;
@@ -212,7 +216,7 @@ fn exact_and_reference_solvers_agree_on_a_curved_ribbon() {
         (0..40).map(|i| Point::new(i as f64 * 3.0, 30.0 + 12.0 * (i as f64 * 0.15).sin())).collect();
     let curve = Polyline::new(points, false).unwrap();
     let mut p = params(16.0, 14.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let exact = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.solver = Solver::Reference;
     let reference = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -234,7 +238,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map() {
         if (80..120).contains(&x) && (40..60).contains(&y) { [255, 255, 255, 255] } else { [0, 0, 0, 0] }
     });
     let output = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map) },
+        &CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
         &params(36.0, 16.0),
         &mut NoProgress,
     )
@@ -249,7 +253,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map() {
     assert!(output.image.count_alpha_at_least(128) > 500);
     // Without the map the pattern does cross that block.
     let free = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: None },
+        &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
         &{
             let mut p = params(36.0, 16.0);
             p.canvas = Canvas::Size { width: 200, height: 80 };
@@ -274,7 +278,7 @@ fn foldovers_of_a_tight_curve_stay_empty() {
     points.extend([Point::new(60.0, 44.0), Point::new(10.0, 44.0)]);
     let curve = Polyline::new(points, false).unwrap();
     let output = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: None },
+        &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
         &params(20.0, 8.0),
         &mut NoProgress,
     )
@@ -294,7 +298,7 @@ fn foldovers_of_a_tight_curve_stay_empty() {
 fn closed_curves_cycle_and_exact_is_never_worse() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = circle(50.0, 50.0, 30.0, 90);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(16.0, 16.0);
     p.closed = ClosedMode::Approximate;
     let approx = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -319,7 +323,7 @@ fn closed_curves_cycle_and_exact_is_never_worse() {
 fn pinning_fixes_the_first_position() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = line(0.0, 20.0, 80.0, 20.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let free = synthesize(&input, &params(16.0, 16.0), &mut NoProgress).unwrap();
     let mut p = params(16.0, 16.0);
     let first = free.pieces[0].position.unwrap();
@@ -344,7 +348,7 @@ fn pinning_fixes_the_first_position() {
 fn stitching_never_increases_seam_cost_and_keeps_matching_edges() {
     let image = chain_strip(60, 20, 12, 5, 10);
     let curve = circle(60.0, 60.0, 25.0, 80);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(20.0, 12.0);
     // Rigid pieces: bent ones continue this periodic chain around the circle at no cost at all.
     p.piece_shape = PieceShape::Rigid;
@@ -365,8 +369,12 @@ fn stitching_never_increases_seam_cost_and_keeps_matching_edges() {
     let strip = chain_strip(96, 24, 12, 6, 12);
     let mut p = params(24.0, 20.0);
     p.stitch = true;
-    let output =
-        synthesize(&CurveInput { exemplar: &strip, curve: &straight, avoidance: None }, &p, &mut NoProgress).unwrap();
+    let output = synthesize(
+        &CurveInput { exemplar: &strip, curve: &straight, avoidance: None, more_exemplars: &[] },
+        &p,
+        &mut NoProgress,
+    )
+    .unwrap();
     assert_eq!(output.report.stitched_seams, 0);
     assert_eq!(output.report.total_cost, 0.0);
 }
@@ -381,7 +389,12 @@ fn same_input_same_bytes_for_any_thread_count() {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: None }, &p, &mut NoProgress).unwrap()
+            synthesize(
+                &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+                &p,
+                &mut NoProgress,
+            )
+            .unwrap()
         })
     };
     let (one, two) = (run(1), run(2));
@@ -393,7 +406,7 @@ fn same_input_same_bytes_for_any_thread_count() {
 fn repeat_baseline_bends_the_pattern_and_synthesis_does_not() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = circle(50.0, 50.0, 30.0, 90);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(16.0, 14.0);
     p.method = Method::Repeat;
     let repeat = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -422,9 +435,12 @@ fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
     for shape in [PieceShape::Rigid, PieceShape::Bent] {
         let mut p = params(24.0, 14.0);
         p.piece_shape = shape;
-        let output =
-            synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map) }, &p, &mut NoProgress)
-                .unwrap();
+        let output = synthesize(
+            &CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
+            &p,
+            &mut NoProgress,
+        )
+        .unwrap();
         for y in 60..100 {
             for x in 115..145 {
                 assert_eq!(output.image.get(x, y)[3], 0, "{shape:?}: pattern at forbidden pixel ({x}, {y})");
@@ -438,7 +454,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
 fn a_width_profile_swells_the_ribbon_and_the_pattern_with_it() {
     let image = chain_strip(96, 24, 12, 6, 12);
     let curve = line(10.0, 60.0, 250.0, 60.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(24.0, 12.0);
     p.canvas = Canvas::Size { width: 260, height: 120 };
     p.width_profile = vec![(0.0, 1.0), (0.5, 2.0), (1.0, 1.0)];
@@ -462,12 +478,40 @@ fn a_width_profile_swells_the_ribbon_and_the_pattern_with_it() {
 }
 
 #[test]
+fn pieces_mix_several_exemplars_with_the_same_seam_cost() {
+    let image = chain_strip(96, 24, 12, 6, 12);
+    let curve = line(10.0, 40.0, 400.0, 40.0);
+    let single = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let copies = [image.clone()];
+    let mixed = CurveInput { more_exemplars: &copies, ..single };
+    let p = params(24.0, 16.0);
+    let one = synthesize(&single, &p, &mut NoProgress).unwrap();
+    let two = synthesize(&mixed, &p, &mut NoProgress).unwrap();
+    // A copy of the exemplar adds windows, not cheaper seams.
+    assert_eq!(two.report.dp_optimum, one.report.dp_optimum);
+    // Repetition control spreads the pieces over both, and every position lies in its source.
+    let mut varied = p.clone();
+    varied.variety = 5000.0;
+    let spread = synthesize(&mixed, &varied, &mut NoProgress).unwrap();
+    let sources: std::collections::BTreeSet<usize> = spread.pieces.iter().map(|piece| piece.exemplar).collect();
+    assert_eq!(sources.into_iter().collect::<Vec<_>>(), vec![0, 1]);
+    for piece in &spread.pieces {
+        let [x, _] = piece.position.unwrap();
+        assert!((0..96).contains(&x), "{piece:?}");
+    }
+    // A bad second exemplar is named as such.
+    let blank = [RgbaImage::from_fn(20, 20, |_, _| [0; 4])];
+    let message = synthesize(&CurveInput { more_exemplars: &blank, ..single }, &p, &mut NoProgress).unwrap_err();
+    assert!(message.to_string().contains("exemplar 2"), "{message}");
+}
+
+#[test]
 fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     // A periodic chain around a circle: a bent piece that continues the exemplar matches its
     // neighbour exactly, so the optimum costs nothing; rigid pieces pay for the tilt of every seam.
     let image = chain_strip(96, 24, 12, 6, 12);
     let curve = circle(80.0, 80.0, 50.0, 120);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(24.0, 18.0);
     p.closed = ClosedMode::Open;
     let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -478,7 +522,7 @@ fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     assert!(bent.image.count_alpha_at_least(128) > 1000, "the pattern is drawn");
     // On a straight line both shapes place the same pieces.
     let straight = line(10.0, 40.0, 200.0, 40.0);
-    let input = CurveInput { exemplar: &image, curve: &straight, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &straight, avoidance: None, more_exemplars: &[] };
     let rigid = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.piece_shape = PieceShape::Bent;
     let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -491,7 +535,7 @@ fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
 fn bad_input_gives_clear_errors() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = line(0.0, 0.0, 100.0, 0.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let message = |result: Result<crate::CurveOutput, Error>| result.unwrap_err().to_string();
 
     let transparent = RgbaImage::new(10, 10);
@@ -535,7 +579,7 @@ fn long_edges_stay_exact() {
     let curve = line(0.0, 400.0, 30.0, 400.0);
     let mut p = params(300.0, 3.0);
     p.foldover_avoidance = false;
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let exact = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.solver = Solver::Reference;
     let reference = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -563,7 +607,7 @@ fn sliver_and_band() -> RgbaImage {
 fn a_sliver_only_optimum_is_excluded_by_the_coverage_rule_and_allowed_without_it() {
     let image = sliver_and_band();
     let curve = line(0.0, 30.0, 90.0, 30.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     // Opaque pixels of the exemplar window a straight piece covers at `position`.
     let coverage = |position: [i32; 2], length: i32| {
         let mut count = 0;
@@ -607,7 +651,11 @@ fn min_coverage_out_of_range_is_rejected() {
     for bad in [-0.1, 1.5, f64::NAN] {
         let mut p = params(20.0, 6.0);
         p.min_coverage = bad;
-        let result = synthesize(&CurveInput { exemplar: &image, curve: &curve, avoidance: None }, &p, &mut NoProgress);
+        let result = synthesize(
+            &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+            &p,
+            &mut NoProgress,
+        );
         assert!(matches!(result, Err(Error::InvalidParameter(_))), "{bad}");
     }
 }

@@ -57,9 +57,9 @@ pub enum AlphaArg {
 #[derive(Args, Debug)]
 pub struct CurveArgs {
     /// Exemplar image (PNG/JPEG) with alpha: opaque pixels are the pattern, on a transparent
-    /// background.
-    #[arg(long, value_name = "EX.png")]
-    pub exemplar: PathBuf,
+    /// background. Repeat to mix several exemplars (up to 16): pieces may come from any of them.
+    #[arg(long, value_name = "EX.png", required = true)]
+    pub exemplar: Vec<PathBuf>,
     /// The curve: an SVG file (its first path's first subpath; closed if it ends with Z), or a CSV
     /// or PLY point list with x and y columns (closed if its last point repeats the first).
     #[arg(long, value_name = "CURVE.svg")]
@@ -330,19 +330,27 @@ fn record(context: &mut Context, output: &CurveOutput) {
 
 /// Runs `motif curve`.
 pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
-    let mut inputs: Vec<&Path> = vec![&args.exemplar, &args.path];
+    let mut inputs: Vec<&Path> = args.exemplar.iter().map(PathBuf::as_path).collect();
+    inputs.push(&args.path);
     inputs.extend(args.avoid.as_deref());
     for output in std::iter::once(&args.out).chain(&args.pieces).chain(&args.debug_overlay) {
         context.check_output(output, &inputs)?;
     }
-    let exemplar = motif_io::read_image(&args.exemplar)?;
+    let exemplar = motif_io::read_image(&args.exemplar[0])?;
+    let more_exemplars =
+        args.exemplar[1..].iter().map(|path| motif_io::read_image(path)).collect::<Result<Vec<_>, _>>()?;
     if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
         bail!("invalid tolerance = {}: must be a finite number > 0", args.tolerance);
     }
     let curve = read_curve(&args.path, args.tolerance)?;
     let avoidance = args.avoid.as_deref().map(motif_io::read_image).transpose()?;
     let params = params_of(args);
-    let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: avoidance.as_ref() };
+    let input = CurveInput {
+        exemplar: &exemplar,
+        curve: &curve,
+        avoidance: avoidance.as_ref(),
+        more_exemplars: &more_exemplars,
+    };
     let output = motif_curve::synthesize(&input, &params, context.progress())?;
     motif_io::write_png(&args.out, &output.image)?;
     if let Some(path) = &args.pieces {
@@ -573,7 +581,7 @@ fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value>
     for (slot, solver) in [Solver::Exact, Solver::Reference].into_iter().enumerate() {
         params.solver = solver;
         let output = motif_curve::synthesize(
-            &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None },
+            &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] },
             &params,
             &mut NoProgress,
         )?;

@@ -63,7 +63,7 @@ pub fn run(folder: &Path, case: &CorpusCase, method: Method) -> anyhow::Result<(
     let exemplar = motif_io::read_image(&folder.join(&case.exemplar))?;
     let curve = super::curve::read_curve(&folder.join(&case.path), 0.1)?;
     let params = params_of(case, method);
-    let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None };
+    let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
     let start = std::time::Instant::now();
     let output = motif_curve::synthesize(&input, &params, &mut NoProgress)
         .with_context(|| format!("curve corpus case {}", case.name))?;
