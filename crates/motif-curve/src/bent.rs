@@ -37,19 +37,20 @@ pub(crate) fn straight_frame(quad: &PieceQuad, width: f64, scale: f64, samples: 
 
 /// The local points (exemplar offsets from the piece's corner) of the render samples of a bent
 /// piece that lie in forbidden canvas pixels. The samples are mapped to ribbon coordinates through
-/// the same triangles the renderer uses (`triangles[k]` covers the arc range of slice `k / 2`,
-/// slices `spacing` long), so the test sees exactly the points that will be drawn.
+/// the same triangles the renderer uses (`slices` slices `spacing` long, each made of the same
+/// number of consecutive triangles), so the test sees exactly the points that will be drawn.
 pub(crate) fn forbidden_samples(
     triangles: &[Triangle],
-    spacing: f64,
+    (spacing, slices): (f64, usize),
     quad: &PieceQuad,
     ribbon_width: f64,
     [along_scale, scale]: [f64; 2],
     mask: &ForbiddenMask,
     samples_per_axis: usize,
 ) -> Vec<Vec2> {
-    let first = ((quad.start / spacing).floor() as usize).saturating_sub(1) * 2;
-    let last = (((quad.end / spacing).ceil() as usize + 1) * 2).min(triangles.len());
+    let per_slice = triangles.len() / slices.max(1);
+    let first = ((quad.start / spacing).floor() as usize).saturating_sub(1) * per_slice;
+    let last = (((quad.end / spacing).ceil() as usize + 1) * per_slice).min(triangles.len());
     let mine = &triangles[first.min(last)..last];
     let half = 0.5 * ribbon_width;
     let mut points = Vec::new();

@@ -94,6 +94,8 @@ pub(crate) struct DpTable {
     pub row_ms: Vec<f64>,
     /// Work counters.
     pub counters: DpCounters,
+    /// `P` after each computed row (only when asked for, for incremental re-synthesis).
+    pub row_costs: Vec<Vec<u64>>,
 }
 
 impl DpTable {
@@ -123,20 +125,41 @@ pub(crate) fn solve(
     solver: Solver,
     on_row: &mut dyn FnMut(usize),
 ) -> DpTable {
-    let mut costs = vec![0_u64; rows[0].positions.len()];
-    let mut predecessors = Vec::with_capacity(rows.len().saturating_sub(1));
-    let mut row_ms = Vec::with_capacity(rows.len().saturating_sub(1));
+    let initial = vec![0_u64; rows[0].positions.len()];
+    solve_from(exemplar, model, rows, solver, (1, initial), false, on_row)
+}
+
+/// Runs rows `start..` of the DP given `P` of row `start − 1` (`start ≥ 1`); the table's
+/// predecessors cover those rows only. With `keep_costs`, the table also keeps `P` of every row it
+/// computed.
+pub(crate) fn solve_from(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    rows: &[RowSpec<'_>],
+    solver: Solver,
+    (start, initial): (usize, Vec<u64>),
+    keep_costs: bool,
+    on_row: &mut dyn FnMut(usize),
+) -> DpTable {
+    let mut costs = initial;
+    let count = rows.len().saturating_sub(start);
+    let mut predecessors = Vec::with_capacity(count);
+    let mut row_ms = Vec::with_capacity(count);
+    let mut row_costs = Vec::new();
     let mut counters = DpCounters::default();
-    for r in 1..rows.len() {
-        let start = Clock::now();
+    for r in start..rows.len() {
+        let clock = Clock::now();
         let (next, row_predecessors, row_counters) = step(exemplar, model, &rows[r - 1], &costs, &rows[r], solver);
-        row_ms.push(elapsed_ms(start));
+        row_ms.push(elapsed_ms(clock));
         counters = counters.plus(row_counters);
         costs = next;
+        if keep_costs {
+            row_costs.push(costs.clone());
+        }
         predecessors.push(row_predecessors);
         on_row(r);
     }
-    DpTable { last_costs: costs, predecessors, row_ms, counters }
+    DpTable { last_costs: costs, predecessors, row_ms, counters, row_costs }
 }
 
 /// One row update of Eq. 1: the best `P` of every position of `current` given the costs

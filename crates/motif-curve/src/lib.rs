@@ -31,6 +31,7 @@ pub mod cost;
 pub mod dp;
 mod exemplar;
 pub mod fidelity;
+mod incremental;
 pub mod overlay;
 mod params;
 pub mod piece;
@@ -54,13 +55,14 @@ use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges}
 pub use crate::dp::Solver;
 use crate::dp::{DpCounters, RowSpec};
 use crate::exemplar::Exemplar;
+pub use crate::incremental::Incremental;
 pub use crate::overlay::debug_overlay;
 use crate::params::validate;
 pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method, PieceShape};
 use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::Shape;
 pub use crate::report::{CurveOutput, CurveReport, PlacedPiece};
-use crate::ribbon::Ribbon;
+use crate::ribbon::{PieceQuad, Ribbon};
 pub use crate::solve::VarietyReport;
 use crate::stitch::Stitch;
 
@@ -311,6 +313,16 @@ pub fn synthesize(
     params: &CurveParams,
     progress: &mut dyn Progress,
 ) -> Result<CurveOutput, Error> {
+    synthesize_with(input, params, progress, None)
+}
+
+/// [`synthesize`], reusing and updating a session's cache when one is given (see [`Incremental`]).
+pub(crate) fn synthesize_with(
+    input: &CurveInput<'_>,
+    params: &CurveParams,
+    progress: &mut dyn Progress,
+    mut cache: Option<&mut incremental::Cache>,
+) -> Result<CurveOutput, Error> {
     let closed = validate(input, params)?;
     let mut timer = StageTimer::new();
     timer.start("ribbon");
@@ -332,7 +344,13 @@ pub fn synthesize(
         quads
             .iter()
             .zip(&along_scales)
-            .map(|(quad, &along)| bent::straight_frame(quad, params.width * params.scale / along, along, samples))
+            .map(|(quad, &along)| {
+                // The shorter last piece of an open curve takes a full-length window and is drawn
+                // up to the curve's end: its right edge meets no seam, and every piece then has
+                // the same frame, so an edit that keeps the number of pieces changes no DP row.
+                let quad = if closed { *quad } else { PieceQuad { end: quad.start + params.piece_length, ..*quad } };
+                bent::straight_frame(&quad, params.width * params.scale / along, along, samples)
+            })
             .collect()
     } else {
         rigid_frames.clone()
@@ -394,6 +412,7 @@ pub fn synthesize(
         distinct_windows: 0,
         variety: None,
         warnings: Vec::new(),
+        dp_rows_reused: 0,
         rounded_bends: rounded.bends,
         bend_shift_max: rounded.max_shift,
     };
@@ -426,10 +445,10 @@ pub fn synthesize(
     // Bent pieces are drawn (and tested against forbidden pixels) through the ribbon's triangles.
     let (triangles, stretch, spacing) = if bent {
         let (triangles, stretch) = repeat::triangulate(&ribbon);
-        let spacing = ribbon.length() / (triangles.len() / 2).max(1) as f64;
-        (triangles, stretch, spacing)
+        let slices = repeat::slice_count(&ribbon);
+        (triangles, stretch, (ribbon.length() / slices as f64, slices))
     } else {
-        (Vec::new(), Vec::new(), 1.0)
+        (Vec::new(), Vec::new(), (1.0, 1))
     };
     let piece_forbidden: Vec<Vec<Vec2>> = (0..frames.len())
         .into_par_iter()
@@ -447,25 +466,33 @@ pub fn synthesize(
             (_, false) => avoidance::forbidden_samples(&frames[i], &forbidden, n_samples),
         })
         .collect();
-    let valid: Vec<(Vec<Position>, bool)> = frames
+    let previous_valid = cache.as_deref_mut().map(|cache| std::mem::take(&mut cache.valid)).unwrap_or_default();
+    let valid: Vec<(Vec<Position>, bool, u64)> = frames
         .par_iter()
         .zip(&piece_forbidden)
         .map(|(frame, samples)| {
             let runs = avoidance::forbidden_runs(samples);
-            let positions = frame.valid_positions(&exemplar, &runs, params.min_coverage);
+            let signature = incremental::piece_signature(frame, &runs);
+            let positions = match previous_valid.get(&signature) {
+                Some(positions) => positions.clone(),
+                None => frame.valid_positions(&exemplar, &runs, params.min_coverage),
+            };
             // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
             // position stays empty; the DP pays for the gap at its seams.
             if positions.is_empty() && !runs.is_empty() {
-                (vec![frame.empty_position()], true)
+                (vec![frame.empty_position()], true, signature)
             } else {
-                (positions, false)
+                (positions, false, signature)
             }
         })
         .collect();
-    if let Some(piece) = valid.iter().position(|(positions, _)| positions.is_empty()) {
+    if let Some(cache) = cache.as_deref_mut() {
+        cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
+    }
+    if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
         return Err(Error::NoValidPosition { piece, samples, pattern_height: pattern_height(input.exemplar) });
     }
-    let (valid, empty): (Vec<Vec<Position>>, Vec<bool>) = valid.into_iter().unzip();
+    let (valid, empty): (Vec<Vec<Position>>, Vec<bool>) = valid.into_iter().map(|(p, e, _)| (p, e)).unzip();
     report.empty_pieces = empty.iter().filter(|&&e| e).count();
     report.valid_fraction = valid
         .iter()
@@ -511,7 +538,8 @@ pub fn synthesize(
         reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
         closed,
     };
-    let optimised = solve::optimise(&exemplar, &model, &rows, setup, rule, &empty, &mut on_row);
+    let optimised = solve::optimise(&exemplar, &model, &rows, setup, rule, &empty, cache.as_deref_mut(), &mut on_row);
+    report.dp_rows_reused = cache.map_or(0, |cache| cache.reused_rows);
     let solve::Optimised { solution, repeated_pairs, distinct_windows, variety } = optimised;
     if closed {
         report.closed_certified =

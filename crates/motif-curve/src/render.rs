@@ -9,6 +9,7 @@ use motif_core::{Point, RgbaImage};
 use rayon::prelude::*;
 
 const TILE: usize = 32;
+const BLOCK: usize = 8;
 
 /// A shape to draw: its canvas pixel box and a sampler returning a premultiplied colour for the
 /// canvas points it covers (`None` outside).
@@ -39,34 +40,50 @@ pub(crate) fn render(width: usize, height: usize, samples_per_axis: usize, shape
             if relevant.is_empty() {
                 return pixels;
             }
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let mut sum = [0.0_f32; 4];
-                    let covering: Vec<&&Shape<'_>> = relevant
-                        .iter()
-                        .filter(|shape| {
-                            let (sx0, sy0, sx1, sy1) = shape.bounds;
-                            x >= sx0 && x < sx1 && y >= sy0 && y < sy1
-                        })
-                        .collect();
-                    if covering.is_empty() {
+            // Blocks of BLOCK × BLOCK pixels narrow the shapes down again, so that a pixel tests
+            // the boxes of a few shapes, not of every one in the tile (the bent pieces and the
+            // repeat baseline draw thousands of small triangles).
+            let mut block_shapes: Vec<&Shape<'_>> = Vec::new();
+            let mut covering: Vec<&Shape<'_>> = Vec::new();
+            for by in (y0..y1).step_by(BLOCK) {
+                for bx in (x0..x1).step_by(BLOCK) {
+                    let (bx1, by1) = ((bx + BLOCK).min(x1), (by + BLOCK).min(y1));
+                    block_shapes.clear();
+                    block_shapes.extend(relevant.iter().copied().filter(|shape| {
+                        let (sx0, sy0, sx1, sy1) = shape.bounds;
+                        sx0 < bx1 && sx1 > bx && sy0 < by1 && sy1 > by
+                    }));
+                    if block_shapes.is_empty() {
                         continue;
                     }
-                    for p in crate::avoidance::sample_points(x, y, n) {
-                        let mut colour = [0.0_f32; 4];
-                        for shape in &covering {
-                            if let Some(src) = (shape.sampler)(p) {
-                                let keep = 1.0 - src[3];
+                    for y in by..by1 {
+                        for x in bx..bx1 {
+                            let mut sum = [0.0_f32; 4];
+                            covering.clear();
+                            covering.extend(block_shapes.iter().copied().filter(|shape| {
+                                let (sx0, sy0, sx1, sy1) = shape.bounds;
+                                x >= sx0 && x < sx1 && y >= sy0 && y < sy1
+                            }));
+                            if covering.is_empty() {
+                                continue;
+                            }
+                            for p in crate::avoidance::sample_points(x, y, n) {
+                                let mut colour = [0.0_f32; 4];
+                                for shape in &covering {
+                                    if let Some(src) = (shape.sampler)(p) {
+                                        let keep = 1.0 - src[3];
+                                        for c in 0..4 {
+                                            colour[c] = src[c] + colour[c] * keep;
+                                        }
+                                    }
+                                }
                                 for c in 0..4 {
-                                    colour[c] = src[c] + colour[c] * keep;
+                                    sum[c] += colour[c];
                                 }
                             }
-                        }
-                        for c in 0..4 {
-                            sum[c] += colour[c];
+                            pixels[(y - y0) * (x1 - x0) + x - x0] = to_straight(sum, (n * n) as f32);
                         }
                     }
-                    pixels[(y - y0) * (x1 - x0) + x - x0] = to_straight(sum, (n * n) as f32);
                 }
             }
             pixels

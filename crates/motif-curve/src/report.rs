@@ -106,6 +106,8 @@ pub struct CurveReport {
     pub distinct_windows: usize,
     /// Repetition control figures (with `variety` > 0).
     pub variety: Option<VarietyReport>,
+    /// DP rows taken from the previous run of an [`Incremental`](crate::Incremental) session.
+    pub dp_rows_reused: usize,
     /// Bends of the curve tighter than `round_bends × width` that were rounded.
     pub rounded_bends: usize,
     /// Largest distance the rounding moved a point of the curve, canvas pixels.

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges};
 use crate::dp::{self, DpCounters, RowSpec, Solver, path_cost};
 use crate::exemplar::Exemplar;
+use crate::incremental::{Cache, chain_signatures};
 use crate::piece::Position;
 use crate::variety::Rule;
 
@@ -39,6 +40,7 @@ pub(crate) fn solve_once(
     model: &CostModel,
     rows: &[RowSpec<'_>],
     setup: Setup,
+    cache: Option<&mut Cache>,
     on_row: &mut dyn FnMut(usize),
 ) -> Solution {
     if setup.closed {
@@ -61,7 +63,18 @@ pub(crate) fn solve_once(
             closed_directly: cycle.closed_directly,
         }
     } else {
-        let table = dp::solve(exemplar, model, rows, setup.solver, on_row);
+        let table = match cache {
+            // Open curves reuse the rows of the last run that the edit left as they were.
+            Some(cache) => {
+                let frames: Vec<_> = rows.iter().map(|row| row.frame).collect();
+                let positions: Vec<_> = rows.iter().map(|row| row.positions).collect();
+                let chain = chain_signatures(&frames, &positions);
+                cache.solve_rows(chain, rows[0].positions.len(), |start, initial| {
+                    dp::solve_from(exemplar, model, rows, setup.solver, (start, initial), true, on_row)
+                })
+            }
+            None => dp::solve(exemplar, model, rows, setup.solver, on_row),
+        };
         let last = (0..table.last_costs.len()).min_by_key(|&i| (table.last_costs[i], i)).expect("non-empty row");
         Solution {
             path: table.backtrack(last),
@@ -115,13 +128,14 @@ pub(crate) fn optimise(
     setup: Setup,
     rule: Rule,
     empty: &[bool],
+    cache: Option<&mut Cache>,
     on_row: &mut dyn FnMut(usize),
 ) -> Optimised {
     let pieces = empty.len();
     let windows = |path: &[usize]| -> Vec<Option<Position>> {
         (0..pieces).map(|i| (!empty[i]).then(|| rows[i].positions[path[i]])).collect()
     };
-    let mut solution = solve_once(exemplar, model, rows, setup, on_row);
+    let mut solution = solve_once(exemplar, model, rows, setup, cache, on_row);
     let first_pairs = rule.repeated_pairs(&windows(&solution.path));
     if rule.weight == 0 {
         return Optimised {

@@ -623,6 +623,10 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     }
     let mut figures = serde_json::Map::new();
     figures.insert("real_data".into(), super::curve_corpus::bench(&corpus_selected, false)?);
+    if bench.selects("incremental", "generated") {
+        figures.insert("incremental_edit_preview".into(), super::curve_corpus::incremental_edit(1)?);
+        figures.insert("incremental_edit".into(), super::curve_corpus::incremental_edit(3)?);
+    }
     for (name, width, height) in [("199x82", 199, 82), ("325x64", 325, 64)] {
         if bench.selects(name, "generated") {
             figures.insert(format!("exemplar_{name}"), bench_case(width, height, 4)?);

@@ -108,6 +108,69 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
     }))
 }
 
+/// Milliseconds per edit of an [`Incremental`](motif_curve::Incremental) session against a run
+/// from scratch: a real exemplar along the hand-drawn flourish in 50 pieces, one bump of the curve
+/// (as a dragged control point makes) moved ten times; `samples_per_axis` 1 is an interactive
+/// preview's anti-aliasing, 3 the default.
+pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
+    let folder = corpus_folder();
+    let exemplar = motif_io::read_image(&folder.join("chain_round.png"))?;
+    let base = super::curve::read_curve(&folder.join("flourish.svg"), 0.1)?;
+    let mut params = CurveParams::default();
+    params.width = 108.0;
+    params.piece_length = base.length() / 50.0;
+    params.samples_per_axis = samples_per_axis;
+    let lengths = base.cumulative_lengths().to_vec();
+    let normals = base.vertex_normals();
+    let middle = 0.6 * base.length();
+    let dragged = |offset: f64| -> anyhow::Result<motif_core::Polyline> {
+        let points = base
+            .points()
+            .iter()
+            .zip(&lengths)
+            .zip(&normals)
+            .map(|((&p, &s), &n)| p + n * (offset * (-((s - middle) / 60.0).powi(2)).exp()))
+            .collect();
+        Ok(motif_core::Polyline::new(points, false)?)
+    };
+    let mut session = motif_curve::Incremental::new();
+    let (mut edits, mut scratch, mut reused) = (Vec::new(), Vec::new(), Vec::new());
+    let mut last_stages = Vec::new();
+    for step in 0..=10 {
+        let curve = dragged(2.0 * step as f64)?;
+        let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+        let start = std::time::Instant::now();
+        let output = session.synthesize(&input, &params, &mut NoProgress)?;
+        let edit_ms = start.elapsed().as_secs_f64() * 1e3;
+        let start = std::time::Instant::now();
+        let fresh = motif_curve::synthesize(&input, &params, &mut NoProgress)?;
+        scratch.push(start.elapsed().as_secs_f64() * 1e3);
+        anyhow::ensure!(fresh.image == output.image, "incremental run differs from a run from scratch");
+        if step == 10 {
+            last_stages = output.report.stages_ms.clone();
+        }
+        if step > 0 {
+            edits.push(edit_ms);
+            reused.push(output.report.dp_rows_reused);
+        }
+    }
+    let median = |values: &mut Vec<f64>| {
+        values.sort_by(f64::total_cmp);
+        values[values.len() / 2]
+    };
+    Ok(json!({
+        "exemplar": "chain_round.png",
+        "pieces": 50,
+        "samples_per_axis": samples_per_axis,
+        "last_edit_stages_ms": last_stages,
+        "edit_ms_median": median(&mut edits.clone()),
+        "edit_ms_max": edits.iter().copied().fold(0.0, f64::max),
+        "scratch_ms_median": median(&mut scratch),
+        "dp_rows_reused": reused,
+        "target_edit_ms": 33.0,
+    }))
+}
+
 /// The corpus figures: every case `selected` accepts (only the test cases when `quick`).
 pub fn bench(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
     let folder = corpus_folder();
