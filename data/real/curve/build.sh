@@ -54,6 +54,9 @@ helix       openclipart-svg $oc/science/double_helix_anthony_lie_01.svg 684
 fretwork    openclipart-svg $oc/decorations/motivo_geometrico_archit_01.svg 300
 filigree    inkscape        usr/share/inkscape/examples/eastern-motive-P4G.svg 1000
 teeth       openclipart-svg $oc/special/patterns/pattern-triangles-1.svg 250
+chain_wide  openclipart-svg $oc/signs_and_symbols/money/gold_chain_of_round_lin_01.svg 400
+chain_small openclipart-svg $oc/signs_and_symbols/money/gold_chain_of_round_lin_01.svg 258
+filigree_wide inkscape      usr/share/inkscape/examples/eastern-motive-P4G.svg 560
 TABLE
 "$PYTHON" "$here/exemplars.py" "$tmp/render" "$here"
 

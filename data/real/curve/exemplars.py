@@ -27,6 +27,10 @@ STRIPS = {
     "fretwork": (None, 0.0, (10, 25, 290, 125)),
     "filigree": (None, 0.0, (270, 393, 610, 509)),
     "teeth": (None, 0.0, (0, 0, 200, 52)),
+    # The speed cases of `motif bench` (the sizes the curve issue names).
+    "chain_wide": (None, 43.2, (51, 223, 395, 344)),
+    "chain_small": (None, 43.2, (33, 142, 233, 224)),
+    "filigree_wide": (None, 0.0, (138, 220, 463, 284)),
 }
 
 

@@ -124,6 +124,33 @@ CASES = [
         ),
         "test": True,
     },
+    {
+        "name": "chain_wide_sweep",
+        "exemplar": "chain_wide.png",
+        "path": "flourish_sweep.svg",
+        "width": 140,
+        "piece_length": 20,
+        "kind": "speed case: round links 344 × 121 (the size of the issue's chain_round_links.png), width 140",
+        "notes": "Speed target: at most 60 ms per DP row.",
+    },
+    {
+        "name": "chain_small_sweep",
+        "exemplar": "chain_small.png",
+        "path": "flourish_sweep.svg",
+        "width": 82,
+        "piece_length": 24,
+        "kind": "speed case: round links 200 × 82 (the paper's first exemplar size), C = 82",
+        "notes": "Speed target: at most 15 ms per DP row.",
+    },
+    {
+        "name": "filigree_wide_sweep",
+        "exemplar": "filigree_wide.png",
+        "path": "flourish_sweep.svg",
+        "width": 80,
+        "piece_length": 24,
+        "kind": "speed case: a lace frieze filling its strip, 325 × 64 (the paper's second exemplar size), width 80",
+        "notes": "Speed target: at most 100 ms per DP row.",
+    },
 ]
 
 
