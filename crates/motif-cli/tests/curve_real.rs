@@ -127,7 +127,18 @@ fn bad_values_of_the_new_flags_are_refused() {
     let exemplar = corpus(case["exemplar"].as_str().unwrap());
     let path = corpus(case["path"].as_str().unwrap());
     let dir = tempfile::tempdir().unwrap();
-    for (flag, value) in [("--variety", "-1"), ("--variety", "nan"), ("--variety", "1e9"), ("--variety-radius", "0")] {
+    for (flag, value) in [
+        ("--variety", "-1"),
+        ("--variety", "nan"),
+        ("--variety", "1e9"),
+        ("--variety-radius", "0"),
+        ("--round-bends", "-0.5"),
+        ("--round-bends", "9"),
+        ("--width-profile", "0:1,0.5"),
+        ("--width-profile", "0.5:1,0.2:1"),
+        ("--width-profile", "0:20"),
+        ("--pieces-shape", "wobbly"),
+    ] {
         let output = motif(
             dir.path(),
             &[

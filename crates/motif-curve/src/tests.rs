@@ -118,6 +118,38 @@ proptest! {
     }
 }
 
+/// Small crops of real drawings (`data/real/curve/`): the exact solver's optimum equals the
+/// reference DP's and brute force's on a curved ribbon.
+#[test]
+fn exact_solver_is_optimal_on_real_crops() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/curve");
+    for (file, crop) in [("beads.png", (30, 0, 22, 40)), ("teeth.png", (40, 0, 20, 52)), ("rope.png", (60, 0, 18, 76))]
+    {
+        let full = motif_io::read_image(&folder.join(file)).unwrap();
+        let (x0, y0, w, h) = crop;
+        // Downsampled by 2 so that brute force stays small; a transparent row above and below.
+        let image = RgbaImage::from_fn(w / 2, h / 2 + 2, |x, y| {
+            if y == 0 || y == h / 2 + 1 { [0; 4] } else { full.get(x0 + 2 * x, y0 + 2 * (y - 1)) }
+        });
+        // A gentle arc (radius 30) in three pieces of 4 px: every seam is tilted by about 8°.
+        let arc: Vec<Point> = (0..=24)
+            .map(|i| f64::from(i) / 24.0 * 0.4)
+            .map(|a| Point::new(30.0 * a.sin(), 40.0 - 30.0 * a.cos()))
+            .collect();
+        let curve = Polyline::new(arc, false).unwrap();
+        let height = image.height() as f64;
+        let problem = Problem::new(&image, &curve, height + 1.0, curve.length() / 2.9, AlphaMode::Continuous);
+        assert!(problem.valid.iter().all(|v| !v.is_empty()), "{file}");
+        assert!((1_000..=3_000_000).contains(&problem.combinations()), "{file}: {}", problem.combinations());
+        assert_eq!(problem.frames.len(), 3);
+        let (reference, _) = best_open(&problem, Solver::Reference);
+        let (exact, path) = best_open(&problem, Solver::Exact);
+        let (brute, _) = brute_force(&problem.exemplar, &problem.model, &problem.rows(false), false).unwrap();
+        assert_eq!((exact, reference), (brute, brute), "{file}");
+        assert_eq!(path_cost(&problem.exemplar, &problem.model, &problem.rows(false), &path), exact);
+    }
+}
+
 /// A chain-like strip: rings every `period` pixels, with anti-aliased alpha, in rows
 /// `[top, top + size)` of a `width × height` image.
 pub(crate) fn chain_strip(width: usize, height: usize, period: usize, top: usize, size: usize) -> RgbaImage {

@@ -145,7 +145,7 @@ pub struct CurveArgs {
     /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
     /// not fold at cusps and corners (where the paper leaves pieces empty), 0–8; 0 keeps the
     /// curve as given.
-    #[arg(long, value_name = "F", default_value_t = 0.6)]
+    #[arg(long, value_name = "F", default_value_t = 0.6, allow_hyphen_values = true)]
     pub round_bends: f64,
     /// Measure the result against the exemplar (patches read back along the curve, nearest
     /// exemplar patch) and add the figures to the report and the summary.
