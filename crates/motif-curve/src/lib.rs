@@ -1,31 +1,66 @@
 //! Structured patterns along curves, after Zhou, Lasram and Lefebvre, *By-example synthesis of
 //! curvilinear structured patterns* (Eurographics 2013).
 //!
-//! A ribbon around the curve is sliced into pieces; each piece copies an undistorted, rotated
-//! part of the exemplar, and a dynamic program picks the exemplar position of every piece so that
-//! the colours across all piece boundaries match best (a global optimum). Modules, by section of
-//! the paper:
+//! A ribbon around the curve is sliced into pieces; each piece copies a window of the exemplar, and
+//! a dynamic program picks the exemplar position of every piece so that the colours across all
+//! piece boundaries match best (a global optimum). Modules, by section of the paper:
 //!
-//! - [`ribbon`]: the ribbon's offset curves and the slicing into quadrilateral pieces (§1.1, §1.3).
+//! - [`ribbon`]: the ribbon's offset curves (constant width or a width profile, §1.1) and the
+//!   slicing into quadrilateral pieces (§1.3); `bends` first rounds bends tighter than the ribbon
+//!   (not in the paper, whose fold-over rule leaves those pieces empty).
 //! - [`piece`]: a piece in exemplar space (rotation `M`, scale `s`, edges `L_i`, `R_i`) and the
 //!   validity test of positions (§1.3, §3.1), over `U = W × (H + C)` candidates (§1.4), plus a
-//!   minimum-coverage rule (not in the paper) that keeps thin slivers of the pattern out.
+//!   minimum-coverage rule and the pattern's side margins (not in the paper); `bent` straightens
+//!   pieces that follow the ribbon (the default; the paper's pieces are rigid).
 //! - [`cost`]: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
 //!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3).
 //! - [`dp`]: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
-//!   solver, the exact fast solver and a brute-force enumerator for tests.
+//!   solver, the exact fast solver (its branch and bound in `profile_tree`) and a brute-force
+//!   enumerator for tests; `solve` runs it (or [`closed`]) and the repetition control of
+//!   `variety` (not in the paper).
 //! - [`closed`]: closed curves, the single-DP approximation and an exact, certified mode (§1.5).
 //! - [`avoidance`]: avoidance maps and fold-over detection (§3.1).
 //! - [`stitch`]: the edge alignment of Eq. 2–3 and its propagation inside pieces (§3.2).
 //! - `render`: anti-aliased rasterization of the pieces; `repeat`: the classic arc-length
-//!   texture-mapping baseline; [`overlay`]: the debug drawing; [`samples`]: generated exemplars
-//!   for benchmarks.
+//!   texture-mapping baseline; [`overlay`]: the debug drawing; [`fidelity`]: the result read back
+//!   along the curve and compared with the exemplar patch by patch; [`samples`]: generated
+//!   exemplars for benchmarks.
+//! - `atlas` (several exemplars, §4's "matches across exemplars") and `incremental`
+//!   ([`Incremental`], §4's re-synthesis while the curve is edited).
 //!
 //! The entry point is [`synthesize`]. The crate does no I/O and builds for `wasm32`.
+//!
+//! ```
+//! use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+//! use motif_curve::{CurveInput, CurveParams, synthesize};
+//!
+//! // A strip of rings with a transparent background, along a gentle arc.
+//! let exemplar = RgbaImage::from_fn(96, 24, |x, y| {
+//!     let (dx, dy) = ((x % 16) as f64 - 7.5, y as f64 - 11.5);
+//!     let r = (dx * dx + dy * dy).sqrt();
+//!     if (4.0..7.0).contains(&r) { [210, 170, 40, 255] } else { [0; 4] }
+//! });
+//! let arc: Vec<Point> = (0..=40).map(|i| {
+//!     let a = f64::from(i) / 40.0;
+//!     Point::new(20.0 + 200.0 * a, 80.0 - 60.0 * (a * std::f64::consts::PI).sin())
+//! }).collect();
+//! let curve = Polyline::new(arc, false).unwrap();
+//! let mut params = CurveParams::default();
+//! params.width = 24.0;
+//! params.piece_length = 12.0;
+//! let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+//! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+//! assert!(output.report.pieces > 10);
+//! // Bent pieces continue the rings across every seam.
+//! assert_eq!(output.report.total_cost, 0.0);
+//! assert!(output.report.warnings.is_empty());
+//! ```
 
+mod atlas;
 pub mod avoidance;
 mod bends;
 mod bent;
+mod canvas;
 pub mod closed;
 pub mod cost;
 pub mod dp;
@@ -35,6 +70,7 @@ mod incremental;
 pub mod overlay;
 mod params;
 pub mod piece;
+mod profile_tree;
 mod render;
 mod repeat;
 mod report;
@@ -43,13 +79,16 @@ pub mod samples;
 mod solve;
 pub mod stitch;
 mod variety;
+mod warnings;
 
 use motif_core::kurbo::Affine;
 use motif_core::timing::StageTimer;
-use motif_core::{InvalidParameter, Point, Polyline, Progress, RgbaImage, Vec2};
+use motif_core::{InvalidParameter, Polyline, Progress, RgbaImage, Vec2};
 use rayon::prelude::*;
 
+use crate::atlas::Atlas;
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
+use crate::canvas::{canvas_geometry, ribbon_borders, working_curve};
 pub use crate::cost::AlphaMode;
 use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges};
 pub use crate::dp::Solver;
@@ -61,6 +100,7 @@ use crate::params::validate;
 pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method, PieceShape};
 use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::Shape;
+use crate::render::rigid_shape;
 pub use crate::report::{CurveOutput, CurveReport, PlacedPiece};
 use crate::ribbon::{PieceQuad, Ribbon};
 pub use crate::solve::VarietyReport;
@@ -113,74 +153,6 @@ pub enum Error {
     },
 }
 
-/// The curve as used: cut open when a closed curve is treated as open.
-fn working_curve(curve: &Polyline, closed: bool) -> Result<Polyline, InvalidParameter> {
-    if curve.is_closed() && !closed {
-        let mut points = curve.points().to_vec();
-        points.push(points[0]);
-        Polyline::new(points, false)
-    } else {
-        Ok(curve.clone())
-    }
-}
-
-/// Border points of the ribbon at about one canvas pixel apart.
-fn ribbon_borders(ribbon: &Ribbon) -> (Vec<Point>, Vec<Point>) {
-    let length = ribbon.length();
-    let steps = (length.ceil() as usize).max(2);
-    let xs = (0..=steps).map(|i| length * i as f64 / steps as f64);
-    xs.map(|x| (ribbon.top(x), ribbon.bottom(x))).unzip()
-}
-
-/// Canvas size and the document → canvas translation.
-fn canvas_geometry(
-    curve: &Polyline,
-    params: &CurveParams,
-    avoidance: Option<&RgbaImage>,
-) -> Result<(usize, usize, Vec2), Error> {
-    if let Some(map) = avoidance {
-        if let Canvas::Size { width, height } = params.canvas {
-            if (width, height) != (map.width(), map.height()) {
-                return Err(InvalidParameter::new(
-                    "avoid",
-                    format!("{}×{}", map.width(), map.height()),
-                    format!("the avoidance map must have the canvas size {width}×{height}"),
-                )
-                .into());
-            }
-        }
-        if map.width() == 0 || map.height() == 0 || map.width() > MAX_CANVAS_SIDE || map.height() > MAX_CANVAS_SIDE {
-            return Err(InvalidParameter::new(
-                "avoid",
-                format!("{}×{}", map.width(), map.height()),
-                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
-            )
-            .into());
-        }
-        return Ok((map.width(), map.height(), Vec2::ZERO));
-    }
-    match params.canvas {
-        Canvas::Size { width, height } => Ok((width, height, Vec2::ZERO)),
-        Canvas::Fit { margin } => {
-            let ribbon = Ribbon::new(curve, params.width)?.with_profile(&params.width_profile);
-            let (top, bottom) = ribbon_borders(&ribbon);
-            let bounds = motif_core::geometry::bounds_of(&[top, bottom].concat());
-            let origin = Vec2::new((bounds.x0 - margin).floor(), (bounds.y0 - margin).floor());
-            let width = (bounds.x1 + margin - origin.x).ceil() as usize;
-            let height = (bounds.y1 + margin - origin.y).ceil() as usize;
-            if width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
-                return Err(InvalidParameter::new(
-                    "canvas",
-                    format!("{width}×{height}"),
-                    format!("the fitted canvas exceeds {MAX_CANVAS_SIDE} pixels per side; scale the curve down"),
-                )
-                .into());
-            }
-            Ok((width.max(1), height.max(1), -origin))
-        }
-    }
-}
-
 fn median(values: &[f64]) -> f64 {
     if values.is_empty() {
         return 0.0;
@@ -194,117 +166,6 @@ fn median(values: &[f64]) -> f64 {
 /// Number of rows of the exemplar holding non-transparent pixels (for error messages).
 fn pattern_height(image: &RgbaImage) -> usize {
     image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
-}
-
-/// The shape drawing a rigid piece at exemplar position `u` (§1.3), deformed by its stitch.
-fn rigid_shape<'a>(
-    frame: &'a PieceFrame,
-    u: Position,
-    remap: Option<Vec<usize>>,
-    exemplar: &'a Exemplar,
-    canvas: (usize, usize),
-) -> Shape<'a> {
-    Shape {
-        bounds: avoidance::canvas_box(frame, canvas.0, canvas.1),
-        sampler: Box::new(move |p: Point| {
-            let local = frame.to_local(p);
-            if !frame.contains_local(local) {
-                return None;
-            }
-            let local = match &remap {
-                Some(remap) => stitch::deform(frame, remap, local),
-                None => local,
-            };
-            let (x, y) = PieceFrame::exemplar_point(u, local);
-            Some(exemplar.sample_premultiplied(x, y))
-        }),
-    }
-}
-
-/// Several exemplars side by side in one image, two transparent columns apart (pieces stay inside
-/// one source's pattern extent, see `Exemplar::with_sources`), top-aligned.
-struct Atlas {
-    image: RgbaImage,
-    /// Column range `[x0, x1)` of each source.
-    sources: Vec<(usize, usize)>,
-}
-
-/// Transparent columns between two exemplars of an atlas.
-const ATLAS_GAP: usize = 2;
-
-impl Atlas {
-    fn new(first: &RgbaImage, more: &[RgbaImage]) -> Self {
-        if more.is_empty() {
-            return Self { image: first.clone(), sources: vec![(0, first.width())] };
-        }
-        let all: Vec<&RgbaImage> = std::iter::once(first).chain(more).collect();
-        let mut sources = Vec::with_capacity(all.len());
-        let mut x = 0;
-        for image in &all {
-            sources.push((x, x + image.width()));
-            x += image.width() + ATLAS_GAP;
-        }
-        let width = x - ATLAS_GAP;
-        let height = all.iter().map(|image| image.height()).max().unwrap_or(0);
-        let image = RgbaImage::from_fn(width, height, |x, y| {
-            let source = sources.iter().position(|&(x0, x1)| (x0..x1).contains(&x));
-            match source {
-                Some(k) if y < all[k].height() => all[k].get(x - sources[k].0, y),
-                _ => [0; 4],
-            }
-        });
-        Self { image, sources }
-    }
-
-    /// The source of atlas position `u` and the position in that source's coordinates.
-    fn local(&self, u: Position) -> (usize, Position) {
-        let k = self.sources.iter().rposition(|&(x0, _)| u[0] >= x0 as i32).unwrap_or(0);
-        (k, [u[0] - self.sources[k].0 as i32, u[1]])
-    }
-}
-
-/// Valid fraction below which the run warns that the pieces hardly fit the pattern.
-const FEW_VALID: f64 = 0.01;
-
-/// What looks wrong with a run before it is solved, with what to change.
-fn warnings(
-    exemplar: &Exemplar,
-    params: &CurveParams,
-    samples: usize,
-    valid_fraction: f64,
-    empty: usize,
-) -> Vec<String> {
-    let mut warnings = Vec::new();
-    // The top edge reads the row above the corner's and the bottom edge the row below the last,
-    // so a piece holds the pattern's whole height only with two clear rows to spare.
-    let needed = exemplar.pattern_rows.map_or(0, |(top, bottom)| (bottom - top + 3) as usize);
-    let smallest_width = needed as f64 / params.scale;
-    if samples < needed {
-        warnings.push(format!(
-            "the ribbon is {samples} exemplar pixels wide (width × scale) but the pattern is {} pixels tall: no piece \
-             can hold its whole height, so pieces cut it where it has horizontal gaps; for whole motifs use --width {} \
-             or more (at scale {})",
-            needed - 2,
-            smallest_width.ceil(),
-            params.scale
-        ));
-    }
-    if valid_fraction < FEW_VALID {
-        warnings.push(format!(
-            "only {:.2}% of exemplar positions are valid for an average piece: pieces must cut the pattern in \
-             transparent pixels at their top and bottom edges; try a wider ribbon (--width {} or more), shorter \
-             pieces or a lower --min-coverage",
-            100.0 * valid_fraction,
-            smallest_width.ceil().max(params.width.ceil() + 1.0)
-        ));
-    }
-    if empty > 0 {
-        warnings.push(format!(
-            "{empty} piece(s) left empty: fold-overs at sharp bends or the avoidance map forbade every position; \
-             shorter pieces (--piece-length) or a narrower ribbon follow sharp bends better"
-        ));
-    }
-    warnings
 }
 
 /// Synthesizes the pattern of `input.exemplar` along `input.curve`.
@@ -500,7 +361,7 @@ pub(crate) fn synthesize_with(
         .map(|(positions, &is_empty)| if is_empty { 0.0 } else { positions.len() as f64 / candidates as f64 })
         .sum::<f64>()
         / valid.len() as f64;
-    report.warnings.extend(warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces));
+    report.warnings.extend(warnings::warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces));
     let pin_storage: Vec<Position>;
     let first_positions: &[Position] = match params.pin_first {
         Some(pin) => {
@@ -651,3 +512,5 @@ pub(crate) fn synthesize_with(
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_features;

@@ -6,6 +6,10 @@
 //! cut into tiles rendered in parallel; each tile only looks at the shapes whose box meets it.
 
 use motif_core::{Point, RgbaImage};
+
+use crate::exemplar::Exemplar;
+use crate::piece::{PieceFrame, Position};
+use crate::{avoidance, stitch};
 use rayon::prelude::*;
 
 const TILE: usize = 32;
@@ -130,5 +134,30 @@ mod tests {
         }];
         let image = render(4, 4, 4, &shapes);
         assert_eq!(image.get(1, 2), [0, 255, 0, 128]);
+    }
+}
+
+/// The shape drawing a rigid piece at exemplar position `u` (§1.3), deformed by its stitch.
+pub(crate) fn rigid_shape<'a>(
+    frame: &'a PieceFrame,
+    u: Position,
+    remap: Option<Vec<usize>>,
+    exemplar: &'a Exemplar,
+    canvas: (usize, usize),
+) -> Shape<'a> {
+    Shape {
+        bounds: avoidance::canvas_box(frame, canvas.0, canvas.1),
+        sampler: Box::new(move |p: Point| {
+            let local = frame.to_local(p);
+            if !frame.contains_local(local) {
+                return None;
+            }
+            let local = match &remap {
+                Some(remap) => stitch::deform(frame, remap, local),
+                None => local,
+            };
+            let (x, y) = PieceFrame::exemplar_point(u, local);
+            Some(exemplar.sample_premultiplied(x, y))
+        }),
     }
 }

@@ -5,11 +5,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
-use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+use motif_core::{Point, Polyline, RgbaImage};
 use motif_curve::{AlphaMode, Canvas, ClosedMode, CurveInput, CurveOutput, CurveParams, Method, PieceShape, Solver};
-use serde_json::{Value, json};
+use serde_json::json;
 
-use crate::bench::Bench;
 use crate::context::Context;
 use crate::demo::{Demo, DemoCase};
 
@@ -551,87 +550,4 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .to_vec(),
     })?;
     Ok(())
-}
-
-/// One measured workload: a generated chain exemplar, a gentle wave, DP rows of both solvers.
-fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value> {
-    let chain_height = (height as f64 * 0.55).round();
-    let exemplar = chain_exemplar(width, height, (width as f64 / 5.3).round(), chain_height);
-    let piece_length = 24.0;
-    let mut params = CurveParams::default();
-    params.width = height as f64; // C = H, as in the paper's timings.
-    params.piece_length = piece_length;
-    params.samples_per_axis = 1;
-    // A gentle arc (radius 300 px): every piece is tilted by about 4.6° against the previous one.
-    let wave = |pieces: usize| -> anyhow::Result<Polyline> {
-        let length = piece_length * pieces as f64;
-        let radius = 300.0;
-        let points = (0..=200)
-            .map(|i| {
-                let angle = i as f64 / 200.0 * length / radius;
-                Point::new(radius * angle.sin(), 400.0 - radius * angle.cos())
-            })
-            .collect();
-        Ok(Polyline::new(points, false)?)
-    };
-    let mut figures = serde_json::Map::new();
-    let mut medians = [0.0; 2];
-    // Both solvers run on the same curve, so they fill the same rows.
-    let curve = wave(rows + 1)?;
-    for (slot, solver) in [Solver::Exact, Solver::Reference].into_iter().enumerate() {
-        params.solver = solver;
-        let output = motif_curve::synthesize(
-            &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] },
-            &params,
-            &mut NoProgress,
-        )?;
-        let report = &output.report;
-        medians[slot] = report.dp_row_ms_median;
-        let name = if solver == Solver::Exact { "exact" } else { "reference" };
-        figures.insert(
-            name.into(),
-            json!({
-                "dp_row_ms": report.dp_row_ms,
-                "dp_row_ms_median": report.dp_row_ms_median,
-                "dp_row_ms_max": report.dp_row_ms_max,
-                "valid_ms_per_piece": report.stages_ms.iter().find(|(s, _)| s == "valid positions").map(|(_, ms)| *ms / report.pieces as f64),
-                "valid_fraction": report.valid_fraction,
-                "columns_skipped_fraction": report.columns_skipped_fraction,
-                "columns_compared_to_completion_fraction": report.dp_counters.completed as f64 / report.dp_counters.pairs.max(1) as f64,
-                "pairs_per_row": report.dp_counters.pairs as f64 / report.dp_row_ms.len().max(1) as f64,
-                "columns_visited_fraction": report.dp_counters.visited as f64 / report.dp_counters.pairs.max(1) as f64,
-                "columns_compared_fraction": report.dp_counters.compared as f64 / report.dp_counters.pairs.max(1) as f64,
-                "total_cost": report.total_cost,
-            }),
-        );
-    }
-    figures.insert("exemplar".into(), json!([width, height]));
-    figures.insert("samples_per_edge".into(), json!(height));
-    figures.insert("speedup_reference_over_exact".into(), json!(medians[1] / medians[0].max(1e-9)));
-    Ok(Value::Object(figures))
-}
-
-/// Figures for `motif bench`: DP milliseconds per row of both solvers on generated exemplars of
-/// the paper's two sizes (199×82 and 325×64), with C equal to the exemplar height.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
-    let corpus_selected = |name: &str| bench.selects(name, "corpus");
-    if bench.quick {
-        return Ok(json!({
-            "quick_48x24": bench_case(48, 24, 3)?,
-            "real_data": super::curve_corpus::bench(&corpus_selected, true)?,
-        }));
-    }
-    let mut figures = serde_json::Map::new();
-    figures.insert("real_data".into(), super::curve_corpus::bench(&corpus_selected, false)?);
-    if bench.selects("incremental", "generated") {
-        figures.insert("incremental_edit_preview".into(), super::curve_corpus::incremental_edit(1)?);
-        figures.insert("incremental_edit".into(), super::curve_corpus::incremental_edit(3)?);
-    }
-    for (name, width, height) in [("199x82", 199, 82), ("325x64", 325, 64)] {
-        if bench.selects(name, "generated") {
-            figures.insert(format!("exemplar_{name}"), bench_case(width, height, 4)?);
-        }
-    }
-    figures.insert("paper_gpu_ms_per_row".into(), json!({ "199x82": 30.0, "325x64": 650.0 }));
-    Ok(Value::Object(figures))
 }

@@ -1,13 +1,18 @@
-//! `motif bench --engine curve` on the real-exemplar corpus (`data/real/curve/`): for every case,
-//! the DP time per row, the seam cost per piece, the valid fraction and the patch fidelity of the
-//! synthesis next to the repeat baseline's (see `motif_curve::fidelity`).
+//! `motif bench --engine curve`: the real-exemplar corpus (`data/real/curve/`: for every case, the
+//! DP time per row, the seam cost per piece, the valid fraction and the patch fidelity of the
+//! synthesis next to the repeat baseline's, see `motif_curve::fidelity`), the incremental edit,
+//! and the generated exemplars of the paper's two sizes (both solvers).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use motif_core::NoProgress;
+use motif_core::{Point, Polyline};
 use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
-use motif_curve::{CurveInput, CurveOutput, CurveParams, Method};
+use motif_curve::{CurveInput, CurveOutput, CurveParams, Method, Solver};
+
+use super::curve::chain_exemplar;
+use crate::bench::Bench;
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -123,7 +128,7 @@ pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
     let lengths = base.cumulative_lengths().to_vec();
     let normals = base.vertex_normals();
     let middle = 0.6 * base.length();
-    let dragged = |offset: f64| -> anyhow::Result<motif_core::Polyline> {
+    let dragged = |offset: f64| -> anyhow::Result<Polyline> {
         let points = base
             .points()
             .iter()
@@ -131,7 +136,7 @@ pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
             .zip(&normals)
             .map(|((&p, &s), &n)| p + n * (offset * (-((s - middle) / 60.0).powi(2)).exp()))
             .collect();
-        Ok(motif_core::Polyline::new(points, false)?)
+        Ok(Polyline::new(points, false)?)
     };
     let mut session = motif_curve::Incremental::new();
     let (mut edits, mut scratch, mut reused) = (Vec::new(), Vec::new(), Vec::new());
@@ -172,7 +177,7 @@ pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
 }
 
 /// The corpus figures: every case `selected` accepts (only the test cases when `quick`).
-pub fn bench(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
+pub fn corpus_figures(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
     let folder = corpus_folder();
     let cases = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();
@@ -194,5 +199,88 @@ pub fn bench(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Val
             "without_warnings": clean,
         }),
     );
+    Ok(Value::Object(figures))
+}
+
+/// One measured workload: a generated chain exemplar, a gentle wave, DP rows of both solvers.
+fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value> {
+    let chain_height = (height as f64 * 0.55).round();
+    let exemplar = chain_exemplar(width, height, (width as f64 / 5.3).round(), chain_height);
+    let piece_length = 24.0;
+    let mut params = CurveParams::default();
+    params.width = height as f64; // C = H, as in the paper's timings.
+    params.piece_length = piece_length;
+    params.samples_per_axis = 1;
+    // A gentle arc (radius 300 px): every piece is tilted by about 4.6° against the previous one.
+    let wave = |pieces: usize| -> anyhow::Result<Polyline> {
+        let length = piece_length * pieces as f64;
+        let radius = 300.0;
+        let points = (0..=200)
+            .map(|i| {
+                let angle = i as f64 / 200.0 * length / radius;
+                Point::new(radius * angle.sin(), 400.0 - radius * angle.cos())
+            })
+            .collect();
+        Ok(Polyline::new(points, false)?)
+    };
+    let mut figures = serde_json::Map::new();
+    let mut medians = [0.0; 2];
+    // Both solvers run on the same curve, so they fill the same rows.
+    let curve = wave(rows + 1)?;
+    for (slot, solver) in [Solver::Exact, Solver::Reference].into_iter().enumerate() {
+        params.solver = solver;
+        let output = motif_curve::synthesize(
+            &CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] },
+            &params,
+            &mut NoProgress,
+        )?;
+        let report = &output.report;
+        medians[slot] = report.dp_row_ms_median;
+        let name = if solver == Solver::Exact { "exact" } else { "reference" };
+        figures.insert(
+            name.into(),
+            json!({
+                "dp_row_ms": report.dp_row_ms,
+                "dp_row_ms_median": report.dp_row_ms_median,
+                "dp_row_ms_max": report.dp_row_ms_max,
+                "valid_ms_per_piece": report.stages_ms.iter().find(|(s, _)| s == "valid positions").map(|(_, ms)| *ms / report.pieces as f64),
+                "valid_fraction": report.valid_fraction,
+                "columns_skipped_fraction": report.columns_skipped_fraction,
+                "columns_compared_to_completion_fraction": report.dp_counters.completed as f64 / report.dp_counters.pairs.max(1) as f64,
+                "pairs_per_row": report.dp_counters.pairs as f64 / report.dp_row_ms.len().max(1) as f64,
+                "columns_visited_fraction": report.dp_counters.visited as f64 / report.dp_counters.pairs.max(1) as f64,
+                "columns_compared_fraction": report.dp_counters.compared as f64 / report.dp_counters.pairs.max(1) as f64,
+                "total_cost": report.total_cost,
+            }),
+        );
+    }
+    figures.insert("exemplar".into(), json!([width, height]));
+    figures.insert("samples_per_edge".into(), json!(height));
+    figures.insert("speedup_reference_over_exact".into(), json!(medians[1] / medians[0].max(1e-9)));
+    Ok(Value::Object(figures))
+}
+
+/// Figures for `motif bench`: DP milliseconds per row of both solvers on generated exemplars of
+/// the paper's two sizes (199×82 and 325×64), with C equal to the exemplar height.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    let corpus_selected = |name: &str| bench.selects(name, "corpus");
+    if bench.quick {
+        return Ok(json!({
+            "quick_48x24": bench_case(48, 24, 3)?,
+            "real_data": corpus_figures(&corpus_selected, true)?,
+        }));
+    }
+    let mut figures = serde_json::Map::new();
+    figures.insert("real_data".into(), corpus_figures(&corpus_selected, false)?);
+    if bench.selects("incremental", "generated") {
+        figures.insert("incremental_edit_preview".into(), incremental_edit(1)?);
+        figures.insert("incremental_edit".into(), incremental_edit(3)?);
+    }
+    for (name, width, height) in [("199x82", 199, 82), ("325x64", 325, 64)] {
+        if bench.selects(name, "generated") {
+            figures.insert(format!("exemplar_{name}"), bench_case(width, height, 4)?);
+        }
+    }
+    figures.insert("paper_gpu_ms_per_row".into(), json!({ "199x82": 30.0, "325x64": 650.0 }));
     Ok(Value::Object(figures))
 }

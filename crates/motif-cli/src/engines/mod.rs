@@ -90,7 +90,7 @@ pub fn benches(bench: &Bench, only: &[String]) -> anyhow::Result<Map<String, Val
             continue;
         }
         let value = match name {
-            "curve" => curve::bench(bench)?,
+            "curve" => curve_corpus::bench(bench)?,
             "points" => points_bench::bench(bench)?,
             "strokes" => strokes::bench(bench)?,
             "stylize" => stylize::bench(bench)?,

@@ -1,0 +1,332 @@
+//! The branch and bound of the exact solver (§2): the profile tree over distinct predecessors,
+//! its lower bounds, and the search of one DP row (see the `dp` module for the whole solver).
+
+use rayon::prelude::*;
+
+use crate::cost::{CostModel, EdgeSet, edge_distance_bounded, mask_bound, profile_alpha_bound, profile_bound};
+use crate::dp::{DpCounters, RowResult, Seeds};
+
+/// Predecessors per leaf of the profile tree (small under test, so that the tiny property-test
+/// problems exercise deep trees too).
+const LEAF_SIZE: usize = if cfg!(test) { 2 } else { 16 };
+
+/// The alpha block sums of edge `index` (the last quarter of its profile).
+#[inline]
+fn alpha_profile(set: &EdgeSet, index: usize) -> &[u16] {
+    &set.profile_of(index)[3 * set.profile_len..]
+}
+
+/// L1 distance from the alpha profile `point` to the box `low..=high` (0 inside). Every profile
+/// inside the box is at least this far from `point`, and the profile distance never exceeds the
+/// per-sample alpha distance, so [`alpha_bound`] of it bounds `D` for every edge of the box.
+#[inline]
+fn box_gap(point: &[u16], low: &[u16], high: &[u16]) -> u32 {
+    let mut lanes = [0_u32; 8];
+    for ((p, l), h) in point.chunks_exact(8).zip(low.chunks_exact(8)).zip(high.chunks_exact(8)) {
+        for i in 0..8 {
+            lanes[i] += u32::from(l[i].saturating_sub(p[i]) | p[i].saturating_sub(h[i]));
+        }
+    }
+    lanes.iter().sum()
+}
+
+/// `D ≥ alpha_bound(L1)` for an alpha L1 distance (per sample or between block sums): per sample
+/// ξ ≥ 8γ·|a − b|/255 − 1 (one unit for rounding), so `D ≥ L1·⌊8γ⌋/255 − C`. The fixed-point factor
+/// is rounded down, so the product never exceeds the exact floor.
+#[derive(Debug, Clone, Copy)]
+struct AlphaBound {
+    per_unit: u64,
+    samples: u64,
+}
+
+impl AlphaBound {
+    fn new(model: &CostModel, samples: usize) -> Self {
+        Self { per_unit: (model.gamma_floor() << 16) / 255, samples: samples as u64 }
+    }
+
+    #[inline]
+    fn of(&self, l1: u32) -> u64 {
+        ((u64::from(l1) * self.per_unit) >> 16).saturating_sub(self.samples)
+    }
+}
+
+/// A node of the profile tree: arranged predecessors `start..end`, their lowest `P`, and the
+/// children (`None` for a leaf, whose predecessors are sorted by ascending `P`).
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    start: usize,
+    end: usize,
+    lowest_cost: u64,
+    children: Option<[u32; 2]>,
+}
+
+/// Predecessors in a k-d tree over their alpha profiles, each node with the bounding box of its
+/// profiles and its lowest `P`, for a branch-and-bound search: a node whose lowest `P` plus the
+/// alpha bound of its box distance cannot beat the best total is skipped whole. (The index has to
+/// carry the lowest `P` of every subtree, which no k-d tree crate offers.)
+struct ProfileTree {
+    /// Predecessor edges in leaf order.
+    edges: EdgeSet,
+    /// `P` in leaf order.
+    costs: Vec<u64>,
+    /// Original predecessor index in leaf order.
+    original: Vec<u32>,
+    /// Leaf-order position of each original predecessor.
+    position_of: Vec<u32>,
+    /// Nodes; the root is 0.
+    nodes: Vec<Node>,
+    /// Per node: the box's lows, then its highs (`dims` each).
+    boxes: Vec<u16>,
+    /// Entries of an alpha profile.
+    dims: usize,
+}
+
+impl ProfileTree {
+    fn new(previous: &[u64], rights: &EdgeSet) -> Self {
+        let mut tree = Self {
+            edges: EdgeSet::default(),
+            costs: Vec::with_capacity(previous.len()),
+            original: Vec::with_capacity(previous.len()),
+            position_of: vec![0; previous.len()],
+            nodes: Vec::new(),
+            boxes: Vec::new(),
+            dims: rights.profile_len,
+        };
+        let mut members: Vec<u32> = (0..previous.len() as u32).collect();
+        tree.build(&mut members, previous, rights);
+        for (position, &v) in tree.original.iter().enumerate() {
+            tree.position_of[v as usize] = position as u32;
+        }
+        tree.edges = rights.permuted(&tree.original);
+        tree
+    }
+
+    /// Adds the subtree of `members` (split at the median of the widest profile entry) and
+    /// returns its node index.
+    fn build(&mut self, members: &mut [u32], previous: &[u64], rights: &EdgeSet) -> u32 {
+        let dims = self.dims;
+        let (mut low, mut high) = (vec![u16::MAX; dims], vec![0_u16; dims]);
+        for &v in members.iter() {
+            for (d, &value) in alpha_profile(rights, v as usize).iter().enumerate() {
+                low[d] = low[d].min(value);
+                high[d] = high[d].max(value);
+            }
+        }
+        let index = self.nodes.len();
+        let lowest_cost = members.iter().map(|&v| previous[v as usize]).min().unwrap_or(u64::MAX);
+        self.nodes.push(Node { start: self.original.len(), end: 0, lowest_cost, children: None });
+        self.boxes.extend_from_slice(&low);
+        self.boxes.extend_from_slice(&high);
+        let widest = (0..dims).max_by_key(|&d| (high[d] - low[d], std::cmp::Reverse(d)));
+        match widest {
+            Some(dimension) if members.len() > LEAF_SIZE && high[dimension] > low[dimension] => {
+                let middle = members.len() / 2;
+                members.select_nth_unstable_by_key(middle, |&v| (alpha_profile(rights, v as usize)[dimension], v));
+                let (near, far) = members.split_at_mut(middle);
+                let first = self.build(near, previous, rights);
+                let second = self.build(far, previous, rights);
+                self.nodes[index].children = Some([first, second]);
+            }
+            _ => {
+                // A leaf (or identical profiles): ascending `P`, so its scan can stop early.
+                members.sort_unstable_by_key(|&v| (previous[v as usize], v));
+                self.costs.extend(members.iter().map(|&v| previous[v as usize]));
+                self.original.extend_from_slice(members);
+            }
+        }
+        self.nodes[index].end = self.original.len();
+        index as u32
+    }
+
+    /// The box distance from `point` to node `node`.
+    #[inline]
+    fn gap(&self, node: u32, point: &[u16]) -> u32 {
+        let at = node as usize * 2 * self.dims;
+        box_gap(point, &self.boxes[at..at + self.dims], &self.boxes[at + self.dims..at + 2 * self.dims])
+    }
+}
+
+/// The exact fast row update (see the module comment).
+///
+/// For a position `u`, the tree is searched best-first along its depth: the child whose box is
+/// nearer to `u`'s alpha profile is opened first, a node is dropped when its lowest `P` plus the
+/// alpha bound of its box distance exceeds the best total so far, and a leaf (ascending `P`) is
+/// scanned until `P` plus that bound exceeds it. Survivors go through the profile and mask
+/// bounds before any pixel is read.
+pub(crate) fn exact_row(
+    model: &CostModel,
+    previous: &[u64],
+    rights: &EdgeSet,
+    lefts: &EdgeSet,
+    seeds: &Seeds,
+) -> RowResult {
+    let tree = ProfileTree::new(previous, rights);
+    let ProfileTree { edges, costs, original, position_of, nodes, .. } = &tree;
+    let cheapest = (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0);
+    let weight = model.mask_weight();
+    let samples = lefts.samples;
+    let alpha_bound = AlphaBound::new(model, samples);
+    let chunk = 64;
+    let results: Vec<(Vec<(u64, u32)>, DpCounters)> = (0..lefts.len().div_ceil(chunk))
+        .into_par_iter()
+        .map(|block| {
+            let mut counters = DpCounters::default();
+            let range = block * chunk..((block + 1) * chunk).min(lefts.len());
+            let first = range.start;
+            let mut out: Vec<(u64, u32)> = Vec::with_capacity(range.len());
+            let mut stack: Vec<(u64, u32)> = Vec::new();
+            for u in range {
+                let left_masks = lefts.masks_of(u);
+                let left_profile = lefts.profile_of(u);
+                let left_alpha = alpha_profile(lefts, u);
+                // (total, original predecessor index); compare lexicographically for ties.
+                let mut best = (u64::MAX, u32::MAX);
+                let consider = |position: usize, best: &mut (u64, u32), counters: &mut DpCounters| {
+                    let cost = costs[position];
+                    let v = original[position];
+                    counters.visited += 1;
+                    let right_profile = edges.profile_of(position);
+                    if (cost + profile_alpha_bound(model, right_profile, left_profile, samples), v) >= *best {
+                        return;
+                    }
+                    if (cost + profile_bound(model, right_profile, left_profile, samples), v) >= *best {
+                        return;
+                    }
+                    if (cost + mask_bound(weight, edges.masks_of(position), left_masks), v) >= *best {
+                        return;
+                    }
+                    counters.compared += 1;
+                    let limit = best.0.saturating_sub(cost);
+                    if let Some(distance) = edge_distance_bounded(model, edges, position, lefts, u, limit) {
+                        counters.completed += 1;
+                        let total = cost + u64::from(distance);
+                        if (total, v) < *best {
+                            *best = (total, v);
+                        }
+                    }
+                };
+                let continuation = seeds.continuation[u];
+                if continuation != u32::MAX {
+                    consider(position_of[continuation as usize] as usize, &mut best, &mut counters);
+                }
+                let above = seeds.above[u] as usize;
+                if above != u32::MAX as usize && above >= first && above < u {
+                    let above_predecessor = out[above - first].1;
+                    if above_predecessor != u32::MAX {
+                        let [x, y] = seeds.previous[above_predecessor as usize];
+                        if let Some(v) = seeds.previous_index([x, y + 1]) {
+                            consider(position_of[v as usize] as usize, &mut best, &mut counters);
+                        }
+                    }
+                }
+                // The predecessor of the previous position (similar u, low P) and the cheapest
+                // predecessor overall.
+                if let Some(&(_, previous_best)) = out.last() {
+                    if previous_best != u32::MAX {
+                        consider(position_of[previous_best as usize] as usize, &mut best, &mut counters);
+                    }
+                }
+                consider(position_of[cheapest] as usize, &mut best, &mut counters);
+                // Branch and bound; the stack holds (alpha bound of the box distance, node).
+                // Pruning is strict (`>`), so a tie with a lower index is still found.
+                stack.clear();
+                stack.push((alpha_bound.of(tree.gap(0, left_alpha)), 0));
+                while let Some((bound, index)) = stack.pop() {
+                    let node = nodes[index as usize];
+                    if node.lowest_cost.saturating_add(bound) > best.0 {
+                        continue;
+                    }
+                    match node.children {
+                        Some(children) => {
+                            let [near, far] =
+                                children.map(|child| (alpha_bound.of(tree.gap(child, left_alpha)), child));
+                            let (near, far) = if far.0 < near.0 { (far, near) } else { (near, far) };
+                            // Pushed last, popped first: the nearer child.
+                            for (bound, child) in [far, near] {
+                                if nodes[child as usize].lowest_cost.saturating_add(bound) <= best.0 {
+                                    stack.push((bound, child));
+                                }
+                            }
+                        }
+                        None => {
+                            for (position, &cost) in costs.iter().enumerate().take(node.end).skip(node.start) {
+                                if cost + bound > best.0 {
+                                    break;
+                                }
+                                consider(position, &mut best, &mut counters);
+                            }
+                        }
+                    }
+                }
+                out.push(best);
+            }
+            (out, counters)
+        })
+        .collect();
+    let mut counters = DpCounters { pairs: (previous.len() * lefts.len()) as u64, ..DpCounters::default() };
+    let mut costs = Vec::with_capacity(lefts.len());
+    let mut predecessors = Vec::with_capacity(lefts.len());
+    for (block, block_counters) in results {
+        counters.visited += block_counters.visited;
+        counters.compared += block_counters.compared;
+        counters.completed += block_counters.completed;
+        for (cost, v) in block {
+            costs.push(cost);
+            predecessors.push(v);
+        }
+    }
+    (costs, predecessors, counters)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cost::{AlphaMode, edge_distance};
+    use crate::dp::tests::edge_set;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// Every node's box bound is a true lower bound of `D` for all its predecessors, its
+        /// lowest `P` is theirs, and the tree holds every predecessor once, leaves by ascending `P`.
+        #[test]
+        fn tree_bounds_never_exceed_the_distance(
+            samples in 1_usize..70,
+            columns in proptest::collection::vec(proptest::collection::vec(any::<(u8, u8)>(), 70), 1..40),
+            costs in proptest::collection::vec(0_u64..50_000, 40),
+            left in proptest::collection::vec(any::<(u8, u8)>(), 70),
+            gamma in 1.0_f64..3000.0,
+            binary in any::<bool>(),
+        ) {
+            let model = CostModel::new(if binary { AlphaMode::Binary } else { AlphaMode::Continuous }, gamma);
+            let rights = edge_set(samples, &columns);
+            let lefts = edge_set(samples, &[left]);
+            let previous = &costs[..columns.len()];
+            let tree = ProfileTree::new(previous, &rights);
+            let alpha_bound = AlphaBound::new(&model, samples);
+            let mut seen = tree.original.clone();
+            seen.sort_unstable();
+            prop_assert_eq!(seen, (0..columns.len() as u32).collect::<Vec<_>>());
+            for (position, &v) in tree.original.iter().enumerate() {
+                prop_assert_eq!(tree.position_of[v as usize] as usize, position);
+                prop_assert_eq!(tree.costs[position], previous[v as usize]);
+            }
+            let gap_of_left = |node: u32| alpha_bound.of(tree.gap(node, alpha_profile(&lefts, 0)));
+            for (index, node) in tree.nodes.iter().enumerate() {
+                let range = node.start..node.end;
+                prop_assert_eq!(node.lowest_cost, tree.costs[range.clone()].iter().copied().min().unwrap());
+                let bound = gap_of_left(index as u32);
+                for position in range.clone() {
+                    let distance = u64::from(edge_distance(&model, &tree.edges, position, &lefts, 0));
+                    prop_assert!(bound <= distance, "node {} bound {} > D {}", index, bound, distance);
+                }
+                match node.children {
+                    Some([a, b]) => {
+                        let (a, b) = (tree.nodes[a as usize], tree.nodes[b as usize]);
+                        prop_assert_eq!((a.start, a.end, b.end), (node.start, b.start, node.end));
+                    }
+                    None => prop_assert!(tree.costs[range].is_sorted()),
+                }
+            }
+        }
+    }
+}
