@@ -89,6 +89,8 @@ pub(crate) struct Cache {
     pub predecessors: Vec<Vec<u32>>,
     /// Rows reused by the last run.
     pub reused_rows: usize,
+    /// The prepared (padded) exemplar of the last run.
+    pub exemplar: Option<std::sync::Arc<crate::exemplar::Exemplar>>,
 }
 
 impl Cache {

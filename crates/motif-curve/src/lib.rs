@@ -48,7 +48,7 @@
 //! let mut params = CurveParams::default();
 //! params.width = 24.0;
 //! params.piece_length = 12.0;
-//! let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+//! let input = CurveInput { exemplar: exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
 //! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
 //! assert!(output.report.pieces > 10);
 //! // Bent pieces continue the rings across every seam.
@@ -219,11 +219,19 @@ pub(crate) fn synthesize_with(
     let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
     let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
     let atlas = Atlas::new(input.exemplar, input.more_exemplars);
-    let exemplar = Exemplar::new(&atlas.image, margin as usize, params.cut_alpha).with_sources(
-        &atlas.image,
-        &atlas.sources,
-        params.cut_alpha,
-    );
+    // The padded exemplar (megabytes for wide ribbons) is the same for every edit of a session.
+    let cached = cache.as_deref().and_then(|cache| cache.exemplar.clone()).filter(|e| e.pad == margin);
+    let prepared: std::sync::Arc<Exemplar> = cached.unwrap_or_else(|| {
+        std::sync::Arc::new(Exemplar::new(&atlas.image, margin as usize, params.cut_alpha).with_sources(
+            &atlas.image,
+            &atlas.sources,
+            params.cut_alpha,
+        ))
+    });
+    if let Some(cache) = cache.as_deref_mut() {
+        cache.exemplar = Some(prepared.clone());
+    }
+    let exemplar: &Exemplar = &prepared;
     let model = CostModel::new(params.alpha_mode, params.mismatch_penalty);
     let n_samples = params.samples_per_axis;
 
@@ -290,7 +298,7 @@ pub(crate) fn synthesize_with(
         timer.start("render");
         progress.report("render", 0.0);
         let (triangles, stretch) = repeat::triangulate(&ribbon);
-        let shapes = repeat::shapes(&triangles, &exemplar, params.width, params.scale, (canvas_width, canvas_height));
+        let shapes = repeat::shapes(&triangles, exemplar, params.width, params.scale, (canvas_width, canvas_height));
         let image = render::render(canvas_width, canvas_height, n_samples, &shapes);
         let deviations: Vec<f64> = stretch.iter().map(|s| (s - 1.0).abs()).collect();
         report.distortion_mean = deviations.iter().sum::<f64>() / deviations.len().max(1) as f64;
@@ -336,7 +344,7 @@ pub(crate) fn synthesize_with(
             let signature = incremental::piece_signature(frame, &runs);
             let positions = match previous_valid.get(&signature) {
                 Some(positions) => positions.clone(),
-                None => frame.valid_positions(&exemplar, &runs, params.min_coverage),
+                None => frame.valid_positions(exemplar, &runs, params.min_coverage),
             };
             // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
             // position stays empty; the DP pays for the gap at its seams.
@@ -361,7 +369,7 @@ pub(crate) fn synthesize_with(
         .map(|(positions, &is_empty)| if is_empty { 0.0 } else { positions.len() as f64 / candidates as f64 })
         .sum::<f64>()
         / valid.len() as f64;
-    report.warnings.extend(warnings::warnings(&exemplar, params, samples, report.valid_fraction, report.empty_pieces));
+    report.warnings.extend(warnings::warnings(exemplar, params, samples, report.valid_fraction, report.empty_pieces));
     let pin_storage: Vec<Position>;
     let first_positions: &[Position] = match params.pin_first {
         Some(pin) => {
@@ -399,7 +407,7 @@ pub(crate) fn synthesize_with(
         reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
         closed,
     };
-    let optimised = solve::optimise(&exemplar, &model, &rows, setup, rule, &empty, cache.as_deref_mut(), &mut on_row);
+    let optimised = solve::optimise(exemplar, &model, &rows, setup, rule, &empty, cache.as_deref_mut(), &mut on_row);
     report.dp_rows_reused = cache.map_or(0, |cache| cache.reused_rows);
     let solve::Optimised { solution, repeated_pairs, distinct_windows, variety } = optimised;
     if closed {
@@ -426,8 +434,8 @@ pub(crate) fn synthesize_with(
         .into_par_iter()
         .map(|i| {
             let next = (i + 1) % n;
-            let rights = right_edges(&exemplar, &model, &frames[i], &[positions[i]]);
-            let lefts = left_edges(&exemplar, &model, &[positions[next]], samples);
+            let rights = right_edges(exemplar, &model, &frames[i], &[positions[i]]);
+            let lefts = left_edges(exemplar, &model, &[positions[next]], samples);
             let cost = u64::from(edge_distance(&model, &rights, 0, &lefts, 0));
             if !params.stitch || empty[i] || empty[next] {
                 return Stitch::identity(samples, cost);
@@ -477,11 +485,11 @@ pub(crate) fn synthesize_with(
         Vec::new()
     };
     let shapes: Vec<Shape<'_>> = if bent {
-        bent::shapes(&triangles, &bent_pieces, &exemplar, params.width, params.scale, (canvas_width, canvas_height))
+        bent::shapes(&triangles, &bent_pieces, exemplar, params.width, params.scale, (canvas_width, canvas_height))
     } else {
         (0..n)
             .filter(|&i| !empty[i])
-            .map(|i| rigid_shape(&frames[i], positions[i], remap_of(i), &exemplar, (canvas_width, canvas_height)))
+            .map(|i| rigid_shape(&frames[i], positions[i], remap_of(i), exemplar, (canvas_width, canvas_height)))
             .collect()
     };
     let image = render::render(canvas_width, canvas_height, n_samples, &shapes);
