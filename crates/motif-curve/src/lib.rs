@@ -48,7 +48,7 @@
 //! let mut params = CurveParams::default();
 //! params.width = 24.0;
 //! params.piece_length = 12.0;
-//! let input = CurveInput { exemplar: exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+//! let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
 //! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
 //! assert!(output.report.pieces > 10);
 //! // Bent pieces continue the rings across every seam.
