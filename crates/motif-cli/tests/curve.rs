@@ -248,6 +248,39 @@ fn bad_input_gives_clear_errors() {
     assert!(e.contains("invalid width"), "{e}");
     let e = failure(&with(&["--width", "20", "--piece-length", "10", "--min-coverage", "1.5"]), &files);
     assert!(e.contains("invalid min-coverage"), "{e}");
+    // Tiny and huge values are refused before any allocation, with readable numbers and the flag
+    // that the user typed (issue 13: these panicked, aborted or hung).
+    let e = failure(&with(&["--width", "20", "--piece-length", "1e-300"]), &files);
+    assert!(e.contains("invalid piece-length = 1e-300") && e.contains("1 exemplar pixel"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "0.01"]), &files);
+    assert!(e.contains("piece-length"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "10", "--tolerance", "1e-300"]), &files);
+    assert!(e.contains("invalid tolerance = 1e-300"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "10", "--gamma", "-5"]), &files);
+    assert!(e.contains("invalid gamma = -5"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "10", "--canvas", "1x1"]), &files);
+    assert!(e.contains("invalid canvas") && e.contains("outside the canvas"), "{e}");
+    let e = failure(&with(&["--width", "20", "--piece-length", "10", "--canvas", "16384x16384"]), &files);
+    assert!(e.contains("megapixels"), "{e}");
+    assert!(!files.path("out.png").exists(), "a failed run writes nothing");
+    std::fs::write(files.path("far.csv"), "x,y\n0,0\n100,0\n1e9,5\n").unwrap();
+    let e = failure(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "far.csv",
+            "--width",
+            "20",
+            "--piece-length",
+            "10",
+            "--out",
+            "o.png",
+        ],
+        &files,
+    );
+    assert!(e.contains("invalid path") && e.contains("1e6"), "{e}");
 
     motif_io::write_png(&files.path("clear.png"), &RgbaImage::new(20, 10)).unwrap();
     motif_io::write_png(&files.path("solid.png"), &RgbaImage::filled(20, 10, [9, 9, 9, 255])).unwrap();

@@ -27,18 +27,33 @@ impl InvalidParameter {
     }
 }
 
+/// A number as a person reads it: plain for everyday magnitudes, in scientific notation for the
+/// tiny and the huge (`1e-300`, not three hundred zeros).
+pub fn number(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 || !value.is_finite() || (1e-4..1e15).contains(&magnitude) {
+        value.to_string()
+    } else {
+        format!("{value:e}")
+    }
+}
+
 /// Requires a finite value strictly greater than zero.
 pub fn check_positive(name: &str, value: f64) -> Result<f64, InvalidParameter> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(InvalidParameter::new(name, value, "must be a finite number > 0"))
+        Err(InvalidParameter::new(name, number(value), "must be a finite number > 0"))
     }
 }
 
 /// Requires a finite value (rejects NaN and infinities).
 pub fn check_finite(name: &str, value: f64) -> Result<f64, InvalidParameter> {
-    if value.is_finite() { Ok(value) } else { Err(InvalidParameter::new(name, value, "must be a finite number")) }
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(InvalidParameter::new(name, number(value), "must be a finite number"))
+    }
 }
 
 /// Requires a finite value in the closed range `[low, high]`.
@@ -46,7 +61,7 @@ pub fn check_range(name: &str, value: f64, low: f64, high: f64) -> Result<f64, I
     if value.is_finite() && value >= low && value <= high {
         Ok(value)
     } else {
-        Err(InvalidParameter::new(name, value, format!("must be between {low} and {high}")))
+        Err(InvalidParameter::new(name, number(value), format!("must be between {low} and {high}")))
     }
 }
 
@@ -72,5 +87,8 @@ mod tests {
         assert_eq!(check_range("amount", 0.5, 0.0, 1.0), Ok(0.5));
         assert!(check_count("rings", 6, 1, 5).unwrap_err().to_string().contains("between 1 and 5"));
         assert!(check_finite("x", f64::INFINITY).is_err());
+        assert_eq!(check_positive("step", -1e-300).unwrap_err().value, "-1e-300");
+        assert_eq!(number(0.25), "0.25");
+        assert_eq!(number(3e20), "3e20");
     }
 }

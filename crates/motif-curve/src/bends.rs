@@ -14,6 +14,10 @@ use motif_core::{InvalidParameter, Point, Polyline};
 /// avoidance.
 const MAX_STEPS: usize = 20_000;
 
+/// Most vertex visits of all smoothing steps together (a bend still tight then is left to the
+/// fold-over avoidance and reported).
+const MAX_WORK: usize = 50_000_000;
+
 /// The curve with its tight bends rounded.
 #[derive(Debug, Clone)]
 pub(crate) struct Rounded {
@@ -82,7 +86,9 @@ pub(crate) fn round_bends(curve: &Polyline, min_radius: f64, max_shift: f64) -> 
     }
     let mut unresolved = true;
     let mut next = points.clone();
-    for _ in 0..MAX_STEPS {
+    // Each step reads the whole curve: bound the work on very long curves.
+    let steps = MAX_STEPS.min(MAX_WORK / n.max(1)).max(1);
+    for _ in 0..steps {
         let tight: Vec<usize> =
             curvatures(&points, closed, span).iter().enumerate().filter(|(_, k)| **k > limit).map(|(i, _)| i).collect();
         if tight.is_empty() {

@@ -4,7 +4,7 @@
 use motif_core::{InvalidParameter, Point, Polyline, RgbaImage, Vec2};
 
 use crate::Error;
-use crate::params::{Canvas, CurveParams, MAX_CANVAS_SIDE};
+use crate::params::{Canvas, CurveParams, MAX_CANVAS_PIXELS, MAX_CANVAS_SIDE};
 use crate::ribbon::Ribbon;
 
 /// The curve as used: cut open when a closed curve is treated as open.
@@ -32,45 +32,65 @@ pub(crate) fn canvas_geometry(
     params: &CurveParams,
     avoidance: Option<&RgbaImage>,
 ) -> Result<(usize, usize, Vec2), Error> {
-    if let Some(map) = avoidance {
-        if let Canvas::Size { width, height } = params.canvas {
-            if (width, height) != (map.width(), map.height()) {
-                return Err(InvalidParameter::new(
-                    "avoid",
-                    format!("{}×{}", map.width(), map.height()),
-                    format!("the avoidance map must have the canvas size {width}×{height}"),
-                )
-                .into());
+    let ribbon = Ribbon::new(curve, params.width)?.with_profile(&params.width_profile);
+    let (top, bottom) = ribbon_borders(&ribbon);
+    let bounds = motif_core::geometry::bounds_of(&[top, bottom].concat());
+    let (width, height, shift) = match (avoidance, params.canvas) {
+        (Some(map), canvas) => {
+            if let Canvas::Size { width, height } = canvas {
+                if (width, height) != (map.width(), map.height()) {
+                    return Err(InvalidParameter::new(
+                        "avoid",
+                        format!("{}×{}", map.width(), map.height()),
+                        format!("the avoidance map must have the canvas size {width}×{height}"),
+                    )
+                    .into());
+                }
             }
+            (map.width(), map.height(), Vec2::ZERO)
         }
-        if map.width() == 0 || map.height() == 0 || map.width() > MAX_CANVAS_SIDE || map.height() > MAX_CANVAS_SIDE {
-            return Err(InvalidParameter::new(
-                "avoid",
-                format!("{}×{}", map.width(), map.height()),
-                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
-            )
-            .into());
-        }
-        return Ok((map.width(), map.height(), Vec2::ZERO));
-    }
-    match params.canvas {
-        Canvas::Size { width, height } => Ok((width, height, Vec2::ZERO)),
-        Canvas::Fit { margin } => {
-            let ribbon = Ribbon::new(curve, params.width)?.with_profile(&params.width_profile);
-            let (top, bottom) = ribbon_borders(&ribbon);
-            let bounds = motif_core::geometry::bounds_of(&[top, bottom].concat());
+        (None, Canvas::Size { width, height }) => (width, height, Vec2::ZERO),
+        (None, Canvas::Fit { margin }) => {
             let origin = Vec2::new((bounds.x0 - margin).floor(), (bounds.y0 - margin).floor());
-            let width = (bounds.x1 + margin - origin.x).ceil() as usize;
-            let height = (bounds.y1 + margin - origin.y).ceil() as usize;
-            if width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
-                return Err(InvalidParameter::new(
-                    "canvas",
-                    format!("{width}×{height}"),
-                    format!("the fitted canvas exceeds {MAX_CANVAS_SIDE} pixels per side; scale the curve down"),
-                )
-                .into());
-            }
-            Ok((width.max(1), height.max(1), -origin))
+            let width = (bounds.x1 + margin - origin.x).ceil().max(1.0) as usize;
+            let height = (bounds.y1 + margin - origin.y).ceil().max(1.0) as usize;
+            (width, height, -origin)
         }
+    };
+    let name = if avoidance.is_some() { "avoid" } else { "canvas" };
+    if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
+        return Err(InvalidParameter::new(
+            name,
+            format!("{width}×{height}"),
+            format!("each side must be between 1 and {MAX_CANVAS_SIDE} pixels; scale the curve down"),
+        )
+        .into());
     }
+    if width * height > MAX_CANVAS_PIXELS {
+        return Err(InvalidParameter::new(
+            name,
+            format!("{width}×{height}"),
+            format!(
+                "the canvas would hold {:.0} megapixels, at most {} (about 10 bytes each); scale the curve down",
+                (width * height) as f64 / 1e6,
+                MAX_CANVAS_PIXELS / 1_000_000
+            ),
+        )
+        .into());
+    }
+    // A canvas that shows no part of the ribbon would be written empty without a word.
+    let (x0, y0, x1, y1) = (bounds.x0 + shift.x, bounds.y0 + shift.y, bounds.x1 + shift.x, bounds.y1 + shift.y);
+    if x1 <= 0.0 || y1 <= 0.0 || x0 >= width as f64 || y0 >= height as f64 {
+        return Err(InvalidParameter::new(
+            name,
+            format!("{width}×{height}"),
+            format!(
+                "the ribbon ({:.0}, {:.0})–({:.0}, {:.0}) lies outside the canvas; the canvas starts at the document \
+                 origin: use a larger canvas, or leave --canvas out to fit it",
+                x0, y0, x1, y1
+            ),
+        )
+        .into());
+    }
+    Ok((width, height, shift))
 }

@@ -166,6 +166,16 @@ impl Default for CurveParams {
     }
 }
 
+/// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
+/// about 10 bytes a pixel).
+pub const MAX_CANVAS_PIXELS: usize = 100_000_000;
+/// Farthest curve coordinate accepted, pixels from the origin.
+pub const MAX_COORDINATE: f64 = 1e6;
+/// Longest curve accepted, pixels.
+pub const MAX_CURVE_LENGTH: f64 = 1e6;
+/// Most pieces one synthesis takes (each is a row of the dynamic program).
+pub const MAX_PIECES: usize = 20_000;
+
 /// Largest canvas side accepted.
 pub const MAX_CANVAS_SIDE: usize = 16384;
 
@@ -238,7 +248,7 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
     check_positive("width", params.width)?;
     check_positive("piece-length", params.piece_length)?;
     check_range("scale", params.scale, 0.05, 20.0)?;
-    check_range("mismatch-penalty", params.mismatch_penalty, 1.0, 100_000.0)?;
+    check_range("gamma", params.mismatch_penalty, 1.0, 100_000.0)?;
     check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
     check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
     check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
@@ -290,6 +300,39 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
         check_range("margin", margin, 0.0, 4096.0)?;
     }
     let length = input.curve.length();
+    let far = input.curve.points().iter().map(|p| p.x.abs().max(p.y.abs())).fold(0.0, f64::max);
+    if !(length.is_finite() && far <= MAX_COORDINATE && length <= MAX_CURVE_LENGTH) {
+        return Err(InvalidParameter::new(
+            "path",
+            format!("length {length:.3e}, farthest coordinate {far:.3e}"),
+            format!(
+                "the curve must stay within ±{MAX_COORDINATE:.0e} pixels of the origin and be at most \
+                 {MAX_CURVE_LENGTH:.0e} pixels long; scale it down"
+            ),
+        )
+        .into());
+    }
+    if params.piece_length * params.scale < 1.0 {
+        return Err(InvalidParameter::new(
+            "piece-length",
+            motif_core::error::number(params.piece_length),
+            "piece-length × scale must be at least 1 exemplar pixel (a piece copies whole columns)",
+        )
+        .into());
+    }
+    let pieces = (length / params.piece_length).ceil();
+    if pieces > MAX_PIECES as f64 {
+        return Err(InvalidParameter::new(
+            "piece-length",
+            params.piece_length,
+            format!(
+                "the curve ({length:.0} px) would take {pieces:.0} pieces, at most {MAX_PIECES}; use pieces of at least \
+                 {:.2} px",
+                length / MAX_PIECES as f64
+            ),
+        )
+        .into());
+    }
     if params.piece_length > length {
         return Err(InvalidParameter::new(
             "piece-length",

@@ -153,7 +153,7 @@ pub struct CurveArgs {
     /// Exact closed mode: start positions tried at most before giving up the certificate.
     #[arg(long, value_name = "N", default_value_t = 64)]
     pub closed_max_starts: usize,
-    /// Curve flattening tolerance for SVG paths, pixels, > 0.
+    /// Curve flattening tolerance for SVG paths, pixels, 0.001–100.
     #[arg(long, value_name = "T", default_value_t = 0.1)]
     pub tolerance: f64,
     /// Also write the result with the ribbon, piece borders, forbidden areas and per-seam cost
@@ -338,8 +338,11 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     let exemplar = motif_io::read_image(&args.exemplar[0])?;
     let more_exemplars =
         args.exemplar[1..].iter().map(|path| motif_io::read_image(path)).collect::<Result<Vec<_>, _>>()?;
-    if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
-        bail!("invalid tolerance = {}: must be a finite number > 0", args.tolerance);
+    if !(args.tolerance.is_finite() && (0.001..=100.0).contains(&args.tolerance)) {
+        bail!(
+            "invalid tolerance = {}: must be between 0.001 and 100 pixels",
+            motif_core::error::number(args.tolerance)
+        );
     }
     let curve = read_curve(&args.path, args.tolerance)?;
     let avoidance = args.avoid.as_deref().map(motif_io::read_image).transpose()?;

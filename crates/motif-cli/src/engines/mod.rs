@@ -29,23 +29,28 @@ pub enum EngineCommand {
     ///
     /// Undistorted pieces of the exemplar placed by a globally optimal dynamic program
     /// (Zhou, Lasram, Lefebvre 2013).
+    #[command(allow_negative_numbers = true)]
     Curve(curve::CurveArgs),
     /// Grow a repetitive structure of points with attributes, in 2D or 3D
     ///
     /// Discrete elements, continuous structures and mixtures, in boxes, regions or brush strokes
     /// (Roveri et al. 2015).
+    #[command(allow_negative_numbers = true)]
     Points(points::PointsArgs),
     /// Grow a vector stroke pattern along a path or inside a region
     ///
     /// Hatching, stippling, brush marks and small figures analysed into elements and synthesized
     /// by neighbourhood matching (Barla et al. 2006).
+    #[command(allow_negative_numbers = true)]
     Strokes(strokes::StrokesArgs),
     /// Paint a target guide in the style of an exemplar (A : A' :: B : B')
     ///
     /// Guided patch-based synthesis with occurrence penalty, segments and pre-synthesized
     /// textures (Texler et al.); options mirror ebsynth's.
+    #[command(allow_negative_numbers = true)]
     Stylize(stylize::StylizeArgs),
     /// Grow a texture of any size from an exemplar image, optionally tileable
+    #[command(allow_negative_numbers = true)]
     Texture(stylize::TextureArgs),
 }
 
