@@ -87,9 +87,13 @@ pub(crate) fn write_with(path: &Path, fill: impl FnOnce(&mut std::fs::File) -> s
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),
     };
-    let mut temporary = tempfile::Builder::new()
-        .prefix(".motif-")
-        .suffix(".tmp")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".motif-").suffix(".tmp");
+    // The temporary file becomes the output: give it the mode any tool's output gets (0666 less
+    // the umask), not a temporary file's private 0600.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let mut temporary = builder
         .tempfile_in(directory)
         .map_err(|source| IoError::io(path, source))?;
     fill(temporary.as_file_mut()).map_err(|source| IoError::io(path, source))?;
@@ -131,6 +135,20 @@ mod tests {
         assert_eq!(read_text(&path).unwrap(), "second");
         let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
         assert_eq!(names.len(), 1);
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn outputs_get_the_mode_of_any_new_file() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let ours = dir.path().join("ours.txt");
+        write_text(&ours, "x").unwrap();
+        // A file made the plain way gets 0666 less the umask, whatever the umask is.
+        let plain = dir.path().join("plain.txt");
+        std::fs::File::create(&plain).unwrap();
+        let mode = |path: &Path| std::fs::metadata(path).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&ours), mode(&plain));
     }
 
     #[test]
