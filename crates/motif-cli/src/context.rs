@@ -22,13 +22,36 @@ pub struct Context {
     pub quiet: bool,
     progress: CliProgress,
     figures: Map<String, Value>,
+    /// `--report`, checked against every input the engine names.
+    report: Option<std::path::PathBuf>,
+    /// Every input path the engine named (see [`Context::check_output`]).
+    inputs: std::cell::RefCell<Vec<std::path::PathBuf>>,
 }
 
 impl Context {
     /// A context for one run.
     pub fn new(seed: u64, threads: usize, quiet: bool) -> Self {
         let visible = !quiet && std::io::stderr().is_terminal();
-        Self { seed, threads, quiet, progress: CliProgress::new(visible), figures: Map::new() }
+        Self {
+            seed,
+            threads,
+            quiet,
+            progress: CliProgress::new(visible),
+            figures: Map::new(),
+            report: None,
+            inputs: std::cell::RefCell::new(Vec::new()),
+        }
+    }
+
+    /// The same context with `--report` to check against the inputs.
+    pub fn with_report(mut self, report: Option<&Path>) -> Self {
+        self.report = report.map(Path::to_path_buf);
+        self
+    }
+
+    /// True when `path` names one of the inputs the engine checked its outputs against.
+    pub fn is_input(&self, path: &Path) -> bool {
+        self.inputs.borrow().iter().any(|input| motif_io::same_file(path, input))
     }
 
     /// The progress sink to hand to an engine.
@@ -49,8 +72,18 @@ impl Context {
         self.figures.insert("stages_ms".to_string(), stages_object(stages));
     }
 
-    /// Refuses an output path that names one of the inputs: motif never overwrites its input.
+    /// Refuses an output path (and `--report`) that names one of the inputs: motif never
+    /// overwrites its input.
     pub fn check_output(&self, output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+        self.inputs.borrow_mut().extend(inputs.iter().map(|input| input.to_path_buf()));
+        if let Some(report) = &self.report {
+            if inputs.iter().any(|input| motif_io::same_file(report, input)) {
+                bail!(
+                    "report {} is also an input; choose another --report path (motif never overwrites an input)",
+                    report.display()
+                );
+            }
+        }
         for input in inputs {
             if motif_io::same_file(output, input) {
                 bail!(
@@ -89,7 +122,7 @@ pub fn stages_object(stages: &[(String, f64)]) -> Value {
 /// Runs an engine subcommand and writes `--report` if asked.
 pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
-    let mut context = Context::new(global.seed, threads, global.quiet);
+    let mut context = Context::new(global.seed, threads, global.quiet).with_report(global.report.as_deref());
     let result = command.run(&mut context);
     let mut report = Map::new();
     report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
@@ -102,8 +135,10 @@ pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) 
         report.insert("error".into(), Value::from(format!("{error:#}")));
     }
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
+    // A report that would replace an input is not written (the run has already failed for it).
+    let report_path = global.report.as_deref().filter(|path| !context.is_input(path));
     report.extend(context.into_figures());
-    if let Some(path) = &global.report {
+    if let Some(path) = report_path {
         motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report")?;
     }
     result

@@ -132,3 +132,47 @@ fn an_output_equal_to_an_input_is_refused_and_the_input_kept() {
     assert!(stderr.contains("also an input"), "{stderr}");
     assert_eq!(std::fs::read_to_string(&reference).unwrap(), text);
 }
+
+/// `--report` naming an input, and `points --out` naming its stroke or region SVG, are refused
+/// before any work and the input stays as it was (issue 13: both overwrote the input).
+#[test]
+fn a_report_or_points_output_equal_to_an_input_is_refused_and_the_input_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = dir.path().join("ex.png");
+    motif_io::write_png(
+        &exemplar,
+        &motif_core::RgbaImage::from_fn(24, 24, |x, y| [(x * 9) as u8, (y * 9) as u8, 40, 255]),
+    )
+    .unwrap();
+    let before = std::fs::read(&exemplar).unwrap();
+    let output = motif()
+        .args(["--quiet", "texture", "--size", "32x32", "--exemplar"])
+        .arg(&exemplar)
+        .arg("--out")
+        .arg(dir.path().join("t.png"))
+        .arg("--report")
+        .arg(&exemplar)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("report"), "{}", String::from_utf8_lossy(&output.stderr));
+    assert_eq!(std::fs::read(&exemplar).unwrap(), before);
+
+    let points = dir.path().join("ex.csv");
+    std::fs::write(&points, "x,y\n1,1\n3,2\n5,1\n2,4\n4,5\n").unwrap();
+    let stroke = dir.path().join("stroke.svg");
+    let text = r#"<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 30 0"/></svg>"#;
+    std::fs::write(&stroke, text).unwrap();
+    for flags in [["--along", "stroke.svg"], ["--domain", "stroke.svg"]] {
+        let output = motif()
+            .current_dir(dir.path())
+            .args(["--quiet", "points", "--exemplar", "ex.csv", "--neighbourhood", "3"])
+            .args(flags)
+            .args(["--out", "stroke.svg"])
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(1), "{flags:?}");
+        assert!(String::from_utf8_lossy(&output.stderr).contains("also an input"), "{flags:?}");
+        assert_eq!(std::fs::read_to_string(&stroke).unwrap(), text);
+    }
+}

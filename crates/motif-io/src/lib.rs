@@ -93,9 +93,7 @@ pub(crate) fn write_with(path: &Path, fill: impl FnOnce(&mut std::fs::File) -> s
     // the umask), not a temporary file's private 0600.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut temporary = builder
-        .tempfile_in(directory)
-        .map_err(|source| IoError::io(path, source))?;
+    let mut temporary = builder.tempfile_in(directory).map_err(|source| IoError::io(path, source))?;
     fill(temporary.as_file_mut()).map_err(|source| IoError::io(path, source))?;
     temporary.as_file_mut().sync_all().map_err(|source| IoError::io(path, source))?;
     temporary.persist(path).map_err(|error| IoError::io(path, error.error))?;

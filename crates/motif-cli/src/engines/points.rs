@@ -268,6 +268,10 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     if let Some(existing) = &args.existing {
         inputs.push(existing);
     }
+    inputs.extend(args.along.as_deref());
+    // A domain that is not a box is a region SVG, an input too.
+    let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(Path::new);
+    inputs.extend(region);
     context.check_output(&args.out, &inputs)?;
     if let Some(preview) = &args.preview {
         context.check_output(preview, &inputs)?;
