@@ -77,6 +77,7 @@ impl Context {
     pub fn check_output(&self, output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
         self.inputs.borrow_mut().extend(inputs.iter().map(|input| input.to_path_buf()));
         if let Some(report) = &self.report {
+            check_writable(report)?;
             if inputs.iter().any(|input| motif_io::same_file(report, input)) {
                 bail!(
                     "report {} is also an input; choose another --report path (motif never overwrites an input)",
@@ -84,6 +85,7 @@ impl Context {
                 );
             }
         }
+        check_writable(output)?;
         for input in inputs {
             if motif_io::same_file(output, input) {
                 bail!(
@@ -114,6 +116,23 @@ impl Context {
     }
 }
 
+/// Refuses, before any work, an output that cannot be written: a folder that does not exist, or a
+/// path that is a folder. (Found only at write time, such a path failed the run after the main
+/// output had already replaced the previous file.)
+pub fn check_writable(output: &Path) -> anyhow::Result<()> {
+    if output.is_dir() {
+        bail!("output {} is a folder; give a file name", output.display());
+    }
+    let folder = match output.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        bail!("cannot write {}: the folder {} does not exist", output.display(), folder.display());
+    }
+    Ok(())
+}
+
 /// `(stage, milliseconds)` pairs as a JSON object, in order.
 pub fn stages_object(stages: &[(String, f64)]) -> Value {
     Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect())
@@ -135,11 +154,16 @@ pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) 
         report.insert("error".into(), Value::from(format!("{error:#}")));
     }
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
-    // A report that would replace an input is not written (the run has already failed for it).
-    let report_path = global.report.as_deref().filter(|path| !context.is_input(path));
+    // A report that would replace an input, or that cannot be written, is not written (the run
+    // has already failed for it); a failed run keeps its own error.
+    let report_path =
+        global.report.as_deref().filter(|path| !context.is_input(path) && check_writable(path).is_ok());
     report.extend(context.into_figures());
     if let Some(path) = report_path {
-        motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report")?;
+        let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");
+        if result.is_ok() {
+            written?;
+        }
     }
     result
 }

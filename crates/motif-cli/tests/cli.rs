@@ -176,3 +176,35 @@ fn a_report_or_points_output_equal_to_an_input_is_refused_and_the_input_kept() {
         assert_eq!(std::fs::read_to_string(&stroke).unwrap(), text);
     }
 }
+
+/// A secondary output into a missing folder (or onto a folder) is refused before any work, so the
+/// previous main output is not replaced by a run that then fails (issue 13).
+#[test]
+fn an_unwritable_secondary_output_fails_before_the_main_output_is_replaced() {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = dir.path().join("ex.png");
+    motif_io::write_png(
+        &exemplar,
+        &motif_core::RgbaImage::from_fn(24, 24, |x, y| [(x * 9) as u8, (y * 9) as u8, 40, 255]),
+    )
+    .unwrap();
+    let out = dir.path().join("t.png");
+    std::fs::write(&out, b"previous").unwrap();
+    for (flag, target) in
+        [("--report", dir.path().join("missing").join("r.json")), ("--report", dir.path().to_path_buf())]
+    {
+        let output = motif()
+            .args(["--quiet", "texture", "--size", "32x32", "--exemplar"])
+            .arg(&exemplar)
+            .arg("--out")
+            .arg(&out)
+            .arg(flag)
+            .arg(&target)
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(1), "{target:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains("does not exist") || stderr.contains("is a folder"), "{stderr}");
+        assert_eq!(std::fs::read(&out).unwrap(), b"previous", "{target:?}");
+    }
+}
