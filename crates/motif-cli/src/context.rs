@@ -156,8 +156,7 @@ pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) 
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
     // A report that would replace an input, or that cannot be written, is not written (the run
     // has already failed for it); a failed run keeps its own error.
-    let report_path =
-        global.report.as_deref().filter(|path| !context.is_input(path) && check_writable(path).is_ok());
+    let report_path = global.report.as_deref().filter(|path| !context.is_input(path) && check_writable(path).is_ok());
     report.extend(context.into_figures());
     if let Some(path) = report_path {
         let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");

@@ -52,7 +52,7 @@ fn curvatures(points: &[Point], closed: bool, span: usize) -> Vec<f64> {
 /// Number of runs of `true` in `flags` (cyclic when `closed`).
 fn runs(flags: &[bool], closed: bool) -> usize {
     let n = flags.len();
-    let starts = (0..n).filter(|&i| flags[i] && (if i == 0 { closed && flags[n - 1] } else { flags[i - 1] }) == false);
+    let starts = (0..n).filter(|&i| flags[i] && !(if i == 0 { closed && flags[n - 1] } else { flags[i - 1] }));
     let count = starts.count();
     if count == 0 && flags.iter().all(|&f| f) && n > 0 { 1 } else { count }
 }

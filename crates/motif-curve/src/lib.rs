@@ -395,19 +395,20 @@ pub(crate) fn synthesize_with(
     }
     let total_rows = rows.len();
     let mut on_row = |row: usize| progress.report("dynamic program", row as f64 / total_rows.max(1) as f64);
-    let setup = solve::Setup {
-        solver: params.solver,
-        closed,
-        exact_closed: params.closed == ClosedMode::Exact,
-        closed_max_starts: params.closed_max_starts,
-    };
     let rule = variety::Rule {
         weight: (params.variety * COST_SCALE).round() as u64,
         radius: params.variety_radius,
         reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
         closed,
     };
-    let optimised = solve::optimise(exemplar, &model, &rows, setup, rule, &empty, cache.as_deref_mut(), &mut on_row);
+    let setup = solve::Setup {
+        solver: params.solver,
+        closed,
+        exact_closed: params.closed == ClosedMode::Exact,
+        closed_max_starts: params.closed_max_starts,
+        rule,
+    };
+    let optimised = solve::optimise(exemplar, &model, &rows, setup, &empty, cache.as_deref_mut(), &mut on_row);
     report.dp_rows_reused = cache.map_or(0, |cache| cache.reused_rows);
     let solve::Optimised { solution, repeated_pairs, distinct_windows, variety } = optimised;
     if closed {

@@ -115,28 +115,6 @@ fn to_straight(sum: [f32; 4], count: f32) -> [u8; 4] {
     [byte(sum[0] / sum[3]), byte(sum[1] / sum[3]), byte(sum[2] / sum[3]), byte(alpha)]
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn half_covered_pixels_are_half_transparent() {
-        let shapes = [Shape {
-            bounds: (0, 0, 4, 4),
-            sampler: Box::new(|p: Point| if p.x < 2.0 { Some([1.0, 0.0, 0.0, 1.0]) } else { None }),
-        }];
-        let image = render(4, 4, 4, &shapes);
-        assert_eq!(image.get(0, 0), [255, 0, 0, 255]);
-        assert_eq!(image.get(3, 3), [0, 0, 0, 0]);
-        let shapes = [Shape {
-            bounds: (0, 0, 4, 4),
-            sampler: Box::new(|p: Point| if p.x < 1.5 { Some([0.0, 1.0, 0.0, 1.0]) } else { None }),
-        }];
-        let image = render(4, 4, 4, &shapes);
-        assert_eq!(image.get(1, 2), [0, 255, 0, 128]);
-    }
-}
-
 /// The shape drawing a rigid piece at exemplar position `u` (§1.3), deformed by its stitch.
 pub(crate) fn rigid_shape<'a>(
     frame: &'a PieceFrame,
@@ -159,5 +137,27 @@ pub(crate) fn rigid_shape<'a>(
             let (x, y) = PieceFrame::exemplar_point(u, local);
             Some(exemplar.sample_premultiplied(x, y))
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_covered_pixels_are_half_transparent() {
+        let shapes = [Shape {
+            bounds: (0, 0, 4, 4),
+            sampler: Box::new(|p: Point| if p.x < 2.0 { Some([1.0, 0.0, 0.0, 1.0]) } else { None }),
+        }];
+        let image = render(4, 4, 4, &shapes);
+        assert_eq!(image.get(0, 0), [255, 0, 0, 255]);
+        assert_eq!(image.get(3, 3), [0, 0, 0, 0]);
+        let shapes = [Shape {
+            bounds: (0, 0, 4, 4),
+            sampler: Box::new(|p: Point| if p.x < 1.5 { Some([0.0, 1.0, 0.0, 1.0]) } else { None }),
+        }];
+        let image = render(4, 4, 4, &shapes);
+        assert_eq!(image.get(1, 2), [0, 255, 0, 128]);
     }
 }

@@ -32,6 +32,8 @@ pub(crate) struct Setup {
     pub closed: bool,
     pub exact_closed: bool,
     pub closed_max_starts: usize,
+    /// The repetition rule (weight 0: none).
+    pub rule: Rule,
 }
 
 /// Solves `rows` once (closed curves: `rows` ends with the terminal row).
@@ -118,7 +120,7 @@ pub(crate) struct Optimised {
     pub variety: Option<VarietyReport>,
 }
 
-/// Solves `rows` (the exact optimum of `Ω`); with a repetition `rule` of positive weight, then
+/// Solves `rows` (the exact optimum of `Ω`); with a repetition rule of positive weight, then
 /// lowers `E` from there by single-piece descent (see `variety`). `empty[i]` marks pieces left
 /// empty (their single position copies nothing).
 pub(crate) fn optimise(
@@ -126,11 +128,11 @@ pub(crate) fn optimise(
     model: &CostModel,
     rows: &[RowSpec<'_>],
     setup: Setup,
-    rule: Rule,
     empty: &[bool],
     cache: Option<&mut Cache>,
     on_row: &mut dyn FnMut(usize),
 ) -> Optimised {
+    let rule = setup.rule;
     let pieces = empty.len();
     let windows = |path: &[usize]| -> Vec<Option<Position>> {
         (0..pieces).map(|i| (!empty[i]).then(|| rows[i].positions[path[i]])).collect()

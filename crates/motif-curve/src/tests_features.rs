@@ -136,8 +136,7 @@ fn incremental_runs_equal_runs_from_scratch_and_reuse_rows() {
                 let t = i as f64 / 40.0;
                 // A quadratic Bézier whose middle control point moves.
                 let (a, b, c) = (Point::new(10.0, 60.0), Point::new(120.0, middle), Point::new(230.0, 60.0));
-                let p = a.lerp(b, t).lerp(b.lerp(c, t), t);
-                p
+                a.lerp(b, t).lerp(b.lerp(c, t), t)
             })
             .collect();
         Polyline::new(points, false).unwrap()
