@@ -20,6 +20,18 @@ use crate::ribbon::Ribbon;
 pub(crate) struct Triangle {
     pub corners: [Point; 3],
     pub coordinates: [Vec2; 3],
+    /// `1 / ((b − a) × (c − a))`, 0 for a degenerate triangle (computed once: every render
+    /// sample that the triangle's box holds needs it).
+    inverse_area: f64,
+}
+
+impl Triangle {
+    fn new(corners: [Point; 3], coordinates: [Vec2; 3]) -> Self {
+        let [a, b, c] = corners;
+        let det = (b - a).cross(c - a);
+        let inverse_area = if det.abs() < 1e-12 { 0.0 } else { 1.0 / det };
+        Self { corners, coordinates, inverse_area }
+    }
 }
 
 /// The ribbon cut into triangles, plus the stretch of the top and bottom borders of every slice
@@ -48,8 +60,8 @@ pub(crate) fn triangulate(ribbon: &Ribbon) -> (Vec<Triangle>, Vec<f64>) {
             let (y0, y1) = (half - u0 * 2.0 * half, half - u1 * 2.0 * half);
             let (pa0, pa1, pb0, pb1) = (ta.lerp(ba, u0), ta.lerp(ba, u1), tb.lerp(bb, u0), tb.lerp(bb, u1));
             let (ca0, ca1, cb0, cb1) = (Vec2::new(a, y0), Vec2::new(a, y1), Vec2::new(b, y0), Vec2::new(b, y1));
-            triangles.push(Triangle { corners: [pa0, pa1, pb1], coordinates: [ca0, ca1, cb1] });
-            triangles.push(Triangle { corners: [pa0, pb1, pb0], coordinates: [ca0, cb1, cb0] });
+            triangles.push(Triangle::new([pa0, pa1, pb1], [ca0, ca1, cb1]));
+            triangles.push(Triangle::new([pa0, pb1, pb0], [ca0, cb1, cb0]));
         }
     }
     (triangles, stretch)
@@ -71,14 +83,13 @@ const BAND: f64 = 4.0;
 
 /// Barycentric interpolation of the triangle's coordinates at `p`, or `None` outside.
 pub(crate) fn interpolate(triangle: &Triangle, p: Point) -> Option<Vec2> {
-    let [a, b, c] = triangle.corners;
-    let (v0, v1, v2) = (b - a, c - a, p - a);
-    let det = v0.cross(v1);
-    if det.abs() < 1e-12 {
+    if triangle.inverse_area == 0.0 {
         return None;
     }
-    let beta = v2.cross(v1) / det;
-    let gamma = v0.cross(v2) / det;
+    let [a, b, c] = triangle.corners;
+    let (v0, v1, v2) = (b - a, c - a, p - a);
+    let beta = v2.cross(v1) * triangle.inverse_area;
+    let gamma = v0.cross(v2) * triangle.inverse_area;
     let alpha = 1.0 - beta - gamma;
     let eps = -1e-9;
     if alpha < eps || beta < eps || gamma < eps {
