@@ -5,7 +5,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_curve::samples::chain;
-use motif_curve::{CurveInput, CurveParams, Solver, synthesize};
+use motif_curve::{Input as CurveInput, Params as CurveParams, Solver, synthesize};
 
 fn run(exemplar: &RgbaImage, solver: Solver, pieces: usize) -> f64 {
     let mut params = CurveParams::default();

@@ -5,7 +5,7 @@
 
 use motif_core::{NoProgress, Point, Polyline};
 use motif_curve::samples::chain;
-use motif_curve::{CurveInput, CurveParams, Solver, synthesize};
+use motif_curve::{Input as CurveInput, Params as CurveParams, Solver, synthesize};
 
 #[allow(clippy::print_stdout)]
 fn main() {

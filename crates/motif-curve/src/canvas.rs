@@ -4,7 +4,7 @@
 use motif_core::{InvalidParameter, Point, Polyline, RgbaImage, Vec2};
 
 use crate::Error;
-use crate::params::{Canvas, CurveParams, MAX_CANVAS_PIXELS, MAX_CANVAS_SIDE};
+use crate::params::{Canvas, MAX_CANVAS_PIXELS, MAX_CANVAS_SIDE, Params};
 use crate::ribbon::Ribbon;
 
 /// The curve as used: cut open when a closed curve is treated as open.
@@ -29,7 +29,7 @@ pub(crate) fn ribbon_borders(ribbon: &Ribbon) -> (Vec<Point>, Vec<Point>) {
 /// Canvas size and the document → canvas translation.
 pub(crate) fn canvas_geometry(
     curve: &Polyline,
-    params: &CurveParams,
+    params: &Params,
     avoidance: Option<&RgbaImage>,
 ) -> Result<(usize, usize, Vec2), Error> {
     let ribbon = Ribbon::new(curve, params.width)?.with_profile(&params.width_profile);

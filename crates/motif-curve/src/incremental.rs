@@ -17,26 +17,24 @@ use motif_core::{Progress, RgbaImage};
 use crate::dp::DpTable;
 use crate::exemplar::Run;
 use crate::piece::{PieceFrame, Position};
-use crate::{CurveInput, CurveOutput, CurveParams, Error};
+use crate::{Error, Input, Output, Params};
 
 /// A synthesis session that re-solves only what changed since its last run.
 ///
 /// ```
 /// use motif_core::{NoProgress, Point, Polyline, RgbaImage};
-/// use motif_curve::{CurveInput, CurveParams, Incremental};
+/// use motif_curve::{Input, Params, Incremental};
 ///
 /// // A strip of dots, drawn along a line, then along the same line with its end moved.
 /// let exemplar = RgbaImage::from_fn(60, 16, |x, y| {
 ///     let (dx, dy) = ((x % 12) as f64 - 5.5, y as f64 - 7.5);
 ///     if dx * dx + dy * dy < 16.0 { [200, 60, 20, 255] } else { [0; 4] }
 /// });
-/// let mut params = CurveParams::default();
-/// params.width = 16.0;
-/// params.piece_length = 10.0;
+/// let params = Params::default().with_width(16.0).with_piece_length(10.0);
 /// let mut session = Incremental::new();
 /// for end in [200.0, 210.0] {
 ///     let curve = Polyline::new(vec![Point::new(10.0, 20.0), Point::new(end, 40.0)], false).unwrap();
-///     let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+///     let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
 ///     let output = session.synthesize(&input, &params, &mut NoProgress).unwrap();
 ///     assert!(output.report.pieces >= 19);
 /// }
@@ -57,10 +55,10 @@ impl Incremental {
     /// Changing the parameters or the exemplars starts afresh.
     pub fn synthesize(
         &mut self,
-        input: &CurveInput<'_>,
-        params: &CurveParams,
+        input: &Input<'_>,
+        params: &Params,
         progress: &mut dyn Progress,
-    ) -> Result<CurveOutput, Error> {
+    ) -> Result<Output, Error> {
         let key = session_key(input, params);
         if key != self.cache.key {
             self.cache = Cache { key, ..Cache::default() };
@@ -121,7 +119,7 @@ impl Cache {
 }
 
 /// A hash of everything the cache is valid for: the parameters and the exemplars' pixels.
-fn session_key(input: &CurveInput<'_>, params: &CurveParams) -> u64 {
+fn session_key(input: &Input<'_>, params: &Params) -> u64 {
     let mut hasher = DefaultHasher::new();
     format!("{params:?}").hash(&mut hasher);
     for image in std::iter::once(input.exemplar).chain(input.more_exemplars) {

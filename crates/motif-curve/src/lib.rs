@@ -32,7 +32,7 @@
 //!
 //! ```
 //! use motif_core::{NoProgress, Point, Polyline, RgbaImage};
-//! use motif_curve::{CurveInput, CurveParams, synthesize};
+//! use motif_curve::{Input, Params, synthesize};
 //!
 //! // A strip of rings with a transparent background, along a gentle arc.
 //! let exemplar = RgbaImage::from_fn(96, 24, |x, y| {
@@ -45,10 +45,9 @@
 //!     Point::new(20.0 + 200.0 * a, 80.0 - 60.0 * (a * std::f64::consts::PI).sin())
 //! }).collect();
 //! let curve = Polyline::new(arc, false).unwrap();
-//! let mut params = CurveParams::default();
-//! params.width = 24.0;
-//! params.piece_length = 12.0;
-//! let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+//! let params = Params::default().with_width(24.0).with_piece_length(12.0);
+//! params.validate().unwrap();
+//! let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
 //! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
 //! assert!(output.report.pieces > 10);
 //! // Bent pieces continue the rings across every seam.
@@ -97,18 +96,18 @@ use crate::exemplar::Exemplar;
 pub use crate::incremental::Incremental;
 pub use crate::overlay::debug_overlay;
 use crate::params::validate;
-pub use crate::params::{Canvas, ClosedMode, CurveParams, MAX_CANVAS_SIDE, Method, PieceShape};
+pub use crate::params::{Canvas, ClosedMode, MAX_CANVAS_SIDE, Method, Params, PieceShape};
 use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::Shape;
 use crate::render::rigid_shape;
-pub use crate::report::{CurveOutput, CurveReport, PlacedPiece};
+pub use crate::report::{Output, PlacedPiece, Report};
 use crate::ribbon::{PieceQuad, Ribbon};
 pub use crate::solve::VarietyReport;
 use crate::stitch::Stitch;
 
 /// What the engine works on.
 #[derive(Debug, Clone, Copy)]
-pub struct CurveInput<'a> {
+pub struct Input<'a> {
     /// The exemplar: opaque pixels are the pattern, transparent ones the background.
     pub exemplar: &'a RgbaImage,
     /// The curve, in document coordinates (pixels); open or closed.
@@ -124,6 +123,7 @@ pub struct CurveInput<'a> {
 
 /// Errors of the curve engine.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A parameter or input is outside what the engine accepts.
     #[error(transparent)]
@@ -169,21 +169,17 @@ fn pattern_height(image: &RgbaImage) -> usize {
 }
 
 /// Synthesizes the pattern of `input.exemplar` along `input.curve`.
-pub fn synthesize(
-    input: &CurveInput<'_>,
-    params: &CurveParams,
-    progress: &mut dyn Progress,
-) -> Result<CurveOutput, Error> {
+pub fn synthesize(input: &Input<'_>, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
     synthesize_with(input, params, progress, None)
 }
 
 /// [`synthesize`], reusing and updating a session's cache when one is given (see [`Incremental`]).
 pub(crate) fn synthesize_with(
-    input: &CurveInput<'_>,
-    params: &CurveParams,
+    input: &Input<'_>,
+    params: &Params,
     progress: &mut dyn Progress,
     mut cache: Option<&mut incremental::Cache>,
-) -> Result<CurveOutput, Error> {
+) -> Result<Output, Error> {
     let closed = validate(input, params)?;
     let mut timer = StageTimer::new();
     timer.start("ribbon");
@@ -248,7 +244,7 @@ pub(crate) fn synthesize_with(
     let forbidden_pixels = forbidden.count();
 
     let candidates = candidate_count(atlas.image.width(), atlas.image.height(), samples);
-    let mut report = CurveReport {
+    let mut report = Report {
         method: params.method,
         solver: params.solver,
         pieces: 0,
@@ -306,7 +302,7 @@ pub(crate) fn synthesize_with(
         report.wrap_seams = (params.scale * ribbon.length() / f64::from(exemplar.width)).floor() as usize;
         report.stages_ms = timer.finish();
         progress.report("render", 1.0);
-        return Ok(CurveOutput { image, pieces: Vec::new(), report, forbidden, ribbon_top, ribbon_bottom });
+        return Ok(Output { image, pieces: Vec::new(), report, forbidden, ribbon_top, ribbon_bottom });
     }
 
     timer.start("valid positions");
@@ -516,7 +512,7 @@ pub(crate) fn synthesize_with(
         })
         .collect();
     report.stages_ms = timer.finish();
-    Ok(CurveOutput { image, pieces, report, forbidden, ribbon_top, ribbon_bottom })
+    Ok(Output { image, pieces, report, forbidden, ribbon_top, ribbon_bottom })
 }
 
 #[cfg(test)]

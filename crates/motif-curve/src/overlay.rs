@@ -3,7 +3,7 @@
 
 use motif_core::{Point, RgbaImage};
 
-use crate::CurveOutput;
+use crate::Output;
 
 /// Heat colour for `t ∈ [0, 1]`: green (cheap) → yellow → red (expensive).
 pub fn heat(t: f64) -> [u8; 3] {
@@ -54,7 +54,7 @@ fn draw_line(image: &mut RgbaImage, a: Point, b: Point, thickness: f64, colour: 
 /// The result of `output` with the debug drawing on top: forbidden pixels in translucent red
 /// (dark red for fold-overs), the ribbon borders in blue, piece borders in grey and each seam in
 /// its heat colour (green = cheapest seam, red = most expensive).
-pub fn debug_overlay(output: &CurveOutput) -> RgbaImage {
+pub fn debug_overlay(output: &Output) -> RgbaImage {
     let mut image = output.image.clone();
     let mask = &output.forbidden;
     for y in 0..mask.height.min(image.height()) {

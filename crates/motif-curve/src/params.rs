@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::cost::AlphaMode;
 use crate::dp::Solver;
-use crate::{CurveInput, Error};
+use crate::{Error, Input};
 
 /// How a closed curve is treated (§1.5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -65,7 +65,7 @@ pub enum Canvas {
 /// Parameters of the curve engine.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct CurveParams {
+pub struct Params {
     /// Ribbon width `b` in canvas pixels (§1.1). Finite, > 0. Default 64. With scale `s`, each
     /// edge takes `C = ⌈s·b⌉` samples, so `s·b` should exceed the pattern's height in the exemplar.
     pub width: f64,
@@ -137,33 +137,79 @@ pub struct CurveParams {
     pub variety_radius: usize,
 }
 
-impl Default for CurveParams {
+impl Params {
+    /// The defaults, as documented on each field.
+    pub const DEFAULT: Params = Params {
+        width: 64.0,
+        piece_length: 24.0,
+        scale: 1.0,
+        closed: ClosedMode::Auto,
+        method: Method::Synthesis,
+        solver: Solver::Exact,
+        alpha_mode: AlphaMode::Continuous,
+        mismatch_penalty: 1024.0,
+        stitch: false,
+        stitch_penalty: 32.0,
+        foldover_avoidance: true,
+        pin_first: None,
+        canvas: Canvas::Fit { margin: 4.0 },
+        samples_per_axis: 3,
+        cut_alpha: 8,
+        closed_max_starts: 64,
+        min_coverage: 0.5,
+        variety: 0.0,
+        variety_radius: 8,
+        round_bends: 0.6,
+        piece_shape: PieceShape::Bent,
+        width_profile: Vec::new(),
+    };
+}
+
+impl Default for Params {
     fn default() -> Self {
-        Self {
-            width: 64.0,
-            piece_length: 24.0,
-            scale: 1.0,
-            closed: ClosedMode::Auto,
-            method: Method::Synthesis,
-            solver: Solver::Exact,
-            alpha_mode: AlphaMode::Continuous,
-            mismatch_penalty: 1024.0,
-            stitch: false,
-            stitch_penalty: 32.0,
-            foldover_avoidance: true,
-            pin_first: None,
-            canvas: Canvas::Fit { margin: 4.0 },
-            samples_per_axis: 3,
-            cut_alpha: 8,
-            closed_max_starts: 64,
-            min_coverage: 0.5,
-            variety: 0.0,
-            variety_radius: 8,
-            round_bends: 0.6,
-            piece_shape: PieceShape::Bent,
-            width_profile: Vec::new(),
-        }
+        Self::DEFAULT
     }
+}
+
+/// `with_*` builders, one per field: `Params::default().with_width(80.0).with_piece_length(20.0)`.
+macro_rules! builders {
+    ($($method:ident => $field:ident: $ty:ty),* $(,)?) => {
+        impl Params {
+            $(
+                #[doc = concat!("Sets [`Params::", stringify!($field), "`].")]
+                #[must_use]
+                pub fn $method(mut self, value: $ty) -> Self {
+                    self.$field = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+
+builders! {
+    with_width => width: f64,
+    with_piece_length => piece_length: f64,
+    with_scale => scale: f64,
+    with_closed => closed: ClosedMode,
+    with_method => method: Method,
+    with_solver => solver: Solver,
+    with_alpha_mode => alpha_mode: AlphaMode,
+    with_mismatch_penalty => mismatch_penalty: f64,
+    with_stitch => stitch: bool,
+    with_stitch_penalty => stitch_penalty: f64,
+    with_foldover_avoidance => foldover_avoidance: bool,
+    with_pin_first => pin_first: Option<[i32; 2]>,
+    with_canvas => canvas: Canvas,
+    with_samples_per_axis => samples_per_axis: usize,
+    with_cut_alpha => cut_alpha: u8,
+    with_closed_max_starts => closed_max_starts: usize,
+    with_min_coverage => min_coverage: f64,
+    with_variety => variety: f64,
+    with_variety_radius => variety_radius: usize,
+    with_round_bends => round_bends: f64,
+    with_piece_shape => piece_shape: PieceShape,
+    with_width_profile => width_profile: Vec<(f64, f64)>,
 }
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -182,7 +228,7 @@ pub const MAX_CANVAS_SIDE: usize = 16384;
 /// Checks the parameters and inputs; returns the resolved closed flag.
 /// Checks the width profile: ascending fractions in `[0, 1]`, factors in `[0.1, 10]`, bent pieces,
 /// and the widest part within the exemplar-space limit.
-fn check_width_profile(params: &CurveParams) -> Result<(), InvalidParameter> {
+fn check_width_profile(params: &Params) -> Result<(), InvalidParameter> {
     let profile = &params.width_profile;
     if profile.is_empty() {
         return Ok(());
@@ -244,37 +290,68 @@ fn check_exemplar(exemplar: &motif_core::RgbaImage, index: usize) -> Result<(), 
     Ok(())
 }
 
-pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<bool, Error> {
-    check_positive("width", params.width)?;
-    check_positive("piece-length", params.piece_length)?;
-    check_range("scale", params.scale, 0.05, 20.0)?;
-    check_range("gamma", params.mismatch_penalty, 1.0, 100_000.0)?;
-    check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
-    check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
-    check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
-    check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
-    check_range("variety", params.variety, 0.0, 1e6)?;
-    check_range("round-bends", params.round_bends, 0.0, 8.0)?;
-    check_width_profile(params)?;
-    check_count("variety-radius", params.variety_radius, 1, 1000)?;
-    if params.cut_alpha == 255 {
-        return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
+impl Params {
+    /// Checks every parameter on its own (the checks that need the inputs, such as the piece
+    /// length against the curve's length, run in [`synthesize`](crate::synthesize)). The error
+    /// names the parameter as the CLI flag does and says what is allowed.
+    pub fn validate(&self) -> Result<(), InvalidParameter> {
+        let params = self;
+        check_positive("width", params.width)?;
+        check_positive("piece-length", params.piece_length)?;
+        check_range("scale", params.scale, 0.05, 20.0)?;
+        check_range("gamma", params.mismatch_penalty, 1.0, 100_000.0)?;
+        check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
+        check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
+        check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
+        check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
+        check_range("variety", params.variety, 0.0, 1e6)?;
+        check_range("round-bends", params.round_bends, 0.0, 8.0)?;
+        check_width_profile(params)?;
+        check_count("variety-radius", params.variety_radius, 1, 1000)?;
+        if params.cut_alpha == 255 {
+            return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254"));
+        }
+        // Pieces live in exemplar space: keep them (and the transparent margin around the exemplar
+        // that their positions need) to a sane size.
+        if params.width * params.scale > 1024.0 {
+            return Err(InvalidParameter::new(
+                "width",
+                params.width,
+                "width × scale must be at most 1024 exemplar pixels",
+            ));
+        }
+        if params.piece_length * params.scale > 1024.0 {
+            return Err(InvalidParameter::new(
+                "piece-length",
+                params.piece_length,
+                "piece-length × scale must be at most 1024 exemplar pixels",
+            ));
+        }
+        if params.piece_length * params.scale < 1.0 {
+            return Err(InvalidParameter::new(
+                "piece-length",
+                motif_core::error::number(params.piece_length),
+                "piece-length × scale must be at least 1 exemplar pixel (a piece copies whole columns)",
+            ));
+        }
+        if let Canvas::Size { width, height } = params.canvas {
+            if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
+                return Err(InvalidParameter::new(
+                    "canvas",
+                    format!("{width}×{height}"),
+                    format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
+                ));
+            }
+        }
+        if let Canvas::Fit { margin } = params.canvas {
+            check_range("margin", margin, 0.0, 4096.0)?;
+        }
+        Ok(())
     }
-    // Pieces live in exemplar space: keep them (and the transparent margin around the exemplar
-    // that their positions need) to a sane size.
-    if params.width * params.scale > 1024.0 {
-        return Err(
-            InvalidParameter::new("width", params.width, "width × scale must be at most 1024 exemplar pixels").into()
-        );
-    }
-    if params.piece_length * params.scale > 1024.0 {
-        return Err(InvalidParameter::new(
-            "piece-length",
-            params.piece_length,
-            "piece-length × scale must be at most 1024 exemplar pixels",
-        )
-        .into());
-    }
+}
+
+pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error> {
+    params.validate()?;
     if input.more_exemplars.len() > MAX_MORE_EXEMPLARS {
         return Err(InvalidParameter::new(
             "exemplar",
@@ -286,19 +363,6 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
     for (index, exemplar) in std::iter::once(input.exemplar).chain(input.more_exemplars).enumerate() {
         check_exemplar(exemplar, index)?;
     }
-    if let Canvas::Size { width, height } = params.canvas {
-        if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
-            return Err(InvalidParameter::new(
-                "canvas",
-                format!("{width}×{height}"),
-                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
-            )
-            .into());
-        }
-    }
-    if let Canvas::Fit { margin } = params.canvas {
-        check_range("margin", margin, 0.0, 4096.0)?;
-    }
     let length = input.curve.length();
     let far = input.curve.points().iter().map(|p| p.x.abs().max(p.y.abs())).fold(0.0, f64::max);
     if !(length.is_finite() && far <= MAX_COORDINATE && length <= MAX_CURVE_LENGTH) {
@@ -309,14 +373,6 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
                 "the curve must stay within ±{MAX_COORDINATE:.0e} pixels of the origin and be at most \
                  {MAX_CURVE_LENGTH:.0e} pixels long; scale it down"
             ),
-        )
-        .into());
-    }
-    if params.piece_length * params.scale < 1.0 {
-        return Err(InvalidParameter::new(
-            "piece-length",
-            motif_core::error::number(params.piece_length),
-            "piece-length × scale must be at least 1 exemplar pixel (a piece copies whole columns)",
         )
         .into());
     }
@@ -355,4 +411,23 @@ pub(crate) fn validate(input: &CurveInput<'_>, params: &CurveParams) -> Result<b
         }
     };
     Ok(closed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builders_set_fields_and_validate_names_the_flag() {
+        assert_eq!(Params::default(), Params::DEFAULT);
+        let params = Params::default().with_width(80.0).with_piece_length(20.0).with_variety(5.0);
+        assert_eq!((params.width, params.piece_length, params.variety), (80.0, 20.0, 5.0));
+        assert!(params.validate().is_ok());
+        let error = Params::default().with_round_bends(-1.0).validate().unwrap_err();
+        assert_eq!(error.name, "round-bends");
+        let error = Params::default().with_piece_length(1e-300).validate().unwrap_err();
+        assert_eq!((error.name.as_str(), error.value.as_str()), ("piece-length", "1e-300"));
+        let error = Params::default().with_width_profile(vec![(0.0, 2.0)]).with_piece_shape(PieceShape::Rigid);
+        assert!(error.validate().unwrap_err().to_string().contains("bent"));
+    }
 }

@@ -17,7 +17,7 @@ pub struct PlacedPiece {
     pub arc: [f64; 2],
     /// Canvas corners: top-left, bottom-left, bottom-right, top-right.
     pub quad: [[f64; 2]; 4],
-    /// Which exemplar the piece copies (0: the first; see `CurveInput::more_exemplars`).
+    /// Which exemplar the piece copies (0: the first; see `Input::more_exemplars`).
     pub exemplar: usize,
     /// `u_i`: exemplar position of the top-left corner (the corner sits at `(x + 0.5, y)`);
     /// `None` for a piece left empty because avoidance forbade every position.
@@ -41,7 +41,7 @@ pub struct PlacedPiece {
 
 /// Figures of a run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CurveReport {
+pub struct Report {
     /// Synthesis or repeat.
     pub method: Method,
     /// Solver used.
@@ -119,13 +119,13 @@ pub struct CurveReport {
 
 /// The result of [`synthesize`].
 #[derive(Debug, Clone)]
-pub struct CurveOutput {
+pub struct Output {
     /// The rendered canvas (transparent background).
     pub image: RgbaImage,
     /// The placed pieces (empty for the repeat baseline).
     pub pieces: Vec<PlacedPiece>,
     /// Figures.
-    pub report: CurveReport,
+    pub report: Report,
     /// Forbidden canvas pixels.
     pub forbidden: ForbiddenMask,
     /// Top border of the ribbon, canvas coordinates.

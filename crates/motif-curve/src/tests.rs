@@ -10,7 +10,7 @@ use crate::dp::{RowSpec, Solver, brute_force, path_cost, solve};
 use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
 use crate::ribbon::{Ribbon, slice};
-use crate::{Canvas, ClosedMode, CurveInput, CurveParams, Error, Method, PieceShape, synthesize};
+use crate::{Canvas, ClosedMode, Error, Input, Method, Params, PieceShape, synthesize};
 
 /// A small problem built from raw parts, for solver tests.
 struct Problem {
@@ -178,8 +178,8 @@ pub(crate) fn circle(cx: f64, cy: f64, radius: f64, count: usize) -> Polyline {
     Polyline::new(points.collect(), true).unwrap()
 }
 
-pub(crate) fn params(width: f64, piece_length: f64) -> CurveParams {
-    CurveParams { width, piece_length, ..CurveParams::default() }
+pub(crate) fn params(width: f64, piece_length: f64) -> Params {
+    Params { width, piece_length, ..Params::default() }
 }
 
 #[test]
@@ -190,7 +190,7 @@ fn a_periodic_exemplar_along_a_straight_line_has_no_seam_cost() {
         let mut p = params(24.0, 20.0);
         p.alpha_mode = mode;
         let output = synthesize(
-            &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+            &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
             &p,
             &mut NoProgress,
         )
@@ -209,13 +209,13 @@ fn exact_and_reference_solvers_agree_on_a_curved_ribbon() {
         (0..40).map(|i| Point::new(i as f64 * 3.0, 30.0 + 12.0 * (i as f64 * 0.15).sin())).collect();
     let curve = Polyline::new(points, false).unwrap();
     let mut p = params(16.0, 14.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let exact = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.solver = Solver::Reference;
     let reference = synthesize(&input, &p, &mut NoProgress).unwrap();
     assert_eq!(exact.report.total_cost, reference.report.total_cost);
     assert_eq!(exact.report.dp_optimum, exact.report.total_cost_unstitched);
-    let positions = |o: &crate::CurveOutput| o.pieces.iter().map(|p| p.position).collect::<Vec<_>>();
+    let positions = |o: &crate::Output| o.pieces.iter().map(|p| p.position).collect::<Vec<_>>();
     assert_eq!(positions(&exact), positions(&reference));
     assert_eq!(exact.image, reference.image);
     assert!(exact.report.columns_skipped_fraction > 0.0);
@@ -231,7 +231,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map() {
         if (80..120).contains(&x) && (40..60).contains(&y) { [255, 255, 255, 255] } else { [0, 0, 0, 0] }
     });
     let output = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
+        &Input { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
         &params(36.0, 16.0),
         &mut NoProgress,
     )
@@ -246,7 +246,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map() {
     assert!(output.image.count_alpha_at_least(128) > 500);
     // Without the map the pattern does cross that block.
     let free = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+        &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
         &{
             let mut p = params(36.0, 16.0);
             p.canvas = Canvas::Size { width: 200, height: 80 };
@@ -271,7 +271,7 @@ fn foldovers_of_a_tight_curve_stay_empty() {
     points.extend([Point::new(60.0, 44.0), Point::new(10.0, 44.0)]);
     let curve = Polyline::new(points, false).unwrap();
     let output = synthesize(
-        &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+        &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
         &params(20.0, 8.0),
         &mut NoProgress,
     )
@@ -291,7 +291,7 @@ fn foldovers_of_a_tight_curve_stay_empty() {
 fn closed_curves_cycle_and_exact_is_never_worse() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = circle(50.0, 50.0, 30.0, 90);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(16.0, 16.0);
     p.closed = ClosedMode::Approximate;
     let approx = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -316,7 +316,7 @@ fn closed_curves_cycle_and_exact_is_never_worse() {
 fn pinning_fixes_the_first_position() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = line(0.0, 20.0, 80.0, 20.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let free = synthesize(&input, &params(16.0, 16.0), &mut NoProgress).unwrap();
     let mut p = params(16.0, 16.0);
     let first = free.pieces[0].position.unwrap();
@@ -341,7 +341,7 @@ fn pinning_fixes_the_first_position() {
 fn stitching_never_increases_seam_cost_and_keeps_matching_edges() {
     let image = chain_strip(60, 20, 12, 5, 10);
     let curve = circle(60.0, 60.0, 25.0, 80);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(20.0, 12.0);
     // Rigid pieces: bent ones continue this periodic chain around the circle at no cost at all.
     p.piece_shape = PieceShape::Rigid;
@@ -363,7 +363,7 @@ fn stitching_never_increases_seam_cost_and_keeps_matching_edges() {
     let mut p = params(24.0, 20.0);
     p.stitch = true;
     let output = synthesize(
-        &CurveInput { exemplar: &strip, curve: &straight, avoidance: None, more_exemplars: &[] },
+        &Input { exemplar: &strip, curve: &straight, avoidance: None, more_exemplars: &[] },
         &p,
         &mut NoProgress,
     )
@@ -383,7 +383,7 @@ fn same_input_same_bytes_for_any_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             synthesize(
-                &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+                &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
                 &p,
                 &mut NoProgress,
             )
@@ -399,7 +399,7 @@ fn same_input_same_bytes_for_any_thread_count() {
 fn repeat_baseline_bends_the_pattern_and_synthesis_does_not() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = circle(50.0, 50.0, 30.0, 90);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(16.0, 14.0);
     p.method = Method::Repeat;
     let repeat = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -421,14 +421,14 @@ fn repeat_baseline_bends_the_pattern_and_synthesis_does_not() {
 fn bad_input_gives_clear_errors() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let curve = line(0.0, 0.0, 100.0, 0.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
-    let message = |result: Result<crate::CurveOutput, Error>| result.unwrap_err().to_string();
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let message = |result: Result<crate::Output, Error>| result.unwrap_err().to_string();
 
     let transparent = RgbaImage::new(10, 10);
-    let m = message(synthesize(&CurveInput { exemplar: &transparent, ..input }, &params(16.0, 10.0), &mut NoProgress));
+    let m = message(synthesize(&Input { exemplar: &transparent, ..input }, &params(16.0, 10.0), &mut NoProgress));
     assert!(m.contains("fully transparent"), "{m}");
     let opaque = RgbaImage::filled(10, 10, [1, 2, 3, 255]);
-    let m = message(synthesize(&CurveInput { exemplar: &opaque, ..input }, &params(16.0, 10.0), &mut NoProgress));
+    let m = message(synthesize(&Input { exemplar: &opaque, ..input }, &params(16.0, 10.0), &mut NoProgress));
     assert!(m.contains("fully opaque"), "{m}");
     for width in [0.0, -3.0, f64::NAN] {
         let m = message(synthesize(&input, &params(width, 10.0), &mut NoProgress));
@@ -451,7 +451,7 @@ fn bad_input_gives_clear_errors() {
     let map = RgbaImage::new(5, 5);
     let mut p = params(16.0, 10.0);
     p.canvas = Canvas::Size { width: 10, height: 10 };
-    let m = message(synthesize(&CurveInput { avoidance: Some(&map), ..input }, &p, &mut NoProgress));
+    let m = message(synthesize(&Input { avoidance: Some(&map), ..input }, &p, &mut NoProgress));
     assert!(m.contains("canvas size"), "{m}");
 }
 
@@ -465,13 +465,13 @@ fn long_edges_stay_exact() {
     let curve = line(0.0, 400.0, 30.0, 400.0);
     let mut p = params(300.0, 3.0);
     p.foldover_avoidance = false;
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let exact = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.solver = Solver::Reference;
     let reference = synthesize(&input, &p, &mut NoProgress).unwrap();
     assert_eq!(exact.report.samples_per_edge, 300);
     assert_eq!(exact.report.total_cost, reference.report.total_cost);
-    let positions = |o: &crate::CurveOutput| o.pieces.iter().map(|p| p.position).collect::<Vec<_>>();
+    let positions = |o: &crate::Output| o.pieces.iter().map(|p| p.position).collect::<Vec<_>>();
     assert_eq!(positions(&exact), positions(&reference));
 }
 
@@ -493,7 +493,7 @@ fn sliver_and_band() -> RgbaImage {
 fn a_sliver_only_optimum_is_excluded_by_the_coverage_rule_and_allowed_without_it() {
     let image = sliver_and_band();
     let curve = line(0.0, 30.0, 90.0, 30.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     // Opaque pixels of the exemplar window a straight piece covers at `position`.
     let coverage = |position: [i32; 2], length: i32| {
         let mut count = 0;
@@ -538,7 +538,7 @@ fn min_coverage_out_of_range_is_rejected() {
         let mut p = params(20.0, 6.0);
         p.min_coverage = bad;
         let result = synthesize(
-            &CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
+            &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
             &p,
             &mut NoProgress,
         );

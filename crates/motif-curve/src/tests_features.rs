@@ -4,7 +4,7 @@
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 
 use crate::tests::{chain_strip, circle, line, params, random_exemplar};
-use crate::{Canvas, ClosedMode, CurveInput, PieceShape, synthesize};
+use crate::{Canvas, ClosedMode, Input, PieceShape, synthesize};
 
 #[test]
 fn variety_uses_more_windows_on_a_straight_line() {
@@ -17,7 +17,7 @@ fn variety_uses_more_windows_on_a_straight_line() {
         if ring < 1.5 || (y as f64 + 0.5 - cy).abs() < 1.0 { [180, 120 + cell as u8 * 9, 40, 255] } else { [0; 4] }
     });
     let curve = line(10.0, 40.0, 330.0, 40.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let plain = synthesize(&input, &params(28.0, 16.0), &mut NoProgress).unwrap();
     let mut varied_params = params(28.0, 16.0);
     varied_params.variety = 5000.0;
@@ -57,7 +57,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
         let mut p = params(24.0, 14.0);
         p.piece_shape = shape;
         let output = synthesize(
-            &CurveInput { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
+            &Input { exemplar: &image, curve: &curve, avoidance: Some(&map), more_exemplars: &[] },
             &p,
             &mut NoProgress,
         )
@@ -75,7 +75,7 @@ fn no_opaque_pixel_falls_in_the_avoidance_map_on_a_curve_with_either_shape() {
 fn a_width_profile_swells_the_ribbon_and_the_pattern_with_it() {
     let image = chain_strip(96, 24, 12, 6, 12);
     let curve = line(10.0, 60.0, 250.0, 60.0);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(24.0, 12.0);
     p.canvas = Canvas::Size { width: 260, height: 120 };
     p.width_profile = vec![(0.0, 1.0), (0.5, 2.0), (1.0, 1.0)];
@@ -102,9 +102,9 @@ fn a_width_profile_swells_the_ribbon_and_the_pattern_with_it() {
 fn pieces_mix_several_exemplars_with_the_same_seam_cost() {
     let image = chain_strip(96, 24, 12, 6, 12);
     let curve = line(10.0, 40.0, 400.0, 40.0);
-    let single = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let single = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let copies = [image.clone()];
-    let mixed = CurveInput { more_exemplars: &copies, ..single };
+    let mixed = Input { more_exemplars: &copies, ..single };
     let p = params(24.0, 16.0);
     let one = synthesize(&single, &p, &mut NoProgress).unwrap();
     let two = synthesize(&mixed, &p, &mut NoProgress).unwrap();
@@ -122,7 +122,7 @@ fn pieces_mix_several_exemplars_with_the_same_seam_cost() {
     }
     // A bad second exemplar is named as such.
     let blank = [RgbaImage::from_fn(20, 20, |_, _| [0; 4])];
-    let message = synthesize(&CurveInput { more_exemplars: &blank, ..single }, &p, &mut NoProgress).unwrap_err();
+    let message = synthesize(&Input { more_exemplars: &blank, ..single }, &p, &mut NoProgress).unwrap_err();
     assert!(message.to_string().contains("exemplar 2"), "{message}");
 }
 
@@ -148,7 +148,7 @@ fn incremental_runs_equal_runs_from_scratch_and_reuse_rows() {
         let mut session = crate::Incremental::new();
         for (k, middle) in [20.0, 26.0, 26.0, 40.0].into_iter().enumerate() {
             let curve = control(middle);
-            let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+            let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
             let incremental = session.synthesize(&input, &p, &mut NoProgress).unwrap();
             let scratch = synthesize(&input, &p, &mut NoProgress).unwrap();
             assert_eq!(incremental.image, scratch.image, "{shape:?}, edit {k}");
@@ -171,7 +171,7 @@ fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     // neighbour exactly, so the optimum costs nothing; rigid pieces pay for the tilt of every seam.
     let image = chain_strip(96, 24, 12, 6, 12);
     let curve = circle(80.0, 80.0, 50.0, 120);
-    let input = CurveInput { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
     let mut p = params(24.0, 18.0);
     p.closed = ClosedMode::Open;
     let bent = synthesize(&input, &p, &mut NoProgress).unwrap();
@@ -182,7 +182,7 @@ fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     assert!(bent.image.count_alpha_at_least(128) > 1000, "the pattern is drawn");
     // On a straight line both shapes place the same pieces
     let straight = line(10.0, 40.0, 200.0, 40.0);
-    let input = CurveInput { exemplar: &image, curve: &straight, avoidance: None, more_exemplars: &[] };
+    let input = Input { exemplar: &image, curve: &straight, avoidance: None, more_exemplars: &[] };
     let rigid = synthesize(&input, &p, &mut NoProgress).unwrap();
     p.piece_shape = PieceShape::Bent;
     let bent = synthesize(&input, &p, &mut NoProgress).unwrap();

@@ -1,7 +1,7 @@
 //! What looks wrong with a run before it is solved, said with what to change.
 
 use crate::exemplar::Exemplar;
-use crate::params::CurveParams;
+use crate::params::Params;
 
 /// Valid fraction below which the run warns that the pieces hardly fit the pattern.
 const FEW_VALID: f64 = 0.01;
@@ -9,7 +9,7 @@ const FEW_VALID: f64 = 0.01;
 /// What looks wrong with a run before it is solved, with what to change.
 pub(crate) fn warnings(
     exemplar: &Exemplar,
-    params: &CurveParams,
+    params: &Params,
     samples: usize,
     valid_fraction: f64,
     empty: usize,

@@ -6,7 +6,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{Point, Polyline, RgbaImage};
-use motif_curve::{AlphaMode, Canvas, ClosedMode, CurveInput, CurveOutput, CurveParams, Method, PieceShape, Solver};
+use motif_curve::{
+    AlphaMode, Canvas, ClosedMode, Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams,
+    PieceShape, Solver,
+};
 use serde_json::json;
 
 use crate::context::Context;

@@ -9,7 +9,7 @@ use anyhow::Context as _;
 use motif_core::NoProgress;
 use motif_core::{Point, Polyline};
 use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
-use motif_curve::{CurveInput, CurveOutput, CurveParams, Method, Solver};
+use motif_curve::{Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams, Solver};
 
 use super::curve::chain_exemplar;
 use crate::bench::Bench;
