@@ -55,6 +55,20 @@ impl Bench {
     }
 }
 
+/// The real-data corpus folder of `engine` in this source tree (`data/real/<engine>/`; the bench
+/// is a developer's tool run from a checkout).
+pub fn corpus_folder(engine: &str) -> PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real").join(engine)
+}
+
+/// The cases of a corpus manifest (`cases.json` in `folder`).
+pub fn read_cases<T: serde::de::DeserializeOwned>(folder: &std::path::Path) -> anyhow::Result<Vec<T>> {
+    use anyhow::Context as _;
+    let path = folder.join("cases.json");
+    let value: Value = motif_io::read_json(&path)?;
+    serde_json::from_value(value).with_context(|| format!("{}: not a list of corpus cases", path.display()))
+}
+
 /// Runs `motif bench` and prints the figures on stdout.
 #[allow(clippy::print_stdout)]
 pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {

@@ -138,12 +138,7 @@ fn an_output_equal_to_an_input_is_refused_and_the_input_kept() {
 #[test]
 fn a_report_or_points_output_equal_to_an_input_is_refused_and_the_input_kept() {
     let dir = tempfile::tempdir().unwrap();
-    let exemplar = dir.path().join("ex.png");
-    motif_io::write_png(
-        &exemplar,
-        &motif_core::RgbaImage::from_fn(24, 24, |x, y| [(x * 9) as u8, (y * 9) as u8, 40, 255]),
-    )
-    .unwrap();
+    let exemplar = write_exemplar(dir.path());
     let before = std::fs::read(&exemplar).unwrap();
     let output = motif()
         .args(["--quiet", "texture", "--size", "32x32", "--exemplar"])
@@ -182,12 +177,7 @@ fn a_report_or_points_output_equal_to_an_input_is_refused_and_the_input_kept() {
 #[test]
 fn an_unwritable_secondary_output_fails_before_the_main_output_is_replaced() {
     let dir = tempfile::tempdir().unwrap();
-    let exemplar = dir.path().join("ex.png");
-    motif_io::write_png(
-        &exemplar,
-        &motif_core::RgbaImage::from_fn(24, 24, |x, y| [(x * 9) as u8, (y * 9) as u8, 40, 255]),
-    )
-    .unwrap();
+    let exemplar = write_exemplar(dir.path());
     let out = dir.path().join("t.png");
     std::fs::write(&out, b"previous").unwrap();
     for (flag, target) in
@@ -207,4 +197,12 @@ fn an_unwritable_secondary_output_fails_before_the_main_output_is_replaced() {
         assert!(stderr.contains("does not exist") || stderr.contains("is a folder"), "{stderr}");
         assert_eq!(std::fs::read(&out).unwrap(), b"previous", "{target:?}");
     }
+}
+
+/// A small opaque gradient exemplar, `ex.png` in `dir`.
+fn write_exemplar(dir: &std::path::Path) -> std::path::PathBuf {
+    let exemplar = dir.join("ex.png");
+    let image = motif_core::RgbaImage::from_fn(24, 24, |x, y| [(x * 9) as u8, (y * 9) as u8, 40, 255]);
+    motif_io::write_png(&exemplar, &image).unwrap();
+    exemplar
 }

@@ -3,7 +3,7 @@
 //! synthesis next to the repeat baseline's, see `motif_curve::fidelity`), the incremental edit,
 //! and the generated exemplars of the paper's two sizes (both solvers).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use anyhow::Context as _;
 use motif_core::NoProgress;
@@ -13,6 +13,7 @@ use motif_curve::{Input as CurveInput, Method, Output as CurveOutput, Params as 
 
 use super::curve::chain_exemplar;
 use crate::bench::Bench;
+use crate::bench::{corpus_folder, read_cases};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -38,18 +39,6 @@ pub struct CorpusCase {
 
 fn one() -> f64 {
     1.0
-}
-
-/// The corpus folder of this source tree (the bench is a developer's tool run from a checkout).
-pub fn corpus_folder() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/curve")
-}
-
-/// The cases of the corpus manifest.
-pub fn read_cases(folder: &Path) -> anyhow::Result<Vec<CorpusCase>> {
-    let path = folder.join("cases.json");
-    let value: Value = motif_io::read_json(&path)?;
-    serde_json::from_value(value).with_context(|| format!("{}: not a list of curve corpus cases", path.display()))
 }
 
 /// The parameters of a case.
@@ -118,7 +107,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
 /// (as a dragged control point makes) moved ten times; `samples_per_axis` 1 is an interactive
 /// preview's anti-aliasing, 3 the default.
 pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
-    let folder = corpus_folder();
+    let folder = corpus_folder("curve");
     let exemplar = motif_io::read_image(&folder.join("chain_round.png"))?;
     let base = super::curve::read_curve(&folder.join("flourish.svg"), 0.1)?;
     let mut params = CurveParams::default();
@@ -178,8 +167,8 @@ pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
 
 /// The corpus figures: every case `selected` accepts (only the test cases when `quick`).
 pub fn corpus_figures(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
-    let folder = corpus_folder();
-    let cases = read_cases(&folder)?;
+    let folder = corpus_folder("curve");
+    let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();
     let (mut count, mut better, mut clean) = (0, 0, 0);
     for case in cases.iter().filter(|case| selected(&case.name) && (!quick || case.test)) {

@@ -2,14 +2,15 @@
 //! the time, the output count against the expected one, and the two fidelity distances next to
 //! those of a uniform random set and of a tiled copy of the exemplar over the same domain.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use anyhow::{Context as _, bail};
+use anyhow::bail;
 use motif_points::{Domain, Input, Params};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
 use super::points::table_to_points;
+use crate::bench::{corpus_folder, read_cases};
 
 /// One case of `cases.json` (written by `data/real/points/make_manifest.py`).
 #[derive(Debug, Deserialize)]
@@ -21,18 +22,6 @@ pub struct CorpusCase {
     pub domain: Vec<f64>,
     #[serde(rename = "use")]
     pub purpose: String,
-}
-
-/// The corpus folder of this source tree (the bench is a developer's tool run from a checkout).
-pub fn corpus_folder() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/points")
-}
-
-/// The cases of the corpus manifest.
-pub fn read_cases(folder: &Path) -> anyhow::Result<Vec<CorpusCase>> {
-    let path = folder.join("cases.json");
-    let value: Value = motif_io::read_json(&path)?;
-    serde_json::from_value(value).with_context(|| format!("{}: not a list of corpus cases", path.display()))
 }
 
 /// Runs one corpus case and returns its figures, with the targets checked.
@@ -85,8 +74,8 @@ const SLOW_CASES: [&str; 1] = ["chain_contours"];
 /// The corpus figures: every case of the manifest that `selected` accepts (slow cases only when
 /// `named` accepts them), and a summary of how many meet each target.
 pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
-    let folder = corpus_folder();
-    let cases = read_cases(&folder)?;
+    let folder = corpus_folder("points");
+    let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();
     let mut counts = [0usize; 4];
     for case in &cases {
