@@ -68,6 +68,20 @@ fn main() -> ExitCode {
             eprintln!("error: internal error (a bug in motif; please report it with the command you ran): {info}");
         }
     }));
+    // Ctrl-C or SIGTERM: remove the temporary file of a write in progress (outputs are replaced
+    // whole, by a rename, so no output is ever half-written) and exit as interrupted.
+    let interrupted = ctrlc::set_handler(|| {
+        motif_io::remove_temporaries();
+        #[allow(clippy::print_stderr)]
+        {
+            eprintln!("error: interrupted");
+        }
+        std::process::exit(130);
+    });
+    if let Err(error) = interrupted {
+        print_error(&anyhow::anyhow!("cannot install the interrupt handler: {error}"));
+        return ExitCode::FAILURE;
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(error) => {

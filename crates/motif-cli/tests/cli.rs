@@ -206,3 +206,35 @@ fn write_exemplar(dir: &std::path::Path) -> std::path::PathBuf {
     motif_io::write_png(&exemplar, &image).unwrap();
     exemplar
 }
+
+/// SIGINT (and SIGTERM) end a run with exit code 130, no output and no temporary file left
+/// behind (issue 13).
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_nothing_behind() {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = write_exemplar(dir.path());
+    for signal in ["-INT", "-TERM"] {
+        let out = dir.path().join("big.png");
+        let mut child = motif()
+            .args(["--quiet", "texture", "--size", "2400x2400", "--exemplar"])
+            .arg(&exemplar)
+            .arg("--out")
+            .arg(&out)
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1000));
+        let killed = Command::new("kill").arg(signal).arg(child.id().to_string()).status().unwrap();
+        assert!(killed.success());
+        let status = child.wait().unwrap();
+        assert_eq!(status.code(), Some(130), "{signal}");
+        assert!(!out.exists(), "{signal}");
+        let left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|name| name.starts_with(".motif-"))
+            .collect();
+        assert!(left.is_empty(), "{signal}: {left:?}");
+    }
+}
