@@ -142,7 +142,15 @@ pub fn stages_object(stages: &[(String, f64)]) -> Value {
 pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
     let mut context = Context::new(global.seed, threads, global.quiet).with_report(global.report.as_deref());
-    let result = command.run(&mut context);
+    // The run's outputs appear together, and only if the whole run succeeded: a failure part-way
+    // leaves every previous file as it was.
+    motif_io::begin_outputs();
+    let mut result = command.run(&mut context);
+    if result.is_ok() {
+        result = motif_io::commit_outputs().map_err(anyhow::Error::from);
+    } else {
+        motif_io::discard_outputs();
+    }
     let mut report = Map::new();
     report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
     report.insert("command".into(), Value::from(command.name()));

@@ -5,6 +5,9 @@
 //! rename, so a crash never leaves a half-written output and an output never replaces an input by
 //! accident halfway).
 //!
+//! - `staging`: the temporary files, the renames that wait until a run has succeeded
+//!   ([`begin_outputs`], [`commit_outputs`], [`discard_outputs`]) and [`remove_temporaries`] for a
+//!   signal handler.
 //! - [`raster`]: PNG (8-bit RGBA/RGB/grey/grey-alpha, 16-bit read) and JPEG (read) via `image`.
 //! - [`svg`]: SVG read through `usvg` (paths as `kurbo` paths in document coordinates, transforms
 //!   applied, with stroke and fill), SVG write ([`SvgWriter`]) and rasterization via `resvg`.
@@ -14,6 +17,7 @@
 pub mod json;
 pub mod points;
 pub mod raster;
+mod staging;
 pub mod svg;
 
 use std::io::Write;
@@ -22,6 +26,8 @@ use std::path::{Path, PathBuf};
 pub use json::{read_json, write_json};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, read_points, write_points};
 pub use raster::{read_image, write_png};
+pub(crate) use staging::write_with;
+pub use staging::{begin_outputs, commit_outputs, discard_outputs, remove_temporaries};
 pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};
 
 /// A file could not be read or written; always names the file.
@@ -81,60 +87,6 @@ pub fn write_text(path: &Path, text: &str) -> Result<()> {
     write_bytes(path, text.as_bytes())
 }
 
-/// Temporary files being written now (each removed from the list once renamed or dropped).
-static TEMPORARIES: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
-
-/// Removes every temporary file a write has not finished with: for a signal handler, so that an
-/// interrupted run leaves no `.motif-*.tmp` behind (the outputs themselves are only ever replaced
-/// whole, by a rename).
-pub fn remove_temporaries() {
-    remove_temporaries_where(|_| true);
-}
-
-fn remove_temporaries_where(chosen: impl Fn(&Path) -> bool) {
-    let mut temporaries = TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    temporaries.retain(|path| {
-        if !chosen(path) {
-            return true;
-        }
-        // Already renamed or removed: nothing to do.
-        let _ = std::fs::remove_file(path);
-        false
-    });
-}
-
-fn track(path: &Path, live: bool) {
-    let mut temporaries = TEMPORARIES.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    if live {
-        temporaries.push(path.to_path_buf());
-    } else {
-        temporaries.retain(|p| p != path);
-    }
-}
-
-/// Runs `fill` on a temporary file beside `path`, then renames it onto `path`.
-pub(crate) fn write_with(path: &Path, fill: impl FnOnce(&mut std::fs::File) -> std::io::Result<()>) -> Result<()> {
-    let directory = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".motif-").suffix(".tmp");
-    // The temporary file becomes the output: give it the mode any tool's output gets (0666 less
-    // the umask), not a temporary file's private 0600.
-    #[cfg(unix)]
-    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-    let mut temporary = builder.tempfile_in(directory).map_err(|source| IoError::io(path, source))?;
-    let temporary_path = temporary.path().to_path_buf();
-    track(&temporary_path, true);
-    let written = fill(temporary.as_file_mut())
-        .and_then(|()| temporary.as_file_mut().sync_all())
-        .map_err(|source| IoError::io(path, source))
-        .and_then(|()| temporary.persist(path).map(drop).map_err(|error| IoError::io(path, error.error)));
-    track(&temporary_path, false);
-    written
-}
-
 /// True when `a` and `b` name the same file (or would, once `b` is created): compares canonical
 /// paths, canonicalizing the parent directory for a file that does not exist yet.
 pub fn same_file(a: &Path, b: &Path) -> bool {
@@ -182,23 +134,6 @@ mod tests {
         std::fs::File::create(&plain).unwrap();
         let mode = |path: &Path| std::fs::metadata(path).unwrap().permissions().mode() & 0o777;
         assert_eq!(mode(&ours), mode(&plain));
-    }
-
-    #[test]
-    fn interrupted_writes_leave_no_temporary() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("out.bin");
-        // A write interrupted in the middle: the signal handler's clean-up runs inside `fill`.
-        let result = write_with(&out, |file| {
-            file.write_all(b"half")?;
-            // (Only this test's files: other tests write in parallel.)
-            remove_temporaries_where(|p| p.starts_with(dir.path()));
-            Err(std::io::Error::other("interrupted"))
-        });
-        assert!(result.is_err());
-        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-        assert!(left.is_empty(), "{left:?}");
-        assert!(TEMPORARIES.lock().unwrap().iter().all(|p| !p.starts_with(dir.path())));
     }
 
     #[test]
