@@ -26,6 +26,8 @@ pub struct Context {
     report: Option<std::path::PathBuf>,
     /// Every input path the engine named (see [`Context::check_output`]).
     inputs: std::cell::RefCell<Vec<std::path::PathBuf>>,
+    /// Every output path checked so far.
+    outputs: std::cell::RefCell<Vec<std::path::PathBuf>>,
 }
 
 impl Context {
@@ -40,6 +42,7 @@ impl Context {
             figures: Map::new(),
             report: None,
             inputs: std::cell::RefCell::new(Vec::new()),
+            outputs: std::cell::RefCell::new(Vec::new()),
         }
     }
 
@@ -49,9 +52,10 @@ impl Context {
         self
     }
 
-    /// True when `path` names one of the inputs the engine checked its outputs against.
-    pub fn is_input(&self, path: &Path) -> bool {
-        self.inputs.borrow().iter().any(|input| motif_io::same_file(path, input))
+    /// True when `path` names one of the inputs the engine checked its outputs against, or one of
+    /// its outputs.
+    pub fn is_input_or_output(&self, path: &Path) -> bool {
+        self.inputs.borrow().iter().chain(self.outputs.borrow().iter()).any(|other| motif_io::same_file(path, other))
     }
 
     /// The progress sink to hand to an engine.
@@ -86,6 +90,12 @@ impl Context {
             }
         }
         check_writable(output)?;
+        let earlier = self.outputs.borrow().iter().chain(&self.report).any(|other| motif_io::same_file(output, other));
+        // Recorded first, so that a report on the same path is not written either.
+        self.outputs.borrow_mut().push(output.to_path_buf());
+        if earlier {
+            bail!("output {} is given twice; each output needs its own path", output.display());
+        }
         for input in inputs {
             if motif_io::same_file(output, input) {
                 bail!(
@@ -162,9 +172,10 @@ pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) 
         report.insert("error".into(), Value::from(format!("{error:#}")));
     }
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
-    // A report that would replace an input, or that cannot be written, is not written (the run
-    // has already failed for it); a failed run keeps its own error.
-    let report_path = global.report.as_deref().filter(|path| !context.is_input(path) && check_writable(path).is_ok());
+    // A report that would replace an input or an output, or that cannot be written, is not
+    // written (the run has already failed for it); a failed run keeps its own error.
+    let report_path =
+        global.report.as_deref().filter(|path| !context.is_input_or_output(path) && check_writable(path).is_ok());
     report.extend(context.into_figures());
     if let Some(path) = report_path {
         let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");

@@ -238,3 +238,28 @@ fn an_interrupted_run_leaves_nothing_behind() {
         assert!(left.is_empty(), "{signal}: {left:?}");
     }
 }
+
+/// Two outputs of one run on the same path are refused before any work (one would silently
+/// replace the other).
+#[test]
+fn two_outputs_on_one_path_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = write_exemplar(dir.path());
+    let out = dir.path().join("t.png");
+    let output = motif()
+        .args(["--quiet", "texture", "--size", "32x32", "--exemplar"])
+        .arg(&exemplar)
+        .arg("--out")
+        .arg(&out)
+        .arg("--report")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        String::from_utf8_lossy(&output.stderr).contains("given twice"),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(!out.exists());
+}
