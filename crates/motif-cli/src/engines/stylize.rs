@@ -442,6 +442,27 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
 }
 
 fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
+    // The folder's files are replaced: no input may live there, and it must be a folder.
+    if args.out_dir.is_file() {
+        bail!("--out-dir {} is a file; give a folder", args.out_dir.display());
+    }
+    for input in [&args.style, &args.guide] {
+        let folder = match input.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent,
+            _ => Path::new("."),
+        };
+        if motif_io::same_file(folder, &args.out_dir) {
+            bail!(
+                "input {} lies in the --out-dir folder, whose files presynth replaces; move it out or choose another \
+                 folder (motif never overwrites an input)",
+                input.display()
+            );
+        }
+    }
+    // The manifest stands for the folder's outputs, so that --report is checked against the inputs.
+    if args.out_dir.is_dir() {
+        context.check_output(&args.out_dir.join("presynth.json"), &[&args.style, &args.guide])?;
+    }
     let style_image = load(&args.style)?;
     let guide_image = load(&args.guide)?;
     let channels: Vec<usize> = (0..file_channels(&guide_image)).collect();
