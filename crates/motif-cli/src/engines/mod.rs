@@ -21,6 +21,8 @@ pub mod points_corpus;
 pub mod points_preview;
 pub mod strokes;
 pub mod stylize;
+pub mod stylize_bench;
+pub mod stylize_demo;
 
 /// The engine subcommands.
 #[derive(Subcommand, Debug)]
@@ -83,7 +85,7 @@ pub fn demos(demo: &mut Demo) -> anyhow::Result<()> {
     curve::demo(demo)?;
     points::demo(demo)?;
     strokes::demo(demo)?;
-    stylize::demo(demo)?;
+    stylize_demo::demo(demo)?;
     Ok(())
 }
 
@@ -98,7 +100,7 @@ pub fn benches(bench: &Bench, only: &[String]) -> anyhow::Result<Map<String, Val
             "curve" => curve_corpus::bench(bench)?,
             "points" => points_bench::bench(bench)?,
             "strokes" => strokes::bench(bench)?,
-            "stylize" => stylize::bench(bench)?,
+            "stylize" => stylize_bench::bench(bench)?,
             _ => continue,
         };
         figures.insert(name.to_string(), value);

@@ -1,0 +1,183 @@
+//! `motif bench --engine stylize`: CPU-seconds per megapixel on the two ebsynth-like workloads,
+//! the paper's Table 1 (pre-synthesized textures, band sizes) and PatchMatch against the exact
+//! search.
+
+use std::path::Path;
+
+use motif_core::NoProgress;
+use motif_stylize::{
+    Guide, NnfMethod, Output, PresynthInput, Segmentation, StylizeInput, StylizeParams, presynthesize, samples,
+    synthesize,
+};
+use serde_json::{Map, Value, json};
+
+use crate::bench::Bench;
+
+/// Process CPU time (user + system) in seconds, from `/proc/self/stat` (Linux); `None` elsewhere.
+fn cpu_seconds() -> Option<f64> {
+    let text = motif_io::read_text(Path::new("/proc/self/stat")).ok()?;
+    // Fields after the parenthesized command name; utime and stime are fields 14 and 15.
+    let rest = &text[text.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = fields.get(11)?.parse::<f64>().ok()? + fields.get(12)?.parse::<f64>().ok()?;
+    Some(ticks / 100.0)
+}
+
+/// A seeded guide/style pair of `size`² with `guide_channels` (3 or 10) guide channels.
+fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> StylizeInput {
+    let source = samples::map_guide(size, size, 5, seed);
+    let target = samples::map_guide(size, size, 5, seed + 1);
+    let style = samples::crayon_style(&source, seed + 2);
+    let mut guides = vec![Guide { source, target, weight: None }];
+    if guide_channels == 10 {
+        for (channels, offset) in [(4, 3), (3, 5)] {
+            guides.push(Guide {
+                source: samples::smooth_field(size, size, channels, seed + offset),
+                target: samples::smooth_field(size, size, channels, seed + offset + 1),
+                weight: None,
+            });
+        }
+    }
+    StylizeInput::guided(style, guides)
+}
+
+fn timed(input: &StylizeInput, params: &StylizeParams) -> anyhow::Result<(Output, f64, Option<f64>)> {
+    let cpu_start = cpu_seconds();
+    let start = std::time::Instant::now();
+    let output = synthesize(input, params, &mut NoProgress)?;
+    let wall = start.elapsed().as_secs_f64();
+    let cpu = cpu_start.and_then(|s| cpu_seconds().map(|e| e - s));
+    Ok((output, wall, cpu))
+}
+
+/// Figures for `motif bench`: CPU-seconds per megapixel on the two ebsynth-like workloads,
+/// Table 1 (band 0/2/4/8/full on a 360×360 5-segment map, one thread), PatchMatch/exact energy.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    // `--case 0.15mp`, `1mp`, `table1` or `exact` times only those parts (default: all four).
+    let selected = |key: &str| bench.selects(key, "generated");
+    let mut figures = Map::new();
+    let cases: [(&str, &str, usize, usize, usize); 2] = if bench.quick {
+        [("0.15mp", "rgb_guide_patch3", 64, 3, 3), ("1mp", "ten_guide_channels_patch5", 64, 10, 5)]
+    } else {
+        [("0.15mp", "rgb_guide_patch3_0.15mp", 388, 3, 3), ("1mp", "ten_guide_channels_patch5_1mp", 1000, 10, 5)]
+    };
+    for (key, name, size, guide_channels, patch) in cases {
+        if !selected(key) {
+            continue;
+        }
+        let input = bench_pair(size, guide_channels, bench.seed);
+        let mut params = StylizeParams::default();
+        params.patch_size = patch;
+        params.seed = bench.seed;
+        let (output, wall, cpu) = timed(&input, &params)?;
+        let megapixels = (size * size) as f64 / 1e6;
+        figures.insert(
+            name.to_string(),
+            json!({
+                "size": [size, size],
+                "channels": { "style": 3, "guide": guide_channels },
+                "patch_size": patch,
+                "wall_s": wall,
+                "cpu_s": cpu,
+                "cpu_s_per_megapixel": cpu.map(|c| c / megapixels),
+                "wall_s_per_megapixel": wall / megapixels,
+                "energy": output.energy,
+                "source_coverage": output.source_coverage,
+                "ebsynth_cpu_s_per_megapixel": if guide_channels == 3 { "about 36" } else { "150-210" },
+            }),
+        );
+    }
+
+    if selected("table1") {
+        figures.insert("table_1".into(), table_1(bench)?);
+    }
+    if selected("exact") {
+        figures.insert("patchmatch_vs_exact".into(), patchmatch_vs_exact(bench)?);
+    }
+    Ok(Value::Object(figures))
+}
+
+/// Table 1: pre-synthesized textures, band sizes, on one thread.
+fn table_1(bench: &Bench) -> anyhow::Result<Value> {
+    let size = if bench.quick { 96 } else { 360 };
+    let source_guide = samples::map_guide(size, size, 5, bench.seed + 10);
+    let target_guide = samples::map_guide(size, size, 5, bench.seed + 11);
+    let style = samples::crayon_style(&source_guide, bench.seed + 12);
+    let mut params = StylizeParams::default();
+    params.seed = bench.seed;
+    params.segments = Some(Segmentation::Palette);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let table = pool.install(|| -> anyhow::Result<Value> {
+        let presynth_start = std::time::Instant::now();
+        let texture_size = if bench.quick { 48 } else { 128 };
+        let textures = presynthesize(
+            &PresynthInput { style: style.clone(), guide: source_guide.clone(), size: (texture_size, texture_size) },
+            &params,
+            &mut NoProgress,
+        )?;
+        let presynth_ms = presynth_start.elapsed().as_secs_f64() * 1000.0;
+        let guided = StylizeInput::guided(
+            style.clone(),
+            vec![Guide { source: source_guide.clone(), target: target_guide.clone(), weight: None }],
+        );
+        let mut rows = Map::new();
+        for band in [0, 2, 4, 8] {
+            let mut input = guided.clone();
+            input.textures = Some(textures.clone());
+            let mut banded = params.clone();
+            banded.band = band;
+            let start = std::time::Instant::now();
+            let output = synthesize(&input, &banded, &mut NoProgress)?;
+            rows.insert(
+                format!("band_{band}"),
+                json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.searched_pixels }),
+            );
+        }
+        let start = std::time::Instant::now();
+        let output = synthesize(&guided, &params, &mut NoProgress)?;
+        rows.insert(
+            "full".into(),
+            json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.searched_pixels }),
+        );
+        Ok(json!({
+            "size": [size, size],
+            "segments": 5,
+            "threads": 1,
+            "presynth_ms": presynth_ms,
+            "texture_size": [texture_size, texture_size],
+            "rows": rows,
+            "paper_single_core_ms": { "band_0": 2, "band_2": 2376, "band_4": 9342, "band_8": 20859, "full": 600000 },
+        }))
+    })?;
+    Ok(table)
+}
+
+/// PatchMatch against the exact search on a small case, with the occurrence penalty (the
+/// default) and without it (where the exact search is a true per-iteration optimum).
+fn patchmatch_vs_exact(bench: &Bench) -> anyhow::Result<Value> {
+    let small = if bench.quick { 40 } else { 64 };
+    let input = bench_pair(small, 3, bench.seed + 20);
+    let mut comparison = Map::new();
+    for (name, uniformity) in [("uniformity_3500", 3500.0), ("uniformity_0", 0.0)] {
+        let mut params = StylizeParams::default();
+        params.patch_size = 5;
+        params.seed = bench.seed;
+        params.uniformity = uniformity;
+        let (patchmatch, patchmatch_s, _) = timed(&input, &params)?;
+        params.nnf = NnfMethod::Exact;
+        let (exact, exact_s, _) = timed(&input, &params)?;
+        comparison.insert(
+            name.into(),
+            json!({
+                "patchmatch_energy": patchmatch.energy.total,
+                "exact_energy": exact.energy.total,
+                "energy_ratio": patchmatch.energy.total / exact.energy.total.max(f64::MIN_POSITIVE),
+                "patchmatch_s": patchmatch_s,
+                "exact_s": exact_s,
+                "speed_up": exact_s / patchmatch_s.max(1e-9),
+            }),
+        );
+    }
+    comparison.insert("size".into(), json!([small, small]));
+    Ok(Value::Object(comparison))
+}

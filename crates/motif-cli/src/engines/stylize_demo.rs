@@ -1,0 +1,125 @@
+//! The stylize cases of `motif demo`: a map stylized with segments, the pre-synthesized speed-up
+//! and a tileable texture.
+
+use motif_core::{FloatImage, RgbaImage};
+use motif_stylize::samples;
+
+use crate::demo::{Demo, DemoCase};
+
+fn to_png(image: &FloatImage) -> RgbaImage {
+    RgbaImage::from_float(image)
+}
+
+/// Built-in examples: a map stylized with segments, the pre-synthesized speed-up, a tileable
+/// texture.
+pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    // Directory arguments are given as full paths (Demo resolves only file names).
+    let debug_dir = demo.path("stylize-debug").to_string_lossy().into_owned();
+    let presynth_dir = demo.path("stylize-presynth").to_string_lossy().into_owned();
+    let source_guide = samples::map_guide(160, 160, 5, 11);
+    let style = samples::crayon_style(&source_guide, 12);
+    let target_guide = samples::map_guide(224, 160, 5, 13);
+    motif_io::write_png(&demo.path("stylize-A.png"), &to_png(&source_guide))?;
+    motif_io::write_png(&demo.path("stylize-A1.png"), &to_png(&style))?;
+    motif_io::write_png(&demo.path("stylize-B.png"), &to_png(&target_guide))?;
+    demo.case(DemoCase {
+        title: "stylize: a map in crayon".into(),
+        description: "Guided patch synthesis (StyLit energy with the occurrence penalty) transfers a crayon \
+                      style A' drawn over map A onto a new map B; segments keep water, grass and roads apart."
+            .into(),
+        inputs: vec![
+            ("style A'".into(), "stylize-A1.png".into()),
+            ("source guide A".into(), "stylize-A.png".into()),
+            ("target guide B".into(), "stylize-B.png".into()),
+        ],
+        outputs: vec![
+            ("output B'".into(), "stylize-B1.png".into()),
+            ("field".into(), "stylize-debug/nnf.png".into()),
+            ("error".into(), "stylize-debug/error.png".into()),
+        ],
+        args: [
+            "stylize",
+            "--style",
+            "stylize-A1.png",
+            "--guide",
+            "stylize-A.png",
+            "stylize-B.png",
+            "--segments",
+            "--debug-dir",
+            &debug_dir,
+            "--out",
+            "stylize-B1.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    demo.case(DemoCase {
+        title: "stylize presynth: one texture per segment".into(),
+        description: "Each map segment's crayon texture is synthesized once (seamless, from that segment's \
+                      style patches) and cached (§3.7)."
+            .into(),
+        inputs: vec![("style A'".into(), "stylize-A1.png".into()), ("source guide A".into(), "stylize-A.png".into())],
+        outputs: (1..=5).map(|i| (format!("segment {i}"), format!("stylize-presynth/segment-{i}.png"))).collect(),
+        args: [
+            "stylize",
+            "presynth",
+            "--style",
+            "stylize-A1.png",
+            "--guide",
+            "stylize-A.png",
+            "--size",
+            "64x64",
+            "--out-dir",
+            &presynth_dir,
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    demo.case(DemoCase {
+        title: "stylize --presynth --band 4: only the edges".into(),
+        description: "Pixels at least 4 px from a segment edge are copied from the cached textures; only the \
+                      band around the edges is optimized, orders of magnitude faster than a full synthesis."
+            .into(),
+        inputs: vec![("target guide B".into(), "stylize-B.png".into())],
+        outputs: vec![("output B'".into(), "stylize-B1-band4.png".into())],
+        args: [
+            "stylize",
+            "--style",
+            "stylize-A1.png",
+            "--guide",
+            "stylize-A.png",
+            "stylize-B.png",
+            "--presynth",
+            &presynth_dir,
+            "--band",
+            "4",
+            "--out",
+            "stylize-B1-band4.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    let exemplar = samples::crayon_style(&samples::map_guide(64, 64, 2, 14), 15);
+    motif_io::write_png(&demo.path("texture-exemplar.png"), &to_png(&exemplar))?;
+    demo.case(DemoCase {
+        title: "texture: a seamless tile".into(),
+        description: "Non-guided texture optimization grows a 160×160 texture from a 64×64 exemplar; with \
+                      --tileable its patches wrap around, so copies of it tile without seams."
+            .into(),
+        inputs: vec![("exemplar".into(), "texture-exemplar.png".into())],
+        outputs: vec![("texture".into(), "texture-tile.png".into())],
+        args: [
+            "texture",
+            "--exemplar",
+            "texture-exemplar.png",
+            "--size",
+            "160x160",
+            "--tileable",
+            "--out",
+            "texture-tile.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    Ok(())
+}
