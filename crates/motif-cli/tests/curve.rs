@@ -229,6 +229,11 @@ fn failure(args: &[&str], files: &Files) -> String {
     stderr
 }
 
+/// `motif curve` on `exemplar` along `path`, width 20, pieces of 10, into `o.png`.
+fn plain<'a>(exemplar: &'a str, path: &'a str) -> [&'a str; 11] {
+    ["curve", "--exemplar", exemplar, "--path", path, "--width", "20", "--piece-length", "10", "--out", "o.png"]
+}
+
 #[test]
 fn bad_input_gives_clear_errors() {
     let files = Files::new();
@@ -264,43 +269,13 @@ fn bad_input_gives_clear_errors() {
     assert!(e.contains("megapixels"), "{e}");
     assert!(!files.path("out.png").exists(), "a failed run writes nothing");
     std::fs::write(files.path("far.csv"), "x,y\n0,0\n100,0\n1e9,5\n").unwrap();
-    let e = failure(
-        &[
-            "curve",
-            "--exemplar",
-            "chain.png",
-            "--path",
-            "far.csv",
-            "--width",
-            "20",
-            "--piece-length",
-            "10",
-            "--out",
-            "o.png",
-        ],
-        &files,
-    );
+    let e = failure(&plain("chain.png", "far.csv"), &files);
     assert!(e.contains("invalid path") && e.contains("1e6"), "{e}");
 
     motif_io::write_png(&files.path("clear.png"), &RgbaImage::new(20, 10)).unwrap();
     motif_io::write_png(&files.path("solid.png"), &RgbaImage::filled(20, 10, [9, 9, 9, 255])).unwrap();
     for (file, words) in [("clear.png", "fully transparent"), ("solid.png", "fully opaque")] {
-        let e = failure(
-            &[
-                "curve",
-                "--exemplar",
-                file,
-                "--path",
-                "line.svg",
-                "--width",
-                "20",
-                "--piece-length",
-                "10",
-                "--out",
-                "o.png",
-            ],
-            &files,
-        );
+        let e = failure(&plain(file, "line.svg"), &files);
         assert!(e.contains(words), "{e}");
     }
 
@@ -309,41 +284,11 @@ fn bad_input_gives_clear_errors() {
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\"><path d=\"M 5 5 L 5 5\" stroke=\"black\"/></svg>",
     )
     .unwrap();
-    let e = failure(
-        &[
-            "curve",
-            "--exemplar",
-            "chain.png",
-            "--path",
-            "dot.svg",
-            "--width",
-            "20",
-            "--piece-length",
-            "10",
-            "--out",
-            "o.png",
-        ],
-        &files,
-    );
+    let e = failure(&plain("chain.png", "dot.svg"), &files);
     assert!(e.contains("zero length") || e.contains("no path"), "{e}");
 
     std::fs::write(files.path("nan.csv"), "x,y\n0,0\nNaN,4\n50,0\n").unwrap();
-    let e = failure(
-        &[
-            "curve",
-            "--exemplar",
-            "chain.png",
-            "--path",
-            "nan.csv",
-            "--width",
-            "20",
-            "--piece-length",
-            "10",
-            "--out",
-            "o.png",
-        ],
-        &files,
-    );
+    let e = failure(&plain("chain.png", "nan.csv"), &files);
     assert!(e.contains("finite"), "{e}");
 
     let e = failure(

@@ -23,28 +23,31 @@ fn test_cases() -> Vec<Value> {
     cases
 }
 
-/// Runs `motif curve` on a corpus exemplar and curve with extra flags; returns the report, the
-/// pieces document and stderr.
-fn run(exemplar: &str, path: &Path, width: &str, piece_length: &str, extra: &[&str]) -> (Value, Value, String) {
-    let dir = tempfile::tempdir().unwrap();
-    let exemplar = corpus(exemplar);
-    let mut args = vec![
+/// `motif curve` on `exemplar` along `path` with the given width and piece length, into `out.png`.
+fn curve_args<'a>(exemplar: &'a Path, path: &'a Path, width: &'a str, piece_length: &'a str) -> Vec<&'a str> {
+    let (exemplar, path) = (exemplar.to_str().unwrap(), path.to_str().unwrap());
+    vec![
         "curve",
         "--exemplar",
-        exemplar.to_str().unwrap(),
+        exemplar,
         "--path",
-        path.to_str().unwrap(),
+        path,
         "--width",
         width,
         "--piece-length",
         piece_length,
         "--out",
         "out.png",
-        "--pieces",
-        "pieces.json",
-        "--report",
-        "report.json",
-    ];
+    ]
+}
+
+/// Runs `motif curve` on a corpus exemplar and curve with extra flags; returns the report, the
+/// pieces document and stderr.
+fn run(exemplar: &str, path: &Path, width: &str, piece_length: &str, extra: &[&str]) -> (Value, Value, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = corpus(exemplar);
+    let mut args = curve_args(&exemplar, path, width, piece_length);
+    args.extend_from_slice(&["--pieces", "pieces.json", "--report", "report.json"]);
     args.extend_from_slice(extra);
     let output = motif(dir.path(), &args);
     let stderr = String::from_utf8_lossy(&output.stderr).to_string();
@@ -139,24 +142,9 @@ fn bad_values_of_the_new_flags_are_refused() {
         ("--width-profile", "0:20"),
         ("--pieces-shape", "wobbly"),
     ] {
-        let output = motif(
-            dir.path(),
-            &[
-                "curve",
-                "--exemplar",
-                exemplar.to_str().unwrap(),
-                "--path",
-                path.to_str().unwrap(),
-                "--width",
-                "60",
-                "--piece-length",
-                "20",
-                "--out",
-                "out.png",
-                flag,
-                value,
-            ],
-        );
+        let mut args = curve_args(&exemplar, &path, "60", "20");
+        args.extend_from_slice(&[flag, value]);
+        let output = motif(dir.path(), &args);
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(!output.status.success(), "{flag} {value} accepted");
         assert!(stderr.contains(flag.trim_start_matches("--")), "{flag} {value}: {stderr}");

@@ -190,6 +190,8 @@ fn descend(
     let pieces = empty.len();
     let closed = rule.closed;
     let mut moves = 0;
+    let mut current: Vec<Option<Position>> =
+        (0..pieces).map(|j| (!empty[j]).then(|| rows[j].positions[path[j]])).collect();
     for _ in 0..DESCENT_SWEEPS {
         let mut moved = false;
         for i in 0..pieces {
@@ -221,13 +223,12 @@ fn descend(
                 }
                 None => vec![0; candidates.len()],
             };
-            let current: Vec<Option<Position>> =
-                (0..pieces).map(|j| (!empty[j]).then(|| rows[j].positions[path[j]])).collect();
-            let penalty = &rule.penalties(&current)[i];
+            let penalty = rule.penalty(i, &current);
             let total = |u: usize| left_cost[u] + right_cost[u] + penalty.as_ref().map_or(0, |p| p.cost(candidates[u]));
             let best = (0..candidates.len()).min_by_key(|&u| (total(u), u)).expect("a valid position");
             if total(best) < total(path[i]) {
                 path[i] = best;
+                current[i] = Some(candidates[best]);
                 moves += 1;
                 moved = true;
             }

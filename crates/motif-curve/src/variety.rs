@@ -63,18 +63,20 @@ pub(crate) struct Rule {
 impl Rule {
     /// The penalty of each piece given the current `positions` (`None` for empty pieces, which
     /// copy nothing and are never charged).
+    #[cfg(test)]
     pub fn penalties(&self, positions: &[Option<Position>]) -> Vec<Option<Penalty>> {
+        (0..positions.len()).map(|i| self.penalty(i, positions)).collect()
+    }
+
+    /// The penalty of piece `i` given the current `positions` (`None` for an empty piece).
+    pub fn penalty(&self, i: usize, positions: &[Option<Position>]) -> Option<Penalty> {
+        positions[i]?;
         let count = positions.len();
-        (0..count)
-            .map(|i| {
-                positions[i]?;
-                let centres = (0..count)
-                    .filter(|&j| within(i, j, count, self.radius, self.closed))
-                    .filter_map(|j| positions[j])
-                    .collect();
-                Some(Penalty { weight: self.weight, centres, reach: self.reach })
-            })
-            .collect()
+        let centres = (0..count)
+            .filter(|&j| within(i, j, count, self.radius, self.closed))
+            .filter_map(|j| positions[j])
+            .collect();
+        Some(Penalty { weight: self.weight, centres, reach: self.reach })
     }
 
     /// Pairs of pieces at most `R` apart that repeat a window.

@@ -24,18 +24,9 @@ PYTHON="${PYTHON:-python3}"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 
-# A file of a Debian package: the installed one, else one unpacked from `apt-get download`.
-package_file() {
-  local package="$1" rel="$2"
-  if [ -f "/$rel" ]; then
-    echo "/$rel"
-    return
-  fi
-  if [ ! -d "$tmp/$package" ]; then
-    (cd "$tmp" && apt-get download "$package" >/dev/null 2>&1 && dpkg -x "$package"_*.deb "$package")
-  fi
-  echo "$tmp/$package/$rel"
-}
+# package_file PACKAGE PATH: a file of a Debian package (installed, or fetched into "$tmp").
+# shellcheck source=../package_file.sh
+source "$here/../package_file.sh"
 
 # 1. Exemplars: render each drawing with rsvg-convert at a fixed width (height from the aspect
 #    ratio), then exemplars.py rotates and crops it into a horizontal strip.

@@ -23,18 +23,9 @@ trap 'rm -rf "$tmp"' EXIT
 # 1. Point patterns of the R package spatstat.data.
 Rscript "$here/export.R" "$here" "$tmp/windows.tsv"
 
-# A file of a Debian package: the installed one, else one unpacked from `apt-get download`.
-package_file() {
-  local package="$1" rel="$2"
-  if [ -f "/$rel" ]; then
-    echo "/$rel"
-    return
-  fi
-  if [ ! -d "$tmp/$package" ]; then
-    (cd "$tmp" && apt-get download "$package" >/dev/null 2>&1 && dpkg -x "$package"_*.deb "$package")
-  fi
-  echo "$tmp/$package/$rel"
-}
+# package_file PACKAGE PATH: a file of a Debian package (installed, or fetched into "$tmp").
+# shellcheck source=../package_file.sh
+source "$here/../package_file.sh"
 
 # 2. The traced chain: openclipart's "Gold Chain of Round Links" (public domain).
 svg="$(package_file openclipart-svg \
