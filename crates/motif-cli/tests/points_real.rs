@@ -15,30 +15,42 @@ fn motif(dir: &Path, args: &[&str]) -> Output {
 
 /// Runs a corpus case and returns its report.
 fn run_case(file: &str, neighbourhood: &str, domain: &str, init: &str, seed: &str) -> serde_json::Value {
+    run_case_with(file, neighbourhood, domain, init, seed, &[]).0
+}
+
+/// Runs a corpus case with extra flags; returns its report and the output CSV.
+fn run_case_with(
+    file: &str,
+    neighbourhood: &str,
+    domain: &str,
+    init: &str,
+    seed: &str,
+    extra: &[&str],
+) -> (serde_json::Value, String) {
     let dir = tempfile::tempdir().unwrap();
     let exemplar = corpus(file);
-    let output = motif(
-        dir.path(),
-        &[
-            "--seed",
-            seed,
-            "points",
-            "--exemplar",
-            exemplar.to_str().unwrap(),
-            "--neighbourhood",
-            neighbourhood,
-            "--domain",
-            domain,
-            "--init",
-            init,
-            "--out",
-            "out.csv",
-            "--report",
-            "report.json",
-        ],
-    );
+    let mut args = vec![
+        "--seed",
+        seed,
+        "points",
+        "--exemplar",
+        exemplar.to_str().unwrap(),
+        "--neighbourhood",
+        neighbourhood,
+        "--domain",
+        domain,
+        "--init",
+        init,
+        "--out",
+        "out.csv",
+        "--report",
+        "report.json",
+    ];
+    args.extend_from_slice(extra);
+    let output = motif(dir.path(), &args);
     assert!(output.status.success(), "{file}: {}", String::from_utf8_lossy(&output.stderr));
-    motif_io::read_json(&dir.path().join("report.json")).unwrap()
+    let points = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
+    (motif_io::read_json(&dir.path().join("report.json")).unwrap(), points)
 }
 
 fn figure(report: &serde_json::Value, set: &str, distance: &str) -> f64 {
@@ -72,6 +84,55 @@ fn small_real_patterns_keep_their_density_and_beat_a_random_set() {
                 );
             }
         }
+    }
+}
+
+/// With the default refinement only the seams between patches move: the points copied into
+/// patch interiors come out exactly where the copies alone put them, and there are many of them.
+/// Moving every point leaves far fewer in place.
+#[test]
+fn patch_interiors_stay_as_copied() {
+    let case =
+        |refine: &str| run_case_with("swedishpines.csv", "32", "box:192,200", "patches", "3", &["--refine", refine]);
+    let (_, copies) = case("none");
+    let copied: std::collections::BTreeSet<&str> = copies.lines().skip(1).collect();
+    let (report, seams) = case("seams");
+    let interiors = report["patch_interior_points"].as_u64().unwrap() as usize;
+    let kept = seams.lines().skip(1).filter(|l| copied.contains(l)).count();
+    assert!(interiors >= copied.len() / 5, "{interiors} interior points of {}", copied.len());
+    assert!(kept >= interiors, "{kept} points in place, {interiors} interior points");
+    let (everywhere_report, everywhere) = case("everywhere");
+    assert_eq!(everywhere_report["patch_interior_points"].as_u64(), Some(0));
+    let moved_kept = everywhere.lines().skip(1).filter(|l| copied.contains(l)).count();
+    assert!(moved_kept < kept / 2, "{moved_kept} in place when every point moves, {kept} with seams only");
+}
+
+/// The observation window sets the exemplar's density; one that misses a point is refused.
+#[test]
+fn the_exemplar_window_sets_the_density_and_must_hold_every_point() {
+    let density = |extra: &[&str]| {
+        let (report, _) = run_case_with("swedishpines.csv", "32", "box:192,200", "patches", "1", extra);
+        report["expected_points"].as_f64().unwrap()
+    };
+    let window = density(&["--exemplar-window", "96,100"]);
+    assert!((window - 71.0 * 4.0).abs() < 3.0, "{window} expected points for 4 windows of 71 pines");
+    let corners = density(&["--exemplar-window", "0,0,96,100"]);
+    assert!((window - corners).abs() < 1e-9);
+    let dir = tempfile::tempdir().unwrap();
+    let exemplar = corpus("swedishpines.csv");
+    let exemplar = exemplar.to_str().unwrap();
+    for (window, expected) in [("50,50", "hold every exemplar point"), ("96,100,5", "3 values for a 2D exemplar")] {
+        let output = motif(
+            dir.path(),
+            &["points", "--exemplar", exemplar, "--neighbourhood", "32", "--domain", "box:192,200"]
+                .into_iter()
+                .chain(["--exemplar-window", window, "--out", "out.csv"])
+                .collect::<Vec<_>>(),
+        );
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{window}: {stderr}");
+        assert!(stderr.contains("exemplar-window") && stderr.contains(expected), "{window}: {stderr}");
+        assert!(!dir.path().join("out.csv").exists());
     }
 }
 

@@ -233,15 +233,17 @@ pub fn exemplar_window<const D: usize>(points: &[Vector<D>], spacing: f64) -> (V
     (std::array::from_fn(|a| low[a] - 0.5 * spacing), std::array::from_fn(|a| high[a] + 0.5 * spacing))
 }
 
-/// Compares `output` over `domain` with `exemplar`, and computes both baselines (seeded).
+/// Compares `output` over `domain` with `exemplar` observed in `window` (lower and upper
+/// corners, see [`exemplar_window`] for a default), and computes both baselines (seeded).
 pub fn compare<const D: usize>(
     exemplar: &[Vector<D>],
+    window: &(Vector<D>, Vector<D>),
     output: &[Vector<D>],
     domain: &Domain<'_, D>,
     spacing: f64,
     seed: u64,
 ) -> Fidelity {
-    let (low, high) = exemplar_window(exemplar, spacing);
+    let (low, high) = *window;
     let window_volume: f64 = (0..D).map(|a| high[a] - low[a]).product();
     let window_depth = |p: &Vector<D>| box_depth(p, &low, &high);
     let exemplar_statistics =
@@ -420,7 +422,7 @@ mod tests {
         let contains = |p: &Vector<2>| (0..2).all(|a| p[a] >= low[a] && p[a] < high[a]);
         let depth = |p: &Vector<2>| box_depth(p, &low, &high);
         let domain = Domain { contains: &contains, depth: &depth, low, high, volume: 2500.0 };
-        let fidelity = compare(&lattice, &lattice, &domain, 1.0, 7);
+        let fidelity = compare(&lattice, &exemplar_window(&lattice, 1.0), &lattice, &domain, 1.0, 7);
         assert!(fidelity.tiled.radial_distribution < 0.05, "{:?}", fidelity.tiled);
         assert!(fidelity.tiled.nearest_neighbour < 1e-9);
         assert!(fidelity.random.radial_distribution > 0.3);

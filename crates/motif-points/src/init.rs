@@ -5,8 +5,10 @@ use motif_core::SeedStreams;
 use motif_core::random::Rng;
 
 use crate::domain::Quadrature;
+use crate::grid::StaticGrid;
 use crate::linear::{self, Matrix, Vector};
 use crate::model::{Exemplar, Rigid, State};
+use crate::quilting::{Band, Tile};
 
 /// A random rotation (uniform angle in 2D; uniform axis and angle in 3D).
 fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
@@ -33,6 +35,7 @@ fn place<const D: usize>(
     scale: f64,
     extra: Option<Matrix<D>>,
     allowed: &dyn Fn(&Vector<D>) -> bool,
+    frozen: bool,
 ) -> usize {
     match exemplar.element_of[j] {
         None => {
@@ -40,7 +43,7 @@ fn place<const D: usize>(
             if !allowed(&x) {
                 return 0;
             }
-            state.add_free(x, exemplar.feature(j), false);
+            state.add_free(x, exemplar.feature(j), frozen);
             1
         }
         Some(element) => {
@@ -63,7 +66,7 @@ fn place<const D: usize>(
             for &p in &source.members {
                 features.extend_from_slice(exemplar.feature(p));
             }
-            state.add_rigid(Rigid { centre, rotation, body }, &features, 0, false);
+            state.add_rigid(Rigid { centre, rotation, body }, &features, 0, frozen);
             source.members.len()
         }
     }
@@ -106,8 +109,22 @@ pub fn random<const D: usize>(
             quadrature.scale[k],
             Some(extra),
             allowed,
+            false,
         );
     }
+}
+
+/// How patch initialization cuts and chooses its patches.
+#[derive(Debug, Clone, Copy)]
+pub struct PatchLayout {
+    /// Side of a patch (output units).
+    pub side: f64,
+    /// Width of the band around a patch where its candidates are judged.
+    pub band: f64,
+    /// Candidate sources judged per patch.
+    pub candidates: usize,
+    /// When set, points farther than this from every border of their patch are frozen.
+    pub seam: Option<f64>,
 }
 
 /// Patch initialization: the domain is tiled with cubes of side `patch`; each receives a copy of a
@@ -119,14 +136,15 @@ pub fn patches<const D: usize>(
     exemplar: &Exemplar<D>,
     quadrature: &Quadrature<D>,
     fill: &[usize],
-    patch: f64,
+    layout: PatchLayout,
     state: &mut State<D>,
     streams: &SeedStreams,
     allowed: &dyn Fn(&Vector<D>) -> bool,
-) -> Vec<Option<Vector<D>>> {
+) -> (Vec<Option<Vector<D>>>, usize) {
+    let PatchLayout { side: patch, band, candidates, seam } = layout;
     let mut sources = vec![None; quadrature.len()];
     if fill.is_empty() {
-        return sources;
+        return (sources, 0);
     }
     let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
     let (low, high) = crate::grid::bounds(&points);
@@ -147,6 +165,8 @@ pub fn patches<const D: usize>(
         representative[t].get_or_insert(k);
     }
     let extent: Vector<D> = std::array::from_fn(|a| exemplar.high[a] - exemplar.low[a]);
+    let exemplar_grid = StaticGrid::new(&exemplar.positions, exemplar.spacing);
+    let mut interiors = 0;
     // Per tile: (output centre, exemplar origin, representative quadrature point).
     let mut copies: Vec<Option<(Vector<D>, Vector<D>, usize)>> = vec![None; total];
     for (tile, k) in representative.iter().enumerate() {
@@ -160,11 +180,49 @@ pub fn patches<const D: usize>(
         });
         let s = quadrature.scale[k];
         let half = 0.5 * patch / s;
-        // A patch centre whose patch lies inside the exemplar where possible.
-        let origin: Vector<D> = std::array::from_fn(|a| {
-            let margin = half.min(0.5 * extent[a]);
-            exemplar.low[a] + margin + stream.random::<f64>() * (extent[a] - 2.0 * margin).max(0.0)
-        });
+        // Patch centres whose patch lies inside the exemplar where possible.
+        let mut candidate = || -> Vector<D> {
+            std::array::from_fn(|a| {
+                let margin = half.min(0.5 * extent[a]);
+                exemplar.low[a] + margin + stream.random::<f64>() * (extent[a] - 2.0 * margin).max(0.0)
+            })
+        };
+        let frame = Tile {
+            centre,
+            half: 0.5 * patch,
+            band,
+            inverse: &quadrature.inverse[k],
+            frame: &quadrature.transform[k],
+            scale: s,
+        };
+        let placed = Band::gather(&state.positions, &frame, exemplar.spacing * s);
+        let mut origin = candidate();
+        if !placed.is_empty() {
+            let filled = |x: &Vector<D>| {
+                let t = tile_of(x);
+                t != tile && copies[t].is_some() && allowed(x)
+            };
+            let judge = |o: &Vector<D>| {
+                placed.disagreement(
+                    &frame,
+                    o,
+                    &exemplar.positions,
+                    &exemplar_grid,
+                    &exemplar.low,
+                    &exemplar.high,
+                    exemplar.spacing,
+                    &filled,
+                )
+            };
+            let mut best = judge(&origin);
+            for _ in 1..candidates {
+                let other = candidate();
+                let score = judge(&other);
+                if score < best {
+                    (best, origin) = (score, other);
+                }
+            }
+        }
         copies[tile] = Some((centre, origin, k));
         for j in 0..exemplar.positions.len() {
             let anchor = match exemplar.element_of[j] {
@@ -181,7 +239,13 @@ pub fn patches<const D: usize>(
             if (0..D).any(|a| offset[a].abs() > half) {
                 continue;
             }
-            place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed);
+            let x = linear::add(&centre, &linear::mat_vec(&quadrature.transform[k], &offset));
+            let frozen = seam.is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * patch - seam));
+            let placed =
+                place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed, frozen);
+            if frozen {
+                interiors += placed;
+            }
         }
     }
     for &k in fill {
@@ -190,5 +254,5 @@ pub fn patches<const D: usize>(
             sources[k] = Some(linear::add(&origin, &linear::mat_vec(&quadrature.inverse[representative], &offset)));
         }
     }
-    sources
+    (sources, interiors)
 }

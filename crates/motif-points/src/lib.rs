@@ -53,6 +53,7 @@ mod pairs;
 mod params;
 pub mod points;
 mod quadratic;
+mod quilting;
 mod raster;
 mod reference;
 pub mod samples;
@@ -64,6 +65,8 @@ mod tests;
 #[cfg(test)]
 mod tests_attributes;
 
-pub use params::{Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Stroke, Window};
+pub use params::{
+    Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window,
+};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

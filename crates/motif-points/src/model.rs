@@ -147,6 +147,10 @@ pub struct Exemplar<const D: usize> {
     pub high: Vector<D>,
     /// Mean nearest-neighbour spacing.
     pub spacing: f64,
+    /// The observation window's corners (the given one, or the bounding box grown by one spacing
+    /// per axis).
+    pub window_low: Vector<D>,
+    pub window_high: Vector<D>,
 }
 
 impl<const D: usize> Exemplar<D> {
@@ -154,11 +158,9 @@ impl<const D: usize> Exemplar<D> {
         &self.features[i * self.channels..(i + 1) * self.channels]
     }
 
-    /// Points per unit volume.
+    /// Points per unit volume of the observation window.
     pub fn density(&self) -> f64 {
-        // Each point owns about a spacing-sized cell, so the bounding box is padded by one spacing
-        // (a 14 × 14 grid of spacing 1 has density 1, not 196/169).
-        let volume: f64 = (0..D).map(|a| self.high[a] - self.low[a] + self.spacing).product();
+        let volume: f64 = (0..D).map(|a| self.window_high[a] - self.window_low[a]).product();
         self.positions.len() as f64 / volume
     }
 }

@@ -12,7 +12,7 @@ use crate::fidelity::{self, Fidelity};
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
-use crate::params::{Error, Initialization, Input, Params};
+use crate::params::{Error, Initialization, Input, Params, Refinement};
 use crate::{PointSet, init, sampling};
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
@@ -47,6 +47,8 @@ pub(crate) struct Setup<const D: usize> {
     pub has_elements: bool,
     /// Points the exemplar's density asks for over the quadrature domain.
     pub expected_points: f64,
+    /// Points initialized in patch interiors and kept as copied (see `Refinement::Seams`).
+    pub patch_interiors: usize,
 }
 
 fn vector<const D: usize>(values: &[f64]) -> Vector<D> {
@@ -172,7 +174,14 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
     let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
     let (low, high) = crate::grid::bounds(&positions);
-    let exemplar = Exemplar { positions, features, channels, element_of, elements, low, high, spacing };
+    // Without a given window, each point owns about a spacing-sized cell, so the bounding box is
+    // padded by half a spacing per side (a 14 × 14 grid of spacing 1 has density 1, not 196/169).
+    let (window_low, window_high) = match &params.exemplar_window {
+        Some((l, h)) => (vector(l), vector(h)),
+        None => fidelity::exemplar_window(&positions, spacing),
+    };
+    let exemplar =
+        Exemplar { positions, features, channels, element_of, elements, low, high, spacing, window_low, window_high };
     // Domain and quadrature.
     let domain = params.domain.as_ref().ok_or_else(|| Error::EmptyDomain("no domain given".into()))?;
     let region = Region::<D>::new(domain).map_err(Error::EmptyDomain)?;
@@ -279,6 +288,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         margin,
         has_elements,
         expected_points: expected,
+        patch_interiors: 0,
     })
 }
 
@@ -306,10 +316,18 @@ impl<const D: usize> Setup<D> {
                 let extent = (0..D).map(|a| self.exemplar.high[a] - self.exemplar.low[a]).fold(f64::INFINITY, f64::min);
                 let s_min = self.quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
                 let patch = (params.patch_size * self.delta).min(0.7 * extent * s_min).max(3.0 * self.sigma);
-                let sources =
-                    init::patches(&self.exemplar, &self.quadrature, &self.fill, patch, &mut state, streams, &allowed);
-                // Points outside every copied tile start from the exemplar's centre; the searched
-                // match replaces it at the first matching.
+                // Candidates are judged on a band of δ (at most a third of the patch) around it;
+                // interiors stay as copied: points farther than half a band from every border.
+                let band = self.delta.min(patch / 3.0);
+                let layout = init::PatchLayout {
+                    side: patch,
+                    band,
+                    candidates: params.patch_candidates,
+                    seam: (params.refinement == Refinement::Seams).then_some(0.5 * band),
+                };
+                let (sources, interiors) =
+                    init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);
+                self.patch_interiors = interiors;
                 let centre = std::array::from_fn(|a| 0.5 * (self.exemplar.low[a] + self.exemplar.high[a]));
                 sources.into_iter().map(|m| m.unwrap_or(centre)).collect()
             }
@@ -342,9 +360,11 @@ impl<const D: usize> Setup<D> {
 /// the count the exemplar's density asks for over the quadrature domain (which, in a progressive
 /// synthesis, is the new region and the band of existing points that may move) ± `tolerance`.
 pub(crate) fn count_bounds<const D: usize>(setup: &Setup<D>, tolerance: f64) -> sampling::CountBounds {
+    // Patch interiors lie inside the domain and count towards its density, but are not movable.
+    let fixed = setup.patch_interiors;
     sampling::CountBounds {
-        least: ((1.0 - tolerance) * setup.expected_points).ceil() as usize,
-        most: ((1.0 + tolerance) * setup.expected_points).floor() as usize,
+        least: (((1.0 - tolerance) * setup.expected_points).ceil() as usize).saturating_sub(fixed),
+        most: (((1.0 + tolerance) * setup.expected_points).floor() as usize).saturating_sub(fixed),
     }
 }
 
@@ -363,7 +383,8 @@ pub(crate) fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vecto
         high,
         volume,
     };
-    fidelity::compare(&exemplar, output, &domain, setup.exemplar.spacing * scale, seed)
+    let window = (linear::scale(&setup.exemplar.window_low, scale), linear::scale(&setup.exemplar.window_high, scale));
+    fidelity::compare(&exemplar, &window, output, &domain, setup.exemplar.spacing * scale, seed)
 }
 
 pub(crate) fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet {

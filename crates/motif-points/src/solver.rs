@@ -1,9 +1,9 @@
 //! Algorithm 1, the multi-scale local–global solver (§5.1): validation, the loop over window sizes,
 //! the report; and single evaluations of T for benchmarks.
 
-use motif_core::error::{check_count, check_positive, check_range};
+use motif_core::error::{check_count, check_positive, check_range, number};
 use motif_core::timing::Clock;
-use motif_core::{Progress, SeedStreams, StageTimer};
+use motif_core::{InvalidParameter, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
 use crate::energy::{Evaluation, Problem};
@@ -12,7 +12,7 @@ use crate::linear::Vector;
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::merging::{self, MergeSettings};
 use crate::model::State;
-use crate::params::{Error, Evaluator, Input, Params};
+use crate::params::{Error, Evaluator, Input, Params, Refinement};
 use crate::setup::{Setup, count_bounds, measure_fidelity, prepare, to_point_set};
 use crate::{PointSet, reference, sampling};
 
@@ -70,6 +70,8 @@ pub struct Report {
     pub final_energy: f64,
     /// Points that were kept fixed (progressive synthesis).
     pub fixed_points: usize,
+    /// Points copied into patch interiors and kept as copied ([`Refinement::Seams`]).
+    pub patch_interior_points: usize,
     /// Structure fidelity on the interior.
     pub fidelity: Fidelity,
     /// Milliseconds per stage.
@@ -141,12 +143,43 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     check_range("sampling-threshold", params.sampling_threshold, 0.05, 10.0)?;
     check_range("count-tolerance", params.count_tolerance, 0.01, 1.0)?;
     check_range("patch-size", params.patch_size, 1.0, 20.0)?;
+    check_count("patch-candidates", params.patch_candidates, 1, 256)?;
+    if let Some((low, high)) = &params.exemplar_window {
+        check_exemplar_window(exemplar, low, high)?;
+    }
     check_range("attribute-weight", params.attribute_weight, 1e-6, 100.0)?;
     if let Some(margin) = params.keep_margin {
         check_range("keep-margin", margin, 0.0, f64::MAX)?;
     }
     if params.domain.is_none() {
         return Err(Error::EmptyDomain("no domain given (a box, a polygon region or a brush stroke)".into()));
+    }
+    Ok(())
+}
+
+/// The window must have one lower and one upper value per axis, be finite and hold every point.
+fn check_exemplar_window(exemplar: &PointSet, low: &[f64], high: &[f64]) -> Result<(), Error> {
+    let d = exemplar.dimension;
+    let shown = || {
+        let corner = |c: &[f64]| c.iter().map(|&v| number(v)).collect::<Vec<_>>().join(",");
+        format!("{} to {}", corner(low), corner(high))
+    };
+    let invalid = |allowed: String| Error::Parameter(InvalidParameter::new("exemplar-window", shown(), allowed));
+    if low.len() != d || high.len() != d {
+        return Err(invalid(format!("the exemplar is {d}D: it needs {d} lower and {d} upper values")));
+    }
+    if let Some(a) = (0..d).find(|&a| !(low[a].is_finite() && high[a].is_finite() && low[a] < high[a])) {
+        return Err(invalid(format!("axis {a} needs finite values, the lower below the upper")));
+    }
+    for i in 0..exemplar.len() {
+        let p = exemplar.position(i);
+        if let Some(a) = (0..d).find(|&a| p[a] < low[a] || p[a] > high[a]) {
+            return Err(invalid(format!(
+                "it must hold every exemplar point; point {} is at {} on axis {a}",
+                i + 1,
+                number(p[a])
+            )));
+        }
     }
     Ok(())
 }
@@ -216,10 +249,12 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
 
     let mut final_energy = f64::NAN;
     let mut done = 0;
-    let mut state = std::mem::take(&mut setup.state);
     let bounds = count_bounds(&setup, params.count_tolerance);
+    let mut state = std::mem::take(&mut setup.state);
     let mut fields: Option<SearchFields<D>> = None;
-    for (scale, &delta) in deltas.iter().enumerate() {
+    // Copies only: the quilted patches are the result.
+    let optimized = if params.refinement == Refinement::None { 0 } else { deltas.len() };
+    for (scale, &delta) in deltas.iter().enumerate().take(optimized) {
         let problem = setup.problem(delta, params);
         timer.start("matching");
         let fields = match &mut fields {
@@ -288,7 +323,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     timer.start("fidelity");
     let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
     let points = to_point_set(&setup, &state);
-    let fixed_points = state.units.iter().filter(|u| u.frozen).map(|u| u.points.len()).sum();
+    let frozen: usize = state.units.iter().filter(|u| u.frozen).map(|u| u.points.len()).sum();
+    let fixed_points = frozen - setup.patch_interiors;
     let stages_ms = timer.finish();
     Ok(Output {
         points,
@@ -314,6 +350,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             energy: energies,
             final_energy,
             fixed_points,
+            patch_interior_points: setup.patch_interiors,
             fidelity,
             stages_ms,
         },

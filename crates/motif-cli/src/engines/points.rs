@@ -8,7 +8,9 @@ use clap::{Args, ValueEnum};
 use motif_core::{Polygon, Polyline};
 use motif_io::{Column, ColumnKind, PointFormat, PointTable};
 use motif_points::samples::{hex_exemplar, lattice_exemplar, leaf_exemplar};
-use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Stroke, Window};
+use motif_points::{
+    Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, Stroke, Window,
+};
 use serde_json::Value;
 
 use crate::context::Context;
@@ -21,6 +23,17 @@ pub enum InitArg {
     Random,
     /// Copies of random exemplar patches tiled over the domain.
     Patches,
+}
+
+/// Which points the optimization moves after a patch initialization.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RefineArg {
+    /// Only points near the patches' borders (the seams); interiors stay as copied.
+    Seams,
+    /// Every point (the paper's solver).
+    Everywhere,
+    /// None: the quilted patches are the output (the count is not controlled).
+    None,
 }
 
 /// Window shape (§4.3).
@@ -75,6 +88,21 @@ pub struct PointsArgs {
     /// exemplar's smallest side).
     #[arg(long, value_name = "F", default_value_t = 6.0)]
     pub patch_size: f64,
+    /// Candidate sources judged for each patch (1–256): the one whose surroundings agree best with
+    /// the points already placed around the patch is copied. 1 copies a random source.
+    #[arg(long, value_name = "N", default_value_t = 48)]
+    pub patch_candidates: usize,
+    /// Which points the optimization moves after a patch initialization: the seams between patches
+    /// (default; on real exemplars moving the copies' interiors lowered fidelity), every point, or
+    /// none (the patches are the output).
+    #[arg(long, value_enum, default_value = "seams")]
+    pub refine: RefineArg,
+    /// The window the exemplar was observed in: `W,H[,D]` from the origin, or its corners
+    /// `X0,Y0,X1,Y1` (`X0,Y0,Z0,X1,Y1,Z1` in 3D). It must hold every point. The exemplar's density
+    /// is its count over this window; without it, the bounding box grown by one mean spacing per
+    /// axis (right for lattices, too dense for sparse irregular patterns).
+    #[arg(long, value_name = "W,H[,D]", value_delimiter = ',', num_args = 1..)]
+    pub exemplar_window: Option<Vec<f64>>,
     /// Attributes to synthesize, comma-separated (default: every float column other than x, y, z,
     /// element, plus integer columns).
     #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
@@ -212,6 +240,21 @@ pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
     PointTable { columns, rows: set.len(), values }
 }
 
+/// `--exemplar-window`: sizes from the origin (one per axis) or both corners (two per axis).
+fn exemplar_window(values: &[f64], dimension: usize) -> anyhow::Result<(Vec<f64>, Vec<f64>)> {
+    if values.len() == dimension {
+        Ok((vec![0.0; dimension], values.to_vec()))
+    } else if values.len() == 2 * dimension {
+        Ok((values[..dimension].to_vec(), values[dimension..].to_vec()))
+    } else {
+        bail!(
+            "--exemplar-window: {} values for a {dimension}D exemplar; give {dimension} sizes or {} corner values",
+            values.len(),
+            2 * dimension
+        )
+    }
+}
+
 fn parse_box(spec: &str) -> anyhow::Result<Domain> {
     let sizes: Vec<f64> = spec
         .split(',')
@@ -337,6 +380,15 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     params.attributes = args.attributes.clone();
     params.discrete_attributes = discrete;
     params.patch_size = args.patch_size;
+    params.patch_candidates = args.patch_candidates;
+    params.refinement = match args.refine {
+        RefineArg::Seams => Refinement::Seams,
+        RefineArg::Everywhere => Refinement::Everywhere,
+        RefineArg::None => Refinement::None,
+    };
+    if let Some(values) = &args.exemplar_window {
+        params.exemplar_window = Some(exemplar_window(values, exemplar.dimension)?);
+    }
     params.continuous_attributes = args.continuous.clone();
     params.attribute_weights = args
         .attribute_weight
@@ -400,6 +452,7 @@ fn record_figures(context: &mut Context, output: &Output) {
     context.figure("initial_points", report.initial_points);
     context.figure("output_points", report.final_points);
     context.figure("fixed_points", report.fixed_points);
+    context.figure("patch_interior_points", report.patch_interior_points);
     context.figure("sigma", report.sigma);
     context.figure("neighbourhood", report.neighbourhood);
     context.figure("quadrature_points", report.quadrature_points);

@@ -20,6 +20,8 @@ pub struct CorpusCase {
     pub kind: String,
     pub neighbourhood: f64,
     pub domain: Vec<f64>,
+    /// The observation window's size (from the origin): the exemplar's density is its count over it.
+    pub window: Vec<f64>,
     #[serde(rename = "use")]
     pub purpose: String,
 }
@@ -35,6 +37,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     params.neighbourhood = Some(case.neighbourhood);
     params.domain = Some(Domain::Box { min: vec![0.0; case.domain.len()], max: case.domain.clone() });
     params.discrete_attributes = discrete;
+    params.exemplar_window = Some((vec![0.0; case.window.len()], case.window.clone()));
     params.seed = seed;
     let input = Input { exemplar, existing: None };
     let start = std::time::Instant::now();
