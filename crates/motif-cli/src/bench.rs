@@ -2,19 +2,21 @@
 //!
 //! This is the single entry point for performance figures; tests never time anything.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::Args;
 use serde_json::{Value, json};
 
-use crate::GlobalArgs;
-use crate::engines::ENGINE_NAMES;
+use crate::options::GlobalArgs;
+use crate::registry::Engine;
+use crate::suite::Bench;
 
 /// Options of `motif bench`.
 #[derive(Args, Debug)]
 pub struct BenchArgs {
     /// Run only this engine (repeat for several): curve, stylize, points or strokes.
-    #[arg(long = "engine", value_name = "NAME", value_parser = clap::builder::PossibleValuesParser::new(ENGINE_NAMES))]
+    #[arg(long = "engine", value_name = "NAME")]
     pub engines: Vec<String>,
     /// Tiny workloads that finish in seconds (for smoke tests; the figures are not comparable).
     #[arg(long)]
@@ -30,51 +32,21 @@ pub struct BenchArgs {
     pub out: Option<PathBuf>,
 }
 
-/// What an engine's benchmark gets.
-pub struct Bench {
-    /// Seed of the generated workloads.
-    pub seed: u64,
-    /// True for tiny workloads (smoke tests).
-    pub quick: bool,
-    /// Worker threads in use.
-    pub threads: usize,
-    /// Cases named with `--case` (empty: all).
-    pub cases: Vec<String>,
-}
-
-impl Bench {
-    /// True when case `name` of group `group` (`corpus` or `generated`) should run: no `--case`
-    /// given, or the name or its group named.
-    pub fn selects(&self, name: &str, group: &str) -> bool {
-        self.cases.is_empty() || self.names(name) || self.names(group)
+/// Runs `motif bench` over `engines` (those named with `--engine`, or all) and prints the figures
+/// on stdout.
+pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize, engines: &[&dyn Engine]) -> anyhow::Result<()> {
+    let known: Vec<&str> = engines.iter().map(|engine| engine.name()).collect();
+    if let Some(unknown) = args.engines.iter().find(|name| !known.contains(&name.as_str())) {
+        anyhow::bail!("--engine {unknown}: there is no such engine; one of {}", known.join(", "));
     }
-
-    /// True when case `name` was named with `--case` (slow cases run only then).
-    pub fn names(&self, name: &str) -> bool {
-        self.cases.iter().any(|c| c == name)
-    }
-}
-
-/// The real-data corpus folder of `engine` in this source tree (`data/real/<engine>/`; the bench
-/// is a developer's tool run from a checkout).
-pub fn corpus_folder(engine: &str) -> PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real").join(engine)
-}
-
-/// The cases of a corpus manifest (`cases.json` in `folder`).
-pub fn read_cases<T: serde::de::DeserializeOwned>(folder: &std::path::Path) -> anyhow::Result<Vec<T>> {
-    use anyhow::Context as _;
-    let path = folder.join("cases.json");
-    let value: Value = motif_io::read_json(&path)?;
-    serde_json::from_value(value).with_context(|| format!("{}: not a list of corpus cases", path.display()))
-}
-
-/// Runs `motif bench` and prints the figures on stdout.
-#[allow(clippy::print_stdout)]
-pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let bench = Bench { seed: global.seed, quick: args.quick, threads, cases: args.cases.clone() };
     let start = std::time::Instant::now();
-    let engines = crate::engines::benches(&bench, &args.engines)?;
+    let mut figures_by_engine = serde_json::Map::new();
+    for engine in engines {
+        if args.engines.is_empty() || args.engines.iter().any(|wanted| wanted == engine.name()) {
+            figures_by_engine.insert(engine.name().to_string(), engine.bench(&bench)?);
+        }
+    }
     let figures = json!({
         "motif_version": env!("CARGO_PKG_VERSION"),
         "seed": global.seed,
@@ -83,9 +55,14 @@ pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize) -> anyhow::Res
         "cases": args.cases,
         "profile": if cfg!(debug_assertions) { "debug" } else { "release" },
         "total_s": start.elapsed().as_secs_f64(),
-        "engines": Value::Object(engines),
+        "engines": Value::Object(figures_by_engine),
     });
-    println!("{}", serde_json::to_string_pretty(&figures)?);
+    // A reader that stops early (`motif bench | head`) is not an error of the bench.
+    let text = serde_json::to_string_pretty(&figures)?;
+    match writeln!(std::io::stdout().lock(), "{text}") {
+        Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => return Err(error.into()),
+        _ => {}
+    }
     for path in args.out.iter().chain(&global.report) {
         motif_io::write_json(path, &figures)?;
     }

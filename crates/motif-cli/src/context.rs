@@ -3,13 +3,11 @@
 use std::io::IsTerminal;
 use std::path::Path;
 
-use anyhow::{Context as _, bail};
+use anyhow::bail;
 use motif_core::Progress;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
-use crate::GlobalArgs;
-use crate::engines::EngineCommand;
 use crate::progress::CliProgress;
 
 /// The environment of one engine run: seed, threads, progress and the figures for the report.
@@ -146,42 +144,4 @@ pub fn check_writable(output: &Path) -> anyhow::Result<()> {
 /// `(stage, milliseconds)` pairs as a JSON object, in order.
 pub fn stages_object(stages: &[(String, f64)]) -> Value {
     Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect())
-}
-
-/// Runs an engine subcommand and writes `--report` if asked.
-pub fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
-    let start = std::time::Instant::now();
-    let mut context = Context::new(global.seed, threads, global.quiet).with_report(global.report.as_deref());
-    // The run's outputs appear together, and only if the whole run succeeded: a failure part-way
-    // leaves every previous file as it was.
-    motif_io::begin_outputs();
-    let mut result = command.run(&mut context);
-    if result.is_ok() {
-        result = motif_io::commit_outputs().map_err(anyhow::Error::from);
-    } else {
-        motif_io::discard_outputs();
-    }
-    let mut report = Map::new();
-    report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
-    report.insert("command".into(), Value::from(command.name()));
-    report.insert("arguments".into(), Value::from(std::env::args().skip(1).collect::<Vec<_>>()));
-    report.insert("seed".into(), Value::from(global.seed));
-    report.insert("threads".into(), Value::from(threads));
-    report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
-    if let Err(error) = &result {
-        report.insert("error".into(), Value::from(format!("{error:#}")));
-    }
-    report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
-    // A report that would replace an input or an output, or that cannot be written, is not
-    // written (the run has already failed for it); a failed run keeps its own error.
-    let report_path =
-        global.report.as_deref().filter(|path| !context.is_input_or_output(path) && check_writable(path).is_ok());
-    report.extend(context.into_figures());
-    if let Some(path) = report_path {
-        let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");
-        if result.is_ok() {
-            written?;
-        }
-    }
-    result
 }

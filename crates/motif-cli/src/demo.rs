@@ -1,19 +1,14 @@
-//! `motif demo`: every engine on built-in examples, and an HTML gallery of the results.
-//!
-//! Each engine's `demo` function writes its generated inputs into the demo folder and then calls
-//! [`Demo::case`] with the exact arguments of a `motif` command. The case runs in-process through
-//! the same code path as the command line, so the command shown in the gallery is the command
-//! that made the output.
+//! `motif demo`: every engine of the registry on its built-in examples, and an HTML gallery of
+//! the results (see [`crate::gallery`]).
 
-use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{Context as _, bail};
-use clap::{Args, Parser};
-use serde_json::{Map, Value};
+use anyhow::Context as _;
+use clap::Args;
 
-use crate::context::Context;
-use crate::{Cli, Command, GlobalArgs};
+use crate::gallery::{Demo, Runner};
+use crate::options::GlobalArgs;
+use crate::registry::Engine;
 
 /// Options of `motif demo`.
 #[derive(Args, Debug)]
@@ -24,268 +19,36 @@ pub struct DemoArgs {
     pub out: PathBuf,
 }
 
-/// One built-in example: the files it reads and writes and the arguments of its command.
-#[derive(Debug, Clone)]
-pub struct DemoCase {
-    /// A short title for the gallery.
-    pub title: String,
-    /// One or two sentences: what the example shows.
-    pub description: String,
-    /// `(label, file name)` of each input, relative to the demo folder.
-    pub inputs: Vec<(String, String)>,
-    /// `(label, file name)` of each output, relative to the demo folder.
-    pub outputs: Vec<(String, String)>,
-    /// The command's arguments after `motif` (file arguments are plain names in the demo folder).
-    pub args: Vec<String>,
-}
-
-struct CaseRecord {
-    case: DemoCase,
-    figures: Map<String, Value>,
-    ms: f64,
-}
-
-/// The demo folder and the cases run so far.
-pub struct Demo {
-    dir: PathBuf,
-    seed: u64,
-    threads: usize,
-    quiet: bool,
-    records: Vec<CaseRecord>,
-}
-
-impl Demo {
-    /// The path of `name` inside the demo folder.
-    pub fn path(&self, name: &str) -> PathBuf {
-        self.dir.join(name)
-    }
-
-    /// Runs `case` in-process and adds it to the gallery.
-    #[allow(clippy::print_stderr)]
-    pub fn case(&mut self, case: DemoCase) -> anyhow::Result<()> {
-        let listed: Vec<&str> = case.inputs.iter().chain(&case.outputs).map(|(_, file)| file.as_str()).collect();
-        let resolved: Vec<String> = case
-            .args
-            .iter()
-            .map(|arg| {
-                let is_file = !arg.starts_with('-')
-                    && (listed.contains(&arg.as_str()) || self.dir.join(arg).exists() || looks_like_file_name(arg));
-                if is_file { self.dir.join(arg).to_string_lossy().into_owned() } else { arg.clone() }
-            })
-            .collect();
-        let cli = Cli::try_parse_from(std::iter::once("motif".to_string()).chain(resolved))
-            .with_context(|| format!("demo case `{}` has invalid arguments", case.title))?;
-        let Command::Engine(command) = &cli.command else { bail!("demo case `{}` must run an engine", case.title) };
-        let start = std::time::Instant::now();
-        let mut context = Context::new(self.seed, self.threads, true);
-        command.run(&mut context).with_context(|| format!("demo case `{}` failed", case.title))?;
-        let ms = start.elapsed().as_secs_f64() * 1000.0;
-        if !self.quiet {
-            eprintln!("  {:<48} {:>8.0} ms", case.title, ms);
-        }
-        // Show the command as run inside the demo folder, whichever way the engine spelled paths.
-        let prefix = format!("{}{}", self.dir.display(), std::path::MAIN_SEPARATOR);
-        let mut case = case;
-        for arg in &mut case.args {
-            if let Some(relative) = arg.strip_prefix(&prefix) {
-                *arg = relative.to_string();
-            }
-        }
-        self.records.push(CaseRecord { case, figures: context.into_figures(), ms });
-        Ok(())
-    }
-}
-
-/// A plain relative file name with an extension motif reads or writes (so an output that no case
-/// lists still lands in the demo folder, never in the working directory).
-fn looks_like_file_name(arg: &str) -> bool {
-    let path = Path::new(arg);
-    path.is_relative()
-        && path.extension().and_then(|e| e.to_str()).is_some_and(|extension| {
-            ["png", "jpg", "jpeg", "svg", "json", "ply", "csv"].contains(&extension.to_ascii_lowercase().as_str())
-        })
-}
-
-/// Runs `motif demo`.
+/// Runs `motif demo`: every engine's cases, each through `runner`.
 #[allow(clippy::print_stderr)]
-pub fn run(args: &DemoArgs, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
+pub fn run(
+    args: &DemoArgs,
+    global: &GlobalArgs,
+    threads: usize,
+    engines: &[&dyn Engine],
+    runner: Runner<'_>,
+) -> anyhow::Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the demo folder {}", args.out.display()))?;
-    let mut demo = Demo { dir: args.out.clone(), seed: global.seed, threads, quiet: global.quiet, records: Vec::new() };
+    let mut demo = Demo::new(args.out.clone(), global.seed, threads, global.quiet, runner);
     let start = std::time::Instant::now();
     if !global.quiet {
         eprintln!("motif demo: writing into {}", args.out.display());
     }
-    crate::engines::demos(&mut demo)?;
+    for engine in engines {
+        engine.demo(&mut demo)?;
+    }
     let total_ms = start.elapsed().as_secs_f64() * 1000.0;
-    let html = gallery(&demo.records, global.seed, total_ms);
+    let (html, figures) = demo.finish(total_ms);
     let index = args.out.join("index.html");
     motif_io::write_text(&index, &html)?;
-    let figures: Map<String, Value> = demo
-        .records
-        .iter()
-        .map(|record| {
-            let mut entry = record.figures.clone();
-            entry.insert("command".into(), Value::from(command_line(&record.case.args)));
-            entry.insert("case_ms".into(), Value::from(record.ms));
-            (record.case.title.clone(), Value::Object(entry))
-        })
-        .collect();
     let report = serde_json::json!({ "command": "demo", "seed": global.seed, "threads": threads, "total_ms": total_ms, "cases": figures });
     motif_io::write_json(&args.out.join("demo-report.json"), &report)?;
     if let Some(path) = &global.report {
         motif_io::write_json(path, &report)?;
     }
     if !global.quiet {
-        eprintln!("motif demo: {} cases in {:.1} s; open {}", demo.records.len(), total_ms / 1000.0, index.display());
+        eprintln!("motif demo: {} cases in {:.1} s; open {}", demo.len(), total_ms / 1000.0, index.display());
     }
     Ok(())
-}
-
-/// The command as a person would type it, quoting arguments that need it.
-pub fn command_line(args: &[String]) -> String {
-    let quoted = args.iter().map(|arg| {
-        if arg.is_empty() || arg.contains(|c: char| c.is_whitespace() || "'\"$;&|<>()*?".contains(c)) {
-            format!("'{}'", arg.replace('\'', "'\\''"))
-        } else {
-            arg.clone()
-        }
-    });
-    std::iter::once("motif".to_string()).chain(quoted).collect::<Vec<_>>().join(" ")
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
-
-fn figure_text(value: &Value) -> String {
-    match value {
-        Value::Number(number) => match number.as_f64() {
-            Some(x) if number.is_f64() => {
-                if x.abs() >= 100.0 {
-                    format!("{x:.0}")
-                } else {
-                    format!("{x:.4}")
-                }
-            }
-            _ => number.to_string(),
-        },
-        Value::String(text) => text.clone(),
-        other => {
-            let text = other.to_string();
-            if text.len() > 240 {
-                format!("{}…", &text[..text.char_indices().nth(240).map_or(text.len(), |(i, _)| i)])
-            } else {
-                text
-            }
-        }
-    }
-}
-
-fn file_cell(label: &str, file: &str) -> String {
-    let lower = file.to_ascii_lowercase();
-    let shown = if [".png", ".svg", ".jpg", ".jpeg"].iter().any(|ext| lower.ends_with(ext)) {
-        format!("<a href=\"{0}\"><img src=\"{0}\" alt=\"{1}\"></a>", escape(file), escape(label))
-    } else {
-        format!("<a class=\"file\" href=\"{0}\">{0}</a>", escape(file))
-    };
-    format!("<figure>{shown}<figcaption>{} <code>{}</code></figcaption></figure>", escape(label), escape(file))
-}
-
-fn gallery(records: &[CaseRecord], seed: u64, total_ms: f64) -> String {
-    let mut html = String::new();
-    html.push_str(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>motif demo</title>\n<style>\n\
-         body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1200px;color:#222;background:#fafafa}\n\
-         section{background:#fff;border:1px solid #ddd;border-radius:8px;padding:1em 1.5em;margin:1.5em 0}\n\
-         .row{display:flex;flex-wrap:wrap;gap:1.5em;align-items:flex-start}\n\
-         figure{margin:0}figure img{max-width:520px;max-height:420px;border:1px solid #ccc;\
-         background:repeating-conic-gradient(#eee 0 25%,#fff 0 50%) 50%/16px 16px}\n\
-         figcaption{font-size:.85em;color:#555}pre{background:#f3f3f3;padding:.6em;overflow-x:auto;white-space:pre-wrap}\n\
-         table{border-collapse:collapse;font-size:.85em}td{border-top:1px solid #eee;padding:2px 8px;vertical-align:top}\n\
-         h3{font-size:.95em;margin:.8em 0 .3em}\n</style></head><body>\n",
-    );
-    let _ = writeln!(
-        html,
-        "<h1>motif demo</h1><p>{} examples, seed {seed}, {:.1} s in all. Each output was made by the command shown, \
-         run in this folder.</p>",
-        records.len(),
-        total_ms / 1000.0
-    );
-    for record in records {
-        let case = &record.case;
-        let _ = writeln!(html, "<section><h2>{}</h2><p>{}</p>", escape(&case.title), escape(&case.description));
-        let _ = writeln!(html, "<pre>{}</pre>", escape(&command_line(&case.args)));
-        html.push_str("<div class=\"row\"><div><h3>input</h3><div class=\"row\">");
-        for (label, file) in &case.inputs {
-            html.push_str(&file_cell(label, file));
-        }
-        html.push_str("</div></div><div><h3>output</h3><div class=\"row\">");
-        for (label, file) in &case.outputs {
-            html.push_str(&file_cell(label, file));
-        }
-        html.push_str("</div></div></div>\n<h3>figures</h3><table>");
-        let _ = write!(html, "<tr><td>case_ms</td><td>{:.0}</td></tr>", record.ms);
-        for (key, value) in &record.figures {
-            let _ = write!(html, "<tr><td>{}</td><td>{}</td></tr>", escape(key), escape(&figure_text(value)));
-        }
-        html.push_str("</table></section>\n");
-    }
-    html.push_str("</body></html>\n");
-    html
-}
-
-/// Exposed for engine demos that need the folder itself.
-impl Demo {
-    /// The run's seed.
-    pub fn seed(&self) -> u64 {
-        self.seed
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn file_names_are_told_from_other_arguments() {
-        assert!(looks_like_file_name("out.svg") && looks_like_file_name("a.PNG"));
-        assert!(
-            !looks_like_file_name("0.8,1.3")
-                && !looks_like_file_name("box:14,10")
-                && !looks_like_file_name("/tmp/x.png")
-        );
-    }
-
-    #[test]
-    fn command_lines_quote_what_a_shell_would_split() {
-        let args: Vec<String> = ["curve", "--out", "my file.png", "--pin-first", "3,4"].map(String::from).to_vec();
-        assert_eq!(command_line(&args), "motif curve --out 'my file.png' --pin-first 3,4");
-    }
-
-    #[test]
-    fn gallery_shows_images_commands_and_figures() {
-        let case = DemoCase {
-            title: "A <case>".into(),
-            description: "d".into(),
-            inputs: vec![("exemplar".into(), "in.png".into())],
-            outputs: vec![("points".into(), "out.ply".into())],
-            args: vec!["curve".into()],
-        };
-        let mut figures = Map::new();
-        figures.insert("total_cost".into(), Value::from(12.5));
-        let html = gallery(&[CaseRecord { case, figures, ms: 3.0 }], 1, 10.0);
-        assert!(html.contains("<img src=\"in.png\""));
-        assert!(html.contains("href=\"out.ply\""));
-        assert!(html.contains("A &lt;case&gt;"));
-        assert!(html.contains("<td>total_cost</td><td>12.5000</td>"));
-        assert!(html.contains("<pre>motif curve</pre>"));
-    }
-
-    #[test]
-    fn figures_are_formatted_for_people() {
-        assert_eq!(figure_text(&Value::from(1234.567)), "1235");
-        assert_eq!(figure_text(&Value::from(7)), "7");
-        assert_eq!(figure_text(&serde_json::json!({"a": 1})), "{\"a\":1}");
-    }
 }

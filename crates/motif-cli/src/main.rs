@@ -1,22 +1,36 @@
 //! `motif`: one command line for every motif engine.
 //!
-//! - `main.rs`: argument parsing (clap derive), global options, error printing and exit codes.
-//! - [`context`]: what a running command gets (seed, threads, progress, report figures).
-//! - [`progress`]: progress bars on stderr and per-stage timings.
-//! - [`engines`]: one module per engine subcommand (`curve`, `stylize`, `texture`, `points`, `strokes`).
-//! - [`demo`]: `motif demo`, built-in examples and an HTML gallery.
-//! - [`bench`]: `motif bench`, the single entry point for performance figures.
+//! Modules, from the bottom up (each uses only those above it; `main` wires them together):
+//! - [`options`]: the options every command accepts; [`progress`]: progress bars on stderr.
+//! - [`context`]: what a running command gets (seed, threads, progress, report figures, the
+//!   checks that keep outputs off inputs).
+//! - [`gallery`]: the cases of `motif demo` and their HTML page; [`suite`]: what a benchmark gets.
+//! - [`registry`]: the [`registry::Engine`] trait that `demo` and `bench` receive.
+//! - [`engines`]: one folder per engine subcommand (`curve`, `points`, `strokes`, `stylize` with
+//!   `texture`) and the list of engines.
+//! - [`demo`]: `motif demo`; [`bench`]: `motif bench`, the single entry point for performance figures.
+//! - `main.rs`: argument parsing (clap derive), running a subcommand with its report, error
+//!   printing and exit codes.
 
 mod bench;
 mod context;
 mod demo;
 mod engines;
+mod gallery;
+mod options;
 mod progress;
+mod registry;
+mod suite;
 
-use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use anyhow::{Context as _, bail};
+use clap::{Parser, Subcommand};
+use serde_json::{Map, Value};
+
+use crate::context::{Context, check_writable};
+use crate::engines::{ENGINES, EngineCommand};
+use crate::options::GlobalArgs;
 
 /// Grow new, non-repeating patterns from small examples: along curves, inside regions, or under
 /// the control of guide images.
@@ -31,29 +45,12 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// Options every command accepts.
-#[derive(Args, Debug, Clone)]
-pub struct GlobalArgs {
-    /// Seed of every random choice; the same seed gives byte-identical output whatever the thread count.
-    #[arg(long, global = true, default_value_t = 1, value_name = "N")]
-    pub seed: u64,
-    /// Worker threads (default: all cores). Results do not depend on it, only speed does.
-    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=1024))]
-    pub threads: Option<u16>,
-    /// No progress bars or summaries on stderr (errors are still printed).
-    #[arg(long, short, global = true)]
-    pub quiet: bool,
-    /// Write the figures of the run (timings per stage, sizes, energies, costs) to this JSON file.
-    #[arg(long, global = true, value_name = "FILE.json")]
-    pub report: Option<PathBuf>,
-}
-
 /// The subcommands.
 #[derive(Subcommand, Debug)]
 pub enum Command {
     #[command(flatten)]
     /// Engine subcommands.
-    Engine(Box<engines::EngineCommand>),
+    Engine(Box<EngineCommand>),
     /// Run every engine on built-in examples and write an HTML gallery of inputs and outputs.
     Demo(demo::DemoArgs),
     /// Run fixed, seeded, generated workloads for every engine and print their figures as JSON.
@@ -99,9 +96,9 @@ fn main() -> ExitCode {
         return ExitCode::FAILURE;
     }
     let result = match &cli.command {
-        Command::Engine(command) => context::run_engine(command, &cli.global, threads),
-        Command::Demo(args) => demo::run(args, &cli.global, threads),
-        Command::Bench(args) => bench::run(args, &cli.global, threads),
+        Command::Engine(command) => run_engine(command, &cli.global, threads),
+        Command::Demo(args) => demo::run(args, &cli.global, threads, ENGINES, &run_demo_case),
+        Command::Bench(args) => bench::run(args, &cli.global, threads, ENGINES),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -119,4 +116,50 @@ fn print_error(error: &anyhow::Error) {
     for cause in error.chain().skip(1) {
         eprintln!("  caused by: {cause}");
     }
+}
+
+/// Runs an engine subcommand and writes `--report` if asked.
+fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
+    let start = std::time::Instant::now();
+    let mut context = Context::new(global.seed, threads, global.quiet).with_report(global.report.as_deref());
+    // The run's outputs appear together, and only if the whole run succeeded: a failure part-way
+    // leaves every previous file as it was.
+    motif_io::begin_outputs();
+    let mut result = command.run(&mut context);
+    if result.is_ok() {
+        result = motif_io::commit_outputs().map_err(anyhow::Error::from);
+    } else {
+        motif_io::discard_outputs();
+    }
+    let mut report = Map::new();
+    report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
+    report.insert("command".into(), Value::from(command.name()));
+    report.insert("arguments".into(), Value::from(std::env::args().skip(1).collect::<Vec<_>>()));
+    report.insert("seed".into(), Value::from(global.seed));
+    report.insert("threads".into(), Value::from(threads));
+    report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
+    if let Err(error) = &result {
+        report.insert("error".into(), Value::from(format!("{error:#}")));
+    }
+    report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
+    // A report that would replace an input or an output, or that cannot be written, is not
+    // written (the run has already failed for it); a failed run keeps its own error.
+    let report_path =
+        global.report.as_deref().filter(|path| !context.is_input_or_output(path) && check_writable(path).is_ok());
+    report.extend(context.into_figures());
+    if let Some(path) = report_path {
+        let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");
+        if result.is_ok() {
+            written?;
+        }
+    }
+    result
+}
+
+/// Runs one demo case: its arguments (after `motif`) parsed as the command line would be.
+fn run_demo_case(args: &[String], context: &mut Context) -> anyhow::Result<()> {
+    let cli = Cli::try_parse_from(std::iter::once("motif".to_string()).chain(args.iter().cloned()))
+        .context("invalid arguments")?;
+    let Command::Engine(command) = &cli.command else { bail!("a demo case must run an engine") };
+    command.run(context)
 }

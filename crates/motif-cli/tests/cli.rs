@@ -75,7 +75,36 @@ fn demo_writes_a_gallery_and_bench_prints_json() {
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let bench: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(bench["quick"], true);
-    assert!(bench["engines"].is_object());
+    let engines = bench["engines"].as_object().unwrap();
+    assert_eq!(engines.keys().map(String::as_str).collect::<Vec<_>>(), ["curve", "points", "strokes", "stylize"]);
+}
+
+/// `--engine` takes the registry's names; another is a clear error that lists them.
+#[test]
+fn bench_runs_the_named_engine_and_refuses_an_unknown_one() {
+    let output = motif().args(["bench", "--quick", "--engine", "strokes"]).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let bench: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(bench["engines"].as_object().unwrap().keys().collect::<Vec<_>>(), ["strokes"]);
+    let output = motif().args(["bench", "--quick", "--engine", "nope"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("--engine nope") && stderr.contains("curve, points, strokes, stylize"), "{stderr}");
+}
+
+/// A reader that stops early (`motif bench | head -1`) ends the bench quietly, not with a panic.
+#[test]
+fn bench_output_into_a_closed_pipe_is_not_a_crash() {
+    let mut child = motif()
+        .args(["bench", "--quick", "--engine", "strokes"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success() && !stderr.contains("internal error"), "{stderr}");
 }
 
 /// Every file the demo writes, except the gallery and report (they hold timings).

@@ -1,28 +1,20 @@
-//! One module per engine subcommand. Each module provides its clap `Args`, a `run` function, a
-//! `demo` function (built-in examples for `motif demo`) and a `bench` function (figures for
-//! `motif bench`); this file wires them into the CLI.
+//! One folder per engine: `mod.rs` holds its clap `Args` and `run`, `demo.rs` its built-in
+//! examples for `motif demo`, `bench.rs` its figures for `motif bench`, and `mod.rs` a unit
+//! struct that implements [`Engine`] with them.
 //!
-//! To add an engine `foo`: `pub mod foo;`, a variant `Foo(foo::FooArgs)` whose doc comment is its
-//! help line, its arms in `name` and `run`, a `foo::demo(demo)?;` line in `demos` and an arm in
-//! `benches`.
+//! To add an engine `foo`: `pub mod foo;`, a variant `Foo(foo::FooArgs)` of [`EngineCommand`]
+//! whose doc comment is its help line (with its arms in `name` and `run`), and `&foo::Foo` in
+//! [`ENGINES`].
 
 use clap::Subcommand;
-use serde_json::{Map, Value};
 
-use crate::bench::Bench;
 use crate::context::Context;
-use crate::demo::Demo;
+use crate::registry::Engine;
 
 pub mod curve;
-pub mod curve_corpus;
 pub mod points;
-pub mod points_bench;
-pub mod points_corpus;
-pub mod points_preview;
 pub mod strokes;
 pub mod stylize;
-pub mod stylize_bench;
-pub mod stylize_demo;
 
 /// The engine subcommands.
 #[derive(Subcommand, Debug)]
@@ -80,33 +72,23 @@ impl EngineCommand {
     }
 }
 
-/// Adds every engine's built-in examples to the gallery.
-pub fn demos(demo: &mut Demo) -> anyhow::Result<()> {
-    curve::demo(demo)?;
-    points::demo(demo)?;
-    strokes::demo(demo)?;
-    stylize_demo::demo(demo)?;
-    Ok(())
-}
+/// Every engine, in the order `demo` and `bench` run them.
+pub const ENGINES: &[&dyn Engine] = &[&curve::Curve, &points::Points, &strokes::Strokes, &stylize::Stylize];
 
-/// Every engine's benchmark figures, keyed by engine; `only` limits the engines run (empty: all).
-pub fn benches(bench: &Bench, only: &[String]) -> anyhow::Result<Map<String, Value>> {
-    let mut figures = Map::new();
-    for &name in ENGINE_NAMES {
-        if !only.is_empty() && !only.iter().any(|wanted| wanted == name) {
-            continue;
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn engine_names_are_unique_and_listed_in_the_bench_help() {
+        let names: Vec<&str> = ENGINES.iter().map(|engine| engine.name()).collect();
+        let mut unique = names.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        assert_eq!(unique.len(), names.len(), "{names:?}");
+        let help = include_str!("../bench.rs");
+        for name in names {
+            assert!(help.contains(&format!(" {name}")), "bench --engine help does not name {name}");
         }
-        let value = match name {
-            "curve" => curve_corpus::bench(bench)?,
-            "points" => points_bench::bench(bench)?,
-            "strokes" => strokes::bench(bench)?,
-            "stylize" => stylize_bench::bench(bench)?,
-            _ => continue,
-        };
-        figures.insert(name.to_string(), value);
     }
-    Ok(figures)
 }
-
-/// The engines `motif bench --engine` accepts.
-pub const ENGINE_NAMES: &[&str] = &["curve", "stylize", "points", "strokes"];

@@ -4,7 +4,7 @@
 use motif_core::{FloatImage, RgbaImage};
 use motif_stylize::samples;
 
-use crate::demo::{Demo, DemoCase};
+use crate::gallery::{Demo, DemoCase};
 
 fn to_png(image: &FloatImage) -> RgbaImage {
     RgbaImage::from_float(image)

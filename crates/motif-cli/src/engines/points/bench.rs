@@ -5,7 +5,7 @@ use motif_points::samples::{hex_exemplar, lattice_exemplar, ripple_exemplar};
 use motif_points::{Domain, Evaluator, Input, Params, PointSet};
 use serde_json::{Value, json};
 
-use crate::bench::Bench;
+use crate::suite::Bench;
 
 /// One benchmark case: seconds, final T, fidelity.
 fn bench_case(
@@ -74,7 +74,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         let quick_case = |name: &str| name == "swedishpines";
         return Ok(json!({
             "quick_64_to_16": bench_case(&exemplar, box2, 1.0, 2.0, bench.seed, true)?,
-            "real_data": super::points_corpus::bench(bench.seed, &quick_case, &quick_case)?,
+            "real_data": super::corpus::bench(bench.seed, &quick_case, &quick_case)?,
         }));
     }
     // helix-size: 600 → 100 (2D), sand-size: 1600 → 7200 (2D), chair-size: 1100 → 23000 (3D box),
@@ -87,7 +87,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     };
     let mut figures = serde_json::Map::new();
     let named = |name: &str| bench.names(name);
-    let corpus = super::points_corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name), &named)?;
+    let corpus = super::corpus::bench(bench.seed, &|name| !generated.contains(&name) && selected(name), &named)?;
     figures.insert("real_data".into(), corpus);
     if selected("helix") {
         let helix = hex_exemplar(30, 20, 0.1, bench.seed);

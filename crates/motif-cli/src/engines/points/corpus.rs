@@ -9,8 +9,8 @@ use motif_points::{Domain, Input, Params};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use super::points::table_to_points;
-use crate::bench::{corpus_folder, read_cases};
+use super::table_to_points;
+use crate::suite::{corpus_folder, read_cases};
 
 /// One case of `cases.json` (written by `data/real/points/make_manifest.py`).
 #[derive(Debug, Deserialize)]

@@ -2,6 +2,9 @@
 //! (non-guided texture synthesis), wired to PNG files. Options mirror ebsynth's so its users can
 //! switch: `-style` → `--style`, `-guide A B -weight W` → `--guide A B --weight W`, and so on.
 
+mod bench;
+mod demo;
+
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
@@ -14,6 +17,7 @@ use motif_stylize::{
 use serde::{Deserialize, Serialize};
 
 use crate::context::Context;
+use crate::gallery::Demo;
 
 /// Nearest-neighbour search method.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -524,4 +528,21 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
         args.out.display()
     ));
     Ok(())
+}
+
+/// The stylize engine in the registry.
+pub struct Stylize;
+
+impl crate::registry::Engine for Stylize {
+    fn name(&self) -> &'static str {
+        "stylize"
+    }
+
+    fn demo(&self, gallery: &mut Demo<'_>) -> anyhow::Result<()> {
+        demo::demo(gallery)
+    }
+
+    fn bench(&self, bench: &crate::suite::Bench) -> anyhow::Result<serde_json::Value> {
+        bench::bench(bench)
+    }
 }

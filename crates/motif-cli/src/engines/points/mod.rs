@@ -1,20 +1,24 @@
 //! `motif points`: repetitive structure synthesis from point samples in 2D and 3D (Roveri et al.
 //! 2015), wired to PLY/CSV point files, SVG regions and strokes, JSON polylines and PNG previews.
 
+mod bench;
+mod corpus;
+mod demo;
+mod preview;
+
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{Polygon, Polyline};
 use motif_io::{Column, ColumnKind, PointFormat, PointTable};
-use motif_points::samples::{hex_exemplar, lattice_exemplar, leaf_exemplar};
 use motif_points::{
     Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, Stroke, Window,
 };
 use serde_json::Value;
 
 use crate::context::Context;
-use crate::demo::{Demo, DemoCase};
+use crate::gallery::Demo;
 
 /// How the output starts (§5.2).
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -411,7 +415,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
     if let Some(preview) = &args.preview {
-        let image = super::points_preview::preview_image(
+        let image = preview::preview_image(
             &input.exemplar,
             &output.points,
             &output.report.fidelity,
@@ -459,131 +463,19 @@ fn record_figures(context: &mut Context, output: &Output) {
     context.figure("fidelity", &report.fidelity);
 }
 
-fn write_set(path: &Path, set: &PointSet) -> anyhow::Result<()> {
-    motif_io::write_points(path, &points_to_table(set, &[]), PointFormat::PlyAscii)?;
-    Ok(())
-}
+/// The points engine in the registry.
+pub struct Points;
 
-/// Built-in examples for `motif demo`.
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
-    write_set(&demo.path("points-hex.ply"), &hex_exemplar(16, 16, 0.12, 3))?;
-    demo.case(DemoCase {
-        title: "points: a jittered hexagonal grid in a box".into(),
-        description: "A 256-point hexagonal exemplar with a striped `shade` attribute (detected as discrete: whole \
-                      numbers) is synthesized into a 14×10 box from copied exemplar patches: matching by gradient \
-                      descent from 5 random starts and the neighbours' matches per quadrature point, merging of \
-                      positions then attributes, multi-scale window shrinking and sampling control."
-            .into(),
-        inputs: vec![("exemplar".into(), "points-hex.ply".into())],
-        outputs: vec![("preview".into(), "points-hex-box.png".into()), ("points".into(), "points-hex-box.ply".into())],
-        args: [
-            "points",
-            "--exemplar",
-            "points-hex.ply",
-            "--neighbourhood",
-            "1.2",
-            "--domain",
-            "box:14,10",
-            "--out",
-            "points-hex-box.ply",
-            "--preview",
-            "points-hex-box.png",
-        ]
-        .map(String::from)
-        .to_vec(),
-    })?;
-    motif_io::write_text(
-        &demo.path("points-stroke.svg"),
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"40\" height=\"20\" viewBox=\"0 0 40 20\">\
-         <path d=\"M2 14 C 12 0, 26 22, 38 6\" fill=\"none\" stroke=\"black\"/></svg>\n",
-    )?;
-    demo.case(DemoCase {
-        title: "points: a brush stroke with growing scale".into(),
-        description: "The same exemplar brushed along a curve 3 units wide: the exemplar's rows follow the stroke's \
-                      tangent and its scale grows from 0.8 to 1.3 along the stroke."
-            .into(),
-        inputs: vec![("exemplar".into(), "points-hex.ply".into()), ("stroke".into(), "points-stroke.svg".into())],
-        outputs: vec![
-            ("preview".into(), "points-hex-stroke.png".into()),
-            ("points".into(), "points-hex-stroke.ply".into()),
-        ],
-        args: [
-            "points",
-            "--exemplar",
-            "points-hex.ply",
-            "--neighbourhood",
-            "1.2",
-            "--along",
-            "points-stroke.svg",
-            "--brush-width",
-            "3",
-            "--scale-along",
-            "0.8,1.3",
-            "--out",
-            "points-hex-stroke.ply",
-            "--preview",
-            "points-hex-stroke.png",
-        ]
-        .map(String::from)
-        .to_vec(),
-    })?;
-    write_set(&demo.path("points-leaves.ply"), &leaf_exemplar(5))?;
-    demo.case(DemoCase {
-        title: "points: rigid elements mixed with free points".into(),
-        description: "Three-point leaves (discrete elements, moved rigidly: translation and rotation) mixed with free \
-                      background points, synthesized into a box from patch initialization. Colours are element ids."
-            .into(),
-        inputs: vec![("exemplar".into(), "points-leaves.ply".into())],
-        outputs: vec![
-            ("preview".into(), "points-leaves-box.png".into()),
-            ("points".into(), "points-leaves-box.ply".into()),
-        ],
-        args: [
-            "points",
-            "--exemplar",
-            "points-leaves.ply",
-            "--neighbourhood",
-            "2.5",
-            "--domain",
-            "box:15,12",
-            "--init",
-            "patches",
-            "--out",
-            "points-leaves-box.ply",
-            "--preview",
-            "points-leaves-box.png",
-        ]
-        .map(String::from)
-        .to_vec(),
-    })?;
-    write_set(&demo.path("points-lattice.ply"), &lattice_exemplar(216, 7))?;
-    demo.case(DemoCase {
-        title: "points: a 3D lattice in a box".into(),
-        description: "A 216-point 3D exemplar (alternating shifted cells, with a radius attribute) synthesized into a \
-                      5×5×4 box; the preview is an orthographic view, darker points are farther."
-            .into(),
-        inputs: vec![("exemplar".into(), "points-lattice.ply".into())],
-        outputs: vec![
-            ("preview".into(), "points-lattice-box.png".into()),
-            ("points".into(), "points-lattice-box.ply".into()),
-        ],
-        args: [
-            "points",
-            "--exemplar",
-            "points-lattice.ply",
-            "--neighbourhood",
-            "1.0",
-            "--domain",
-            "box:5,5,4",
-            "--quadrature-spacing",
-            "1.5",
-            "--out",
-            "points-lattice-box.ply",
-            "--preview",
-            "points-lattice-box.png",
-        ]
-        .map(String::from)
-        .to_vec(),
-    })?;
-    Ok(())
+impl crate::registry::Engine for Points {
+    fn name(&self) -> &'static str {
+        "points"
+    }
+
+    fn demo(&self, gallery: &mut Demo<'_>) -> anyhow::Result<()> {
+        demo::demo(gallery)
+    }
+
+    fn bench(&self, bench: &crate::suite::Bench) -> anyhow::Result<serde_json::Value> {
+        bench::bench(bench)
+    }
 }

@@ -11,9 +11,9 @@ use motif_core::{Point, Polyline};
 use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
 use motif_curve::{Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams, Solver};
 
-use super::curve::chain_exemplar;
-use crate::bench::Bench;
-use crate::bench::{corpus_folder, read_cases};
+use super::chain_exemplar;
+use crate::suite::Bench;
+use crate::suite::{corpus_folder, read_cases};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -55,7 +55,7 @@ pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
 /// One run of a case: the output, its wall time and its patch fidelity.
 pub fn run(folder: &Path, case: &CorpusCase, method: Method) -> anyhow::Result<(CurveOutput, f64, PatchFidelity)> {
     let exemplar = motif_io::read_image(&folder.join(&case.exemplar))?;
-    let curve = super::curve::read_curve(&folder.join(&case.path), 0.1)?;
+    let curve = super::read_curve(&folder.join(&case.path), 0.1)?;
     let params = params_of(case, method);
     let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
     let start = std::time::Instant::now();
@@ -109,7 +109,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
 pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
     let folder = corpus_folder("curve");
     let exemplar = motif_io::read_image(&folder.join("chain_round.png"))?;
-    let base = super::curve::read_curve(&folder.join("flourish.svg"), 0.1)?;
+    let base = super::read_curve(&folder.join("flourish.svg"), 0.1)?;
     let mut params = CurveParams::default();
     params.width = 108.0;
     params.piece_length = base.length() / 50.0;

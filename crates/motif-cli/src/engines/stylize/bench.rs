@@ -11,7 +11,7 @@ use motif_stylize::{
 };
 use serde_json::{Map, Value, json};
 
-use crate::bench::Bench;
+use crate::suite::Bench;
 
 /// Process CPU time (user + system) in seconds, from `/proc/self/stat` (Linux); `None` elsewhere.
 fn cpu_seconds() -> Option<f64> {

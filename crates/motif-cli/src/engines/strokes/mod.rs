@@ -1,20 +1,20 @@
 //! `motif strokes`: vector stroke pattern analysis and synthesis along a path or in a region
 //! (Barla et al. 2006), wired to SVG files.
 
+mod bench;
+mod demo;
+
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use kurbo::BezPath;
-use motif_core::{NoProgress, Point, Polygon, Polyline};
+use motif_core::{Point, Polygon, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
-use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Analysis, FitPoints, Input, Output, Params, Stroke, Target, Thresholds};
-use serde_json::{Value, json};
 
-use crate::bench::Bench;
 use crate::context::Context;
-use crate::demo::{Demo, DemoCase};
+use crate::gallery::Demo;
 
 /// Which points element boxes are fitted to.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
@@ -369,240 +369,19 @@ fn blob(cx: f64, cy: f64, radius: f64) -> BezPath {
     path
 }
 
-fn write_path_svg(path: &Path, shape: &BezPath, width: f64, height: f64, closed: bool) -> anyhow::Result<()> {
-    let mut writer = SvgWriter::new(width, height);
-    let fill = closed.then_some([235, 235, 225, 255]);
-    writer.path(shape, Some(motif_io::Stroke { width: 1.0, colour: [90, 90, 90, 255] }), fill);
-    motif_io::write_text(path, &writer.finish())?;
-    Ok(())
-}
+/// The strokes engine in the registry.
+pub struct Strokes;
 
-fn strs(items: &[&str]) -> Vec<String> {
-    items.iter().map(|s| s.to_string()).collect()
-}
-
-/// The built-in examples: sketchy hatching along a wave (1D) and small figures in a blob (2D).
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
-    // 1D: sketchy hatches (three overlapping strokes each) whose tilt turns smoothly and whose
-    // colours alternate, with irregular spacing.
-    let row = HatchRow { count: 36, jitter: 2.0, ..HatchRow::default() };
-    let hatches = hatch_row(
-        &row,
-        Point::new(20.0, 40.0),
-        |i| 0.5 * (i as f64 * 0.25).sin(),
-        |i| if i % 2 == 0 { [30, 40, 120, 255] } else { [170, 60, 30, 255] },
-        demo.seed(),
-    );
-    write_strokes_svg(&demo.path("strokes-hatch-reference.svg"), &hatches, 330.0, 80.0)?;
-    write_path_svg(&demo.path("strokes-wave.svg"), &wave(30.0, 970.0, 130.0, 70.0, 4), 1000.0, 260.0, false)?;
-    demo.case(DemoCase {
-        title: "strokes: sketchy hatching along a curve".into(),
-        description: "A 1D reference of 36 hatches, each drawn as three overlapping strokes, is clustered at ε = 4 \
-                      (one element per hatch) and synthesized along a wave: colours keep alternating, the tilt \
-                      turns smoothly (5-ring neighbourhoods), and the reference's irregular spacing comes back \
-                      through its shift vectors."
-            .into(),
-        inputs: vec![
-            ("reference".into(), "strokes-hatch-reference.svg".into()),
-            ("path".into(), "strokes-wave.svg".into()),
-        ],
-        outputs: vec![
-            ("analysis".into(), "strokes-hatch-analysis.svg".into()),
-            ("output".into(), "strokes-hatch-output.png".into()),
-        ],
-        args: strs(&[
-            "strokes",
-            "--reference",
-            "strokes-hatch-reference.svg",
-            "--scale",
-            "4",
-            "--along",
-            "strokes-wave.svg",
-            "--position-variation",
-            "--analysis",
-            "strokes-hatch-analysis.svg",
-            "--out",
-            "strokes-hatch-output.svg",
-            "--png",
-            "strokes-hatch-output.png",
-        ]),
-    })?;
-
-    // 1D: single brush strokes whose width swells and shrinks along the row, fitted by contour.
-    let brush_row = HatchRow { count: 30, spacing: 14.0, length: 18.0, strokes_per_hatch: 1, ..HatchRow::default() };
-    let mut brushes = hatch_row(&brush_row, Point::new(20.0, 30.0), |_| 0.35, |_| [60, 60, 60, 255], demo.seed());
-    for (i, brush) in brushes.iter_mut().enumerate() {
-        brush.width = 2.0 + 2.5 * (1.0 + (i as f64 * 0.35).sin());
+impl crate::registry::Engine for Strokes {
+    fn name(&self) -> &'static str {
+        "strokes"
     }
-    write_strokes_svg(&demo.path("strokes-brush-reference.svg"), &brushes, 460.0, 60.0)?;
-    let mut arc = BezPath::new();
-    arc.move_to((40.0, 260.0));
-    arc.curve_to((200.0, 20.0), (800.0, 20.0), (960.0, 260.0));
-    write_path_svg(&demo.path("strokes-arc.svg"), &arc, 1000.0, 300.0, false)?;
-    demo.case(DemoCase {
-        title: "strokes: brush strokes of changing thickness".into(),
-        description: concat!(
-            "Element boxes fitted to the stroked contour (--fit contour) carry each brush stroke's width; with ",
-            "5-ring neighbourhoods and shape and superimposition thresholds tightened to 0.03 L (the paper uses ",
-            "0.1 L), the smooth swelling and thinning of the reference carries over to an arc."
-        )
-        .into(),
-        inputs: vec![
-            ("reference".into(), "strokes-brush-reference.svg".into()),
-            ("path".into(), "strokes-arc.svg".into()),
-        ],
-        outputs: vec![("output".into(), "strokes-brush-output.png".into())],
-        args: strs(&[
-            "strokes",
-            "--reference",
-            "strokes-brush-reference.svg",
-            "--scale",
-            "3",
-            "--fit",
-            "contour",
-            "--thresholds",
-            "shape=0.03,sup=0.03",
-            "--along",
-            "strokes-arc.svg",
-            "--out",
-            "strokes-brush-output.svg",
-            "--png",
-            "strokes-brush-output.png",
-        ]),
-    })?;
 
-    // 2D: small three-stroke figures of two kinds on a jittered grid, filling a blob.
-    let field = FigureField { columns: 8, rows: 6, ..FigureField::default() };
-    let figures = figure_field(&field, Point::new(20.0, 20.0), demo.seed());
-    write_strokes_svg(&demo.path("strokes-figures-reference.svg"), &figures, 240.0, 180.0)?;
-    write_path_svg(&demo.path("strokes-blob.svg"), &blob(300.0, 300.0, 240.0), 600.0, 600.0, true)?;
-    demo.case(DemoCase {
-        title: "strokes: small figures in a region".into(),
-        description: "A 2D reference of 48 small figures (three-armed stars and triangles, three strokes each) is \
-                      clustered at ε = 8, related by its unskewed Delaunay graph and synthesized inside a blob \
-                      with a clipped centroidal Voronoi layout, 2-ring neighbourhoods and a little parameter \
-                      exchange."
-            .into(),
-        inputs: vec![
-            ("reference".into(), "strokes-figures-reference.svg".into()),
-            ("region".into(), "strokes-blob.svg".into()),
-        ],
-        outputs: vec![
-            ("analysis".into(), "strokes-figures-analysis.svg".into()),
-            ("output".into(), "strokes-figures-output.png".into()),
-        ],
-        args: strs(&[
-            "strokes",
-            "--reference",
-            "strokes-figures-reference.svg",
-            "--scale",
-            "8",
-            "--region",
-            "strokes-blob.svg",
-            "--variation",
-            "0.5",
-            "--analysis",
-            "strokes-figures-analysis.svg",
-            "--out",
-            "strokes-figures-output.svg",
-            "--png",
-            "strokes-figures-output.png",
-        ]),
-    })?;
-    Ok(())
-}
-
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
-fn time_case(input: &Input, params: &Params, repeats: usize) -> anyhow::Result<(Output, f64, Vec<f64>)> {
-    let mut times = Vec::new();
-    let mut last = None;
-    for _ in 0..repeats {
-        let start = std::time::Instant::now();
-        let output = motif_strokes::synthesize(input, params, &mut NoProgress)?;
-        times.push(start.elapsed().as_secs_f64() * 1000.0);
-        last = Some(output);
+    fn demo(&self, gallery: &mut Demo<'_>) -> anyhow::Result<()> {
+        demo::demo(gallery)
     }
-    let output = last.expect("at least one repeat");
-    Ok((output, median(times.clone()), times))
-}
 
-fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
-    let r = &output.report;
-    json!({
-        "reference_strokes": r.reference_strokes,
-        "reference_elements": r.reference_elements,
-        "output_elements": r.output_elements,
-        "candidate_fraction": r.candidate_fraction,
-        "fallback_elements": r.fallback_elements,
-        "rings": r.rings,
-        "lloyd_iterations": r.lloyd_iterations,
-        "total_ms_median": total_ms,
-        "target_ms": target_ms,
-        "meets_target": total_ms <= target_ms,
-        "stages_ms": crate::context::stages_object(&r.stages_ms),
-    })
-}
-
-/// `motif bench` figures: a 60-element 1D hatching reference along a path 10× its length, a
-/// 120-element 2D reference of three-stroke figures in a region 10× its area (all stages, median of
-/// several runs), and the clustering speed-up of the R-tree queue over the paper's full scan.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
-    let repeats = if bench.quick { 1 } else { 7 };
-    let mut params = Params::default();
-    params.seed = bench.seed;
-
-    // 1D.
-    let row = HatchRow { count: if bench.quick { 12 } else { 60 }, jitter: 1.5, ..HatchRow::default() };
-    let hatches = hatch_row(&row, Point::ORIGIN, |i| 0.3 * (i as f64 * 0.3).sin(), |_| [20, 20, 20, 255], bench.seed);
-    let length = 10.0 * row.count as f64 * row.spacing;
-    let path = Polyline::from_bez_path(&wave(0.0, length, 0.0, 0.05 * length, 5), 0.05)?.remove(0);
-    params.scale = 4.0;
-    let input = Input { strokes: hatches, target: Target::Path(path) };
-    let (output, one_d_ms, _) = time_case(&input, &params, repeats)?;
-    let one_d = case_figures(&output, one_d_ms, 20.0);
-
-    // 2D.
-    let field = if bench.quick {
-        FigureField { columns: 4, rows: 3, ..FigureField::default() }
-    } else {
-        FigureField::default()
-    };
-    let figures = figure_field(&field, Point::ORIGIN, bench.seed);
-    let side = (10.0 * (field.columns * field.rows) as f64).sqrt() * field.spacing;
-    let region =
-        Polygon::new(vec![Point::new(0.0, 0.0), Point::new(side, 0.0), Point::new(side, side), Point::new(0.0, side)])?;
-    params.scale = 8.0;
-    let input = Input { strokes: figures, target: Target::Region(region) };
-    let (output, two_d_ms, _) = time_case(&input, &params, repeats)?;
-    let two_d = case_figures(&output, two_d_ms, 200.0);
-
-    // Clustering: R-tree queue against the paper's full scan, on a long sketchy hatching.
-    let big = HatchRow { count: if bench.quick { 50 } else { 800 }, ..HatchRow::default() };
-    let strokes = hatch_row(&big, Point::ORIGIN, |i| 0.2 * (i as f64 * 0.1).sin(), |_| [0, 0, 0, 255], bench.seed);
-    let sets: Vec<_> =
-        strokes.iter().map(|s| motif_strokes::element::FitSet::of_stroke(s, FitPoints::Skeleton)).collect();
-    let start = std::time::Instant::now();
-    let fast = motif_strokes::cluster::cluster(&strokes, &sets, 4.0);
-    let fast_ms = start.elapsed().as_secs_f64() * 1000.0;
-    let start = std::time::Instant::now();
-    let plain = motif_strokes::cluster::cluster_plain(&strokes, &sets, 4.0);
-    let plain_ms = start.elapsed().as_secs_f64() * 1000.0;
-    if fast != plain {
-        bail!("the R-tree clustering disagrees with the full scan");
+    fn bench(&self, bench: &crate::suite::Bench) -> anyhow::Result<serde_json::Value> {
+        bench::bench(bench)
     }
-    Ok(json!({
-        "path_1d": one_d,
-        "region_2d": two_d,
-        "clustering": {
-            "strokes": strokes.len(),
-            "elements": fast.len(),
-            "rtree_ms": fast_ms,
-            "full_scan_ms": plain_ms,
-            "speedup": plain_ms / fast_ms.max(1e-9),
-        },
-    }))
 }

@@ -1,0 +1,105 @@
+//! `motif bench --engine strokes`.
+
+use anyhow::bail;
+use motif_core::{NoProgress, Point, Polygon, Polyline};
+use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
+use motif_strokes::{FitPoints, Input, Output, Params, Target};
+use serde_json::{Value, json};
+
+use super::wave;
+use crate::suite::Bench;
+
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn time_case(input: &Input, params: &Params, repeats: usize) -> anyhow::Result<(Output, f64, Vec<f64>)> {
+    let mut times = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats {
+        let start = std::time::Instant::now();
+        let output = motif_strokes::synthesize(input, params, &mut NoProgress)?;
+        times.push(start.elapsed().as_secs_f64() * 1000.0);
+        last = Some(output);
+    }
+    let output = last.expect("at least one repeat");
+    Ok((output, median(times.clone()), times))
+}
+
+fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
+    let r = &output.report;
+    json!({
+        "reference_strokes": r.reference_strokes,
+        "reference_elements": r.reference_elements,
+        "output_elements": r.output_elements,
+        "candidate_fraction": r.candidate_fraction,
+        "fallback_elements": r.fallback_elements,
+        "rings": r.rings,
+        "lloyd_iterations": r.lloyd_iterations,
+        "total_ms_median": total_ms,
+        "target_ms": target_ms,
+        "meets_target": total_ms <= target_ms,
+        "stages_ms": crate::context::stages_object(&r.stages_ms),
+    })
+}
+
+/// `motif bench` figures: a 60-element 1D hatching reference along a path 10× its length, a
+/// 120-element 2D reference of three-stroke figures in a region 10× its area (all stages, median of
+/// several runs), and the clustering speed-up of the R-tree queue over the paper's full scan.
+pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    let repeats = if bench.quick { 1 } else { 7 };
+    let mut params = Params::default();
+    params.seed = bench.seed;
+
+    // 1D.
+    let row = HatchRow { count: if bench.quick { 12 } else { 60 }, jitter: 1.5, ..HatchRow::default() };
+    let hatches = hatch_row(&row, Point::ORIGIN, |i| 0.3 * (i as f64 * 0.3).sin(), |_| [20, 20, 20, 255], bench.seed);
+    let length = 10.0 * row.count as f64 * row.spacing;
+    let path = Polyline::from_bez_path(&wave(0.0, length, 0.0, 0.05 * length, 5), 0.05)?.remove(0);
+    params.scale = 4.0;
+    let input = Input { strokes: hatches, target: Target::Path(path) };
+    let (output, one_d_ms, _) = time_case(&input, &params, repeats)?;
+    let one_d = case_figures(&output, one_d_ms, 20.0);
+
+    // 2D.
+    let field = if bench.quick {
+        FigureField { columns: 4, rows: 3, ..FigureField::default() }
+    } else {
+        FigureField::default()
+    };
+    let figures = figure_field(&field, Point::ORIGIN, bench.seed);
+    let side = (10.0 * (field.columns * field.rows) as f64).sqrt() * field.spacing;
+    let region =
+        Polygon::new(vec![Point::new(0.0, 0.0), Point::new(side, 0.0), Point::new(side, side), Point::new(0.0, side)])?;
+    params.scale = 8.0;
+    let input = Input { strokes: figures, target: Target::Region(region) };
+    let (output, two_d_ms, _) = time_case(&input, &params, repeats)?;
+    let two_d = case_figures(&output, two_d_ms, 200.0);
+
+    // Clustering: R-tree queue against the paper's full scan, on a long sketchy hatching.
+    let big = HatchRow { count: if bench.quick { 50 } else { 800 }, ..HatchRow::default() };
+    let strokes = hatch_row(&big, Point::ORIGIN, |i| 0.2 * (i as f64 * 0.1).sin(), |_| [0, 0, 0, 255], bench.seed);
+    let sets: Vec<_> =
+        strokes.iter().map(|s| motif_strokes::element::FitSet::of_stroke(s, FitPoints::Skeleton)).collect();
+    let start = std::time::Instant::now();
+    let fast = motif_strokes::cluster::cluster(&strokes, &sets, 4.0);
+    let fast_ms = start.elapsed().as_secs_f64() * 1000.0;
+    let start = std::time::Instant::now();
+    let plain = motif_strokes::cluster::cluster_plain(&strokes, &sets, 4.0);
+    let plain_ms = start.elapsed().as_secs_f64() * 1000.0;
+    if fast != plain {
+        bail!("the R-tree clustering disagrees with the full scan");
+    }
+    Ok(json!({
+        "path_1d": one_d,
+        "region_2d": two_d,
+        "clustering": {
+            "strokes": strokes.len(),
+            "elements": fast.len(),
+            "rtree_ms": fast_ms,
+            "full_scan_ms": plain_ms,
+            "speedup": plain_ms / fast_ms.max(1e-9),
+        },
+    }))
+}
