@@ -13,12 +13,14 @@
 //! - [`progress`]: the [`Progress`] trait engines report to (closures implement it).
 //! - [`error`]: [`InvalidParameter`], the shared vocabulary for rejecting a parameter (its name, its
 //!   value and what is allowed), and the checks that build it.
+//! - [`builders!`]: the `with_*` builder methods of every engine's `Params`.
 //! - [`timing`]: [`StageTimer`], wall-clock milliseconds per named stage (works on wasm too).
 //!
 //! Conventions (see `ARCHITECTURE.md`): y points down; pixel `(i, j)` covers `[i, i+1) × [j, j+1)`
 //! so its centre is at `(i + 0.5, j + 0.5)`; colours are 8-bit sRGB with straight (not premultiplied)
 //! alpha unless a type says otherwise.
 
+mod builders;
 pub mod error;
 pub mod geometry;
 pub mod image;

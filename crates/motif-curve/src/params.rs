@@ -171,23 +171,8 @@ impl Default for Params {
     }
 }
 
-/// `with_*` builders, one per field: `Params::default().with_width(80.0).with_piece_length(20.0)`.
-macro_rules! builders {
-    ($($method:ident => $field:ident: $ty:ty),* $(,)?) => {
-        impl Params {
-            $(
-                #[doc = concat!("Sets [`Params::", stringify!($field), "`].")]
-                #[must_use]
-                pub fn $method(mut self, value: $ty) -> Self {
-                    self.$field = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-
-builders! {
+// `with_*` builders, one per field: `Params::default().with_width(80.0).with_piece_length(20.0)`.
+motif_core::builders! { Params {
     with_width => width: f64,
     with_piece_length => piece_length: f64,
     with_scale => scale: f64,
@@ -210,7 +195,7 @@ builders! {
     with_round_bends => round_bends: f64,
     with_piece_shape => piece_shape: PieceShape,
     with_width_profile => width_profile: Vec<(f64, f64)>,
-}
+}}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
 /// about 10 bytes a pixel).

@@ -9,9 +9,9 @@ use motif_points::{Domain, EnergyCase, Evaluator, Input, Params};
 fn case(exemplar: motif_points::PointSet, neighbourhood: f64, max: Vec<f64>) -> EnergyCase {
     let mut params = Params::default();
     params.neighbourhood = Some(neighbourhood);
-    params.domain = Some(Domain::Box { min: vec![0.0; max.len()], max });
     params.seed = 1;
-    EnergyCase::new(&Input { exemplar, existing: None }, &params).expect("a valid case")
+    EnergyCase::new(&Input::new(exemplar, Domain::Box { min: vec![0.0; max.len()], max }), &params)
+        .expect("a valid case")
 }
 
 fn energy(c: &mut Criterion) {

@@ -13,9 +13,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let repeats: usize = arguments.next().map(|a| a.parse()).transpose()?.unwrap_or(3);
     let mut params = Params::default();
     params.neighbourhood = Some(0.75);
-    params.domain = Some(Domain::Box { min: vec![0.0; 3], max: vec![side, side, 0.88 * side] });
     params.seed = 1;
-    let input = Input { exemplar: lattice_exemplar(1100, 1), existing: None };
+    let domain = Domain::Box { min: vec![0.0; 3], max: vec![side, side, 0.88 * side] };
+    let input = Input::new(lattice_exemplar(1100, 1), domain);
     let case = EnergyCase::new(&input, &params)?;
     for attributes in [false, true] {
         let mut best = f64::INFINITY;

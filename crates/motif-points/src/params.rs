@@ -3,11 +3,13 @@
 use std::sync::Arc;
 
 use motif_core::InvalidParameter;
+use motif_core::error::{check_count, check_positive, check_range};
 
 use crate::PointSet;
 
 /// Everything that can go wrong; messages are lower-case and say what to change.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A parameter is outside its range.
     #[error(transparent)]
@@ -223,8 +225,6 @@ pub struct Params {
     pub initialization: Initialization,
     /// Which points the optimization moves after a patch initialization. Default seams.
     pub refinement: Refinement,
-    /// Output domain (required: `None` is reported as an empty domain).
-    pub domain: Option<Domain>,
     /// Rotation field in degrees, counter-clockwise in the xy-plane (§6.2). Default none.
     pub rotation: Field,
     /// Scale field (> 0; §6.2). Default none (1).
@@ -284,7 +284,6 @@ impl Default for Params {
             exemplar_window: None,
             initialization: Initialization::Patches,
             refinement: Refinement::Seams,
-            domain: None,
             rotation: Field::None,
             scale: Field::None,
             attributes: None,
@@ -301,10 +300,104 @@ impl Default for Params {
 }
 
 /// What [`crate::synthesize`] works on.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Input {
     /// The exemplar `{(e_i, b_i)}` (at least 3 points).
     pub exemplar: PointSet,
+    /// Where the output grows: a box, a polygon region or a brush stroke.
+    pub domain: Domain,
     /// A previous result to extend (progressive synthesis, §6.2); `None` for a fresh synthesis.
     pub existing: Option<PointSet>,
 }
+
+impl Input {
+    /// A fresh synthesis of `exemplar` over `domain`.
+    pub fn new(exemplar: PointSet, domain: Domain) -> Self {
+        Self { exemplar, domain, existing: None }
+    }
+
+    /// The same input extending `existing` (progressive synthesis).
+    #[must_use]
+    pub fn with_existing(mut self, existing: PointSet) -> Self {
+        self.existing = Some(existing);
+        self
+    }
+}
+
+impl Params {
+    /// Checks every parameter against its documented range (the checks that need the exemplar,
+    /// such as `exemplar_window` holding its points, run in [`crate::synthesize`]).
+    pub fn validate(&self) -> Result<(), Error> {
+        if let Some(delta) = self.neighbourhood {
+            check_positive("neighbourhood", delta)?;
+        }
+        if let Some(sigma) = self.sigma {
+            check_positive("sigma", sigma)?;
+        }
+        check_range("spacing-fraction", self.spacing_fraction, 0.1, 2.0)?;
+        check_range("quadrature-spacing", self.quadrature_spacing, 0.25, 4.0)?;
+        check_range("kernel-cutoff", self.kernel_cutoff, 2.0, 6.0)?;
+        check_range("shrink", self.shrink, 0.5, 0.99)?;
+        check_range("final-fraction", self.final_fraction, 0.05, 1.0)?;
+        check_count("sampling-rounds", self.sampling_rounds, 1, 20)?;
+        check_count("local-global-iterations", self.local_global_iterations, 1, 20)?;
+        check_count("merge-iterations", self.merge_iterations, 1, 1000)?;
+        check_count("attribute-iterations", self.attribute_iterations, 0, 1000)?;
+        check_range("step", self.step, 1e-4, 1.0)?;
+        check_range("tolerance", self.tolerance, 0.0, 1.0)?;
+        check_range("stagnation", self.stagnation, 0.0, 1.0)?;
+        check_count("matching-starts", self.matching_starts, 1, 64)?;
+        check_count("matching-iterations", self.matching_iterations, 1, 200)?;
+        check_count("matching-polish", self.matching_polish, 0, 50)?;
+        check_range("sampling-threshold", self.sampling_threshold, 0.05, 10.0)?;
+        check_range("count-tolerance", self.count_tolerance, 0.01, 1.0)?;
+        check_range("patch-size", self.patch_size, 1.0, 20.0)?;
+        check_count("patch-candidates", self.patch_candidates, 1, 256)?;
+        check_range("attribute-weight", self.attribute_weight, 1e-6, 100.0)?;
+        if let Some(margin) = self.keep_margin {
+            check_range("keep-margin", margin, 0.0, f64::MAX)?;
+        }
+        Ok(())
+    }
+}
+
+// One `with_*` method per field: `Params::default().with_neighbourhood(Some(14.0)).with_seed(3)`.
+motif_core::builders! { Params {
+    with_neighbourhood => neighbourhood: Option<f64>,
+    with_window => window: Window,
+    with_sigma => sigma: Option<f64>,
+    with_spacing_fraction => spacing_fraction: f64,
+    with_quadrature_spacing => quadrature_spacing: f64,
+    with_kernel_cutoff => kernel_cutoff: f64,
+    with_shrink => shrink: f64,
+    with_final_fraction => final_fraction: f64,
+    with_sampling_rounds => sampling_rounds: usize,
+    with_local_global_iterations => local_global_iterations: usize,
+    with_merge_iterations => merge_iterations: usize,
+    with_attribute_iterations => attribute_iterations: usize,
+    with_step => step: f64,
+    with_tolerance => tolerance: f64,
+    with_matching_starts => matching_starts: usize,
+    with_stagnation => stagnation: f64,
+    with_matching_iterations => matching_iterations: usize,
+    with_matching_polish => matching_polish: usize,
+    with_sampling_control => sampling_control: bool,
+    with_sampling_threshold => sampling_threshold: f64,
+    with_count_tolerance => count_tolerance: f64,
+    with_patch_size => patch_size: f64,
+    with_patch_candidates => patch_candidates: usize,
+    with_exemplar_window => exemplar_window: Option<(Vec<f64>, Vec<f64>)>,
+    with_initialization => initialization: Initialization,
+    with_refinement => refinement: Refinement,
+    with_rotation => rotation: Field,
+    with_scale => scale: Field,
+    with_attributes => attributes: Option<Vec<String>>,
+    with_discrete_attributes => discrete_attributes: Vec<String>,
+    with_detect_discrete => detect_discrete: bool,
+    with_continuous_attributes => continuous_attributes: Vec<String>,
+    with_attribute_weight => attribute_weight: f64,
+    with_attribute_weights => attribute_weights: Vec<(String, f64)>,
+    with_keep_margin => keep_margin: Option<f64>,
+    with_evaluator => evaluator: Evaluator,
+    with_seed => seed: u64,
+}}

@@ -183,8 +183,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let exemplar =
         Exemplar { positions, features, channels, element_of, elements, low, high, spacing, window_low, window_high };
     // Domain and quadrature.
-    let domain = params.domain.as_ref().ok_or_else(|| Error::EmptyDomain("no domain given".into()))?;
-    let region = Region::<D>::new(domain).map_err(Error::EmptyDomain)?;
+    let region = Region::<D>::new(&input.domain).map_err(Error::EmptyDomain)?;
     let existing: Vec<Vector<D>> = match &input.existing {
         Some(set) => (0..set.len()).map(|i| vector(set.position(i))).collect(),
         None => Vec::new(),

@@ -1,7 +1,7 @@
 //! Algorithm 1, the multi-scale local–global solver (§5.1): validation, the loop over window sizes,
 //! the report; and single evaluations of T for benchmarks.
 
-use motif_core::error::{check_count, check_positive, check_range, number};
+use motif_core::error::number;
 use motif_core::timing::Clock;
 use motif_core::{InvalidParameter, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
@@ -119,40 +119,9 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
             )));
         }
     }
-    if let Some(delta) = params.neighbourhood {
-        check_positive("neighbourhood", delta)?;
-    }
-    if let Some(sigma) = params.sigma {
-        check_positive("sigma", sigma)?;
-    }
-    check_range("spacing-fraction", params.spacing_fraction, 0.1, 2.0)?;
-    check_range("quadrature-spacing", params.quadrature_spacing, 0.25, 4.0)?;
-    check_range("kernel-cutoff", params.kernel_cutoff, 2.0, 6.0)?;
-    check_range("shrink", params.shrink, 0.5, 0.99)?;
-    check_range("final-fraction", params.final_fraction, 0.05, 1.0)?;
-    check_count("sampling-rounds", params.sampling_rounds, 1, 20)?;
-    check_count("local-global-iterations", params.local_global_iterations, 1, 20)?;
-    check_count("merge-iterations", params.merge_iterations, 1, 1000)?;
-    check_count("attribute-iterations", params.attribute_iterations, 0, 1000)?;
-    check_range("step", params.step, 1e-4, 1.0)?;
-    check_range("tolerance", params.tolerance, 0.0, 1.0)?;
-    check_range("stagnation", params.stagnation, 0.0, 1.0)?;
-    check_count("matching-starts", params.matching_starts, 1, 64)?;
-    check_count("matching-iterations", params.matching_iterations, 1, 200)?;
-    check_count("matching-polish", params.matching_polish, 0, 50)?;
-    check_range("sampling-threshold", params.sampling_threshold, 0.05, 10.0)?;
-    check_range("count-tolerance", params.count_tolerance, 0.01, 1.0)?;
-    check_range("patch-size", params.patch_size, 1.0, 20.0)?;
-    check_count("patch-candidates", params.patch_candidates, 1, 256)?;
+    params.validate()?;
     if let Some((low, high)) = &params.exemplar_window {
         check_exemplar_window(exemplar, low, high)?;
-    }
-    check_range("attribute-weight", params.attribute_weight, 1e-6, 100.0)?;
-    if let Some(margin) = params.keep_margin {
-        check_range("keep-margin", margin, 0.0, f64::MAX)?;
-    }
-    if params.domain.is_none() {
-        return Err(Error::EmptyDomain("no domain given (a box, a polygon region or a brush stroke)".into()));
     }
     Ok(())
 }

@@ -68,15 +68,8 @@ fn interior_nearest(set: &PointSet, w: f64, h: f64, margin: f64) -> Vec<f64> {
     out
 }
 
-fn quick_params(domain: Domain) -> Params {
-    Params {
-        neighbourhood: Some(1.5),
-        domain: Some(domain),
-        shrink: 0.8,
-        merge_iterations: 15,
-        seed: 5,
-        ..Params::default()
-    }
+fn quick_params() -> Params {
+    Params { neighbourhood: Some(1.5), shrink: 0.8, merge_iterations: 15, seed: 5, ..Params::default() }
 }
 
 /// A prepared problem with a random output and matches, for derivative checks.
@@ -98,9 +91,9 @@ fn fixture_2d(window: Window, attributes: bool) -> (Fixture<2>, Params) {
         scale: Field::Uniform(1.1),
         // Random points: the gradient checks want a dense, irregular state.
         initialization: Initialization::Random,
-        ..quick_params(box_domain(6.0, 5.0))
+        ..quick_params()
     };
-    let input = Input { exemplar, existing: None };
+    let input = Input { exemplar, domain: box_domain(6.0, 5.0), existing: None };
     let mut setup = prepare::<2>(&input, &params).unwrap();
     setup.initialize(&params, &SeedStreams::new(3));
     // Perturb features so that attribute gradients are not trivially symmetric.
@@ -270,12 +263,11 @@ fn fixture_3d() -> (Fixture<3>, Params) {
     let exemplar = PointSet::new(3, positions);
     let params = Params {
         neighbourhood: Some(1.2),
-        domain: Some(Domain::Box { min: vec![0.0; 3], max: vec![3.0, 3.0, 2.5] }),
         rotation: Field::Uniform(35.0),
         initialization: Initialization::Random,
         ..Params::default()
     };
-    let input = Input { exemplar, existing: None };
+    let input = Input { exemplar, domain: Domain::Box { min: vec![0.0; 3], max: vec![3.0, 3.0, 2.5] }, existing: None };
     let mut setup = prepare::<3>(&input, &params).unwrap();
     setup.initialize(&params, &SeedStreams::new(3));
     let (matches, exemplar_self) = match_once(&setup, &params);
@@ -389,9 +381,13 @@ fn grid_likeness(output: &PointSet, w: f64, h: f64) -> (f64, usize) {
 fn jittered_grid_gives_grid_like_output_from_random_and_patch_starts() {
     let exemplar = jittered_grid(14, 0.1, 7);
     for initialization in [Initialization::Random, Initialization::Patches] {
-        let params = Params { initialization, attributes: Some(vec![]), ..quick_params(box_domain(9.0, 9.0)) };
-        let output =
-            synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params, &mut NoProgress).unwrap();
+        let params = Params { initialization, attributes: Some(vec![]), ..quick_params() };
+        let output = synthesize(
+            &Input { exemplar: exemplar.clone(), domain: box_domain(9.0, 9.0), existing: None },
+            &params,
+            &mut NoProgress,
+        )
+        .unwrap();
         let (fraction, count) = grid_likeness(&output.points, 9.0, 9.0);
         assert!(count > 20, "{initialization:?}: only {count} interior points");
         assert!(fraction > 0.8, "{initialization:?}: only {fraction} of nearest distances near the spacing");
@@ -426,15 +422,13 @@ fn sampling_control_reaches_the_right_count_from_half_and_double() {
             positions.push(stream.random::<f64>() * 10.0);
         }
         let existing = PointSet::new(2, positions);
-        let params = Params {
-            keep_margin: Some(0.0),
-            attributes: Some(vec![]),
-            sampling_rounds: 3,
-            ..quick_params(domain.clone())
-        };
-        let output =
-            synthesize(&Input { exemplar: exemplar.clone(), existing: Some(existing) }, &params, &mut NoProgress)
-                .unwrap();
+        let params = Params { keep_margin: Some(0.0), attributes: Some(vec![]), sampling_rounds: 3, ..quick_params() };
+        let output = synthesize(
+            &Input { exemplar: exemplar.clone(), domain: domain.clone(), existing: Some(existing) },
+            &params,
+            &mut NoProgress,
+        )
+        .unwrap();
         let n = output.points.len() as f64;
         // The right number: the exemplar's density (one point per unit cell) over the domain's
         // volume as the solver integrates it (each quadrature point stands for h² with h = 2σ; the
@@ -475,8 +469,13 @@ fn bar_exemplar() -> PointSet {
 #[test]
 fn discrete_elements_come_out_as_rigid_copies() {
     let exemplar = bar_exemplar();
-    let params = Params { neighbourhood: Some(2.5), ..quick_params(box_domain(10.0, 8.0)) };
-    let output = synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params, &mut NoProgress).unwrap();
+    let params = Params { neighbourhood: Some(2.5), ..quick_params() };
+    let output = synthesize(
+        &Input { exemplar: exemplar.clone(), domain: box_domain(10.0, 8.0), existing: None },
+        &params,
+        &mut NoProgress,
+    )
+    .unwrap();
     let ids = output.points.elements.as_ref().expect("element ids");
     let mut groups: std::collections::BTreeMap<i64, Vec<usize>> = std::collections::BTreeMap::new();
     for (i, &id) in ids.iter().enumerate() {
@@ -531,10 +530,17 @@ fn alignment_with_x(set: &PointSet, w: f64, h: f64) -> f64 {
 #[test]
 fn a_rotation_field_of_90_degrees_rotates_the_structure() {
     let exemplar = rows(24, 8);
-    let base = Params { neighbourhood: Some(1.5), attributes: Some(vec![]), ..quick_params(box_domain(8.0, 8.0)) };
-    let plain = synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &base, &mut NoProgress).unwrap();
+    let base = Params { neighbourhood: Some(1.5), attributes: Some(vec![]), ..quick_params() };
+    let plain = synthesize(
+        &Input { exemplar: exemplar.clone(), domain: box_domain(8.0, 8.0), existing: None },
+        &base,
+        &mut NoProgress,
+    )
+    .unwrap();
     let rotated_params = Params { rotation: Field::Uniform(90.0), ..base };
-    let rotated = synthesize(&Input { exemplar, existing: None }, &rotated_params, &mut NoProgress).unwrap();
+    let rotated =
+        synthesize(&Input { exemplar, domain: box_domain(8.0, 8.0), existing: None }, &rotated_params, &mut NoProgress)
+            .unwrap();
     let plain_alignment = alignment_with_x(&plain.points, 8.0, 8.0);
     let rotated_alignment = alignment_with_x(&rotated.points, 8.0, 8.0);
     assert!(plain_alignment > 0.8, "unrotated rows: nearest neighbours along x? {plain_alignment}");
@@ -544,11 +550,16 @@ fn a_rotation_field_of_90_degrees_rotates_the_structure() {
 #[test]
 fn same_seed_gives_identical_output_for_any_thread_count() {
     let exemplar = jittered_grid(10, 0.2, 3);
-    let params = Params { local_global_iterations: 1, shrink: 0.7, ..quick_params(box_domain(5.0, 5.0)) };
+    let params = Params { local_global_iterations: 1, shrink: 0.7, ..quick_params() };
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params, &mut NoProgress).unwrap()
+            synthesize(
+                &Input { exemplar: exemplar.clone(), domain: box_domain(5.0, 5.0), existing: None },
+                &params,
+                &mut NoProgress,
+            )
+            .unwrap()
         })
     };
     let one = run(1);
@@ -556,7 +567,7 @@ fn same_seed_gives_identical_output_for_any_thread_count() {
     assert_eq!(one.points, two.points);
     assert_eq!(one.report.final_energy.to_bits(), two.report.final_energy.to_bits());
     let other = synthesize(
-        &Input { exemplar: exemplar.clone(), existing: None },
+        &Input { exemplar: exemplar.clone(), domain: box_domain(5.0, 5.0), existing: None },
         &Params { seed: 99, ..params.clone() },
         &mut NoProgress,
     )
@@ -567,8 +578,10 @@ fn same_seed_gives_identical_output_for_any_thread_count() {
 #[test]
 fn discrete_attributes_are_snapped_to_exemplar_values() {
     let exemplar = jittered_grid(10, 0.2, 3);
-    let params = Params { discrete_attributes: vec!["shade".into()], ..quick_params(box_domain(5.0, 5.0)) };
-    let output = synthesize(&Input { exemplar, existing: None }, &params, &mut NoProgress).unwrap();
+    let params = Params { discrete_attributes: vec!["shade".into()], ..quick_params() };
+    let output =
+        synthesize(&Input { exemplar, domain: box_domain(5.0, 5.0), existing: None }, &params, &mut NoProgress)
+            .unwrap();
     assert_eq!(output.points.attribute_names, vec!["shade".to_string()]);
     for &v in &output.points.attributes {
         assert!(v.abs() < 1e-9 || (v - 1.0).abs() < 1e-9, "{v}");
@@ -579,15 +592,19 @@ fn discrete_attributes_are_snapped_to_exemplar_values() {
 fn progressive_synthesis_keeps_far_points_fixed() {
     let exemplar = jittered_grid(12, 0.1, 5);
     let first = synthesize(
-        &Input { exemplar: exemplar.clone(), existing: None },
-        &Params { attributes: Some(vec![]), ..quick_params(box_domain(6.0, 6.0)) },
+        &Input { exemplar: exemplar.clone(), domain: box_domain(6.0, 6.0), existing: None },
+        &Params { attributes: Some(vec![]), ..quick_params() },
         &mut NoProgress,
     )
     .unwrap();
     let stroke = Stroke { points: vec![vec![6.0, 3.0], vec![12.0, 3.0]], width: 3.0, scale_start: 1.0, scale_end: 1.0 };
-    let params = Params { attributes: Some(vec![]), keep_margin: Some(2.0), ..quick_params(Domain::Stroke(stroke)) };
-    let second =
-        synthesize(&Input { exemplar, existing: Some(first.points.clone()) }, &params, &mut NoProgress).unwrap();
+    let params = Params { attributes: Some(vec![]), keep_margin: Some(2.0), ..quick_params() };
+    let second = synthesize(
+        &Input { exemplar, domain: Domain::Stroke(stroke), existing: Some(first.points.clone()) },
+        &params,
+        &mut NoProgress,
+    )
+    .unwrap();
     let before = positions_of(&first.points);
     let after = positions_of(&second.points);
     let far: Vec<&Vector<2>> =
@@ -614,8 +631,13 @@ fn progressive_synthesis_keeps_far_points_fixed() {
 fn strokes_and_polygons_confine_the_output() {
     let exemplar = rows(24, 8);
     let stroke = Stroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1.0, scale_end: 1.5 };
-    let params = Params { neighbourhood: Some(1.5), ..quick_params(Domain::Stroke(stroke)) };
-    let output = synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params, &mut NoProgress).unwrap();
+    let params = Params { neighbourhood: Some(1.5), ..quick_params() };
+    let output = synthesize(
+        &Input { exemplar: exemplar.clone(), domain: Domain::Stroke(stroke), existing: None },
+        &params,
+        &mut NoProgress,
+    )
+    .unwrap();
     assert!(output.points.len() > 10);
     for p in positions_of(&output.points) {
         assert!(p[0].abs() <= 1.5 + 1e-9 && p[1] >= -1.5 && p[1] <= 9.5, "{p:?}");
@@ -644,8 +666,10 @@ fn strokes_and_polygons_confine_the_output() {
         motif_core::Point::new(0.0, 8.0),
     ])
     .unwrap();
-    let params = Params { neighbourhood: Some(1.5), ..quick_params(Domain::Polygon(polygon)) };
-    let output = synthesize(&Input { exemplar, existing: None }, &params, &mut NoProgress).unwrap();
+    let params = Params { neighbourhood: Some(1.5), ..quick_params() };
+    let output =
+        synthesize(&Input { exemplar, domain: Domain::Polygon(polygon), existing: None }, &params, &mut NoProgress)
+            .unwrap();
     assert!(output.points.len() > 20);
     for p in positions_of(&output.points) {
         assert!(p[0] >= 0.0 && p[1] >= 0.0 && p[0] + p[1] <= 8.0 + 1e-9, "{p:?}");
@@ -666,14 +690,13 @@ fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
         }
     }
     let exemplar = PointSet::new(3, positions);
-    let params = Params {
-        neighbourhood: Some(1.2),
-        domain: Some(Domain::Box { min: vec![0.0; 3], max: vec![4.0, 4.0, 4.0] }),
-        shrink: 0.7,
-        merge_iterations: 10,
-        ..Params::default()
-    };
-    let output = synthesize(&Input { exemplar, existing: None }, &params, &mut NoProgress).unwrap();
+    let params = Params { neighbourhood: Some(1.2), shrink: 0.7, merge_iterations: 10, ..Params::default() };
+    let output = synthesize(
+        &Input { exemplar, domain: Domain::Box { min: vec![0.0; 3], max: vec![4.0, 4.0, 4.0] }, existing: None },
+        &params,
+        &mut NoProgress,
+    )
+    .unwrap();
     // One point per unit volume: between the box's volume (4³) and the volume Ω has for the solver
     // (quadrature points × h³, which counts the boundary layer where lattice points also fit).
     let n = output.points.len() as f64;
@@ -689,34 +712,32 @@ fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
 #[test]
 fn bad_input_gives_clear_errors() {
     let domain = box_domain(5.0, 5.0);
-    let run =
-        |exemplar: PointSet, params: Params| synthesize(&Input { exemplar, existing: None }, &params, &mut NoProgress);
+    let run = |exemplar: PointSet, params: Params, domain: Domain| {
+        synthesize(&Input { exemplar, domain, existing: None }, &params, &mut NoProgress)
+    };
     let two = PointSet::new(2, vec![0.0, 0.0, 1.0, 1.0]);
-    let error = run(two, quick_params(domain.clone())).unwrap_err();
+    let error = run(two, quick_params(), domain.clone()).unwrap_err();
     assert!(error.to_string().contains("at least 3"), "{error}");
     let nan = PointSet::new(2, vec![0.0, 0.0, 1.0, f64::NAN, 2.0, 2.0]);
-    let error = run(nan, quick_params(domain.clone())).unwrap_err();
+    let error = run(nan, quick_params(), domain.clone()).unwrap_err();
     assert!(error.to_string().contains("non-finite coordinate"), "{error}");
     let grid = jittered_grid(5, 0.1, 1);
-    let error = run(grid.clone(), Params { neighbourhood: Some(0.0), ..quick_params(domain.clone()) }).unwrap_err();
+    let error = run(grid.clone(), Params { neighbourhood: Some(0.0), ..quick_params() }, domain.clone()).unwrap_err();
     assert!(matches!(error, Error::Parameter(_)) && error.to_string().contains("neighbourhood"), "{error}");
-    let error = run(grid.clone(), Params { neighbourhood: Some(-1.0), ..quick_params(domain) }).unwrap_err();
+    let error = run(grid.clone(), Params { neighbourhood: Some(-1.0), ..quick_params() }, domain.clone()).unwrap_err();
     assert!(error.to_string().contains("neighbourhood"), "{error}");
     let empty = box_domain(0.0, 5.0);
-    let error = run(grid.clone(), quick_params(empty)).unwrap_err();
+    let error = run(grid.clone(), quick_params(), empty).unwrap_err();
     assert!(matches!(error, Error::EmptyDomain(_)), "{error}");
     let tiny = Domain::Box { min: vec![0.0, 0.0], max: vec![0.1, 0.1] };
-    let error = run(grid.clone(), quick_params(tiny)).unwrap_err();
-    assert!(error.to_string().contains("empty domain"), "{error}");
-    let error = run(grid.clone(), Params { domain: None, ..Params::default() }).unwrap_err();
+    let error = run(grid.clone(), quick_params(), tiny).unwrap_err();
     assert!(error.to_string().contains("empty domain"), "{error}");
     // A huge domain is refused before anything is allocated, and says so.
     let huge = Domain::Box { min: vec![0.0, 0.0], max: vec![1e6, 1e6] };
-    let error = run(grid.clone(), quick_params(huge)).unwrap_err();
+    let error = run(grid.clone(), quick_params(), huge).unwrap_err();
     assert!(matches!(error, Error::DomainTooLarge(_)) && error.to_string().contains("too large"), "{error}");
     let wrong_dimension = Domain::Box { min: vec![0.0; 3], max: vec![1.0; 3] };
-    assert!(run(grid.clone(), quick_params(wrong_dimension)).is_err());
-    let error = run(grid, Params { attributes: Some(vec!["colour".into()]), ..quick_params(box_domain(5.0, 5.0)) })
-        .unwrap_err();
+    assert!(run(grid.clone(), quick_params(), wrong_dimension).is_err());
+    let error = run(grid, Params { attributes: Some(vec!["colour".into()]), ..quick_params() }, domain).unwrap_err();
     assert!(error.to_string().contains("colour"), "{error}");
 }

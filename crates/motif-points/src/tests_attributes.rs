@@ -7,15 +7,12 @@ use crate::params::{Domain, Error, Initialization, Input, Params};
 use crate::samples::{hex_exemplar, ripple_exemplar};
 use crate::{PointSet, synthesize};
 
+fn domain() -> Domain {
+    Domain::Box { min: vec![0.0; 2], max: vec![8.0, 7.0] }
+}
+
 fn params() -> Params {
-    Params {
-        neighbourhood: Some(1.5),
-        domain: Some(Domain::Box { min: vec![0.0; 2], max: vec![8.0, 7.0] }),
-        shrink: 0.8,
-        merge_iterations: 10,
-        seed: 3,
-        ..Params::default()
-    }
+    Params { neighbourhood: Some(1.5), shrink: 0.8, merge_iterations: 10, seed: 3, ..Params::default() }
 }
 
 fn with_attribute(mut set: PointSet, values: impl Fn(usize, f64) -> f64) -> PointSet {
@@ -33,8 +30,15 @@ fn an_attribute_in_other_units_gives_the_same_positions() {
     let scaled = with_attribute(exemplar.clone(), |_, v| 1000.0 * v + 5000.0);
     for initialization in [Initialization::Patches, Initialization::Random] {
         let params = Params { initialization, ..params() };
-        let a = synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params, &mut NoProgress).unwrap();
-        let b = synthesize(&Input { exemplar: scaled.clone(), existing: None }, &params, &mut NoProgress).unwrap();
+        let a = synthesize(
+            &Input { exemplar: exemplar.clone(), domain: domain(), existing: None },
+            &params,
+            &mut NoProgress,
+        )
+        .unwrap();
+        let b =
+            synthesize(&Input { exemplar: scaled.clone(), domain: domain(), existing: None }, &params, &mut NoProgress)
+                .unwrap();
         assert_eq!(a.points.len(), b.points.len(), "{initialization:?}");
         let largest =
             a.points.positions.iter().zip(&b.points.positions).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
@@ -51,11 +55,14 @@ fn whole_number_labels_are_detected_and_kept() {
     // between. With detection off (or the column named continuous) in-between values appear.
     let labels = [0.0, 3.0, 7.0];
     let exemplar = with_attribute(hex_exemplar(14, 14, 0.1, 2), |i, _| labels[(i / 14) % 3]);
-    let output = synthesize(&Input { exemplar: exemplar.clone(), existing: None }, &params(), &mut NoProgress).unwrap();
+    let output =
+        synthesize(&Input { exemplar: exemplar.clone(), domain: domain(), existing: None }, &params(), &mut NoProgress)
+            .unwrap();
     assert_eq!(output.report.discrete_attributes, vec!["shade".to_string()]);
     assert!(output.points.attributes.iter().all(|v| labels.contains(v)), "{:?}", output.points.attributes);
     let continuous = Params { continuous_attributes: vec!["shade".into()], ..params() };
-    let output = synthesize(&Input { exemplar, existing: None }, &continuous, &mut NoProgress).unwrap();
+    let output =
+        synthesize(&Input { exemplar, domain: domain(), existing: None }, &continuous, &mut NoProgress).unwrap();
     assert!(output.report.discrete_attributes.is_empty());
     assert!(output.points.attributes.iter().any(|v| !labels.contains(v)));
 }
@@ -63,20 +70,22 @@ fn whole_number_labels_are_detected_and_kept() {
 #[test]
 fn unusable_attribute_columns_are_clear_errors() {
     let constant = with_attribute(hex_exemplar(8, 8, 0.1, 1), |_, _| 2.5);
-    let message = match synthesize(&Input { exemplar: constant, existing: None }, &params(), &mut NoProgress) {
-        Err(Error::Input(message)) => message,
-        other => panic!("{other:?}"),
-    };
+    let message =
+        match synthesize(&Input { exemplar: constant, domain: domain(), existing: None }, &params(), &mut NoProgress) {
+            Err(Error::Input(message)) => message,
+            other => panic!("{other:?}"),
+        };
     assert!(message.contains("\"shade\"") && message.contains("same value"), "{message}");
     let missing = with_attribute(hex_exemplar(8, 8, 0.1, 1), |i, v| if i == 5 { f64::NAN } else { v });
-    let message = match synthesize(&Input { exemplar: missing, existing: None }, &params(), &mut NoProgress) {
-        Err(Error::Input(message)) => message,
-        other => panic!("{other:?}"),
-    };
+    let message =
+        match synthesize(&Input { exemplar: missing, domain: domain(), existing: None }, &params(), &mut NoProgress) {
+            Err(Error::Input(message)) => message,
+            other => panic!("{other:?}"),
+        };
     assert!(message.contains("\"shade\"") && message.contains("point 5"), "{message}");
     let weights = Params { attribute_weights: vec![("size".into(), 2.0)], ..params() };
     let exemplar = hex_exemplar(8, 8, 0.1, 1);
-    let message = match synthesize(&Input { exemplar, existing: None }, &weights, &mut NoProgress) {
+    let message = match synthesize(&Input { exemplar, domain: domain(), existing: None }, &weights, &mut NoProgress) {
         Err(Error::Input(message)) => message,
         other => panic!("{other:?}"),
     };

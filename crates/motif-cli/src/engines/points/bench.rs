@@ -18,10 +18,9 @@ fn bench_case(
 ) -> anyhow::Result<Value> {
     let mut params = Params::default();
     params.neighbourhood = Some(neighbourhood);
-    params.domain = Some(domain);
     params.quadrature_spacing = quadrature;
     params.seed = seed;
-    let input = Input { exemplar: exemplar.clone(), existing: None };
+    let input = Input::new(exemplar.clone(), domain);
     let start = std::time::Instant::now();
     let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
     let seconds = start.elapsed().as_secs_f64();

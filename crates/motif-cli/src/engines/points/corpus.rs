@@ -35,11 +35,11 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     }
     let mut params = Params::default();
     params.neighbourhood = Some(case.neighbourhood);
-    params.domain = Some(Domain::Box { min: vec![0.0; case.domain.len()], max: case.domain.clone() });
     params.discrete_attributes = discrete;
     params.exemplar_window = Some((vec![0.0; case.window.len()], case.window.clone()));
     params.seed = seed;
-    let input = Input { exemplar, existing: None };
+    let domain = Domain::Box { min: vec![0.0; case.domain.len()], max: case.domain.clone() };
+    let input = Input::new(exemplar, domain);
     let start = std::time::Instant::now();
     let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
     let seconds = start.elapsed().as_secs_f64();

@@ -368,7 +368,6 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         WindowArg::Box => Window::Box,
     };
     params.sigma = args.sigma;
-    params.domain = Some(domain);
     params.rotation = if args.rotation != 0.0 { Field::Uniform(args.rotation) } else { Field::None };
     params.scale = if args.scale != 1.0 { Field::Uniform(args.scale) } else { Field::None };
     params.quadrature_spacing = args.quadrature_spacing;
@@ -407,7 +406,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         .collect::<anyhow::Result<_>>()?;
     params.keep_margin = args.keep_margin;
     params.seed = context.seed;
-    let input = Input { exemplar, existing };
+    let input = Input { exemplar, domain, existing };
     let output = motif_points::synthesize(&input, &params, context.progress())?;
     let format = match PointFormat::from_path(&args.out) {
         PointFormat::PlyBinary if args.ascii => PointFormat::PlyAscii,
