@@ -13,7 +13,7 @@ use crate::PointSet;
 pub enum Error {
     /// A parameter is outside its range.
     #[error(transparent)]
-    Parameter(#[from] InvalidParameter),
+    InvalidParameter(#[from] InvalidParameter),
     /// The exemplar or the existing points are unusable.
     #[error("{0}")]
     Input(String),

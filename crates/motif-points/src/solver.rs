@@ -133,7 +133,7 @@ fn check_exemplar_window(exemplar: &PointSet, low: &[f64], high: &[f64]) -> Resu
         let corner = |c: &[f64]| c.iter().map(|&v| number(v)).collect::<Vec<_>>().join(",");
         format!("{} to {}", corner(low), corner(high))
     };
-    let invalid = |allowed: String| Error::Parameter(InvalidParameter::new("exemplar-window", shown(), allowed));
+    let invalid = |allowed: String| Error::InvalidParameter(InvalidParameter::new("exemplar-window", shown(), allowed));
     if low.len() != d || high.len() != d {
         return Err(invalid(format!("the exemplar is {d}D: it needs {d} lower and {d} upper values")));
     }

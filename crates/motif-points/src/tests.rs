@@ -723,7 +723,7 @@ fn bad_input_gives_clear_errors() {
     assert!(error.to_string().contains("non-finite coordinate"), "{error}");
     let grid = jittered_grid(5, 0.1, 1);
     let error = run(grid.clone(), Params { neighbourhood: Some(0.0), ..quick_params() }, domain.clone()).unwrap_err();
-    assert!(matches!(error, Error::Parameter(_)) && error.to_string().contains("neighbourhood"), "{error}");
+    assert!(matches!(error, Error::InvalidParameter(_)) && error.to_string().contains("neighbourhood"), "{error}");
     let error = run(grid.clone(), Params { neighbourhood: Some(-1.0), ..quick_params() }, domain.clone()).unwrap_err();
     assert!(error.to_string().contains("neighbourhood"), "{error}");
     let empty = box_domain(0.0, 5.0);

@@ -18,7 +18,25 @@
 //! - [`generate`]: generated reference drawings for demos, benchmarks and tests.
 //!
 //! The entry point is [`synthesize`]; [`analyse`] runs the analysis alone (for interactive tuning
-//! of ε).
+//! of ε). The crate does no I/O and builds for `wasm32`.
+//!
+//! ```
+//! use motif_core::{NoProgress, Point, Polyline};
+//! use motif_strokes::generate::{HatchRow, hatch_row};
+//! use motif_strokes::{Input, Params, Target, synthesize};
+//!
+//! // A reference row of 12 hatches, each of three sketchy strokes, continued along a longer line.
+//! let row = HatchRow { count: 12, ..HatchRow::default() };
+//! let strokes = hatch_row(&row, Point::new(10.0, 30.0), |i| 0.05 * i as f64, |_| [20, 20, 20, 255], 1);
+//! let path = Polyline::new(vec![Point::new(0.0, 0.0), Point::new(400.0, 0.0)], false).unwrap();
+//! let params = Params::default().with_scale(6.0).with_seed(3);
+//! params.validate().unwrap();
+//! let output = synthesize(&Input { strokes, target: Target::Path(path) }, &params, &mut NoProgress).unwrap();
+//! // Clustering finds the 12 hatches; the line holds about 400 / 8 of them.
+//! assert_eq!(output.report.reference_elements, 12);
+//! assert!((output.report.output_elements as f64 - 50.0).abs() <= 3.0);
+//! assert_eq!(output.report.output_strokes, 3 * output.report.output_elements);
+//! ```
 
 pub mod analysis;
 pub mod cluster;

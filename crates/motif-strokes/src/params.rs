@@ -119,3 +119,16 @@ impl Params {
         self.rings.unwrap_or(if along_path { 5 } else { 2 })
     }
 }
+
+// One `with_*` method per field: `Params::default().with_scale(12.0).with_variation(0.3)`.
+motif_core::builders! { Params {
+    with_scale => scale: f64,
+    with_fit => fit: FitPoints,
+    with_rings => rings: Option<usize>,
+    with_thresholds => thresholds: Thresholds,
+    with_variation => variation: f64,
+    with_position_variation => position_variation: bool,
+    with_lloyd_iterations => lloyd_iterations: usize,
+    with_max_elements => max_elements: usize,
+    with_seed => seed: u64,
+}}

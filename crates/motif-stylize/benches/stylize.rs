@@ -3,7 +3,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use motif_core::{FloatImage, NoProgress};
-use motif_stylize::{Guide, StylizeInput, StylizeParams, synthesize};
+use motif_stylize::{Guide, Input, Params, synthesize};
 
 fn image(width: usize, height: usize, phase: f32) -> FloatImage {
     let data = (0..width * height * 3)
@@ -19,8 +19,8 @@ fn image(width: usize, height: usize, phase: f32) -> FloatImage {
 fn bench(c: &mut Criterion) {
     let style = image(160, 160, 0.0);
     let guide = Guide { source: image(160, 160, 1.0), target: image(224, 224, 2.0), weight: None };
-    let input = StylizeInput::guided(style, vec![guide]);
-    let mut params = StylizeParams::default();
+    let input = Input::guided(style, vec![guide]);
+    let mut params = Params::default();
     params.patch_size = 3;
     c.bench_function("stylize 224x224 patch 3", |b| {
         b.iter(|| synthesize(&input, &params, &mut NoProgress).expect("valid input"))

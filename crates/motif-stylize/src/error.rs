@@ -6,6 +6,7 @@ use motif_core::InvalidParameter;
 ///
 /// All variants describe bad input; the engine itself never fails on valid input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum Error {
     /// A numeric parameter is out of its range.
     #[error(transparent)]

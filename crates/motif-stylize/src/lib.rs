@@ -27,6 +27,25 @@
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
 //! every parallel reduction has a fixed order: the same seed gives the same bytes on any number
 //! of threads.
+//!
+//! The crate does no I/O and builds for `wasm32`.
+//!
+//! ```
+//! use motif_core::NoProgress;
+//! use motif_stylize::samples::{crayon_style, map_guide};
+//! use motif_stylize::{Guide, Input, Params, synthesize};
+//!
+//! // A 48 × 40 map guide A with its crayon style A', and a new 56 × 44 guide B to paint.
+//! let source = map_guide(48, 40, 3, 1);
+//! let style = crayon_style(&source, 2);
+//! let target = map_guide(56, 44, 3, 3);
+//! let params = Params::default().with_search_vote_iterations(2).with_seed(5);
+//! params.validate().unwrap();
+//! let input = Input::guided(style, vec![Guide { source, target, weight: None }]);
+//! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+//! assert_eq!((output.image.width(), output.image.height()), (56, 44));
+//! assert!(output.report.energy.total > 0.0 && output.report.source_coverage > 0.1);
+//! ```
 
 mod band;
 mod error;
@@ -48,7 +67,7 @@ use serde::Serialize;
 
 pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
-pub use params::{NnfMethod, Segmentation, StylizeParams};
+pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{SegmentLabels, label_guides};
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
@@ -79,7 +98,7 @@ pub struct SegmentTexture {
 
 /// What to synthesize.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StylizeInput {
+pub struct Input {
     /// The style exemplar A' (or the texture exemplar), 1, 3 or 4 channels, values in `[0, 1]`.
     pub style: FloatImage,
     /// Guide pairs; empty for non-guided texture synthesis.
@@ -92,7 +111,7 @@ pub struct StylizeInput {
     pub textures: Option<Vec<SegmentTexture>>,
 }
 
-impl StylizeInput {
+impl Input {
     /// Guided stylization of the target guides' size.
     pub fn guided(style: FloatImage, guides: Vec<Guide>) -> Self {
         Self { style, guides, size: None, textures: None }
@@ -144,6 +163,13 @@ pub struct Output {
     /// Per-pixel energy (patch distance + penalty) of the final field, 1 channel; 0 outside
     /// the band in band mode.
     pub error_map: FloatImage,
+    /// Figures of the run.
+    pub report: Report,
+}
+
+/// Figures of a run of [`synthesize`], for reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
     /// Final mean per-pixel energy of the output and its parts.
     pub energy: EnergyParts,
     /// Fraction of source patches used by at least one output patch.
@@ -185,7 +211,7 @@ fn channel_weights(weight: f32, channels: usize) -> impl Iterator<Item = f32> {
 /// Validates everything first: images non-empty with 1, 3 or 4 channels, source guides the
 /// style's size, target guides one common size, guide pairs with equal channels, parameters in
 /// range. Progress is reported per level.
-pub fn synthesize(input: &StylizeInput, params: &StylizeParams, progress: &mut dyn Progress) -> Result<Output, Error> {
+pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
     params.validate()?;
     check_image(&input.style, "style")?;
     let style = &input.style;
@@ -424,11 +450,11 @@ pub struct PresynthInput {
 }
 
 /// Synthesizes one seamless texture per segment of the source guide from the style patches of
-/// that segment (§3.7), for [`StylizeInput::textures`]. Segments are the guide's colours
-/// ([`StylizeParams::segments`], palette by default). The textures tile (`tileable` is forced).
+/// that segment (§3.7), for [`Input::textures`]. Segments are the guide's colours
+/// ([`Params::segments`], palette by default). The textures tile (`tileable` is forced).
 pub fn presynthesize(
     input: &PresynthInput,
-    params: &StylizeParams,
+    params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Vec<SegmentTexture>, Error> {
     params.validate()?;

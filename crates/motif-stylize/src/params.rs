@@ -32,7 +32,7 @@ pub enum Segmentation {
 /// [`presynthesize`](crate::presynthesize). Defaults are ebsynth's.
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
-pub struct StylizeParams {
+pub struct Params {
     /// α of Eq. 4–5: weight of the style term (A' against B' patches), shared equally by the
     /// style channels. Range `[0, 1000]`, default 1.
     pub style_weight: f32,
@@ -87,7 +87,7 @@ pub struct StylizeParams {
     pub seed: u64,
 }
 
-impl Default for StylizeParams {
+impl Default for Params {
     fn default() -> Self {
         Self {
             style_weight: 1.0,
@@ -110,7 +110,7 @@ impl Default for StylizeParams {
     }
 }
 
-impl StylizeParams {
+impl Params {
     /// Checks every field's range; the first bad one is the error.
     pub fn validate(&self) -> Result<(), Error> {
         check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
@@ -131,3 +131,23 @@ impl StylizeParams {
         Ok(())
     }
 }
+
+// One `with_*` method per field: `Params::default().with_patch_size(7).with_uniformity(0.0)`.
+motif_core::builders! { Params {
+    with_style_weight => style_weight: f32,
+    with_uniformity => uniformity: f32,
+    with_patch_size => patch_size: usize,
+    with_pyramid_levels => pyramid_levels: usize,
+    with_search_vote_iterations => search_vote_iterations: usize,
+    with_patchmatch_iterations => patchmatch_iterations: usize,
+    with_stop_threshold => stop_threshold: f32,
+    with_nnf => nnf: NnfMethod,
+    with_extra_pass_3x3 => extra_pass_3x3: bool,
+    with_segments => segments: Option<Segmentation>,
+    with_segment_guide => segment_guide: usize,
+    with_band => band: usize,
+    with_band_search_vote_iterations => band_search_vote_iterations: usize,
+    with_band_patchmatch_iterations => band_patchmatch_iterations: usize,
+    with_tileable => tileable: bool,
+    with_seed => seed: u64,
+}}

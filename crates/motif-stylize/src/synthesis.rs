@@ -9,7 +9,7 @@ use crate::level::{Level, LevelSpec};
 use crate::occurrence::Occurrence;
 use crate::search::{Field, exact_search, patchmatch_iteration};
 use crate::vote::vote;
-use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, StylizeParams, segments};
+use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, segments};
 
 /// A validated problem in the engine's terms (built by the public entry points).
 pub(crate) struct Problem<'a> {
@@ -73,7 +73,7 @@ fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) -> Vec<bool
 }
 
 /// Runs the whole optimization.
-pub(crate) fn run(problem: &Problem<'_>, params: &StylizeParams, progress: &mut dyn Progress) -> Result<Output, Error> {
+pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
     let start = Clock::now();
     // A band that starts from the textures' fields is nearly converged: fewer iterations (§3.7).
     let seeded_band = problem.composition.is_some() && problem.seeds.is_some();
@@ -255,12 +255,14 @@ pub(crate) fn run(problem: &Problem<'_>, params: &StylizeParams, progress: &mut 
         image,
         field: nnf,
         error_map,
-        energy,
-        source_coverage,
-        levels: reports,
-        stages_ms: timer.finish(),
-        total_ms: motif_core::timing::elapsed_ms(start),
-        searched_pixels: searched,
+        report: Report {
+            energy,
+            source_coverage,
+            levels: reports,
+            stages_ms: timer.finish(),
+            total_ms: motif_core::timing::elapsed_ms(start),
+            searched_pixels: searched,
+        },
     })
 }
 
@@ -292,12 +294,14 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
             matches: vec![None; width * height],
         },
         error_map: FloatImage::new(width, height, 1),
-        energy: EnergyParts { total: 0.0, style: 0.0, guide: 0.0, occurrence: 0.0 },
-        source_coverage: 0.0,
-        levels: Vec::new(),
-        stages_ms: vec![("composition".to_string(), total_ms)],
-        total_ms,
-        searched_pixels: 0,
+        report: Report {
+            energy: EnergyParts { total: 0.0, style: 0.0, guide: 0.0, occurrence: 0.0 },
+            source_coverage: 0.0,
+            levels: Vec::new(),
+            stages_ms: vec![("composition".to_string(), total_ms)],
+            total_ms,
+            searched_pixels: 0,
+        },
     }
 }
 
@@ -309,7 +313,7 @@ fn search(
     field: &mut Field,
     occurrence: &mut Occurrence,
     scratch: &mut Vec<u32>,
-    params: &StylizeParams,
+    params: &Params,
     streams: &SeedStreams,
     iteration: usize,
     converged: Option<&[bool]>,

@@ -305,31 +305,33 @@ fn patchmatch_energy_never_increases_and_nears_exact() {
     assert!(energies[8] <= 1.1 * exact_energy, "patchmatch {} vs exact {exact_energy}", energies[8]);
 }
 
-fn guided_input(size: usize) -> StylizeInput {
+fn guided_input(size: usize) -> Input {
     let style = texture(size, size, 3, 21);
     let source = flat(size, size, |x, y| if (x / 8 + y / 8) % 2 == 0 { [0.2, 0.2, 0.2] } else { [0.8, 0.8, 0.8] });
     let target = flat(size + 7, size - 5, |x, y| if (x + y) / 12 % 2 == 0 { [0.2, 0.2, 0.2] } else { [0.8, 0.8, 0.8] });
-    StylizeInput::guided(style, vec![Guide { source, target, weight: None }])
+    Input::guided(style, vec![Guide { source, target, weight: None }])
 }
 
 #[test]
 fn em_energy_decreases_within_each_level() {
-    let output = synthesize(&guided_input(48), &StylizeParams::default(), &mut NoProgress).unwrap();
-    assert!(output.levels.len() >= 2);
-    for level in &output.levels {
+    let output = synthesize(&guided_input(48), &Params::default(), &mut NoProgress).unwrap();
+    assert!(output.report.levels.len() >= 2);
+    for level in &output.report.levels {
         let (first, last) = (level.energies[0], *level.energies.last().unwrap());
         assert!(last < first, "{}: {:?}", level.name, level.energies);
     }
     assert_eq!((output.image.width(), output.image.height()), (55, 43));
-    assert!(output.energy.total > 0.0 && output.energy.guide > 0.0 && output.energy.occurrence > 0.0);
-    let parts = output.energy.style + output.energy.guide + output.energy.occurrence;
-    assert!((parts - output.energy.total).abs() < 1e-6 * output.energy.total);
+    assert!(
+        output.report.energy.total > 0.0 && output.report.energy.guide > 0.0 && output.report.energy.occurrence > 0.0
+    );
+    let parts = output.report.energy.style + output.report.energy.guide + output.report.energy.occurrence;
+    assert!((parts - output.report.energy.total).abs() < 1e-6 * output.report.energy.total);
 }
 
 #[test]
 fn same_seed_same_bytes_on_one_and_two_threads() {
     let input = guided_input(40);
-    let params = StylizeParams { seed: 77, extra_pass_3x3: true, ..Default::default() };
+    let params = Params { seed: 77, extra_pass_3x3: true, ..Default::default() };
     let run = |threads| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| synthesize(&input, &params, &mut NoProgress).unwrap())
@@ -348,8 +350,8 @@ fn same_seed_same_bytes_on_one_and_two_threads() {
 fn identity_guides_reproduce_the_style() {
     let style = texture(48, 48, 3, 31);
     let guide = style.clone();
-    let input = StylizeInput::guided(style.clone(), vec![Guide { source: guide.clone(), target: guide, weight: None }]);
-    let output = synthesize(&input, &StylizeParams::default(), &mut NoProgress).unwrap();
+    let input = Input::guided(style.clone(), vec![Guide { source: guide.clone(), target: guide, weight: None }]);
+    let output = synthesize(&input, &Params::default(), &mut NoProgress).unwrap();
     let value = psnr(&output.image, &style);
     assert!(value > 30.0, "PSNR {value}");
 }
@@ -361,12 +363,17 @@ fn uniformity_raises_coverage_and_prevents_wash_out() {
     let style = texture(size, size, 3, 41);
     let source = flat(size, size, |x, _| if x < size / 2 { [0.0; 3] } else { [1.0; 3] });
     let target = flat(size, size, |x, _| if x < 3 * size / 4 { [0.0; 3] } else { [1.0; 3] });
-    let input = StylizeInput::guided(style.clone(), vec![Guide { source, target, weight: Some(4.0) }]);
-    let mut params = StylizeParams { uniformity: 0.0, ..Default::default() };
+    let input = Input::guided(style.clone(), vec![Guide { source, target, weight: Some(4.0) }]);
+    let mut params = Params { uniformity: 0.0, ..Default::default() };
     let off = synthesize(&input, &params, &mut NoProgress).unwrap();
     params.uniformity = 3500.0;
     let on = synthesize(&input, &params, &mut NoProgress).unwrap();
-    assert!(on.source_coverage > off.source_coverage + 0.05, "{} vs {}", on.source_coverage, off.source_coverage);
+    assert!(
+        on.report.source_coverage > off.report.source_coverage + 0.05,
+        "{} vs {}",
+        on.report.source_coverage,
+        off.report.source_coverage
+    );
     // The dark region keeps the style's contrast instead of flattening out.
     let spread = |image: &FloatImage, x1: usize| {
         let values: Vec<f32> =
@@ -377,7 +384,7 @@ fn uniformity_raises_coverage_and_prevents_wash_out() {
     assert!(spread(&on.image, 3 * size / 4 - 4) > 0.5 * spread(&style, size / 2 - 4));
 }
 
-fn two_segment_case() -> StylizeInput {
+fn two_segment_case() -> Input {
     let size = 48;
     let red = texture(size, size, 3, 51);
     // Style: reddish on the left segment, bluish on the right (separable colours).
@@ -397,13 +404,13 @@ fn two_segment_case() -> StylizeInput {
     let target = flat(50, 44, |x, y| {
         if (x as f32 - 25.0).powi(2) + (y as f32 - 22.0).powi(2) < 225.0 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }
     });
-    StylizeInput::guided(style, vec![Guide { source, target, weight: None }])
+    Input::guided(style, vec![Guide { source, target, weight: None }])
 }
 
 #[test]
 fn segments_never_match_across_separable_segments() {
     let input = two_segment_case();
-    let params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let params = Params { segments: Some(Segmentation::Palette), ..Default::default() };
     let output = synthesize(&input, &params, &mut NoProgress).unwrap();
     let target = &input.guides[0].target;
     let source = &input.guides[0].source;
@@ -428,7 +435,7 @@ fn segments_never_match_across_separable_segments() {
 #[test]
 fn band_mode_keeps_textures_outside_the_band() {
     let input = two_segment_case();
-    let mut params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let mut params = Params { segments: Some(Segmentation::Palette), ..Default::default() };
     let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (32, 32) };
     let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
     assert_eq!(textures.len(), 2);
@@ -442,7 +449,7 @@ fn band_mode_keeps_textures_outside_the_band() {
     params.band = 0;
     let composed = synthesize(&banded, &params, &mut NoProgress).unwrap();
     assert!(composed.field.matches.iter().all(Option::is_none));
-    assert_eq!(composed.searched_pixels, 0);
+    assert_eq!(composed.report.searched_pixels, 0);
     params.band = 2;
     let output = synthesize(&banded, &params, &mut NoProgress).unwrap();
     let mask = band::band_mask(
@@ -461,7 +468,7 @@ fn band_mode_keeps_textures_outside_the_band() {
         }
     }
     assert!(changed > 0);
-    assert!(output.searched_pixels > 0 && output.searched_pixels < 50 * 44);
+    assert!(output.report.searched_pixels > 0 && output.report.searched_pixels < 50 * 44);
 }
 
 /// The specialized kernels (row length fixed at compile time) give exactly the generic sums, and
@@ -497,7 +504,7 @@ fn specialized_kernels_equal_the_generic_one() {
 #[test]
 fn seeded_band_starts_lower_and_keeps_textures_outside() {
     let input = two_segment_case();
-    let mut params = StylizeParams { segments: Some(Segmentation::Palette), band: 3, ..Default::default() };
+    let mut params = Params { segments: Some(Segmentation::Palette), band: 3, ..Default::default() };
     let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (32, 32) };
     let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
     assert!(textures.iter().all(|t| t.field.as_ref().is_some_and(|f| f.matches.iter().all(Option::is_some))));
@@ -505,7 +512,7 @@ fn seeded_band_starts_lower_and_keeps_textures_outside() {
     seeded.textures = Some(textures.clone());
     let mut unseeded = input.clone();
     unseeded.textures = Some(textures.iter().cloned().map(|t| SegmentTexture { field: None, ..t }).collect());
-    let run = |input: &StylizeInput, params: &StylizeParams, threads: usize| {
+    let run = |input: &Input, params: &Params, threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| synthesize(input, params, &mut NoProgress).unwrap())
     };
@@ -516,7 +523,8 @@ fn seeded_band_starts_lower_and_keeps_textures_outside() {
     same_work.search_vote_iterations = params.band_search_vote_iterations;
     same_work.patchmatch_iterations = params.band_patchmatch_iterations;
     let without = run(&unseeded, &same_work, 1);
-    let (seeded_energies, random_energies) = (&with_seeds.levels[0].energies, &without.levels[0].energies);
+    let (seeded_energies, random_energies) =
+        (&with_seeds.report.levels[0].energies, &without.report.levels[0].energies);
     assert_eq!(seeded_energies.len(), params.band_search_vote_iterations);
     assert!(seeded_energies[0] < random_energies[0], "{seeded_energies:?} vs {random_energies:?}");
     assert!(seeded_energies.last().unwrap() < &seeded_energies[0], "{seeded_energies:?}");
@@ -534,7 +542,7 @@ fn seeded_band_starts_lower_and_keeps_textures_outside() {
 #[test]
 fn texture_fields_must_fit_their_texture_and_the_style() {
     let input = two_segment_case();
-    let params = StylizeParams { segments: Some(Segmentation::Palette), ..Default::default() };
+    let params = Params { segments: Some(Segmentation::Palette), ..Default::default() };
     let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (20, 20) };
     let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
     let mut wrong_size = textures.clone();
@@ -554,8 +562,8 @@ fn texture_fields_must_fit_their_texture_and_the_style() {
 #[test]
 fn tileable_textures_wrap_seamlessly() {
     let exemplar = texture(40, 40, 3, 61);
-    let params = StylizeParams { tileable: true, ..Default::default() };
-    let output = synthesize(&StylizeInput::texture(exemplar, 64, 48), &params, &mut NoProgress).unwrap();
+    let params = Params { tileable: true, ..Default::default() };
+    let output = synthesize(&Input::texture(exemplar, 64, 48), &params, &mut NoProgress).unwrap();
     let image = &output.image;
     let column_gap = |a: usize, b: usize| -> f32 {
         (0..48)
@@ -569,11 +577,11 @@ fn tileable_textures_wrap_seamlessly() {
 #[test]
 fn extra_pass_and_field_reapplication() {
     let input = guided_input(40);
-    let params = StylizeParams { extra_pass_3x3: true, ..Default::default() };
+    let params = Params { extra_pass_3x3: true, ..Default::default() };
     let output = synthesize(&input, &params, &mut NoProgress).unwrap();
-    let last = output.levels.last().unwrap();
+    let last = output.report.levels.last().unwrap();
     assert_eq!((last.patch_size, output.field.patch_size), (3, 3));
-    assert_eq!(output.energy.occurrence, 0.0);
+    assert_eq!(output.report.energy.occurrence, 0.0);
     let reapplied = apply_field(&output.field, &input.style).unwrap();
     assert!(psnr(&reapplied, &output.image) > 20.0);
 }
@@ -581,7 +589,7 @@ fn extra_pass_and_field_reapplication() {
 #[test]
 fn bad_input_gives_clear_errors() {
     let good = guided_input(32);
-    let params = StylizeParams::default();
+    let params = Params::default();
     let mut wrong_size = good.clone();
     wrong_size.guides[0].source = texture(31, 32, 3, 1);
     let message = synthesize(&wrong_size, &params, &mut NoProgress).unwrap_err().to_string();
@@ -602,10 +610,10 @@ fn bad_input_gives_clear_errors() {
     let mut empty_target = good.clone();
     empty_target.guides[0].target = FloatImage::new(0, 5, 3);
     assert!(synthesize(&empty_target, &params, &mut NoProgress).unwrap_err().to_string().contains("empty"));
-    let no_size = StylizeInput { size: None, ..StylizeInput::texture(texture(8, 8, 3, 1), 1, 1) };
+    let no_size = Input { size: None, ..Input::texture(texture(8, 8, 3, 1), 1, 1) };
     assert_eq!(synthesize(&no_size, &params, &mut NoProgress).unwrap_err(), Error::MissingTargetSize);
-    let tiny = StylizeInput::texture(texture(4, 9, 3, 1), 10, 10);
+    let tiny = Input::texture(texture(4, 9, 3, 1), 10, 10);
     assert!(matches!(synthesize(&tiny, &params, &mut NoProgress), Err(Error::StyleTooSmall { .. })));
-    let two_channels = StylizeInput::texture(FloatImage::new(8, 8, 2), 10, 10);
+    let two_channels = Input::texture(FloatImage::new(8, 8, 2), 10, 10);
     assert!(synthesize(&two_channels, &params, &mut NoProgress).unwrap_err().to_string().contains("1, 3 or 4"));
 }

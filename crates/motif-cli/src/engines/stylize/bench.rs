@@ -6,8 +6,7 @@ use std::path::Path;
 
 use motif_core::NoProgress;
 use motif_stylize::{
-    Guide, NnfMethod, Output, PresynthInput, Segmentation, StylizeInput, StylizeParams, presynthesize, samples,
-    synthesize,
+    Guide, Input, NnfMethod, Output, Params, PresynthInput, Segmentation, presynthesize, samples, synthesize,
 };
 use serde_json::{Map, Value, json};
 
@@ -24,7 +23,7 @@ fn cpu_seconds() -> Option<f64> {
 }
 
 /// A seeded guide/style pair of `size`² with `guide_channels` (3 or 10) guide channels.
-fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> StylizeInput {
+fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> Input {
     let source = samples::map_guide(size, size, 5, seed);
     let target = samples::map_guide(size, size, 5, seed + 1);
     let style = samples::crayon_style(&source, seed + 2);
@@ -38,10 +37,10 @@ fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> StylizeInput {
             });
         }
     }
-    StylizeInput::guided(style, guides)
+    Input::guided(style, guides)
 }
 
-fn timed(input: &StylizeInput, params: &StylizeParams) -> anyhow::Result<(Output, f64, Option<f64>)> {
+fn timed(input: &Input, params: &Params) -> anyhow::Result<(Output, f64, Option<f64>)> {
     let cpu_start = cpu_seconds();
     let start = std::time::Instant::now();
     let output = synthesize(input, params, &mut NoProgress)?;
@@ -66,7 +65,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
             continue;
         }
         let input = bench_pair(size, guide_channels, bench.seed);
-        let mut params = StylizeParams::default();
+        let mut params = Params::default();
         params.patch_size = patch;
         params.seed = bench.seed;
         let (output, wall, cpu) = timed(&input, &params)?;
@@ -81,8 +80,8 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
                 "cpu_s": cpu,
                 "cpu_s_per_megapixel": cpu.map(|c| c / megapixels),
                 "wall_s_per_megapixel": wall / megapixels,
-                "energy": output.energy,
-                "source_coverage": output.source_coverage,
+                "energy": output.report.energy,
+                "source_coverage": output.report.source_coverage,
                 "ebsynth_cpu_s_per_megapixel": if guide_channels == 3 { "about 36" } else { "150-210" },
             }),
         );
@@ -103,7 +102,7 @@ fn table_1(bench: &Bench) -> anyhow::Result<Value> {
     let source_guide = samples::map_guide(size, size, 5, bench.seed + 10);
     let target_guide = samples::map_guide(size, size, 5, bench.seed + 11);
     let style = samples::crayon_style(&source_guide, bench.seed + 12);
-    let mut params = StylizeParams::default();
+    let mut params = Params::default();
     params.seed = bench.seed;
     params.segments = Some(Segmentation::Palette);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
@@ -116,7 +115,7 @@ fn table_1(bench: &Bench) -> anyhow::Result<Value> {
             &mut NoProgress,
         )?;
         let presynth_ms = presynth_start.elapsed().as_secs_f64() * 1000.0;
-        let guided = StylizeInput::guided(
+        let guided = Input::guided(
             style.clone(),
             vec![Guide { source: source_guide.clone(), target: target_guide.clone(), weight: None }],
         );
@@ -130,14 +129,14 @@ fn table_1(bench: &Bench) -> anyhow::Result<Value> {
             let output = synthesize(&input, &banded, &mut NoProgress)?;
             rows.insert(
                 format!("band_{band}"),
-                json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.searched_pixels }),
+                json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.report.searched_pixels }),
             );
         }
         let start = std::time::Instant::now();
         let output = synthesize(&guided, &params, &mut NoProgress)?;
         rows.insert(
             "full".into(),
-            json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.searched_pixels }),
+            json!({ "ms": start.elapsed().as_secs_f64() * 1000.0, "optimized_pixels": output.report.searched_pixels }),
         );
         Ok(json!({
             "size": [size, size],
@@ -159,7 +158,7 @@ fn patchmatch_vs_exact(bench: &Bench) -> anyhow::Result<Value> {
     let input = bench_pair(small, 3, bench.seed + 20);
     let mut comparison = Map::new();
     for (name, uniformity) in [("uniformity_3500", 3500.0), ("uniformity_0", 0.0)] {
-        let mut params = StylizeParams::default();
+        let mut params = Params::default();
         params.patch_size = 5;
         params.seed = bench.seed;
         params.uniformity = uniformity;
@@ -169,9 +168,9 @@ fn patchmatch_vs_exact(bench: &Bench) -> anyhow::Result<Value> {
         comparison.insert(
             name.into(),
             json!({
-                "patchmatch_energy": patchmatch.energy.total,
-                "exact_energy": exact.energy.total,
-                "energy_ratio": patchmatch.energy.total / exact.energy.total.max(f64::MIN_POSITIVE),
+                "patchmatch_energy": patchmatch.report.energy.total,
+                "exact_energy": exact.report.energy.total,
+                "energy_ratio": patchmatch.report.energy.total / exact.report.energy.total.max(f64::MIN_POSITIVE),
                 "patchmatch_s": patchmatch_s,
                 "exact_s": exact_s,
                 "speed_up": exact_s / patchmatch_s.max(1e-9),

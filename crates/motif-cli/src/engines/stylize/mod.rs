@@ -11,8 +11,8 @@ use anyhow::{Context as _, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use motif_core::{FloatImage, RgbaImage};
 use motif_stylize::{
-    Guide, NearestNeighbourField, NnfMethod, Output, PresynthInput, SegmentTexture, Segmentation, StylizeInput,
-    StylizeParams, apply_field, presynthesize, synthesize,
+    Guide, Input, NearestNeighbourField, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation,
+    apply_field, presynthesize, synthesize,
 };
 use serde::{Deserialize, Serialize};
 
@@ -65,8 +65,8 @@ pub struct SynthesisOptions {
 }
 
 impl SynthesisOptions {
-    fn params(&self, seed: u64) -> StylizeParams {
-        let mut params = StylizeParams::default();
+    fn params(&self, seed: u64) -> Params {
+        let mut params = Params::default();
         params.style_weight = self.style_weight;
         params.uniformity = self.uniformity;
         params.patch_size = self.patch_size;
@@ -101,7 +101,7 @@ pub struct SegmentOptions {
 }
 
 impl SegmentOptions {
-    fn apply(&self, params: &mut StylizeParams) -> anyhow::Result<()> {
+    fn apply(&self, params: &mut Params) -> anyhow::Result<()> {
         params.segments = match (self.segments, self.segment_count) {
             (_, Some(k)) => Some(Segmentation::KMeans(k)),
             (true, None) => Some(Segmentation::Palette),
@@ -320,12 +320,12 @@ fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
 }
 
 fn record(context: &mut Context, output: &Output) {
-    context.figure("energy", output.energy);
-    context.figure("source_coverage", output.source_coverage);
-    context.stages(&output.stages_ms);
-    context.figure("engine_ms", output.total_ms);
-    context.figure("levels", &output.levels);
-    context.figure("searched_pixels", output.searched_pixels);
+    context.figure("energy", output.report.energy);
+    context.figure("source_coverage", output.report.source_coverage);
+    context.stages(&output.report.stages_ms);
+    context.figure("engine_ms", output.report.total_ms);
+    context.figure("levels", &output.report.levels);
+    context.figure("searched_pixels", output.report.searched_pixels);
     context.figure("output_size", [output.image.width(), output.image.height()]);
 }
 
@@ -382,7 +382,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
             weight: args.weight.get(index).copied(),
         });
     }
-    let mut input = StylizeInput::guided(style, guides);
+    let mut input = Input::guided(style, guides);
     if let Some(dir) = &args.presynth {
         let manifest_path = dir.join("presynth.json");
         let manifest: Manifest = motif_io::read_json(&manifest_path).with_context(|| {
@@ -434,9 +434,9 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
         "motif stylize: {}×{} in {:.0} ms, energy {:.0}, source coverage {:.1} % → {}",
         output.image.width(),
         output.image.height(),
-        output.total_ms,
-        output.energy.total,
-        100.0 * output.source_coverage,
+        output.report.total_ms,
+        output.report.energy.total,
+        100.0 * output.report.source_coverage,
         out.display()
     ));
     Ok(())
@@ -511,7 +511,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     let exemplar = style_float(&load(&args.exemplar)?);
     let mut params = args.synthesis.params(context.seed);
     params.tileable = args.tileable;
-    let input = StylizeInput::texture(exemplar, args.size.0, args.size.1);
+    let input = Input::texture(exemplar, args.size.0, args.size.1);
     let output = synthesize(&input, &params, context.progress())?;
     motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
     if let Some(dir) = &args.debug_dir {
@@ -523,8 +523,8 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
         args.size.0,
         args.size.1,
         if args.tileable { " (tileable)" } else { "" },
-        output.total_ms,
-        output.energy.total,
+        output.report.total_ms,
+        output.report.energy.total,
         args.out.display()
     ));
     Ok(())
