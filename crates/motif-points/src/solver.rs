@@ -46,6 +46,8 @@ pub struct Report {
     pub sigma: f64,
     /// The starting window size δ.
     pub neighbourhood: f64,
+    /// The window shrink factor α used.
+    pub shrink: f64,
     /// Number of quadrature points.
     pub quadrature_points: usize,
     /// Points after initialization (existing ones included).
@@ -193,7 +195,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     // Window sizes: δ, αδ, α²δ, ... while ≥ final_fraction·δ.
     let mut deltas = vec![setup.delta];
     while deltas.len() < 200 {
-        let next = deltas[deltas.len() - 1] * params.shrink;
+        let next = deltas[deltas.len() - 1] * params.effective_shrink();
         if next < params.final_fraction * setup.delta - 1e-12 {
             break;
         }
@@ -300,6 +302,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
         report: Report {
             sigma: setup.sigma,
             neighbourhood: setup.delta,
+            shrink: params.effective_shrink(),
             quadrature_points: setup.quadrature.len(),
             initial_points,
             final_points: state.positions.len(),

@@ -69,7 +69,7 @@ fn interior_nearest(set: &PointSet, w: f64, h: f64, margin: f64) -> Vec<f64> {
 }
 
 fn quick_params() -> Params {
-    Params { neighbourhood: Some(1.5), shrink: 0.8, merge_iterations: 15, seed: 5, ..Params::default() }
+    Params { neighbourhood: Some(1.5), shrink: Some(0.8), merge_iterations: 15, seed: 5, ..Params::default() }
 }
 
 /// A prepared problem with a random output and matches, for derivative checks.
@@ -550,7 +550,7 @@ fn a_rotation_field_of_90_degrees_rotates_the_structure() {
 #[test]
 fn same_seed_gives_identical_output_for_any_thread_count() {
     let exemplar = jittered_grid(10, 0.2, 3);
-    let params = Params { local_global_iterations: 1, shrink: 0.7, ..quick_params() };
+    let params = Params { local_global_iterations: 1, shrink: Some(0.7), ..quick_params() };
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
@@ -690,7 +690,7 @@ fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
         }
     }
     let exemplar = PointSet::new(3, positions);
-    let params = Params { neighbourhood: Some(1.2), shrink: 0.7, merge_iterations: 10, ..Params::default() };
+    let params = Params { neighbourhood: Some(1.2), shrink: Some(0.7), merge_iterations: 10, ..Params::default() };
     let output = synthesize(
         &Input { exemplar, domain: Domain::Box { min: vec![0.0; 3], max: vec![4.0, 4.0, 4.0] }, existing: None },
         &params,

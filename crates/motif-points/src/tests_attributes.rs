@@ -12,7 +12,7 @@ fn domain() -> Domain {
 }
 
 fn params() -> Params {
-    Params { neighbourhood: Some(1.5), shrink: 0.8, merge_iterations: 10, seed: 3, ..Params::default() }
+    Params { neighbourhood: Some(1.5), shrink: Some(0.8), merge_iterations: 10, seed: 3, ..Params::default() }
 }
 
 fn with_attribute(mut set: PointSet, values: impl Fn(usize, f64) -> f64) -> PointSet {
