@@ -48,7 +48,7 @@
 //! // A jittered hexagonal exemplar (8 × 8 points, spacing 1) grown into a 10 × 8 box.
 //! let exemplar = hex_exemplar(8, 8, 0.05, 1);
 //! let domain = Domain::Box { min: vec![0.0, 0.0], max: vec![10.0, 8.0] };
-//! let params = Params::default().with_neighbourhood(Some(1.5)).with_shrink(0.7).with_seed(7);
+//! let params = Params::default().with_neighbourhood(Some(1.5)).with_seed(7);
 //! params.validate().unwrap();
 //! let output = synthesize(&Input::new(exemplar, domain), &params, &mut NoProgress).unwrap();
 //! let (count, expected) = (output.points.len() as f64, output.report.expected_points);
@@ -86,6 +86,8 @@ mod solver;
 mod tests;
 #[cfg(test)]
 mod tests_attributes;
+#[cfg(test)]
+mod tests_synthesis;
 
 pub use params::{
     Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window,

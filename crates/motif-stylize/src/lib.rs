@@ -61,6 +61,8 @@ mod vote;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_synthesis;
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
