@@ -316,13 +316,14 @@ impl<const D: usize> Setup<D> {
                 let s_min = self.quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
                 let patch = (params.patch_size * self.delta).min(0.7 * extent * s_min).max(3.0 * self.sigma);
                 // Candidates are judged on a band of δ (at most a third of the patch) around it;
-                // interiors stay as copied: points farther than half a band from every border.
+                // interiors stay as copied: points farther than a quarter band from every border (half a
+                // band moved more than it repaired: see docs/points.md; a tenth let the count drift).
                 let band = self.delta.min(patch / 3.0);
                 let layout = init::PatchLayout {
                     side: patch,
                     band,
                     candidates: params.patch_candidates,
-                    seam: (params.refinement == Refinement::Seams).then_some(0.5 * band),
+                    seam: (params.refinement == Refinement::Seams).then_some(0.25 * band),
                 };
                 let (sources, interiors) =
                     init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);
