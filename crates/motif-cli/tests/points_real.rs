@@ -121,7 +121,9 @@ fn the_exemplar_window_sets_the_density_and_must_hold_every_point() {
     let dir = tempfile::tempdir().unwrap();
     let exemplar = corpus("swedishpines.csv");
     let exemplar = exemplar.to_str().unwrap();
-    for (window, expected) in [("50,50", "hold every exemplar point"), ("96,100,5", "3 values for a 2D exemplar")] {
+    for (window, expected) in
+        [("50,50", "hold every exemplar point"), ("96,100,5", "2 sizes or 4 corner values for a 2D exemplar")]
+    {
         let output = motif(
             dir.path(),
             &["points", "--exemplar", exemplar, "--neighbourhood", "32", "--domain", "box:192,200"]

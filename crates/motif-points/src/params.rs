@@ -26,7 +26,8 @@ pub enum Error {
 }
 
 /// The window function `w` delimiting a neighbourhood (§4.2–4.3).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Window {
     /// `w(s) = exp(-|s|²/δ²)`, truncated at `3δ`; smooth in the positions (default).
     #[default]
@@ -40,7 +41,8 @@ pub enum Window {
 /// The paper finds its solver robust to either; on real exemplars (clustered, inhibited,
 /// multi-type) it is not: from random points the output crystallizes (see the fidelity figures of
 /// `motif bench --engine points`), so patches are the default.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Initialization {
     /// Uniformly random positions, as many as the exemplar's density asks for.
     Random,
@@ -58,7 +60,8 @@ pub enum Initialization {
 /// that of the copies alone): a window of δ reaches across seams, and the matches of windows that
 /// straddle two copies explain neither. Keeping the interiors as copied and optimizing only the
 /// seams was better on 10 of 11 cases (figures in docs/points.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Refinement {
     /// Only points near the patches' borders move, and sampling control removes only those
     /// (default). With random initialization every point moves.

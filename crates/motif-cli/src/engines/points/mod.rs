@@ -12,9 +12,8 @@ use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{Polygon, Polyline};
 use motif_io::{Column, ColumnKind, PointFormat, PointTable};
-use motif_points::{
-    Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, Stroke, Window,
-};
+use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
+use motif_points::{Initialization, PointSet, Refinement, Window};
 use serde_json::Value;
 
 use crate::context::Context;
@@ -245,22 +244,7 @@ pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
     PointTable { columns, rows: set.len(), values }
 }
 
-/// `--exemplar-window`: sizes from the origin (one per axis) or both corners (two per axis).
-fn exemplar_window(values: &[f64], dimension: usize) -> anyhow::Result<(Vec<f64>, Vec<f64>)> {
-    if values.len() == dimension {
-        Ok((vec![0.0; dimension], values.to_vec()))
-    } else if values.len() == 2 * dimension {
-        Ok((values[..dimension].to_vec(), values[dimension..].to_vec()))
-    } else {
-        bail!(
-            "--exemplar-window: {} values for a {dimension}D exemplar; give {dimension} sizes or {} corner values",
-            values.len(),
-            2 * dimension
-        )
-    }
-}
-
-fn parse_box(spec: &str) -> anyhow::Result<Domain> {
+fn parse_box(spec: &str) -> anyhow::Result<Vec<f64>> {
     let sizes: Vec<f64> = spec
         .split(',')
         .map(|s| s.trim().parse::<f64>().with_context(|| format!("--domain box:{spec}: {s:?} is not a number")))
@@ -268,18 +252,20 @@ fn parse_box(spec: &str) -> anyhow::Result<Domain> {
     if sizes.len() != 2 && sizes.len() != 3 {
         bail!("--domain box:{spec}: give 2 sizes (W,H) or 3 (W,H,D)");
     }
-    Ok(Domain::Box { min: vec![0.0; sizes.len()], max: sizes })
+    Ok(sizes)
 }
 
-fn read_polygon(path: &Path) -> anyhow::Result<Polygon> {
+fn read_polygon(path: &Path) -> anyhow::Result<Vec<[f64; 2]>> {
     let document = motif_io::read_svg(path)?;
     let first = &document.paths[0];
     let polylines = Polyline::from_bez_path(&first.path, 0.05)
         .with_context(|| format!("{}: cannot flatten the first path", path.display()))?;
     let outline =
         polylines.into_iter().next().with_context(|| format!("{}: the first path is empty", path.display()))?;
+    // Checked here too, so the error names the file.
     Polygon::new(outline.points().to_vec())
-        .with_context(|| format!("{}: the region is not a usable polygon", path.display()))
+        .with_context(|| format!("{}: the region is not a usable polygon", path.display()))?;
+    Ok(outline.points().iter().map(|p| [p.x, p.y]).collect())
 }
 
 fn read_stroke_points(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
@@ -310,6 +296,82 @@ fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> 
     table_to_points(&table, what).with_context(|| format!("{}", path.display()))
 }
 
+/// The job the arguments describe, with the domain's files read (`motif_jobs::points` turns it
+/// into engine parameters, as it does for every front end).
+fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
+    let domain = if let Some(along) = &args.along {
+        let Some(width) = args.brush_width else { bail!("--along needs --brush-width W") };
+        let scale_along = match &args.scale_along {
+            None => None,
+            Some(spec) => {
+                let values: Vec<f64> = spec
+                    .split(',')
+                    .map(|s| {
+                        s.trim().parse::<f64>().with_context(|| format!("--scale-along {spec}: {s:?} is not a number"))
+                    })
+                    .collect::<anyhow::Result<_>>()?;
+                match values[..] {
+                    [a, b] => Some([a, b]),
+                    [a] => Some([a, a]),
+                    _ => bail!("--scale-along {spec}: give A,B"),
+                }
+            }
+        };
+        DomainSpec::Stroke(StrokeSpec { points: read_stroke_points(along)?, width, scale_along })
+    } else {
+        match args.domain.as_deref() {
+            Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
+            Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
+            None => bail!("give --domain box:W,H[,D] | REGION.svg, or --along PATH with --brush-width"),
+        }
+    };
+    let attribute_weight = args
+        .attribute_weight
+        .iter()
+        .map(|spec| {
+            let parsed =
+                spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
+            parsed.ok_or_else(|| {
+                anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5")
+            })
+        })
+        .collect::<anyhow::Result<_>>()?;
+    Ok(PointsJob {
+        seed,
+        init: Some(match args.init {
+            InitArg::Random => Initialization::Random,
+            InitArg::Patches => Initialization::Patches,
+        }),
+        patch_size: Some(args.patch_size),
+        patch_candidates: Some(args.patch_candidates),
+        refine: Some(match args.refine {
+            RefineArg::Seams => Refinement::Seams,
+            RefineArg::Everywhere => Refinement::Everywhere,
+            RefineArg::None => Refinement::None,
+        }),
+        exemplar_window: args.exemplar_window.clone(),
+        attributes: args.attributes.clone(),
+        discrete: args.discrete.clone(),
+        continuous: args.continuous.clone(),
+        attribute_weight,
+        window: Some(match args.window {
+            WindowArg::Gaussian => Window::Gaussian,
+            WindowArg::Box => Window::Box,
+        }),
+        sigma: args.sigma,
+        rotation: Some(args.rotation),
+        scale: Some(args.scale),
+        quadrature_spacing: Some(args.quadrature_spacing),
+        sampling_rounds: Some(args.sampling_rounds),
+        merge_iterations: Some(args.merge_iterations),
+        shrink: args.shrink,
+        no_sampling_control: args.no_sampling_control,
+        reference: args.reference,
+        keep_margin: args.keep_margin,
+        ..PointsJob::new(args.neighbourhood, domain)
+    })
+}
+
 /// Runs `motif points`.
 pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs: Vec<&Path> = vec![&args.exemplar];
@@ -329,101 +391,25 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         Some(path) => Some(read_set(path, "existing points")?.0),
         None => None,
     };
-    let domain = if let Some(along) = &args.along {
-        let Some(width) = args.brush_width else { bail!("--along needs --brush-width W") };
-        let (scale_start, scale_end) = match &args.scale_along {
-            None => (1.0, 1.0),
-            Some(spec) => {
-                let values: Vec<f64> = spec
-                    .split(',')
-                    .map(|s| {
-                        s.trim().parse::<f64>().with_context(|| format!("--scale-along {spec}: {s:?} is not a number"))
-                    })
-                    .collect::<anyhow::Result<_>>()?;
-                match values[..] {
-                    [a, b] => (a, b),
-                    [a] => (a, a),
-                    _ => bail!("--scale-along {spec}: give A,B"),
-                }
-            }
-        };
-        Domain::Stroke(Stroke { points: read_stroke_points(along)?, width, scale_start, scale_end })
-    } else {
-        match args.domain.as_deref() {
-            Some(spec) if spec.starts_with("box:") => parse_box(&spec[4..])?,
-            Some(spec) => Domain::Polygon(read_polygon(Path::new(spec))?),
-            None => bail!("give --domain box:W,H[,D] | REGION.svg, or --along PATH with --brush-width"),
-        }
-    };
-    let mut discrete = args.discrete.clone();
-    for name in &integer {
-        let used = args.attributes.as_ref().is_none_or(|list| list.contains(name));
-        if used && !discrete.contains(name) && !args.continuous.contains(name) {
-            discrete.push(name.clone());
-        }
-    }
-    let mut params = Params::default();
-    params.neighbourhood = Some(args.neighbourhood);
-    params.window = match args.window {
-        WindowArg::Gaussian => Window::Gaussian,
-        WindowArg::Box => Window::Box,
-    };
-    params.sigma = args.sigma;
-    params.rotation = if args.rotation != 0.0 { Field::Uniform(args.rotation) } else { Field::None };
-    params.scale = if args.scale != 1.0 { Field::Uniform(args.scale) } else { Field::None };
-    params.quadrature_spacing = args.quadrature_spacing;
-    params.sampling_rounds = args.sampling_rounds;
-    params.merge_iterations = args.merge_iterations;
-    params.shrink = args.shrink;
-    params.sampling_control = !args.no_sampling_control;
-    params.evaluator = if args.reference { Evaluator::Reference } else { Evaluator::Fast };
-    params.initialization = match args.init {
-        InitArg::Random => Initialization::Random,
-        InitArg::Patches => Initialization::Patches,
-    };
-    params.attributes = args.attributes.clone();
-    params.discrete_attributes = discrete;
-    params.patch_size = args.patch_size;
-    params.patch_candidates = args.patch_candidates;
-    params.refinement = match args.refine {
-        RefineArg::Seams => Refinement::Seams,
-        RefineArg::Everywhere => Refinement::Everywhere,
-        RefineArg::None => Refinement::None,
-    };
-    if let Some(values) = &args.exemplar_window {
-        params.exemplar_window = Some(exemplar_window(values, exemplar.dimension)?);
-    }
-    params.continuous_attributes = args.continuous.clone();
-    params.attribute_weights = args
-        .attribute_weight
-        .iter()
-        .map(|spec| {
-            let parsed =
-                spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
-            parsed.ok_or_else(|| {
-                anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5")
-            })
-        })
-        .collect::<anyhow::Result<_>>()?;
-    params.keep_margin = args.keep_margin;
-    params.seed = context.seed;
-    let input = Input { exemplar, domain, existing };
-    let output = motif_points::synthesize(&input, &params, context.progress())?;
+    let job = job_of(args, context.seed)?;
+    let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
+    let run = job.run(exemplar, existing, &integer, context.progress())?;
+    let output = run.output;
     let format = match PointFormat::from_path(&args.out) {
         PointFormat::PlyBinary if args.ascii => PointFormat::PlyAscii,
         format => format,
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
-    if let Some(preview) = &args.preview {
-        let image = preview::preview_image(
-            &input.exemplar,
-            &output.points,
-            &output.report.fidelity,
-            args.colour_by.as_deref(),
-        )?;
+    if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
+        let image =
+            preview::preview_image(exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
         motif_io::write_png(preview, &image)?;
     }
-    record_figures(context, &output);
+    for (key, value) in run.figures {
+        if key != "command" {
+            context.figure(&key, value);
+        }
+    }
     context.summary(&format!(
         "motif points: {} points ({} added, {} removed; density {:.0} % of the exemplar's), T = {:.4}, \
          nearest-neighbour distance {:.3} (random {:.3}, tiled {:.3}), g(r) distance {:.3} (random {:.3}, tiled {:.3})",
@@ -442,28 +428,6 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn record_figures(context: &mut Context, output: &Output) {
-    let report = &output.report;
-    context.stages(&report.stages_ms);
-    context.figure("energy_per_iteration", &report.energy);
-    context.figure("final_energy", report.final_energy);
-    context.figure("points_added", report.added);
-    context.figure("points_removed", report.removed);
-    context.figure("proposals_rejected", report.rejected);
-    context.figure("proposals_held_by_count_bound", report.held_by_bound);
-    context.figure("expected_points", report.expected_points);
-    context.figure("discrete_attributes", &report.discrete_attributes);
-    context.figure("initial_points", report.initial_points);
-    context.figure("output_points", report.final_points);
-    context.figure("fixed_points", report.fixed_points);
-    context.figure("patch_interior_points", report.patch_interior_points);
-    context.figure("shrink", report.shrink);
-    context.figure("sigma", report.sigma);
-    context.figure("neighbourhood", report.neighbourhood);
-    context.figure("quadrature_points", report.quadrature_points);
-    context.figure("fidelity", &report.fidelity);
-}
-
 /// The points engine in the registry.
 pub struct Points;
 
@@ -478,5 +442,62 @@ impl crate::registry::Engine for Points {
 
     fn bench(&self, bench: &crate::suite::Bench) -> anyhow::Result<serde_json::Value> {
         bench::bench(bench)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Parser)]
+    struct Command {
+        #[command(flatten)]
+        args: PointsArgs,
+    }
+
+    /// The command line's defaults are the job's (and so the engine's): a run from the CLI and one
+    /// from any other front end with the same options get the same parameters.
+    #[test]
+    fn command_line_defaults_are_the_jobs() {
+        let command = Command::parse_from([
+            "points",
+            "--exemplar",
+            "ex.csv",
+            "--neighbourhood",
+            "1.5",
+            "--domain",
+            "box:10,8",
+            "--out",
+            "out.ply",
+        ]);
+        let from_cli = job_of(&command.args, 1).unwrap();
+        let plain = PointsJob::new(1.5, DomainSpec::Box(vec![10.0, 8.0]));
+        // Params hold closures (fields), so they are compared as printed.
+        let printed = |job: &PointsJob| format!("{:?}", job.params(2, &[]).unwrap());
+        assert_eq!(printed(&from_cli), printed(&plain));
+        let command = Command::parse_from([
+            "points",
+            "--exemplar",
+            "ex.csv",
+            "--neighbourhood",
+            "1.5",
+            "--domain",
+            "box:10,8",
+            "--out",
+            "out.ply",
+            "--refine",
+            "none",
+            "--patch-candidates",
+            "3",
+            "--attribute-weight",
+            "dbh=0.5",
+        ]);
+        let params = job_of(&command.args, 4).unwrap().params(2, &[]).unwrap();
+        assert_eq!(params.refinement, Refinement::None);
+        assert_eq!(params.patch_candidates, 3);
+        assert_eq!(params.attribute_weights, vec![("dbh".to_string(), 0.5)]);
+        assert_eq!(params.seed, 4);
     }
 }

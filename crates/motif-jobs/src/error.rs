@@ -1,0 +1,15 @@
+//! The error of a job: a description that does not make sense, or the engine's own error.
+
+use motif_core::InvalidParameter;
+
+/// Everything that can stop a job.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum JobError {
+    /// A value of the description is out of range or inconsistent (named as the flag is).
+    #[error(transparent)]
+    InvalidParameter(#[from] InvalidParameter),
+    /// The points engine refused the run.
+    #[error(transparent)]
+    Points(#[from] motif_points::Error),
+}

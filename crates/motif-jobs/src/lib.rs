@@ -1,0 +1,36 @@
+//! Jobs: the one place where a description of a run, as any front end states it, becomes an
+//! engine run.
+//!
+//! The `motif` CLI, the Python package and the browser playground all describe a run the same
+//! way: a job, a serde value whose field names are the CLI's flag names (`patch-size`,
+//! `exemplar-window`, …) with the CLI's defaults, plus the decoded inputs (point sets, images,
+//! curves: decoding files is the front end's business, through `motif-io` for the CLI). A job
+//! turns into validated engine parameters ([`points::PointsJob::params`]), runs
+//! ([`points::PointsJob::run`]) and reports its figures as one JSON object
+//! ([`points::figures`]) under the same keys whichever front end asked. No front end parses sizes,
+//! fields or enums itself.
+//!
+//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one; `points` is the
+//! first (see ARCHITECTURE.md).
+//!
+//! ```
+//! use motif_jobs::points::PointsJob;
+//! use motif_points::samples::hex_exemplar;
+//!
+//! // The JSON a front end sends: required fields, and any option by its flag name.
+//! let job: PointsJob = serde_json::from_str(
+//!     r#"{ "neighbourhood": 1.5, "domain": { "box": [10, 8] }, "seed": 7, "refine": "seams" }"#,
+//! ).unwrap();
+//! let run = job.run(hex_exemplar(8, 8, 0.05, 1), None, &[], &mut motif_core::NoProgress).unwrap();
+//! assert!(run.output.points.len() > 60);
+//! assert_eq!(run.figures["command"], "points");
+//! assert!(run.figures["fidelity"]["density_ratio"].as_f64().unwrap() > 0.9);
+//! // A misspelt option is an error that names it.
+//! let error = serde_json::from_str::<PointsJob>(r#"{ "neighbourhood": 1, "domain": { "box": [4, 4] }, "patchsize": 3 }"#);
+//! assert!(error.unwrap_err().to_string().contains("patchsize"));
+//! ```
+
+mod error;
+pub mod points;
+
+pub use error::JobError;
