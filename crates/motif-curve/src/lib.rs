@@ -153,16 +153,6 @@ pub enum Error {
     },
 }
 
-fn median(values: &[f64]) -> f64 {
-    if values.is_empty() {
-        return 0.0;
-    }
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let mid = sorted.len() / 2;
-    if sorted.len() % 2 == 1 { sorted[mid] } else { 0.5 * (sorted[mid - 1] + sorted[mid]) }
-}
-
 /// Number of rows of the exemplar holding non-transparent pixels (for error messages).
 fn pattern_height(image: &RgbaImage) -> usize {
     image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
@@ -418,7 +408,7 @@ pub(crate) fn synthesize_with(
     report.variety = variety;
     let (path, optimum, row_ms, counters) = (solution.path, solution.cost, solution.row_ms, solution.counters);
     let positions: Vec<Position> = (0..frames.len()).map(|i| rows[i].positions[path[i]]).collect();
-    report.dp_row_ms_median = median(&row_ms);
+    report.dp_row_ms_median = motif_core::timing::median(&row_ms);
     report.dp_row_ms_max = row_ms.iter().copied().fold(0.0, f64::max);
     report.dp_row_ms = row_ms;
     report.dp_counters = counters;

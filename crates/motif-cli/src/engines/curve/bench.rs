@@ -11,9 +11,9 @@ use motif_core::{Point, Polyline};
 use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
 use motif_curve::{Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams, Solver};
 
-use super::chain_exemplar;
 use crate::suite::Bench;
 use crate::suite::{corpus_folder, read_cases};
+use motif_curve::samples::gold_chain;
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -194,7 +194,7 @@ pub fn corpus_figures(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::R
 /// One measured workload: a generated chain exemplar, a gentle wave, DP rows of both solvers.
 fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value> {
     let chain_height = (height as f64 * 0.55).round();
-    let exemplar = chain_exemplar(width, height, (width as f64 / 5.3).round(), chain_height);
+    let exemplar = gold_chain(width, height, (width as f64 / 5.3).round(), chain_height);
     let piece_length = 24.0;
     let mut params = CurveParams::default();
     params.width = height as f64; // C = H, as in the paper's timings.

@@ -1,11 +1,13 @@
 //! `motif demo` cases of the curve engine.
 
-use super::{chain_exemplar, heart_svg};
+use motif_curve::samples::gold_chain;
+
+use super::heart_svg;
 use crate::gallery::{Demo, DemoCase};
 
 /// Built-in examples for `motif demo`.
 pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
-    let chain = chain_exemplar(160, 44, 32.0, 28.0);
+    let chain = gold_chain(160, 44, 32.0, 28.0);
     motif_io::write_png(&demo.path("curve-chain.png"), &chain)?;
     motif_io::write_text(&demo.path("curve-heart.svg"), &heart_svg(200.0, 190.0, 330.0))?;
     demo.case(DemoCase {

@@ -9,11 +9,6 @@ use serde_json::{Value, json};
 use super::wave;
 use crate::suite::Bench;
 
-fn median(mut values: Vec<f64>) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
-}
-
 fn time_case(input: &Input, params: &Params, repeats: usize) -> anyhow::Result<(Output, f64, Vec<f64>)> {
     let mut times = Vec::new();
     let mut last = None;
@@ -24,7 +19,7 @@ fn time_case(input: &Input, params: &Params, repeats: usize) -> anyhow::Result<(
         last = Some(output);
     }
     let output = last.expect("at least one repeat");
-    Ok((output, median(times.clone()), times))
+    Ok((output, motif_core::timing::median(&times), times))
 }
 
 fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
