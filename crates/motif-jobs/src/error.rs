@@ -12,4 +12,7 @@ pub enum JobError {
     /// The points engine refused the run.
     #[error(transparent)]
     Points(#[from] motif_points::Error),
+    /// The strokes engine refused the run.
+    #[error(transparent)]
+    Strokes(#[from] motif_strokes::Error),
 }

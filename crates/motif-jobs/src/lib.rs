@@ -10,8 +10,8 @@
 //! ([`points::figures`]) under the same keys whichever front end asked. No front end parses sizes,
 //! fields or enums itself.
 //!
-//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one; `points` is the
-//! first (see ARCHITECTURE.md).
+//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one: `points` and
+//! `strokes` so far (see ARCHITECTURE.md).
 //!
 //! ```
 //! use motif_jobs::points::PointsJob;
@@ -32,5 +32,6 @@
 
 mod error;
 pub mod points;
+pub mod strokes;
 
 pub use error::JobError;

@@ -4,7 +4,8 @@ use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 
 /// Which points an element's oriented box is fitted to (§2.1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum FitPoints {
     /// The stroke's skeleton: the gesture's own polyline, ignoring its width.
     #[default]

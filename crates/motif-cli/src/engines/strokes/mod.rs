@@ -4,14 +4,16 @@
 mod bench;
 mod demo;
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use kurbo::BezPath;
-use motif_core::{Point, Polygon, Polyline};
+use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
-use motif_strokes::{Analysis, FitPoints, Input, Output, Params, Stroke, Target, Thresholds};
+use motif_jobs::strokes::{StrokesJob, TargetSpec};
+use motif_strokes::{Analysis, FitPoints, Output, Stroke};
 
 use crate::context::Context;
 use crate::gallery::Demo;
@@ -122,28 +124,30 @@ fn parse_thresholds(text: &str) -> Result<ThresholdOverrides, String> {
     Ok(overrides)
 }
 
-fn params_of(args: &StrokesArgs, seed: u64) -> Params {
-    let mut params = Params::default();
-    params.scale = args.scale;
-    params.fit = match args.fit {
-        FitArg::Skeleton => FitPoints::Skeleton,
-        FitArg::Contour => FitPoints::Contour,
-    };
-    params.rings = args.rings;
-    params.variation = args.variation;
-    params.position_variation = args.position_variation;
-    params.lloyd_iterations = args.lloyd_iterations;
-    params.seed = seed;
-    let mut thresholds = Thresholds::default();
+/// The job the arguments describe, for `target` (`motif_jobs::strokes` turns it into engine
+/// parameters, as it does for every front end).
+fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
+    let mut thresholds = BTreeMap::new();
     if let Some(o) = args.thresholds {
-        thresholds.shape = o.shape.unwrap_or(thresholds.shape);
-        thresholds.parallelism = o.par.unwrap_or(thresholds.parallelism);
-        thresholds.overlap = o.ov.unwrap_or(thresholds.overlap);
-        thresholds.superimposition = o.sup.unwrap_or(thresholds.superimposition);
-        thresholds.colour = o.col.unwrap_or(thresholds.colour);
+        for (name, value) in [("shape", o.shape), ("par", o.par), ("ov", o.ov), ("sup", o.sup), ("col", o.col)] {
+            if let Some(value) = value {
+                thresholds.insert(name.to_string(), value);
+            }
+        }
     }
-    params.thresholds = thresholds;
-    params
+    StrokesJob {
+        seed,
+        fit: Some(match args.fit {
+            FitArg::Skeleton => FitPoints::Skeleton,
+            FitArg::Contour => FitPoints::Contour,
+        }),
+        rings: args.rings,
+        variation: Some(args.variation),
+        position_variation: args.position_variation,
+        thresholds,
+        lloyd_iterations: Some(args.lloyd_iterations),
+        ..StrokesJob::new(args.scale, target)
+    }
 }
 
 /// Every visible path of a drawing as strokes, in document order.
@@ -162,12 +166,22 @@ fn first_subpath(path: &BezPath, tolerance: f64) -> anyhow::Result<Option<Polyli
     Ok(Polyline::from_bez_path(path, tolerance)?.into_iter().next())
 }
 
-fn read_target(args: &StrokesArgs) -> anyhow::Result<(Target, f64, f64)> {
+fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
+    let listed = |polyline: &Polyline| -> Vec<[f64; 2]> {
+        let mut points: Vec<[f64; 2]> = polyline.points().iter().map(|p| [p.x, p.y]).collect();
+        // A closed path is listed with its first point repeated at the end.
+        if polyline.is_closed()
+            && let Some(&first) = points.first()
+        {
+            points.push(first);
+        }
+        points
+    };
     if let Some(file) = &args.along {
         let document = motif_io::read_svg(file)?;
         for path in &document.paths {
             if let Some(polyline) = first_subpath(&path.path, args.tolerance)? {
-                return Ok((Target::Path(polyline), document.width, document.height));
+                return Ok((TargetSpec::Along(listed(&polyline)), document.width, document.height));
             }
         }
         bail!("{}: no path with a length > 0 to synthesize along", file.display());
@@ -179,9 +193,11 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(Target, f64, f64)> {
             if !outline.is_closed() {
                 continue;
             }
-            let region = motif_strokes::region_from_outline(outline.points().to_vec())
+            // Checked here too, so that the error names the file and the path.
+            motif_strokes::region_from_outline(outline.points().to_vec())
                 .with_context(|| format!("{}: the region (path `{}`) cannot be used", file.display(), path.id))?;
-            return Ok((Target::Region(region), document.width, document.height));
+            let points = outline.points().iter().map(|p| [p.x, p.y]).collect();
+            return Ok((TargetSpec::Region(points), document.width, document.height));
         }
         bail!("{}: no closed path (one ending with Z, or a rect, circle, ellipse or polygon) to fill", file.display());
     }
@@ -189,9 +205,7 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(Target, f64, f64)> {
     if !(width.is_finite() && height.is_finite() && width > 0.0 && height > 0.0) {
         bail!("invalid rect = {width},{height}: the target region needs a width and a height > 0");
     }
-    let corners =
-        vec![Point::new(0.0, 0.0), Point::new(width, 0.0), Point::new(width, height), Point::new(0.0, height)];
-    Ok((Target::Region(Polygon::new(corners)?), width, height))
+    Ok((TargetSpec::Rect([width, height]), width, height))
 }
 
 fn draw_stroke(writer: &mut SvgWriter, stroke: &Stroke) {
@@ -279,8 +293,8 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     if !(args.png_scale.is_finite() && args.png_scale > 0.0) {
         bail!("invalid png-scale = {}: must be a finite number > 0", args.png_scale);
     }
-    let params = params_of(args, context.seed);
-    params.validate()?;
+    // The options are checked before any file is read (the target is not needed for that).
+    job_of(args, context.seed, TargetSpec::Rect([1.0, 1.0])).params()?;
     let reference = motif_io::read_svg(&args.reference)?;
     let strokes = strokes_of(&reference, args.tolerance)?;
     if strokes.is_empty() {
@@ -290,20 +304,27 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         );
     }
     let (target, width, height) = read_target(args)?;
-    let input = Input { strokes, target };
-    let output = motif_strokes::synthesize(&input, &params, context.progress())
+    let job = job_of(args, context.seed, target);
+    let shown_strokes = args.analysis.as_ref().map(|_| strokes.clone());
+    let run = job
+        .run(strokes, context.progress())
         .with_context(|| format!("cannot synthesize from {}", args.reference.display()))?;
+    let output = run.output;
     let svg = output_svg(&output, width, height);
     motif_io::write_text(&args.out, &svg)?;
     if let Some(png) = &args.png {
         let image = motif_io::render_svg(&svg, args.png_scale, &args.out)?;
         motif_io::write_png(png, &image)?;
     }
-    if let Some(path) = &args.analysis {
-        let text = analysis_svg(&output.analysis, &input.strokes, reference.width, reference.height, params.scale);
+    if let (Some(path), Some(strokes)) = (&args.analysis, &shown_strokes) {
+        let text = analysis_svg(&output.analysis, strokes, reference.width, reference.height, args.scale);
         motif_io::write_text(path, &text)?;
     }
-    record_figures(context, &output);
+    for (key, value) in run.figures {
+        if key != "command" {
+            context.figure(&key, value);
+        }
+    }
     let report = &output.report;
     context.summary(&format!(
         "motif strokes: {} reference strokes → {} elements; {} output elements ({} matched within thresholds, {} fell back) → {}",
@@ -315,23 +336,6 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         args.out.display()
     ));
     Ok(())
-}
-
-fn record_figures(context: &mut Context, output: &Output) {
-    let r = &output.report;
-    context.figure("reference_strokes", r.reference_strokes);
-    context.figure("reference_elements", r.reference_elements);
-    context.figure("output_elements", r.output_elements);
-    context.figure("output_strokes", r.output_strokes);
-    context.figure("expected_elements", r.expected_elements);
-    context.figure("matched_elements", r.matched_elements);
-    context.figure("fallback_elements", r.fallback_elements);
-    context.figure("candidate_fraction", r.candidate_fraction);
-    context.figure("mean_candidates", r.mean_candidates);
-    context.figure("rings", r.rings);
-    context.figure("lloyd_iterations", r.lloyd_iterations);
-    context.figure("skewed_triangles_removed", r.skewed_triangles_removed);
-    context.stages(&r.stages_ms);
 }
 
 fn write_strokes_svg(path: &Path, strokes: &[Stroke], width: f64, height: f64) -> anyhow::Result<()> {
