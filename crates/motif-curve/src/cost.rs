@@ -29,7 +29,7 @@ use crate::piece::{PieceFrame, Position};
 pub const COST_SCALE: f64 = 8.0;
 
 /// How alpha enters the matching cost ξ.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AlphaMode {
     /// The paper's ξ: alpha thresholded at 128 (opaque or transparent).

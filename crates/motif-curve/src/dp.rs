@@ -34,7 +34,7 @@ use crate::piece::{PieceFrame, Position};
 use crate::profile_tree::exact_row;
 
 /// Which dynamic-programming solver to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Solver {
     /// Merged identical edges, branch-and-bound over a profile tree, lower bounds and early

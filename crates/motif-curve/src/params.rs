@@ -9,31 +9,34 @@ use crate::dp::Solver;
 use crate::{Error, Input};
 
 /// How a closed curve is treated (§1.5).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ClosedMode {
     /// `Approximate` for a closed curve, `Open` for an open one.
     Auto,
     /// The paper's single DP with backtracking from every terminal position.
+    #[serde(alias = "approx")]
     Approximate,
     /// Branch and bound over start positions with a certificate of optimality.
     Exact,
     /// Treat the curve as open (a closed curve is cut at its first point).
+    #[serde(alias = "no")]
     Open,
 }
 
 /// Which pattern generator to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The paper's synthesis: undistorted pieces placed by dynamic programming.
+    #[serde(alias = "synth")]
     Synthesis,
     /// The classic baseline: the exemplar repeated along the arc length and bent with the ribbon.
     Repeat,
 }
 
 /// How a piece maps the exemplar onto the ribbon.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PieceShape {
     /// The paper's rigid pieces (§1.3): undistorted copies, rotated with their left edge; on a

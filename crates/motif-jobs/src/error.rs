@@ -9,6 +9,9 @@ pub enum JobError {
     /// A value of the description is out of range or inconsistent (named as the flag is).
     #[error(transparent)]
     InvalidParameter(#[from] InvalidParameter),
+    /// The curve engine refused the run.
+    #[error(transparent)]
+    Curve(#[from] motif_curve::Error),
     /// The points engine refused the run.
     #[error(transparent)]
     Points(#[from] motif_points::Error),

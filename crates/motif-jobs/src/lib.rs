@@ -10,8 +10,9 @@
 //! ([`points::figures`]) under the same keys whichever front end asked. No front end parses sizes,
 //! fields or enums itself.
 //!
-//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one: `points` and
-//! `strokes` so far (see ARCHITECTURE.md).
+//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one: `points`,
+//! `strokes` and `curve` so far; `stylize` still builds its parameters in the CLI (see
+//! ARCHITECTURE.md).
 //!
 //! ```
 //! use motif_jobs::points::PointsJob;
@@ -30,6 +31,7 @@
 //! assert!(error.unwrap_err().to_string().contains("patchsize"));
 //! ```
 
+pub mod curve;
 mod error;
 pub mod points;
 pub mod strokes;

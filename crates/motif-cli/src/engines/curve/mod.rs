@@ -9,10 +9,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::{Args, ValueEnum};
 use motif_core::{Point, Polyline};
-use motif_curve::{
-    AlphaMode, Canvas, ClosedMode, Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams,
-    PieceShape, Solver,
-};
+use motif_curve::{AlphaMode, ClosedMode, Method, PieceShape, Solver};
+use motif_jobs::curve::{CurveInputs, CurveJob};
 use serde_json::json;
 
 use crate::context::Context;
@@ -242,95 +240,54 @@ pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
     Polyline::new(points, closed).with_context(|| format!("{}: bad curve", path.display()))
 }
 
-fn params_of(args: &CurveArgs) -> CurveParams {
-    let mut params = CurveParams::default();
-    params.width = args.width;
-    params.piece_length = args.piece_length;
-    params.scale = args.scale;
-    params.closed = match args.closed {
-        ClosedArg::Auto => ClosedMode::Auto,
-        ClosedArg::Approx => ClosedMode::Approximate,
-        ClosedArg::Exact => ClosedMode::Exact,
-        ClosedArg::No => ClosedMode::Open,
-    };
-    params.method = match args.method {
-        MethodArg::Synth => Method::Synthesis,
-        MethodArg::Repeat => Method::Repeat,
-    };
-    params.solver = match args.solver {
-        SolverArg::Exact => Solver::Exact,
-        SolverArg::Reference => Solver::Reference,
-    };
-    params.alpha_mode = match args.alpha {
-        AlphaArg::Continuous => AlphaMode::Continuous,
-        AlphaArg::Binary => AlphaMode::Binary,
-    };
-    params.mismatch_penalty = args.gamma;
-    params.stitch = args.stitch;
-    params.stitch_penalty = args.stitch_penalty;
-    params.foldover_avoidance = !args.no_foldover_avoidance;
-    params.pin_first = args.pin_first;
-    params.canvas = match args.canvas {
-        Some([width, height]) => Canvas::Size { width, height },
-        None => Canvas::Fit { margin: args.margin },
-    };
-    params.samples_per_axis = args.samples;
-    params.cut_alpha = args.cut_alpha;
-    params.min_coverage = args.min_coverage;
-    params.closed_max_starts = args.closed_max_starts;
-    params.variety = args.variety;
-    params.variety_radius = args.variety_radius;
-    params.round_bends = args.round_bends;
-    params.width_profile = args.width_profile.clone().map(|p| p.0).unwrap_or_default();
-    params.piece_shape = match args.pieces_shape {
-        PieceShapeArg::Bent => PieceShape::Bent,
-        PieceShapeArg::Rigid => PieceShape::Rigid,
-    };
-    params
-}
-
-/// Records the report figures of a run.
-fn record(context: &mut Context, output: &CurveOutput) {
-    let report = &output.report;
-    context.figure("method", report.method);
-    context.figure("solver", report.solver);
-    context.figure("pieces", report.pieces);
-    context.figure("samples_per_edge", report.samples_per_edge);
-    context.figure("canvas", report.canvas);
-    context.figure("canvas_origin", report.canvas_origin);
-    context.figure("total_cost", report.total_cost);
-    context.figure("total_cost_unstitched", report.total_cost_unstitched);
-    context.figure("mean_seam_cost", report.mean_seam_cost);
-    context.figure("valid_fraction", report.valid_fraction);
-    context.figure(
-        "dp_row_ms",
-        json!({ "median": report.dp_row_ms_median, "max": report.dp_row_ms_max, "rows": report.dp_row_ms.len() }),
-    );
-    context.stages(&report.stages_ms);
-    context.figure("closed", report.closed);
-    if report.closed {
-        context.figure("closed_certified", report.closed_certified);
-        context.figure("closed_starts_tried", report.closed_starts_tried);
-        context.figure("closed_directly", report.closed_directly);
+/// The job the arguments describe (`motif_jobs::curve` turns it into engine parameters, as it
+/// does for every front end).
+fn job_of(args: &CurveArgs) -> CurveJob {
+    CurveJob {
+        scale: Some(args.scale),
+        closed: Some(match args.closed {
+            ClosedArg::Auto => ClosedMode::Auto,
+            ClosedArg::Approx => ClosedMode::Approximate,
+            ClosedArg::Exact => ClosedMode::Exact,
+            ClosedArg::No => ClosedMode::Open,
+        }),
+        method: Some(match args.method {
+            MethodArg::Synth => Method::Synthesis,
+            MethodArg::Repeat => Method::Repeat,
+        }),
+        solver: Some(match args.solver {
+            SolverArg::Exact => Solver::Exact,
+            SolverArg::Reference => Solver::Reference,
+        }),
+        alpha: Some(match args.alpha {
+            AlphaArg::Continuous => AlphaMode::Continuous,
+            AlphaArg::Binary => AlphaMode::Binary,
+        }),
+        gamma: Some(args.gamma),
+        stitch: args.stitch,
+        stitch_penalty: Some(args.stitch_penalty),
+        no_foldover_avoidance: args.no_foldover_avoidance,
+        pin_first: args.pin_first,
+        canvas: args.canvas,
+        margin: Some(args.margin),
+        samples: Some(args.samples),
+        cut_alpha: Some(args.cut_alpha),
+        min_coverage: Some(args.min_coverage),
+        variety: Some(args.variety),
+        variety_radius: Some(args.variety_radius),
+        pieces_shape: Some(match args.pieces_shape {
+            PieceShapeArg::Bent => PieceShape::Bent,
+            PieceShapeArg::Rigid => PieceShape::Rigid,
+        }),
+        width_profile: args
+            .width_profile
+            .as_ref()
+            .map_or_else(Vec::new, |p| p.0.iter().map(|&(t, f)| [t, f]).collect()),
+        round_bends: Some(args.round_bends),
+        closed_max_starts: Some(args.closed_max_starts),
+        fidelity: args.fidelity,
+        ..CurveJob::new(args.width, args.piece_length)
     }
-    context.figure("empty_pieces", report.empty_pieces);
-    context.figure("forbidden_pixels", report.forbidden_pixels);
-    context.figure("foldover_pixels", report.foldover_pixels);
-    context.figure("columns_skipped_fraction", report.columns_skipped_fraction);
-    context.figure("dp_counters", report.dp_counters);
-    context.figure("stitched_seams", report.stitched_seams);
-    context.figure("distortion_mean", report.distortion_mean);
-    context.figure("distortion_max", report.distortion_max);
-    if report.method == Method::Repeat {
-        context.figure("wrap_seams", report.wrap_seams);
-    } else {
-        context.figure("repeated_pairs", report.repeated_pairs);
-        context.figure("distinct_windows", report.distinct_windows);
-        context.figure("variety", &report.variety);
-        context.figure("rounded_bends", report.rounded_bends);
-        context.figure("bend_shift_max", report.bend_shift_max);
-    }
-    context.figure("warnings", &report.warnings);
 }
 
 /// Runs `motif curve`.
@@ -352,14 +309,14 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     let curve = read_curve(&args.path, args.tolerance)?;
     let avoidance = args.avoid.as_deref().map(motif_io::read_image).transpose()?;
-    let params = params_of(args);
-    let input = CurveInput {
+    let inputs = CurveInputs {
         exemplar: &exemplar,
+        more_exemplars: &more_exemplars,
         curve: &curve,
         avoidance: avoidance.as_ref(),
-        more_exemplars: &more_exemplars,
     };
-    let output = motif_curve::synthesize(&input, &params, context.progress())?;
+    let run = job_of(args).run(inputs, context.progress())?;
+    let output = run.output;
     motif_io::write_png(&args.out, &output.image)?;
     if let Some(path) = &args.pieces {
         let document = json!({
@@ -376,19 +333,15 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     if let Some(path) = &args.debug_overlay {
         motif_io::write_png(path, &motif_curve::debug_overlay(&output))?;
     }
-    record(context, &output);
+    for (key, value) in run.figures {
+        if key != "command" {
+            context.figure(&key, value);
+        }
+    }
     for warning in &output.report.warnings {
         context.summary(&format!("warning: {warning}"));
     }
-    let fidelity = args.fidelity.then(|| {
-        let figures = motif_curve::fidelity::patch_fidelity(
-            &exemplar,
-            &output.image,
-            &output.ribbon_top,
-            &output.ribbon_bottom,
-            params.scale,
-        );
-        context.figure("fidelity", figures);
+    let fidelity = run.fidelity.map(|figures| {
         format!(
             ", patch distance {:.4} (exemplar coverage {:.0}%)",
             figures.mean_distance,
