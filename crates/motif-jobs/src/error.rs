@@ -18,4 +18,7 @@ pub enum JobError {
     /// The strokes engine refused the run.
     #[error(transparent)]
     Strokes(#[from] motif_strokes::Error),
+    /// The stylize engine refused the run.
+    #[error(transparent)]
+    Stylize(#[from] motif_stylize::Error),
 }

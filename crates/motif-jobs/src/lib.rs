@@ -10,9 +10,8 @@
 //! ([`points::figures`]) under the same keys whichever front end asked. No front end parses sizes,
 //! fields or enums itself.
 //!
-//! The crate is pure (no I/O, builds for `wasm32`). Engines move here one by one: `points`,
-//! `strokes` and `curve` so far; `stylize` still builds its parameters in the CLI (see
-//! ARCHITECTURE.md).
+//! The crate is pure (no I/O, builds for `wasm32`). Every engine has its jobs here: `curve`, `points`,
+//! `strokes` and `stylize` (with `texture` and `presynth`).
 //!
 //! ```
 //! use motif_jobs::points::PointsJob;
@@ -35,5 +34,6 @@ pub mod curve;
 mod error;
 pub mod points;
 pub mod strokes;
+pub mod stylize;
 
 pub use error::JobError;

@@ -6,7 +6,8 @@ use motif_core::error::{check_count, check_range};
 use crate::Error;
 
 /// How the nearest-neighbour field is searched (paper §4.2; PatchMatch by Barnes et al. 2009).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum NnfMethod {
     /// Randomized PatchMatch: propagation plus random search, deterministic under parallelism
     /// (row tiles with one seeded stream each). The default; near-linear in the image sizes.

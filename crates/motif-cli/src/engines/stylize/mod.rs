@@ -10,10 +10,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::{Args, Subcommand, ValueEnum};
 use motif_core::{FloatImage, RgbaImage};
-use motif_stylize::{
-    Guide, Input, NearestNeighbourField, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation,
-    apply_field, presynthesize, synthesize,
-};
+use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob};
+use motif_stylize::{NearestNeighbourField, NnfMethod, Output, SegmentTexture, apply_field};
 use serde::{Deserialize, Serialize};
 
 use crate::context::Context;
@@ -64,24 +62,26 @@ pub struct SynthesisOptions {
     pub extra_pass_3x3: bool,
 }
 
-impl SynthesisOptions {
-    fn params(&self, seed: u64) -> Params {
-        let mut params = Params::default();
-        params.style_weight = self.style_weight;
-        params.uniformity = self.uniformity;
-        params.patch_size = self.patch_size;
-        params.pyramid_levels = self.pyramid_levels;
-        params.search_vote_iterations = self.search_vote_iterations;
-        params.patchmatch_iterations = self.patchmatch_iterations;
-        params.stop_threshold = self.stop_threshold;
-        params.nnf = match self.nnf {
+/// Sets the shared synthesis options of any stylize-family job (they have the same fields).
+macro_rules! with_synthesis {
+    ($job:expr, $options:expr, $seed:expr) => {{
+        let mut job = $job;
+        let options: &SynthesisOptions = $options;
+        job.seed = $seed;
+        job.style_weight = Some(options.style_weight);
+        job.uniformity = Some(options.uniformity);
+        job.patch_size = Some(options.patch_size);
+        job.pyramid_levels = Some(options.pyramid_levels);
+        job.search_vote_iters = Some(options.search_vote_iterations);
+        job.patchmatch_iters = Some(options.patchmatch_iterations);
+        job.stop_threshold = Some(options.stop_threshold);
+        job.nnf = Some(match options.nnf {
             NnfArg::Patchmatch => NnfMethod::PatchMatch,
             NnfArg::Exact => NnfMethod::Exact,
-        };
-        params.extra_pass_3x3 = self.extra_pass_3x3;
-        params.seed = seed;
-        params
-    }
+        });
+        job.extra_pass_3x3 = options.extra_pass_3x3;
+        job
+    }};
 }
 
 /// Segment guidance options (§3.6).
@@ -98,21 +98,6 @@ pub struct SegmentOptions {
     /// Which --guide pair defines the segments, counted from 1.
     #[arg(long, value_name = "I", default_value_t = 1)]
     pub segment_guide: usize,
-}
-
-impl SegmentOptions {
-    fn apply(&self, params: &mut Params) -> anyhow::Result<()> {
-        params.segments = match (self.segments, self.segment_count) {
-            (_, Some(k)) => Some(Segmentation::KMeans(k)),
-            (true, None) => Some(Segmentation::Palette),
-            (false, None) => None,
-        };
-        if self.segment_guide == 0 {
-            bail!("invalid segment-guide = 0: guides are counted from 1");
-        }
-        params.segment_guide = self.segment_guide - 1;
-        Ok(())
-    }
 }
 
 /// Options of `motif stylize`.
@@ -319,14 +304,10 @@ fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn record(context: &mut Context, output: &Output) {
-    context.figure("energy", output.report.energy);
-    context.figure("source_coverage", output.report.source_coverage);
-    context.stages(&output.report.stages_ms);
-    context.figure("engine_ms", output.report.total_ms);
-    context.figure("levels", &output.report.levels);
-    context.figure("searched_pixels", output.report.searched_pixels);
-    context.figure("output_size", [output.image.width(), output.image.height()]);
+fn record(context: &mut Context, figures: &serde_json::Map<String, serde_json::Value>) {
+    for (key, value) in figures {
+        context.figure(key, value);
+    }
 }
 
 /// Runs `motif stylize` (or its `presynth` action).
@@ -343,7 +324,18 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     context.check_output(out, &inputs)?;
     let style_image = load(style_path)?;
     let style = style_float(&style_image);
-    let mut params = args.synthesis.params(context.seed);
+    let job = StylizeJob {
+        weight: args.weight.clone(),
+        segments: args.segment.segments,
+        segment_count: args.segment.segment_count,
+        segment_guide: Some(args.segment.segment_guide),
+        band: Some(args.band),
+        band_iters: Some(args.band_iterations),
+        band_patchmatch_iters: Some(args.band_patchmatch_iterations),
+        ..with_synthesis!(StylizeJob::new(), &args.synthesis, context.seed)
+    };
+    // The options are checked before the guides are read.
+    let params = job.params(args.presynth.is_some())?;
     if let Some(field_path) = &args.apply_nnf {
         let field_image = load(field_path)?;
         let field = NearestNeighbourField::from_rgba(&field_image, style.width(), style.height(), params.patch_size)?;
@@ -367,22 +359,14 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
             pairs.len()
         );
     }
-    args.segment.apply(&mut params)?;
-    params.band = args.band;
-    params.band_search_vote_iterations = args.band_iterations;
-    params.band_patchmatch_iterations = args.band_patchmatch_iterations;
     let mut guides = Vec::with_capacity(pairs.len());
-    for (index, (source_path, target_path)) in pairs.iter().enumerate() {
+    for (source_path, target_path) in &pairs {
         let source = load(source_path)?;
         let target = load(target_path)?;
         let (source_channels, target_channels) = pair_channels(&source, &target);
-        guides.push(Guide {
-            source: source.to_float_channels(&source_channels),
-            target: target.to_float_channels(&target_channels),
-            weight: args.weight.get(index).copied(),
-        });
+        guides.push((source.to_float_channels(&source_channels), target.to_float_channels(&target_channels)));
     }
-    let mut input = Input::guided(style, guides);
+    let mut textures = None;
     if let Some(dir) = &args.presynth {
         let manifest_path = dir.join("presynth.json");
         let manifest: Manifest = motif_io::read_json(&manifest_path).with_context(|| {
@@ -396,16 +380,15 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
                 params.patch_size
             );
         }
-        let mut textures = Vec::with_capacity(manifest.segments.len());
+        let mut loaded = Vec::with_capacity(manifest.segments.len());
         for entry in &manifest.segments {
             let image = load(&dir.join(&entry.file))?;
-            let image =
-                if input.style.channels() == 4 { image.to_float() } else { image.to_float_channels(&[0, 1, 2]) };
+            let image = if style.channels() == 4 { image.to_float() } else { image.to_float_channels(&[0, 1, 2]) };
             let field = match &entry.field {
                 Some(file) => {
                     let path = dir.join(file);
                     let encoded = load(&path)?;
-                    let (width, height) = (input.style.width(), input.style.height());
+                    let (width, height) = (style.width(), style.height());
                     let field = NearestNeighbourField::from_rgba(&encoded, width, height, manifest.patch_size)
                         .with_context(|| {
                             format!("{} does not fit the style {}", path.display(), style_path.display())
@@ -414,22 +397,20 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
                 }
                 None => None,
             };
-            textures.push(SegmentTexture { colour: parse_hex(&entry.colour)?, image, field });
+            loaded.push(SegmentTexture { colour: parse_hex(&entry.colour)?, image, field });
         }
-        if params.segments.is_none() {
-            params.segments = Some(Segmentation::Palette);
-        }
-        input.textures = Some(textures);
+        textures = Some(loaded);
     }
-    let output = synthesize(&input, &params, context.progress()).with_context(|| {
+    let run = job.run(style, guides, textures, context.progress()).with_context(|| {
         let guides: Vec<String> = pairs.iter().map(|(a, b)| format!("{} → {}", a.display(), b.display())).collect();
         format!("cannot stylize {} with guides {}", style_path.display(), guides.join(", "))
     })?;
+    let output = &run.output;
     motif_io::write_png(out, &RgbaImage::from_float(&output.image))?;
     if let Some(dir) = &args.debug_dir {
-        write_debug(dir, &output)?;
+        write_debug(dir, output)?;
     }
-    record(context, &output);
+    record(context, &run.figures);
     context.summary(&format!(
         "motif stylize: {}×{} in {:.0} ms, energy {:.0}, source coverage {:.1} % → {}",
         output.image.width(),
@@ -467,14 +448,13 @@ fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()
     let style_image = load(&args.style)?;
     let guide_image = load(&args.guide)?;
     let channels: Vec<usize> = (0..file_channels(&guide_image)).collect();
-    let input = PresynthInput {
-        style: style_float(&style_image),
-        guide: guide_image.to_float_channels(&channels),
-        size: args.size,
+    let job = PresynthJob {
+        size: Some([args.size.0, args.size.1]),
+        segment_count: args.segment_count,
+        ..with_synthesis!(PresynthJob::new(), &args.synthesis, context.seed)
     };
-    let mut params = args.synthesis.params(context.seed);
-    params.segments = Some(args.segment_count.map_or(Segmentation::Palette, Segmentation::KMeans));
-    let textures = presynthesize(&input, &params, context.progress())?;
+    let params = job.params()?;
+    let textures = job.run(style_float(&style_image), guide_image.to_float_channels(&channels), context.progress())?;
     std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let mut segments = Vec::with_capacity(textures.len());
     for (index, texture) in textures.iter().enumerate() {
@@ -509,15 +489,17 @@ fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()
 pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.exemplar])?;
     let exemplar = style_float(&load(&args.exemplar)?);
-    let mut params = args.synthesis.params(context.seed);
-    params.tileable = args.tileable;
-    let input = Input::texture(exemplar, args.size.0, args.size.1);
-    let output = synthesize(&input, &params, context.progress())?;
+    let job = TextureJob {
+        tileable: args.tileable,
+        ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context.seed)
+    };
+    let run = job.run(exemplar, context.progress())?;
+    let output = &run.output;
     motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
     if let Some(dir) = &args.debug_dir {
-        write_debug(dir, &output)?;
+        write_debug(dir, output)?;
     }
-    record(context, &output);
+    record(context, &run.figures);
     context.summary(&format!(
         "motif texture: {}×{}{} in {:.0} ms, energy {:.0} → {}",
         args.size.0,
