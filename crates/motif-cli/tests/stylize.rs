@@ -122,10 +122,8 @@ fn texture_and_presynth_band_mode() {
     let tile = motif_io::read_image(&d.join("tile.png")).unwrap();
     assert_eq!((tile.width(), tile.height()), (72, 48));
 
-    let output = motif(
-        d,
-        &["stylize", "presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "cache"],
-    );
+    let output =
+        motif(d, &["presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "cache"]);
     assert!(output.status.success(), "{}", stderr(&output));
     assert!(d.join("cache/presynth.json").is_file() && d.join("cache/segment-1.png").is_file());
     // An input inside the folder that presynth fills is refused (its files are replaced), and so is
@@ -134,31 +132,16 @@ fn texture_and_presynth_band_mode() {
     let kept = std::fs::read(d.join("cache/segment-1.png")).unwrap();
     let output = motif(
         d,
-        &[
-            "stylize",
-            "presynth",
-            "--style",
-            "cache/segment-1.png",
-            "--guide",
-            "A.png",
-            "--size",
-            "40x40",
-            "--out-dir",
-            "cache",
-        ],
+        &["presynth", "--style", "cache/segment-1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "cache"],
     );
     assert_eq!(output.status.code(), Some(1));
     assert!(stderr(&output).contains("lies in the --out-dir folder"), "{}", stderr(&output));
     assert_eq!(std::fs::read(d.join("cache/segment-1.png")).unwrap(), kept);
-    let output = motif(
-        d,
-        &["stylize", "presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "A.png"],
-    );
+    let output =
+        motif(d, &["presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "A.png"]);
     assert!(stderr(&output).contains("is a file"), "{}", stderr(&output));
-    let output = motif(
-        d,
-        &["stylize", "presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "cache"],
-    );
+    let output =
+        motif(d, &["presynth", "--style", "A1.png", "--guide", "A.png", "--size", "40x40", "--out-dir", "cache"]);
     assert!(output.status.success(), "{}", stderr(&output));
     // Each texture's field is cached beside it and seeds the band.
     assert!(d.join("cache/segment-1-nnf.png").is_file());

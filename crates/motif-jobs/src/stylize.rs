@@ -1,6 +1,6 @@
 //! `stylize`, `texture` and `presynth` jobs: guided patch-based synthesis (`motif_stylize`).
 //!
-//! Field names are the flags of `motif stylize`, `motif texture` and `motif stylize presynth`
+//! Field names are the flags of `motif stylize`, `motif texture` and `motif presynth`
 //! (ebsynth's names where it has them). Images come decoded as float images with their channels
 //! chosen by the front end (the CLI reads PNG and matches the channels of guide pairs).
 
@@ -147,7 +147,7 @@ job_with_synthesis! {
 }
 
 job_with_synthesis! {
-    /// Every option of `motif stylize presynth` that is not a file.
+    /// Every option of `motif presynth` that is not a file.
     pub struct PresynthJob {
         /// Texture size `[W, H]` in pixels (default 256 × 256).
         #[serde(default)]

@@ -43,6 +43,12 @@ pub enum EngineCommand {
     /// textures (Texler et al.); options mirror ebsynth's.
     #[command(allow_negative_numbers = true)]
     Stylize(stylize::StylizeArgs),
+    /// Make one seamless texture per segment of a style's guide, for `motif stylize --presynth`
+    ///
+    /// The pre-synthesized textures of Texler et al. §3.7: the target is then filled from them
+    /// and only a band along segment edges is optimized.
+    #[command(allow_negative_numbers = true)]
+    Presynth(stylize::PresynthArgs),
     /// Grow a texture of any size from an exemplar image, optionally tileable
     #[command(allow_negative_numbers = true)]
     Texture(stylize::TextureArgs),
@@ -56,6 +62,7 @@ impl EngineCommand {
             EngineCommand::Points(_) => "points",
             EngineCommand::Strokes(_) => "strokes",
             EngineCommand::Stylize(_) => "stylize",
+            EngineCommand::Presynth(_) => "presynth",
             EngineCommand::Texture(_) => "texture",
         }
     }
@@ -67,6 +74,7 @@ impl EngineCommand {
             EngineCommand::Points(args) => points::run(args, context),
             EngineCommand::Strokes(args) => strokes::run(args, context),
             EngineCommand::Stylize(args) => stylize::run_stylize(args, context),
+            EngineCommand::Presynth(args) => stylize::run_presynth(args, context),
             EngineCommand::Texture(args) => stylize::run_texture(args, context),
         }
     }

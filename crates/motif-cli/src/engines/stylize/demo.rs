@@ -54,14 +54,13 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .to_vec(),
     })?;
     demo.case(DemoCase {
-        title: "stylize presynth: one texture per segment".into(),
+        title: "presynth: one texture per segment".into(),
         description: "Each map segment's crayon texture is synthesized once (seamless, from that segment's \
                       style patches) and cached (§3.7)."
             .into(),
         inputs: vec![("style A'".into(), "stylize-A1.png".into()), ("source guide A".into(), "stylize-A.png".into())],
         outputs: (1..=5).map(|i| (format!("segment {i}"), format!("stylize-presynth/segment-{i}.png"))).collect(),
         args: [
-            "stylize",
             "presynth",
             "--style",
             "stylize-A1.png",

@@ -1,4 +1,4 @@
-//! `motif stylize` (guided stylization, `presynth` for §3.7 textures) and `motif texture`
+//! `motif stylize` (guided stylization), `motif presynth` (its §3.7 textures) and `motif texture`
 //! (non-guided texture synthesis), wired to PNG files. Options mirror ebsynth's so its users can
 //! switch: `-style` → `--style`, `-guide A B -weight W` → `--guide A B --weight W`, and so on.
 
@@ -8,7 +8,7 @@ mod demo;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use clap::{Args, Subcommand, ValueEnum};
+use clap::{Args, ValueEnum};
 use motif_core::{FloatImage, RgbaImage};
 use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob};
 use motif_stylize::{NearestNeighbourField, NnfMethod, Output, SegmentTexture, apply_field};
@@ -26,7 +26,7 @@ pub enum NnfArg {
     Exact,
 }
 
-/// Synthesis options shared by `stylize`, `stylize presynth` and `texture` (ebsynth's names and
+/// Synthesis options shared by `stylize`, `presynth` and `texture` (ebsynth's names and
 /// defaults).
 #[derive(Args, Debug, Clone)]
 pub struct SynthesisOptions {
@@ -102,14 +102,10 @@ pub struct SegmentOptions {
 
 /// Options of `motif stylize`.
 #[derive(Args, Debug)]
-#[command(args_conflicts_with_subcommands = true)]
 pub struct StylizeArgs {
-    /// `presynth`: make the per-segment textures for --presynth.
-    #[command(subcommand)]
-    pub action: Option<StylizeAction>,
-    /// The style exemplar A' (PNG/JPEG; RGB, or RGBA when it has transparency). Required.
+    /// The style exemplar A' (PNG/JPEG; RGB, or RGBA when it has transparency).
     #[arg(long, value_name = "A1.png")]
-    pub style: Option<PathBuf>,
+    pub style: PathBuf,
     /// A guide pair: the source guide A (the style's size) and the target guide B (the output's
     /// size). Repeat for several guides. Each is used as grey (1 channel), RGB (3) or RGBA (4, when
     /// it has transparency); grey next to RGB is read as RGB; transparency in only one file of a
@@ -126,7 +122,7 @@ pub struct StylizeArgs {
     /// Segment guidance.
     #[command(flatten)]
     pub segment: SegmentOptions,
-    /// Directory written by `motif stylize presynth`: fill every pixel at least --band pixels
+    /// Directory written by `motif presynth`: fill every pixel at least --band pixels
     /// from a segment edge of the target guide with its segment's texture and optimize only the
     /// band (§3.7). Implies --segments.
     #[arg(long, value_name = "DIR")]
@@ -152,20 +148,12 @@ pub struct StylizeArgs {
     /// if the field came from --extra-pass-3x3).
     #[arg(long, value_name = "NNF.png", conflicts_with_all = ["guide", "presynth"])]
     pub apply_nnf: Option<PathBuf>,
-    /// The stylized output B' (PNG). Required.
+    /// The stylized output B' (PNG).
     #[arg(long, value_name = "B1.png")]
-    pub out: Option<PathBuf>,
+    pub out: PathBuf,
 }
 
-/// Sub-actions of `motif stylize`.
-#[derive(Subcommand, Debug)]
-pub enum StylizeAction {
-    /// Synthesize one seamless texture per segment of the source guide from the style (§3.7) and
-    /// cache them in a directory for `motif stylize --presynth DIR`.
-    Presynth(PresynthArgs),
-}
-
-/// Options of `motif stylize presynth`.
+/// Options of `motif presynth`.
 #[derive(Args, Debug)]
 pub struct PresynthArgs {
     /// The style exemplar A'.
@@ -310,13 +298,9 @@ fn record(context: &mut Context, figures: &serde_json::Map<String, serde_json::V
     }
 }
 
-/// Runs `motif stylize` (or its `presynth` action).
+/// Runs `motif stylize`.
 pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<()> {
-    if let Some(StylizeAction::Presynth(presynth)) = &args.action {
-        return run_presynth(presynth, context);
-    }
-    let Some(style_path) = &args.style else { bail!("--style A1.png is required") };
-    let Some(out) = &args.out else { bail!("--out B1.png is required") };
+    let (style_path, out) = (&args.style, &args.out);
     let pairs: Vec<(&PathBuf, &PathBuf)> = args.guide.chunks_exact(2).map(|pair| (&pair[0], &pair[1])).collect();
     let mut inputs: Vec<&Path> = vec![style_path.as_path()];
     inputs.extend(args.guide.iter().map(PathBuf::as_path));
@@ -369,9 +353,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     let mut textures = None;
     if let Some(dir) = &args.presynth {
         let manifest_path = dir.join("presynth.json");
-        let manifest: Manifest = motif_io::read_json(&manifest_path).with_context(|| {
-            format!("cannot read {} (make it with `motif stylize presynth`)", manifest_path.display())
-        })?;
+        let manifest: Manifest = motif_io::read_json(&manifest_path)
+            .with_context(|| format!("cannot read {} (make it with `motif presynth`)", manifest_path.display()))?;
         if manifest.patch_size != params.patch_size {
             bail!(
                 "the textures in {} were made with --patch-size {} but this run uses {}",
@@ -423,7 +406,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     Ok(())
 }
 
-fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
+/// Runs `motif presynth`.
+pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
     // The folder's files are replaced: no input may live there, and it must be a folder.
     if args.out_dir.is_file() {
         bail!("--out-dir {} is a file; give a folder", args.out_dir.display());
@@ -476,7 +460,7 @@ fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()
     context.figure("segments", textures.len());
     context.figure("texture_size", [args.size.0, args.size.1]);
     context.summary(&format!(
-        "motif stylize presynth: {} segment textures of {}×{} → {}",
+        "motif presynth: {} segment textures of {}×{} → {}",
         textures.len(),
         args.size.0,
         args.size.1,
