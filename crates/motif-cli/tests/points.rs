@@ -275,3 +275,38 @@ fn bad_input_gives_clear_errors() {
     ));
     assert!(error.contains("also an input"), "{error}");
 }
+
+/// Sizes that once panicked, hung or succeeded with nonsense are refused up front, naming the
+/// flag and the allowed range (issue 13's cases; `scripts/robustness.py` replays them all).
+#[test]
+fn windows_out_of_scale_and_huge_domains_are_refused_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["points", "--exemplar", "grid.csv", "--out", "out.csv"];
+        args.extend_from_slice(extra);
+        error_of(&motif(dir.path(), &args))
+    };
+    for (extra, expected) in [
+        (&["--neighbourhood", "1e-300", "--domain", "box:8,8"][..], "invalid neighbourhood = 1e-300: must be between"),
+        (&["--neighbourhood", "1e308", "--domain", "box:8,8"][..], "invalid neighbourhood = 1e308"),
+        (&["--neighbourhood", "2", "--sigma", "1e300", "--domain", "box:8,8"][..], "invalid sigma = 1e300"),
+        (&["--neighbourhood", "2", "--domain", "box:1000,1000"][..], "more than the 150000 allowed (max-points)"),
+        (&["--neighbourhood", "2", "--domain", "box:20,20", "--max-points", "100"][..], "more than the 100 allowed"),
+    ] {
+        let stderr = run(extra);
+        assert!(stderr.contains(expected) && !stderr.contains("internal error"), "{extra:?}: {stderr}");
+    }
+    assert!(!dir.path().join("out.csv").exists());
+    // Element ids are whole numbers.
+    let mut elements = String::from("x,y,element\n");
+    for i in 0..40 {
+        let _ = writeln!(elements, "{},{},{}", i % 8, i / 8, f64::from(i) / 3.0);
+    }
+    std::fs::write(dir.path().join("elements.csv"), elements).unwrap();
+    let stderr = error_of(&motif(
+        dir.path(),
+        &["points", "--exemplar", "elements.csv", "--neighbourhood", "2", "--domain", "box:8,8", "--out", "out.csv"],
+    ));
+    assert!(stderr.contains("element ids are whole numbers"), "{stderr}");
+}

@@ -241,3 +241,37 @@ fn bad_input_is_refused_with_clear_messages() {
     let output = motif(d, &["texture", "--exemplar", "exemplar.png", "--size", "0x10", "--out", "t.png"]);
     assert!(!output.status.success());
 }
+
+/// A size typo (16384 × 16384, or presynth textures of 4096² for every segment) is refused before
+/// any work with the pixel count and the flag to raise, instead of running for hours.
+#[test]
+fn runs_over_the_pixel_limit_are_refused_up_front() {
+    let dir = setup();
+    let d = dir.path();
+    let output = motif(d, &["texture", "--exemplar", "exemplar.png", "--size", "16384x16384", "--out", "out.png"]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("268435456 pixels") && stderr(&output).contains("max-pixels"),
+        "{}",
+        stderr(&output)
+    );
+    let output = motif(
+        d,
+        &[
+            "presynth",
+            "--style",
+            "A1.png",
+            "--guide",
+            "A.png",
+            "--size",
+            "64x64",
+            "--max-pixels",
+            "10000",
+            "--out-dir",
+            "cache",
+        ],
+    );
+    assert_eq!(output.status.code(), Some(1));
+    assert!(stderr(&output).contains("more than the 10000 allowed"), "{}", stderr(&output));
+    assert!(!d.join("out.png").exists() && !d.join("cache/presynth.json").exists());
+}

@@ -113,6 +113,9 @@ pub struct PointsJob {
     /// Progressive synthesis: existing points farther than this from the new domain stay fixed.
     #[serde(default)]
     pub keep_margin: Option<f64>,
+    /// Refuse domains that ask for more points than this.
+    #[serde(default)]
+    pub max_points: Option<usize>,
 }
 
 /// A finished points job.
@@ -151,6 +154,7 @@ impl PointsJob {
             no_sampling_control: false,
             reference: false,
             keep_margin: None,
+            max_points: None,
         }
     }
 
@@ -232,6 +236,7 @@ impl PointsJob {
             .with_continuous_attributes(self.continuous.clone())
             .with_attribute_weights(self.attribute_weight.iter().map(|(name, w)| (name.clone(), *w)).collect())
             .with_keep_margin(self.keep_margin)
+            .with_max_points(self.max_points.unwrap_or(defaults.max_points))
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)

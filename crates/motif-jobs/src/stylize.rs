@@ -28,6 +28,7 @@ struct Synthesis {
     stop_threshold: Option<f32>,
     nnf: Option<NnfMethod>,
     extra_pass_3x3: bool,
+    max_pixels: Option<usize>,
 }
 
 impl Synthesis {
@@ -43,6 +44,7 @@ impl Synthesis {
             .with_stop_threshold(self.stop_threshold.unwrap_or(d.stop_threshold))
             .with_nnf(self.nnf.unwrap_or(d.nnf))
             .with_extra_pass_3x3(self.extra_pass_3x3)
+            .with_max_pixels(self.max_pixels.unwrap_or(d.max_pixels))
             .with_seed(self.seed)
     }
 }
@@ -87,6 +89,9 @@ macro_rules! job_with_synthesis {
             /// One more search-and-vote with 3×3 patches at the end.
             #[serde(default, rename = "extra-pass-3x3")]
             pub extra_pass_3x3: bool,
+            /// Refuse runs that would synthesize more output pixels than this.
+            #[serde(default)]
+            pub max_pixels: Option<usize>,
         }
 
         impl $name {
@@ -102,6 +107,7 @@ macro_rules! job_with_synthesis {
                     stop_threshold: self.stop_threshold,
                     nnf: self.nnf,
                     extra_pass_3x3: self.extra_pass_3x3,
+                    max_pixels: self.max_pixels,
                 }
             }
         }

@@ -255,6 +255,9 @@ pub struct Params {
     /// Progressive synthesis: existing points farther than this from the new domain stay fixed
     /// (output units ≥ 0; default `None` = 3δ).
     pub keep_margin: Option<f64>,
+    /// Refuse domains that ask for more points than this at the exemplar's density (default
+    /// 150 000: about 2 minutes on two cores; the paper's largest case has 23 000).
+    pub max_points: usize,
     /// Energy implementation. Default fast.
     pub evaluator: Evaluator,
     /// Seed of every random choice (matching starts, initialization).
@@ -299,6 +302,7 @@ impl Default for Params {
             attribute_weight: 1.0,
             attribute_weights: Vec::new(),
             keep_margin: None,
+            max_points: 150_000,
             evaluator: Evaluator::Fast,
             seed: 0,
         }
@@ -368,6 +372,7 @@ impl Params {
         check_range("patch-size", self.patch_size, 1.0, 20.0)?;
         check_count("patch-candidates", self.patch_candidates, 1, 256)?;
         check_range("attribute-weight", self.attribute_weight, 1e-6, 100.0)?;
+        check_count("max-points", self.max_points, 1, 100_000_000)?;
         if let Some(margin) = self.keep_margin {
             check_range("keep-margin", margin, 0.0, f64::MAX)?;
         }
@@ -412,6 +417,7 @@ motif_core::builders! { Params {
     with_attribute_weight => attribute_weight: f64,
     with_attribute_weights => attribute_weights: Vec<(String, f64)>,
     with_keep_margin => keep_margin: Option<f64>,
+    with_max_points => max_points: usize,
     with_evaluator => evaluator: Evaluator,
     with_seed => seed: u64,
 }}

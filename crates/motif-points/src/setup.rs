@@ -2,8 +2,10 @@
 //! exemplar's neighbour structures), the initial output, and what is read off the final state
 //! (the output point set, the count bounds of sampling control, the fidelity figures).
 
+use motif_core::InvalidParameter;
 use motif_core::SeedStreams;
 use motif_core::error::check_range;
+use motif_core::error::number;
 
 use crate::domain::{Quadrature, Region};
 use crate::energy::{Neighbours, Problem};
@@ -49,6 +51,15 @@ pub(crate) struct Setup<const D: usize> {
     pub expected_points: f64,
     /// Points initialized in patch interiors and kept as copied (see `Refinement::Seams`).
     pub patch_interiors: usize,
+}
+
+/// Three significant digits, for limits quoted in messages.
+fn significant(value: f64) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return number(value);
+    }
+    let decimals = 2 - value.abs().log10().floor() as i32;
+    if (0..=12).contains(&decimals) { format!("{value:.*}", decimals as usize) } else { number(value) }
 }
 
 fn vector<const D: usize>(values: &[f64]) -> Vector<D> {
@@ -173,6 +184,22 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     }
     let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
     let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
+    // Measured against the exemplar: a window narrower than half a spacing holds no neighbour, a
+    // Gaussian wider than ten spacings blurs every structure away, and both only cost time.
+    let relative = |name: &str, value: f64, low: f64, high: f64| -> Result<(), Error> {
+        if value >= low * spacing && value <= high * spacing {
+            return Ok(());
+        }
+        let allowed = format!(
+            "must be between {} and {} (exemplar units: {low}–{high} times its mean spacing {})",
+            significant(low * spacing),
+            significant(high * spacing),
+            significant(spacing)
+        );
+        Err(InvalidParameter::new(name, number(value), allowed).into())
+    };
+    relative("neighbourhood", delta, 0.5, 200.0)?;
+    relative("sigma", sigma, 0.02, 10.0)?;
     let (low, high) = crate::grid::bounds(&positions);
     // Without a given window, each point owns about a spacing-sized cell, so the bounding box is
     // padded by half a spacing per side (a 14 × 14 grid of spacing 1 has density 1, not 196/169).
@@ -214,6 +241,13 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let grid_volume = quadrature.len() as f64 * h.powi(D as i32);
     if let (Some(volume), None) = (region.volume(), margin) {
         expected *= volume / grid_volume.max(1e-300);
+    }
+    if expected > params.max_points as f64 {
+        return Err(Error::DomainTooLarge(format!(
+            "it asks for about {expected:.0} points at the exemplar's density, more than the {} allowed \
+             (max-points); use a smaller domain or a larger scale, or raise max-points",
+            params.max_points
+        )));
     }
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
         return Err(Error::EmptyDomain(format!(

@@ -61,6 +61,17 @@ pub enum Error {
     /// Neither target guides nor an output size say how big the output is.
     #[error("no target guide and no output size: give guides or a size")]
     MissingTargetSize,
+    /// The run would synthesize more pixels than the limit allows.
+    #[error(
+        "the run would synthesize {pixels} pixels, more than the {max_pixels} allowed (max-pixels; about 15 CPU-seconds \
+         per megapixel): use a smaller size, or raise max-pixels"
+    )]
+    TooMuchWork {
+        /// Output pixels (summed over the textures of a presynthesis).
+        pixels: usize,
+        /// The limit ([`crate::Params::max_pixels`]).
+        max_pixels: usize,
+    },
     /// Segment guidance could not label the guide.
     #[error("segments: {0}")]
     Segments(String),

@@ -200,6 +200,11 @@ fn check_image(image: &FloatImage, what: &str) -> Result<(), Error> {
     Ok(())
 }
 
+/// Refuses work on more than `max_pixels` output pixels before anything is allocated for it.
+fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
+    if pixels > max_pixels { Err(Error::TooMuchWork { pixels, max_pixels }) } else { Ok(()) }
+}
+
 /// Most guide channels in all (so a patch row's integer sum of squares cannot overflow).
 pub const MAX_GUIDE_CHANNELS: usize = 252;
 
@@ -278,6 +283,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         }
         (None, None) => return Err(Error::MissingTargetSize),
     };
+    check_work(target_size.0 * target_size.1, params.max_pixels)?;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
@@ -484,8 +490,10 @@ pub fn presynthesize(
         )
         .into());
     }
+    check_work(width * height, params.max_pixels)?;
     let mode = params.segments.unwrap_or(Segmentation::Palette);
     let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
+    check_work(width * height * labels.colours.len(), params.max_pixels)?;
     let (sw, sh) = (input.style.width(), input.style.height());
     let r = patch / 2;
     let mut textures = Vec::with_capacity(labels.colours.len());

@@ -81,6 +81,9 @@ pub struct Params {
     /// [`band_search_vote_iterations`](Self::band_search_vote_iterations)). Range 1..=100,
     /// default 2.
     pub band_patchmatch_iterations: usize,
+    /// Refuse runs that would synthesize more output pixels than this (summed over the textures of
+    /// a presynthesis). Default 64 000 000 (about 8 × 8 k pixels; some 15 minutes on two cores).
+    pub max_pixels: usize,
     /// Non-guided synthesis only: wrap patches around the borders so the output tiles seamlessly.
     /// Default off.
     pub tileable: bool,
@@ -105,6 +108,7 @@ impl Default for Params {
             band: 4,
             band_search_vote_iterations: 3,
             band_patchmatch_iterations: 2,
+            max_pixels: 64_000_000,
             tileable: false,
             seed: 0,
         }
@@ -115,6 +119,7 @@ impl Params {
     /// Checks every field's range; the first bad one is the error.
     pub fn validate(&self) -> Result<(), Error> {
         check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
+        check_count("max-pixels", self.max_pixels, 1, 1 << 40)?;
         check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
         if self.patch_size < 3 || self.patch_size % 2 == 0 || self.patch_size > 31 {
             return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd and between 3 and 31").into());
@@ -149,6 +154,7 @@ motif_core::builders! { Params {
     with_band => band: usize,
     with_band_search_vote_iterations => band_search_vote_iterations: usize,
     with_band_patchmatch_iterations => band_patchmatch_iterations: usize,
+    with_max_pixels => max_pixels: usize,
     with_tileable => tileable: bool,
     with_seed => seed: u64,
 }}

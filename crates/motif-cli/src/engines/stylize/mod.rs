@@ -60,6 +60,10 @@ pub struct SynthesisOptions {
     /// (ebsynth's extrapass3x3): crisper fine detail.
     #[arg(long = "extra-pass-3x3")]
     pub extra_pass_3x3: bool,
+    /// Refuse runs that would synthesize more output pixels than this (summed over presynth's
+    /// textures): a guard against a typo in a size; about 15 CPU-seconds per megapixel.
+    #[arg(long, value_name = "N", default_value_t = 64_000_000)]
+    pub max_pixels: usize,
 }
 
 /// Sets the shared synthesis options of any stylize-family job (they have the same fields).
@@ -80,6 +84,7 @@ macro_rules! with_synthesis {
             NnfArg::Exact => NnfMethod::Exact,
         });
         job.extra_pass_3x3 = options.extra_pass_3x3;
+        job.max_pixels = Some(options.max_pixels);
         job
     }};
 }

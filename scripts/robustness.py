@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""Replays the failure classes of issue 13 against a built `motif` binary and counts outcomes.
+
+Usage: scripts/robustness.py [path/to/motif] [--timeout SECONDS] [--json OUT.json]
+
+Every case runs in a fresh folder with inputs made by `motif demo` (so nothing here is drawn by
+hand) plus a few crafted files (a PNG header declaring 16384 x 16384 pixels, a truncated JPEG, a
+10 MB one-path SVG, 3 000 stroke paths, ...). Each run is classified as
+
+  clean-error  exit 1, a message on stderr that is not an internal error
+  success      exit 0 (only expected where the case says so)
+  panic        an internal error, exit 101 or a signal
+  hang         still running after the timeout (killed)
+  data-loss    an input file changed or vanished
+  leftover     a `.motif-*.tmp` file, or an output of a failed run, left behind
+
+and the table of counts is printed (and written as JSON with --json). Every outcome other than
+the expected one is listed with its command, so a regression names itself.
+"""
+
+import argparse
+import hashlib
+import json
+import os
+import shutil
+import signal
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+import zlib
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def png_with_header(width, height):
+    """A PNG whose header declares width x height RGBA pixels but whose data holds one row."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    data = zlib.compress(b"\x00" + b"\x00" * 4 * min(width, 64))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", data) + chunk(b"IEND", b"")
+
+
+def digest(path):
+    with open(path, "rb") as handle:
+        return hashlib.sha256(handle.read()).hexdigest()
+
+
+def prepare(folder, binary):
+    """Inputs: the demo's files, and crafted ones."""
+    subprocess.run([binary, "--quiet", "demo", "--out", folder], check=True, timeout=900)
+    with open(os.path.join(folder, "huge-header.png"), "wb") as handle:
+        handle.write(png_with_header(16384, 16384))
+    # A real image cut to a third (a JPEG when the demo has none: re-encode is not available, so
+    # a PNG cut short stands for a truncated file).
+    with open(os.path.join(folder, "texture-exemplar.png"), "rb") as handle:
+        data = handle.read()
+    with open(os.path.join(folder, "truncated.png"), "wb") as handle:
+        handle.write(data[: len(data) // 3])
+    # A CSV curve with one coordinate far away.
+    with open(os.path.join(folder, "far.csv"), "w") as handle:
+        handle.write("x,y\n0,0\n100,10\n1e9,20\n300,0\n")
+    # A 10 MB one-path SVG.
+    points = " ".join(f"L {i % 997},{(i * 7) % 991}" for i in range(600_000))
+    with open(os.path.join(folder, "big.svg"), "w") as handle:
+        handle.write(f'<svg xmlns="http://www.w3.org/2000/svg" width="1000" height="1000"><path d="M 0,0 {points}" stroke="black" fill="none"/></svg>')
+    # 3 000 short strokes.
+    paths = "".join(
+        f'<path d="M {i % 60 * 16},{i // 60 * 16} l 8,8" stroke="black" stroke-width="1" fill="none"/>' for i in range(3000)
+    )
+    with open(os.path.join(folder, "many-strokes.svg"), "w") as handle:
+        handle.write(f'<svg xmlns="http://www.w3.org/2000/svg" width="960" height="800">{paths}</svg>')
+    # Point sets: one coordinate at 1e300, and a non-integer element column.
+    with open(os.path.join(folder, "far-points.csv"), "w") as handle:
+        handle.write("x,y\n" + "".join(f"{i % 10},{i // 10}\n" for i in range(99)) + "1e300,5\n")
+    with open(os.path.join(folder, "bad-elements.csv"), "w") as handle:
+        handle.write("x,y,element\n" + "".join(f"{i % 10},{i // 10},{i / 3}\n" for i in range(100)))
+    with open(os.path.join(folder, "long-stroke.json"), "w") as handle:
+        json.dump([[float(i), 0.0] for i in range(0, 200_001, 1000)], handle)
+
+
+CURVE = ["curve", "--exemplar", "curve-chain.png", "--path", "curve-heart.svg", "--width", "40", "--piece-length", "16"]
+TEXTURE = ["texture", "--exemplar", "texture-exemplar.png"]
+STYLE = ["stylize", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "stylize-B.png"]
+POINTS = ["points", "--exemplar", "points-hex.ply", "--neighbourhood", "1.2"]
+STROKES = ["strokes", "--reference", "strokes-hatch-reference.svg", "--scale", "6"]
+
+# (name, arguments, expected outcome). Outputs are named out*.
+CASES = [
+    # Inputs are never overwritten.
+    ("report names an input", TEXTURE + ["--size", "64x64", "--out", "out.png", "--report", "texture-exemplar.png"], "clean-error"),
+    ("stylize report names a guide", STYLE + ["--out", "out.png", "--report", "stylize-B.png"], "clean-error"),
+    ("points out names its stroke", POINTS + ["--along", "points-stroke.svg", "--brush-width", "3", "--out", "points-stroke.svg"], "clean-error"),
+    ("points out names its region", POINTS + ["--domain", "strokes-blob.svg", "--out", "strokes-blob.svg"], "clean-error"),
+    ("presynth folder holds an input", ["presynth", "--style", "stylize-presynth/segment-1.png", "--guide", "stylize-A.png", "--size", "32x32", "--out-dir", "stylize-presynth"], "clean-error"),
+    # Failed runs leave nothing.
+    ("secondary output into a missing folder", CURVE + ["--out", "out.png", "--pieces", "missing/out.json"], "clean-error"),
+    ("preview into a missing folder", POINTS + ["--domain", "box:8,8", "--out", "out.ply", "--preview", "missing/out.png"], "clean-error"),
+    ("analysis onto a folder", STROKES + ["--rect", "100,100", "--out", "out.svg", "--analysis", "stylize-debug"], "clean-error"),
+    # Panics and giant allocations.
+    ("curve piece length 1e-300", CURVE[:-1] + ["1e-300", "--out", "out.png"], "clean-error"),
+    ("curve tolerance 1e-300", CURVE + ["--tolerance", "1e-300", "--out", "out.png"], "clean-error"),
+    ("points neighbourhood 1e-300", ["points", "--exemplar", "points-hex.ply", "--neighbourhood", "1e-300", "--domain", "box:8,8", "--out", "out.ply"], "clean-error"),
+    ("curve coordinate 1e9", ["curve", "--exemplar", "curve-chain.png", "--path", "far.csv", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
+    ("texture from a 16384^2 header", ["texture", "--exemplar", "huge-header.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
+    ("stylize guide with a 16384^2 header", ["stylize", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "huge-header.png", "--out", "out.png"], "clean-error"),
+    ("curve canvas 16384x16384", CURVE + ["--canvas", "16384x16384", "--out", "out.png"], "clean-error"),
+    # Hangs.
+    ("curve piece length 0.01", CURVE[:-1] + ["0.01", "--out", "out.png"], "clean-error"),
+    ("10 MB one-path SVG curve", ["curve", "--exemplar", "curve-chain.png", "--path", "big.svg", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
+    ("texture 16384x16384", TEXTURE + ["--size", "16384x16384", "--out", "out.png"], "clean-error"),
+    ("presynth 4096x4096", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "4096x4096", "--out-dir", "out-presynth"], "clean-error"),
+    ("points coordinate 1e300", ["points", "--exemplar", "far-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
+    ("points scale 0.01", POINTS + ["--domain", "box:14,10", "--scale", "0.01", "--out", "out.ply"], "clean-error"),
+    ("points long stroke", POINTS + ["--along", "long-stroke.json", "--brush-width", "3", "--out", "out.ply"], "clean-error"),
+    ("points blob region (200 000 points)", POINTS + ["--domain", "strokes-blob.svg", "--out", "out.ply"], "clean-error"),
+    ("strokes with 3000 paths", ["strokes", "--reference", "many-strokes.svg", "--scale", "6", "--rect", "400,400", "--out", "out.svg"], "success"),
+    # Nonsense is refused.
+    ("points neighbourhood 1e308", ["points", "--exemplar", "points-hex.ply", "--neighbourhood", "1e308", "--domain", "box:8,8", "--out", "out.ply"], "clean-error"),
+    ("points sigma 1e300", POINTS + ["--domain", "box:8,8", "--sigma", "1e300", "--out", "out.ply"], "clean-error"),
+    ("points non-integer elements", ["points", "--exemplar", "bad-elements.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
+    ("truncated image", TEXTURE[:-1] + ["truncated.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
+    ("curve canvas 1x1", CURVE + ["--canvas", "1x1", "--out", "out.png"], "clean-error"),
+    # Messages name the flag, for negatives too.
+    ("negative width", CURVE[:6] + ["-40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
+    ("negative scale", STROKES[:4] + ["-6", "--rect", "100,100", "--out", "out.svg"], "clean-error"),
+    ("segment guide 2 of 1", STYLE + ["--segments", "--segment-guide", "2", "--out", "out.png"], "clean-error"),
+]
+
+
+def classify(result, timed_out, changed, leftovers, expected):
+    if timed_out:
+        return "hang"
+    if changed:
+        return "data-loss"
+    stderr = result.stderr
+    if "internal error" in stderr or result.returncode not in (0, 1, 2):
+        return "panic"
+    if leftovers:
+        return "leftover"
+    if result.returncode == 0:
+        return "success"
+    return "clean-error" if stderr.strip().startswith("error") else "panic"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("binary", nargs="?", default=os.path.join(ROOT, "target", "release", "motif"))
+    parser.add_argument("--timeout", type=float, default=60.0)
+    parser.add_argument("--json", help="also write the outcomes here")
+    args = parser.parse_args()
+    binary = os.path.abspath(args.binary)
+    base = tempfile.mkdtemp(prefix="motif-robustness-")
+    inputs = os.path.join(base, "inputs")
+    prepare(inputs, binary)
+    counts, unexpected, rows = {}, [], []
+    for name, arguments, expected in CASES:
+        folder = os.path.join(base, "case")
+        shutil.rmtree(folder, ignore_errors=True)
+        shutil.copytree(inputs, folder)
+        before = {f: digest(os.path.join(folder, f)) for f in os.listdir(folder) if os.path.isfile(os.path.join(folder, f))}
+        start = time.monotonic()
+        process = subprocess.Popen([binary, "--quiet"] + arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+        try:
+            stdout, stderr = process.communicate(timeout=args.timeout)
+            timed_out = False
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            stdout, stderr = process.communicate()
+            timed_out = True
+        seconds = time.monotonic() - start
+        result = subprocess.CompletedProcess(arguments, process.returncode, stdout, stderr)
+        changed = [f for f, d in before.items() if not os.path.exists(os.path.join(folder, f)) or digest(os.path.join(folder, f)) != d]
+        names = set()
+        for root, _, files in os.walk(folder):
+            names.update(os.path.relpath(os.path.join(root, f), folder) for f in files)
+        leftovers = [f for f in names if ".motif-" in f and f.endswith(".tmp")]
+        if process.returncode not in (0, None) and not timed_out:
+            leftovers += [f for f in names if os.path.basename(f).startswith("out") and f not in before]
+        outcome = classify(result, timed_out, changed, leftovers, expected)
+        counts[outcome] = counts.get(outcome, 0) + 1
+        message = (stderr.strip().splitlines() or [""])[0][:160]
+        rows.append({"case": name, "expected": expected, "outcome": outcome, "seconds": round(seconds, 2), "message": message})
+        if outcome != expected:
+            unexpected.append(rows[-1] | {"command": "motif " + " ".join(arguments)})
+        print(f"{outcome:12} {seconds:6.1f} s  {name}: {message}", flush=True)
+    shutil.rmtree(base, ignore_errors=True)
+    print("\noutcomes: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
+    print(f"unexpected: {len(unexpected)} of {len(CASES)}")
+    for row in unexpected:
+        print(f"  {row['case']}: {row['outcome']} (expected {row['expected']}): {row['command']}")
+    if args.json:
+        with open(args.json, "w") as handle:
+            json.dump({"counts": counts, "cases": rows, "unexpected": unexpected}, handle, indent=2)
+    return 1 if unexpected else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
