@@ -204,7 +204,6 @@ impl CurveJob {
 
 /// The figures of a curve run under the keys of `motif curve --report`.
 pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
-    let stages: Map<String, Value> = report.stages_ms.iter().map(|(name, ms)| (name.clone(), json!(ms))).collect();
     let mut figures = Map::new();
     let mut put = |key: &str, value: Value| {
         figures.insert(key.to_string(), value);
@@ -224,7 +223,7 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
         "dp_row_ms",
         json!({ "median": report.dp_row_ms_median, "max": report.dp_row_ms_max, "rows": report.dp_row_ms.len() }),
     );
-    put("stages_ms", Value::Object(stages));
+    put("stages_ms", crate::stages(&report.stages_ms));
     put("closed", json!(report.closed));
     if report.closed {
         put("closed_certified", json!(report.closed_certified));

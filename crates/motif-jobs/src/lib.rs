@@ -37,3 +37,16 @@ pub mod strokes;
 pub mod stylize;
 
 pub use error::JobError;
+
+/// Per-stage milliseconds as a JSON object, in order.
+fn stages(stages: &[(String, f64)]) -> serde_json::Value {
+    serde_json::Value::Object(stages.iter().map(|(name, ms)| (name.clone(), serde_json::json!(ms))).collect())
+}
+
+/// The fields of a JSON object built with `json!({...})`.
+fn object(value: serde_json::Value) -> serde_json::Map<String, serde_json::Value> {
+    match value {
+        serde_json::Value::Object(map) => map,
+        _ => serde_json::Map::new(),
+    }
+}

@@ -261,10 +261,9 @@ impl PointsJob {
 
 /// The figures of a points run under the keys of `motif points --report`.
 pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
-    let stages: Map<String, Value> = report.stages_ms.iter().map(|(name, ms)| (name.clone(), json!(ms))).collect();
     let value = json!({
         "command": "points",
-        "stages_ms": stages,
+        "stages_ms": crate::stages(&report.stages_ms),
         "energy_per_iteration": report.energy,
         "final_energy": report.final_energy,
         "points_added": report.added,
@@ -283,10 +282,7 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
         "quadrature_points": report.quadrature_points,
         "fidelity": report.fidelity,
     });
-    match value {
-        Value::Object(map) => map,
-        _ => Map::new(),
-    }
+    crate::object(value)
 }
 
 #[cfg(test)]

@@ -167,7 +167,6 @@ impl StrokesJob {
 
 /// The figures of a strokes run under the keys of `motif strokes --report`.
 pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
-    let stages: Map<String, Value> = report.stages_ms.iter().map(|(name, ms)| (name.clone(), json!(ms))).collect();
     let value = json!({
         "command": "strokes",
         "reference_strokes": report.reference_strokes,
@@ -182,12 +181,9 @@ pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
         "rings": report.rings,
         "lloyd_iterations": report.lloyd_iterations,
         "skewed_triangles_removed": report.skewed_triangles_removed,
-        "stages_ms": stages,
+        "stages_ms": crate::stages(&report.stages_ms),
     });
-    match value {
-        Value::Object(map) => map,
-        _ => Map::new(),
-    }
+    crate::object(value)
 }
 
 #[cfg(test)]

@@ -315,20 +315,16 @@ impl Default for PresynthJob {
 /// The figures of a stylize or texture run under the keys of `--report`.
 pub fn figures(output: &Output) -> Map<String, Value> {
     let report = &output.report;
-    let stages: Map<String, Value> = report.stages_ms.iter().map(|(name, ms)| (name.clone(), json!(ms))).collect();
     let value = json!({
         "energy": report.energy,
         "source_coverage": report.source_coverage,
-        "stages_ms": stages,
+        "stages_ms": crate::stages(&report.stages_ms),
         "engine_ms": report.total_ms,
         "levels": report.levels,
         "searched_pixels": report.searched_pixels,
         "output_size": [output.image.width(), output.image.height()],
     });
-    match value {
-        Value::Object(map) => map,
-        _ => Map::new(),
-    }
+    crate::object(value)
 }
 
 #[cfg(test)]
