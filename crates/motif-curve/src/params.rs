@@ -9,26 +9,31 @@ use crate::dp::Solver;
 use crate::{Error, Input};
 
 /// How a closed curve is treated (§1.5).
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ClosedMode {
-    /// `Approximate` for a closed curve, `Open` for an open one.
+    /// `Approximate` (`approx`) for a closed curve, `Open` (`no`) for an open one.
     Auto,
     /// The paper's single DP with backtracking from every terminal position.
+    #[cfg_attr(feature = "clap", value(name = "approx"))]
     #[serde(alias = "approx")]
     Approximate,
     /// Branch and bound over start positions with a certificate of optimality.
     Exact,
     /// Treat the curve as open (a closed curve is cut at its first point).
+    #[cfg_attr(feature = "clap", value(name = "no"))]
     #[serde(alias = "no")]
     Open,
 }
 
 /// Which pattern generator to run.
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The paper's synthesis: undistorted pieces placed by dynamic programming.
+    #[cfg_attr(feature = "clap", value(name = "synth"))]
     #[serde(alias = "synth")]
     Synthesis,
     /// The classic baseline: the exemplar repeated along the arc length and bent with the ribbon.
@@ -36,6 +41,7 @@ pub enum Method {
 }
 
 /// How a piece maps the exemplar onto the ribbon.
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PieceShape {

@@ -26,6 +26,7 @@ pub enum Error {
 }
 
 /// The window function `w` delimiting a neighbourhood (§4.2–4.3).
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Window {
@@ -41,6 +42,7 @@ pub enum Window {
 /// The paper finds its solver robust to either; on real exemplars (clustered, inhibited,
 /// multi-type) it is not: from random points the output crystallizes (see the fidelity figures of
 /// `motif bench --engine points`), so patches are the default.
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Initialization {
@@ -60,6 +62,7 @@ pub enum Initialization {
 /// that of the copies alone): a window of δ reaches across seams, and the matches of windows that
 /// straddle two copies explain neither. Keeping the interiors as copied and optimizing only the
 /// seams was better on 10 of 11 cases (figures in docs/points.md).
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Refinement {

@@ -4,6 +4,7 @@ use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 
 /// Which points an element's oriented box is fitted to (§2.1).
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FitPoints {

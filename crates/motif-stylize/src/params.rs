@@ -6,12 +6,14 @@ use motif_core::error::{check_count, check_range};
 use crate::Error;
 
 /// How the nearest-neighbour field is searched (paper §4.2; PatchMatch by Barnes et al. 2009).
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum NnfMethod {
     /// Randomized PatchMatch: propagation plus random search, deterministic under parallelism
     /// (row tiles with one seeded stream each). The default; near-linear in the image sizes.
     #[default]
+    #[cfg_attr(feature = "clap", value(name = "patchmatch"))]
     PatchMatch,
     /// Brute force over every source patch: the paper's own method (§4.2). Exact but
     /// `O(|target| · |source|)`, for small images and for tests.

@@ -7,7 +7,7 @@ mod demo;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use motif_core::{Point, Polyline};
 use motif_curve::{AlphaMode, ClosedMode, Method, PieceShape, Solver};
 use motif_jobs::curve::{CurveInputs, CurveJob};
@@ -15,46 +15,6 @@ use serde_json::json;
 
 use crate::context::Context;
 use crate::gallery::Demo;
-
-/// How a closed curve is handled.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ClosedArg {
-    /// Closed paths (ending in Z) are closed, others open.
-    Auto,
-    /// The paper's single-DP approximation for closed curves.
-    Approx,
-    /// Exact optimum over start positions, with a certificate in the report.
-    Exact,
-    /// Treat the path as open even if it is closed.
-    No,
-}
-
-/// Which generator draws the pattern.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MethodArg {
-    /// Undistorted exemplar pieces placed by dynamic programming (the paper).
-    Synth,
-    /// The classic baseline: the exemplar repeated along the arc length and bent with the curve.
-    Repeat,
-}
-
-/// Which DP solver runs.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SolverArg {
-    /// Fast exact solver (merged identical edges, branch and bound over a profile tree, lower bounds, early exit).
-    Exact,
-    /// The plain O(V²C) dynamic program (same optimum, slower).
-    Reference,
-}
-
-/// How alpha enters the matching cost.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum AlphaArg {
-    /// Alpha blended continuously (for anti-aliased exemplars).
-    Continuous,
-    /// The paper's cost: alpha thresholded at 128.
-    Binary,
-}
 
 /// Options of `motif curve`.
 #[derive(Args, Debug)]
@@ -79,7 +39,7 @@ pub struct CurveArgs {
     pub scale: f64,
     /// Closed-curve handling.
     #[arg(long, value_enum, default_value = "auto")]
-    pub closed: ClosedArg,
+    pub closed: ClosedMode,
     /// Avoidance map over the canvas (PNG): opaque white pixels are forbidden to the pattern. It
     /// sets the canvas size (canvas origin = document origin).
     #[arg(long, value_name = "MASK.png")]
@@ -95,13 +55,13 @@ pub struct CurveArgs {
     pub stitch_penalty: f64,
     /// Pattern generator.
     #[arg(long, value_enum, default_value = "synth")]
-    pub method: MethodArg,
+    pub method: Method,
     /// Dynamic-programming solver.
     #[arg(long, value_enum, default_value = "exact")]
-    pub solver: SolverArg,
+    pub solver: Solver,
     /// Alpha in the matching cost.
     #[arg(long, value_enum, default_value = "continuous")]
-    pub alpha: AlphaArg,
+    pub alpha: AlphaMode,
     /// γ, the matching cost of an opaque against a transparent pixel, 1–100000.
     #[arg(long, value_name = "GAMMA", default_value_t = 1024.0)]
     pub gamma: f64,
@@ -138,7 +98,7 @@ pub struct CurveArgs {
     /// exemplar continues across them; stretched outside bends); rigid pieces are the paper's
     /// undistorted, rotated copies.
     #[arg(long, value_enum, default_value = "bent")]
-    pub pieces_shape: PieceShapeArg,
+    pub pieces_shape: PieceShape,
     /// Width profile: comma-separated T:F pairs, T the fraction of the curve's length (0–1,
     /// ascending) and F the factor (0.1–10) multiplying --width there, interpolated in between;
     /// the pattern scales with the width (e.g. 0:0.5,0.5:1.5,1:0.5 swells in the middle). Needs
@@ -171,15 +131,6 @@ pub struct CurveArgs {
     /// stitch remapping T.
     #[arg(long, value_name = "OUT.json")]
     pub pieces: Option<PathBuf>,
-}
-
-/// Piece shapes (`--pieces-shape`).
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum PieceShapeArg {
-    /// Pieces bend with the ribbon.
-    Bent,
-    /// The paper's rigid pieces.
-    Rigid,
 }
 
 /// A parsed `--width-profile` (a newtype, so that clap takes it as one value).
@@ -245,24 +196,10 @@ pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
 fn job_of(args: &CurveArgs) -> CurveJob {
     CurveJob {
         scale: Some(args.scale),
-        closed: Some(match args.closed {
-            ClosedArg::Auto => ClosedMode::Auto,
-            ClosedArg::Approx => ClosedMode::Approximate,
-            ClosedArg::Exact => ClosedMode::Exact,
-            ClosedArg::No => ClosedMode::Open,
-        }),
-        method: Some(match args.method {
-            MethodArg::Synth => Method::Synthesis,
-            MethodArg::Repeat => Method::Repeat,
-        }),
-        solver: Some(match args.solver {
-            SolverArg::Exact => Solver::Exact,
-            SolverArg::Reference => Solver::Reference,
-        }),
-        alpha: Some(match args.alpha {
-            AlphaArg::Continuous => AlphaMode::Continuous,
-            AlphaArg::Binary => AlphaMode::Binary,
-        }),
+        closed: Some(args.closed),
+        method: Some(args.method),
+        solver: Some(args.solver),
+        alpha: Some(args.alpha),
         gamma: Some(args.gamma),
         stitch: args.stitch,
         stitch_penalty: Some(args.stitch_penalty),
@@ -275,10 +212,7 @@ fn job_of(args: &CurveArgs) -> CurveJob {
         min_coverage: Some(args.min_coverage),
         variety: Some(args.variety),
         variety_radius: Some(args.variety_radius),
-        pieces_shape: Some(match args.pieces_shape {
-            PieceShapeArg::Bent => PieceShape::Bent,
-            PieceShapeArg::Rigid => PieceShape::Rigid,
-        }),
+        pieces_shape: Some(args.pieces_shape),
         width_profile: args
             .width_profile
             .as_ref()

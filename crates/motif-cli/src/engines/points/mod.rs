@@ -9,7 +9,7 @@ mod preview;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{Column, ColumnKind, PointFormat, PointTable};
 use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
@@ -18,35 +18,6 @@ use serde_json::Value;
 
 use crate::context::Context;
 use crate::gallery::Demo;
-
-/// How the output starts (§5.2).
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum InitArg {
-    /// Uniformly random points at the exemplar's density.
-    Random,
-    /// Copies of random exemplar patches tiled over the domain.
-    Patches,
-}
-
-/// Which points the optimization moves after a patch initialization.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RefineArg {
-    /// Only points near the patches' borders (the seams); interiors stay as copied.
-    Seams,
-    /// Every point (the paper's solver).
-    Everywhere,
-    /// None: the quilted patches are the output (the count is not controlled).
-    None,
-}
-
-/// Window shape (§4.3).
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WindowArg {
-    /// Gaussian window of width δ, truncated at 3δ (smooth).
-    Gaussian,
-    /// Box window of radius δ (Eq. 5).
-    Box,
-}
 
 /// Options of `motif points`.
 #[derive(Args, Debug)]
@@ -90,7 +61,7 @@ pub struct PointsArgs {
     /// Initialization: exemplar patches (default; each starts matched to where it came from) or
     /// random points (the paper's robustness claim does not hold on real, irregular exemplars).
     #[arg(long, value_enum, default_value = "patches")]
-    pub init: InitArg,
+    pub init: Initialization,
     /// Side of the copied patches, in units of the neighbourhood δ (1–20; capped at 0.7 of the
     /// exemplar's smallest side).
     #[arg(long, value_name = "F", default_value_t = 6.0)]
@@ -103,7 +74,7 @@ pub struct PointsArgs {
     /// (default; on real exemplars moving the copies' interiors lowered fidelity), every point, or
     /// none (the patches are the output).
     #[arg(long, value_enum, default_value = "seams")]
-    pub refine: RefineArg,
+    pub refine: Refinement,
     /// The window the exemplar was observed in: `W,H[,D]` from the origin, or its corners
     /// `X0,Y0,X1,Y1` (`X0,Y0,Z0,X1,Y1,Z1` in 3D). It must hold every point. The exemplar's density
     /// is its count over this window; without it, the bounding box grown by one mean spacing per
@@ -129,7 +100,7 @@ pub struct PointsArgs {
     pub attribute_weight: Vec<String>,
     /// Window shape.
     #[arg(long, value_enum, default_value = "gaussian")]
-    pub window: WindowArg,
+    pub window: Window,
     /// Gaussian width σ (exemplar units, > 0). Default: half the exemplar's mean nearest-neighbour
     /// spacing.
     #[arg(long, value_name = "SIGMA")]
@@ -350,26 +321,16 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         .collect::<anyhow::Result<_>>()?;
     Ok(PointsJob {
         seed,
-        init: Some(match args.init {
-            InitArg::Random => Initialization::Random,
-            InitArg::Patches => Initialization::Patches,
-        }),
+        init: Some(args.init),
         patch_size: Some(args.patch_size),
         patch_candidates: Some(args.patch_candidates),
-        refine: Some(match args.refine {
-            RefineArg::Seams => Refinement::Seams,
-            RefineArg::Everywhere => Refinement::Everywhere,
-            RefineArg::None => Refinement::None,
-        }),
+        refine: Some(args.refine),
         exemplar_window: args.exemplar_window.clone(),
         attributes: args.attributes.clone(),
         discrete: args.discrete.clone(),
         continuous: args.continuous.clone(),
         attribute_weight,
-        window: Some(match args.window {
-            WindowArg::Gaussian => Window::Gaussian,
-            WindowArg::Box => Window::Box,
-        }),
+        window: Some(args.window),
         sigma: args.sigma,
         rotation: Some(args.rotation),
         scale: Some(args.scale),

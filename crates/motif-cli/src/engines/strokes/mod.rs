@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
@@ -17,15 +17,6 @@ use motif_strokes::{Analysis, FitPoints, Output, Stroke};
 
 use crate::context::Context;
 use crate::gallery::Demo;
-
-/// Which points element boxes are fitted to.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FitArg {
-    /// The strokes' skeletons (the drawn gestures), ignoring width.
-    Skeleton,
-    /// The strokes' stroked outlines, so that width counts.
-    Contour,
-}
 
 /// Options of `motif strokes`.
 #[derive(Args, Debug)]
@@ -51,7 +42,7 @@ pub struct StrokesArgs {
     pub rect: Option<(f64, f64)>,
     /// Points the element boxes are fitted to.
     #[arg(long, value_enum, default_value = "skeleton")]
-    pub fit: FitArg,
+    pub fit: FitPoints,
     /// Neighbourhood size in rings, 1–5 [default: 5 along a path, 2 in a region].
     #[arg(long, value_name = "K")]
     pub rings: Option<usize>,
@@ -137,10 +128,7 @@ fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
     }
     StrokesJob {
         seed,
-        fit: Some(match args.fit {
-            FitArg::Skeleton => FitPoints::Skeleton,
-            FitArg::Contour => FitPoints::Contour,
-        }),
+        fit: Some(args.fit),
         rings: args.rings,
         variation: Some(args.variation),
         position_variation: args.position_variation,

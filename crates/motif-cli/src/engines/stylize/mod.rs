@@ -8,7 +8,7 @@ mod demo;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob};
 use motif_stylize::{NearestNeighbourField, NnfMethod, Output, SegmentTexture, apply_field};
@@ -16,15 +16,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::context::Context;
 use crate::gallery::Demo;
-
-/// Nearest-neighbour search method.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NnfArg {
-    /// Randomized PatchMatch (propagation + random search), deterministic on any thread count.
-    Patchmatch,
-    /// Brute force over every source patch: exact, slow; for small images.
-    Exact,
-}
 
 /// Synthesis options shared by `stylize`, `presynth` and `texture` (ebsynth's names and
 /// defaults).
@@ -55,7 +46,7 @@ pub struct SynthesisOptions {
     pub stop_threshold: f32,
     /// Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only).
     #[arg(long, value_enum, default_value = "patchmatch")]
-    pub nnf: NnfArg,
+    pub nnf: NnfMethod,
     /// After the finest level, one more search-and-vote with 3×3 patches and no uniformity
     /// (ebsynth's extrapass3x3): crisper fine detail.
     #[arg(long = "extra-pass-3x3")]
@@ -79,10 +70,7 @@ macro_rules! with_synthesis {
         job.search_vote_iters = Some(options.search_vote_iterations);
         job.patchmatch_iters = Some(options.patchmatch_iterations);
         job.stop_threshold = Some(options.stop_threshold);
-        job.nnf = Some(match options.nnf {
-            NnfArg::Patchmatch => NnfMethod::PatchMatch,
-            NnfArg::Exact => NnfMethod::Exact,
-        });
+        job.nnf = Some(options.nnf);
         job.extra_pass_3x3 = options.extra_pass_3x3;
         job.max_pixels = Some(options.max_pixels);
         job
