@@ -244,10 +244,7 @@ impl<const D: usize> Quadrature<D> {
         let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / spacing).floor().max(0.0) as usize + 1);
         let total = dims.iter().try_fold(1usize, |acc, &d| acc.checked_mul(d)).unwrap_or(usize::MAX);
         if total > 60_000_000 {
-            return Err(Error::DomainTooLarge(format!(
-                "it needs {total} quadrature points, more than the 60 000 000 allowed (about 2 GB); make it smaller, \
-                 raise the quadrature spacing or sigma"
-            )));
+            return Err(Error::TooManyQuadraturePoints { count: total, limit: 60_000_000 });
         }
         // Centre the grid inside the bounds so that both sides get the same margin.
         let origin: Vector<D> =
@@ -274,10 +271,7 @@ impl<const D: usize> Quadrature<D> {
             let angle = rotation.value(q, 0.0).to_radians();
             let s = stroke_scale * scale.value(q, 1.0);
             if !(s.is_finite() && s > 0.0 && angle.is_finite()) {
-                return Err(Error::Input(format!(
-                    "the guidance fields give scale {s} and rotation {angle} at a quadrature point; the scale must be \
-                     positive and finite"
-                )));
+                return Err(Error::InvalidField { scale: s, rotation: angle });
             }
             let r = linear::mat_mul(&stroke_rotation, &linear::rotation_xy::<D>(angle));
             let sr: Matrix<D> = std::array::from_fn(|i| std::array::from_fn(|j| r[i][j] * s));

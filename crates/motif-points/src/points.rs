@@ -1,6 +1,6 @@
 //! Point sets with attributes and optional element ids (§4.1, Eq. 1).
 
-use crate::Error;
+use crate::{Error, PointSetProblem};
 
 /// A set of points `x_i ∈ R^d` (d = 2 or 3) with float attributes `a_i` and optional element ids.
 ///
@@ -49,35 +49,35 @@ impl PointSet {
 
     /// Checks shapes and values; `what` names the set in messages ("exemplar", "existing points").
     pub fn validate(&self, what: &str) -> Result<(), Error> {
+        let problem = |problem: PointSetProblem| Error::PointSet { set: what.to_string(), problem };
         if self.dimension != 2 && self.dimension != 3 {
-            return Err(Error::Input(format!("{what}: points must have 2 or 3 coordinates, not {}", self.dimension)));
+            return Err(problem(PointSetProblem::Dimension(self.dimension)));
         }
         if self.positions.len() % self.dimension != 0 {
-            return Err(Error::Input(format!("{what}: coordinate count is not a multiple of the dimension")));
+            return Err(problem(PointSetProblem::RaggedCoordinates));
         }
         let n = self.len();
         if self.attributes.len() != n * self.attribute_names.len() {
-            return Err(Error::Input(format!(
-                "{what}: {} attribute values for {n} points and {} attributes",
-                self.attributes.len(),
-                self.attribute_names.len()
-            )));
+            return Err(problem(PointSetProblem::AttributeCount {
+                values: self.attributes.len(),
+                points: n,
+                attributes: self.attribute_names.len(),
+            }));
         }
         if let Some(elements) = &self.elements
             && elements.len() != n
         {
-            return Err(Error::Input(format!("{what}: {} element ids for {n} points", elements.len())));
+            return Err(problem(PointSetProblem::ElementCount { ids: elements.len(), points: n }));
         }
         if let Some(i) = (0..n).find(|&i| self.position(i).iter().any(|v| !v.is_finite())) {
-            return Err(Error::Input(format!("{what}: point {i} has a non-finite coordinate (NaN or infinity)")));
+            return Err(problem(PointSetProblem::NonFiniteCoordinate { point: i }));
         }
         if let Some(i) = (0..n).find(|&i| self.attributes_of(i).iter().any(|v| !v.is_finite())) {
             let column = self.attributes_of(i).iter().position(|v| !v.is_finite()).unwrap_or(0);
-            return Err(Error::Input(format!(
-                "{what}: point {i} has a non-finite value (NaN or infinity) in attribute {:?}; every attribute needs a \
-                 number at every point",
-                self.attribute_names[column]
-            )));
+            return Err(problem(PointSetProblem::NonFiniteAttribute {
+                point: i,
+                name: self.attribute_names[column].clone(),
+            }));
         }
         Ok(())
     }

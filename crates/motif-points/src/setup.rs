@@ -14,7 +14,7 @@ use crate::fidelity::{self, Fidelity};
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
-use crate::params::{Error, Initialization, Input, Params, Refinement};
+use crate::params::{AttributeRole, Error, Initialization, Input, Params, Refinement};
 use crate::{PointSet, init, sampling};
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
@@ -80,27 +80,30 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         match source.attribute_names.iter().position(|c| c == name) {
             Some(c) => columns.push(c),
             None => {
-                return Err(Error::Input(format!(
-                    "the exemplar has no attribute {name:?} (it has: {})",
-                    source.attribute_names.join(", ")
-                )));
+                return Err(Error::UnknownAttribute {
+                    name: name.clone(),
+                    role: AttributeRole::Synthesized,
+                    available: source.attribute_names.clone(),
+                });
             }
         }
     }
     for name in params.discrete_attributes.iter().chain(&params.continuous_attributes) {
         if !names.contains(name) {
-            return Err(Error::Input(format!(
-                "attribute {name:?} (named as discrete or continuous) is not among the synthesized attributes ({})",
-                names.join(", ")
-            )));
+            return Err(Error::UnknownAttribute {
+                name: name.clone(),
+                role: AttributeRole::DiscreteOrContinuous,
+                available: names.clone(),
+            });
         }
     }
     for (name, weight) in &params.attribute_weights {
         if !names.contains(name) {
-            return Err(Error::Input(format!(
-                "attribute weight for {name:?}: no such synthesized attribute ({})",
-                names.join(", ")
-            )));
+            return Err(Error::UnknownAttribute {
+                name: name.clone(),
+                role: AttributeRole::Weighted,
+                available: names.clone(),
+            });
         }
         check_range(&format!("attribute weight of {name}"), *weight, 1e-6, 100.0)?;
     }
@@ -115,11 +118,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         let variance = values.iter().map(|v| (v - mu).powi(2)).sum::<f64>() / n as f64;
         let std = variance.sqrt();
         if std <= 1e-12 * mu.abs().max(1.0) {
-            return Err(Error::Input(format!(
-                "attribute {:?} has the same value ({mu}) at every exemplar point; it carries no structure: leave it \
-                 out (choose the others with the attribute list)",
-                names[c]
-            )));
+            return Err(Error::ConstantAttribute { name: names[c].clone(), value: mu });
         }
         let weight =
             params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);
@@ -180,7 +179,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     }
     let spacing = fidelity::mean_spacing(&positions);
     if spacing <= 0.0 || !spacing.is_finite() {
-        return Err(Error::Input("the exemplar's points all coincide; they need a positive spacing".into()));
+        return Err(Error::CoincidentPoints);
     }
     let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
     let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
@@ -243,11 +242,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         expected *= volume / grid_volume.max(1e-300);
     }
     if expected > params.max_points as f64 {
-        return Err(Error::DomainTooLarge(format!(
-            "it asks for about {expected:.0} points at the exemplar's density, more than the {} allowed \
-             (max-points); use a smaller domain or a larger scale, or raise max-points",
-            params.max_points
-        )));
+        return Err(Error::TooManyPoints { expected, limit: params.max_points });
     }
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
         return Err(Error::EmptyDomain(format!(
@@ -269,7 +264,13 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         for name in &attributes.names {
             match set.attribute_names.iter().position(|c| c == name) {
                 Some(c) => map.push(c),
-                None => return Err(Error::Input(format!("the existing points have no attribute {name:?}"))),
+                None => {
+                    return Err(Error::UnknownAttribute {
+                        name: name.clone(),
+                        role: AttributeRole::Existing,
+                        available: set.attribute_names.clone(),
+                    });
+                }
             }
         }
         let margin = margin.unwrap_or(0.0);

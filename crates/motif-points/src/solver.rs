@@ -110,15 +110,12 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     let exemplar = &input.exemplar;
     exemplar.validate("exemplar")?;
     if exemplar.len() < 3 {
-        return Err(Error::Input(format!("the exemplar has {} points; it needs at least 3", exemplar.len())));
+        return Err(Error::TooFewPoints { count: exemplar.len() });
     }
     if let Some(existing) = &input.existing {
         existing.validate("existing points")?;
         if existing.dimension != exemplar.dimension {
-            return Err(Error::Input(format!(
-                "the existing points are {}D but the exemplar is {}D",
-                existing.dimension, exemplar.dimension
-            )));
+            return Err(Error::DimensionMismatch { existing: existing.dimension, exemplar: exemplar.dimension });
         }
     }
     params.validate()?;

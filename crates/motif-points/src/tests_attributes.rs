@@ -72,21 +72,27 @@ fn unusable_attribute_columns_are_clear_errors() {
     let constant = with_attribute(hex_exemplar(8, 8, 0.1, 1), |_, _| 2.5);
     let message =
         match synthesize(&Input { exemplar: constant, domain: domain(), existing: None }, &params(), &mut NoProgress) {
-            Err(Error::Input(message)) => message,
+            Err(
+                error @ (Error::ConstantAttribute { .. } | Error::PointSet { .. } | Error::UnknownAttribute { .. }),
+            ) => error.to_string(),
             other => panic!("{other:?}"),
         };
     assert!(message.contains("\"shade\"") && message.contains("same value"), "{message}");
     let missing = with_attribute(hex_exemplar(8, 8, 0.1, 1), |i, v| if i == 5 { f64::NAN } else { v });
     let message =
         match synthesize(&Input { exemplar: missing, domain: domain(), existing: None }, &params(), &mut NoProgress) {
-            Err(Error::Input(message)) => message,
+            Err(
+                error @ (Error::ConstantAttribute { .. } | Error::PointSet { .. } | Error::UnknownAttribute { .. }),
+            ) => error.to_string(),
             other => panic!("{other:?}"),
         };
     assert!(message.contains("\"shade\"") && message.contains("point 5"), "{message}");
     let weights = Params { attribute_weights: vec![("size".into(), 2.0)], ..params() };
     let exemplar = hex_exemplar(8, 8, 0.1, 1);
     let message = match synthesize(&Input { exemplar, domain: domain(), existing: None }, &weights, &mut NoProgress) {
-        Err(Error::Input(message)) => message,
+        Err(error @ (Error::ConstantAttribute { .. } | Error::PointSet { .. } | Error::UnknownAttribute { .. })) => {
+            error.to_string()
+        }
         other => panic!("{other:?}"),
     };
     assert!(message.contains("\"size\""), "{message}");
