@@ -275,3 +275,29 @@ fn runs_over_the_pixel_limit_are_refused_up_front() {
     assert!(stderr(&output).contains("more than the 10000 allowed"), "{}", stderr(&output));
     assert!(!d.join("out.png").exists() && !d.join("cache/presynth.json").exists());
 }
+
+/// Guides are counted from 1 on the command line, and the error says so in the same terms.
+#[test]
+fn a_segment_guide_beyond_the_guides_is_named_as_typed() {
+    let dir = setup();
+    let output = motif(
+        dir.path(),
+        &[
+            "stylize",
+            "--style",
+            "A1.png",
+            "--guide",
+            "A.png",
+            "B.png",
+            "--segments",
+            "--segment-guide",
+            "2",
+            "--out",
+            "out.png",
+        ],
+    );
+    assert_eq!(output.status.code(), Some(1));
+    let message = stderr(&output);
+    assert!(message.contains("segment-guide = 2") && message.contains("counted from 1"), "{message}");
+    assert!(!dir.path().join("out.png").exists());
+}

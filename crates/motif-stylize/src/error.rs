@@ -72,13 +72,123 @@ pub enum Error {
         /// The limit ([`crate::Params::max_pixels`]).
         max_pixels: usize,
     },
-    /// Segment guidance could not label the guide.
-    #[error("segments: {0}")]
-    Segments(String),
-    /// The pre-synthesized textures do not fit the target.
-    #[error("pre-synthesized textures: {0}")]
-    Presynth(String),
-    /// A nearest-neighbour field does not fit the images it is applied to.
-    #[error("nearest-neighbour field: {0}")]
-    Field(String),
+    /// An exact palette of the segment guide would have too many colours.
+    #[error(
+        "segments: the segment guide has {colours} distinct colours (more than {max}); quantize it with k-means (a \
+         segment count) instead"
+    )]
+    TooManyColours {
+        /// Distinct colours of the guide.
+        colours: usize,
+        /// The palette's limit.
+        max: usize,
+    },
+    /// Segment guidance (or pre-synthesized textures) without a guide pair.
+    #[error("segments: segment guidance needs a guide pair")]
+    SegmentsWithoutGuide,
+    /// Band mode was asked for with an empty list of textures.
+    #[error("pre-synthesized textures: no textures given")]
+    NoTextures,
+    /// A texture's channel count differs from the style's.
+    #[error("pre-synthesized textures: texture {texture} has {channels} channels but the style has {style_channels}")]
+    TextureChannels {
+        /// The texture, counted from 1.
+        texture: usize,
+        /// Its channels.
+        channels: usize,
+        /// The style's channels.
+        style_channels: usize,
+    },
+    /// A texture's field does not have the texture's size.
+    #[error(
+        "pre-synthesized textures: the field of texture {texture} is {field_width}×{field_height} but the texture is {width}×{height}"
+    )]
+    TextureFieldSize {
+        /// The texture, counted from 1.
+        texture: usize,
+        /// The field's width.
+        field_width: usize,
+        /// The field's height.
+        field_height: usize,
+        /// The texture's width.
+        width: usize,
+        /// The texture's height.
+        height: usize,
+    },
+    /// A texture's field has a match outside the style.
+    #[error(
+        "pre-synthesized textures: the field of texture {texture} points outside the {style_width}×{style_height} style"
+    )]
+    TextureFieldOutside {
+        /// The texture, counted from 1.
+        texture: usize,
+        /// The style's width.
+        style_width: usize,
+        /// The style's height.
+        style_height: usize,
+    },
+    /// A texture's field points into a source of another size than the style.
+    #[error(
+        "pre-synthesized textures: the field of texture {texture} points into a {source_width}×{source_height} source \
+         but the style is {style_width}×{style_height}"
+    )]
+    TextureFieldSource {
+        /// The texture, counted from 1.
+        texture: usize,
+        /// The width the field points into.
+        source_width: usize,
+        /// The height the field points into.
+        source_height: usize,
+        /// The style's width.
+        style_width: usize,
+        /// The style's height.
+        style_height: usize,
+    },
+    /// A segment of the target guide has no texture of its colour.
+    #[error("pre-synthesized textures: no texture for the target segment of colour #{colour}")]
+    MissingTexture {
+        /// The segment's colour, `rrggbb` (or the guide's channels in hex).
+        colour: String,
+    },
+    /// A segment of the source guide is too thin to hold one whole patch.
+    #[error(
+        "pre-synthesized textures: segment #{colour} has no pixel where a whole {patch}×{patch} patch fits inside the style"
+    )]
+    SegmentTooThin {
+        /// The segment's colour in hex.
+        colour: String,
+        /// The patch side.
+        patch: usize,
+    },
+    /// A field's source is too large for its PNG encoding.
+    #[error("nearest-neighbour field: a {width}×{height} source does not fit the PNG encoding (at most {max} a side)")]
+    FieldTooLarge {
+        /// The source's width.
+        width: usize,
+        /// The source's height.
+        height: usize,
+        /// The encoding's limit.
+        max: usize,
+    },
+    /// A decoded field points where no whole patch of the source fits.
+    #[error(
+        "nearest-neighbour field: pixel ({x}, {y}) points at ({source_x}, {source_y}), outside the \
+         {source_width}×{source_height} source for {patch}×{patch} patches"
+    )]
+    FieldOutside {
+        /// The field pixel's column.
+        x: usize,
+        /// The field pixel's row.
+        y: usize,
+        /// The column it points at.
+        source_x: u32,
+        /// The row it points at.
+        source_y: u32,
+        /// The source's width.
+        source_width: usize,
+        /// The source's height.
+        source_height: usize,
+        /// The patch side.
+        patch: usize,
+    },
 }

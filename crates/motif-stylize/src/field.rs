@@ -35,10 +35,11 @@ impl NearestNeighbourField {
     /// up to 4096 pixels a side.
     pub fn to_rgba(&self) -> Result<RgbaImage, Error> {
         if self.source_width > MAX_ENCODED_SIDE || self.source_height > MAX_ENCODED_SIDE {
-            return Err(Error::Field(format!(
-                "a {}×{} source does not fit the PNG encoding (at most {MAX_ENCODED_SIDE} a side)",
-                self.source_width, self.source_height
-            )));
+            return Err(Error::FieldTooLarge {
+                width: self.source_width,
+                height: self.source_height,
+                max: MAX_ENCODED_SIDE,
+            });
         }
         let pixels = self
             .matches
@@ -70,12 +71,15 @@ impl NearestNeighbourField {
             let y = u32::from(p[1]) | (u32::from(p[2] >> 4) << 8);
             let fits = |v: u32, side: usize| (radius..side.saturating_sub(radius)).contains(&(v as usize));
             if !fits(x, source_width) || !fits(y, source_height) {
-                return Err(Error::Field(format!(
-                    "pixel ({}, {}) points at ({x}, {y}), outside the {source_width}×{source_height} source \
-                     for {patch_size}×{patch_size} patches",
-                    index % image.width(),
-                    index / image.width()
-                )));
+                return Err(Error::FieldOutside {
+                    x: index % image.width(),
+                    y: index / image.width(),
+                    source_x: x,
+                    source_y: y,
+                    source_width,
+                    source_height,
+                    patch: patch_size,
+                });
             }
             matches.push(Some([x, y]));
         }

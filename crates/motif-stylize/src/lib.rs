@@ -310,12 +310,12 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let labels = if wants_segments {
         let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
             if guide_count == 0 {
-                Error::Segments("segment guidance needs a guide pair".into())
+                Error::SegmentsWithoutGuide
             } else {
                 InvalidParameter::new(
                     "segment-guide",
-                    params.segment_guide,
-                    format!("must name one of the {guide_count} guides (from 0)"),
+                    params.segment_guide + 1,
+                    format!("must name one of the {guide_count} guides, counted from 1"),
                 )
                 .into()
             }
@@ -374,44 +374,43 @@ fn compose_textures(
     band_width: usize,
 ) -> Result<Composition, Error> {
     if textures.is_empty() {
-        return Err(Error::Presynth("no textures given".into()));
+        return Err(Error::NoTextures);
     }
     for (index, texture) in textures.iter().enumerate() {
         if texture.image.is_empty() {
             return Err(Error::EmptyImage(format!("pre-synthesized texture {}", index + 1)));
         }
         if texture.image.channels() != channels {
-            return Err(Error::Presynth(format!(
-                "texture {} has {} channels but the style has {channels}",
-                index + 1,
-                texture.image.channels()
-            )));
+            return Err(Error::TextureChannels {
+                texture: index + 1,
+                channels: texture.image.channels(),
+                style_channels: channels,
+            });
         }
         if let Some(field) = &texture.field {
             let (tw, th) = (texture.image.width(), texture.image.height());
             if field.width != tw || field.height != th || field.matches.len() != tw * th {
-                return Err(Error::Presynth(format!(
-                    "the field of texture {} is {}×{} but the texture is {tw}×{th}",
-                    index + 1,
-                    field.width,
-                    field.height
-                )));
+                return Err(Error::TextureFieldSize {
+                    texture: index + 1,
+                    field_width: field.width,
+                    field_height: field.height,
+                    width: tw,
+                    height: th,
+                });
             }
             let outside =
                 |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
             if field.matches.iter().any(outside) {
-                return Err(Error::Presynth(format!(
-                    "the field of texture {} points outside the {style_width}×{style_height} style",
-                    index + 1
-                )));
+                return Err(Error::TextureFieldOutside { texture: index + 1, style_width, style_height });
             }
             if field.source_width != style_width || field.source_height != style_height {
-                return Err(Error::Presynth(format!(
-                    "the field of texture {} points into a {}×{} source but the style is {style_width}×{style_height}",
-                    index + 1,
-                    field.source_width,
-                    field.source_height
-                )));
+                return Err(Error::TextureFieldSource {
+                    texture: index + 1,
+                    source_width: field.source_width,
+                    source_height: field.source_height,
+                    style_width,
+                    style_height,
+                });
             }
         }
     }
@@ -431,7 +430,7 @@ fn compose_textures(
             .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
         if present[label] && gap > 8.5 / 255.0 {
             let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::Presynth(format!("no texture for the target segment of colour #{hex}")));
+            return Err(Error::MissingTexture { colour: hex });
         }
         texture_of[label] = best;
     }
@@ -503,9 +502,7 @@ pub fn presynthesize(
         let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(labels.source[y * sw + x]) == label));
         if !has_centre {
             let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::Presynth(format!(
-                "segment #{hex} has no pixel where a whole {patch}×{patch} patch fits inside the style"
-            )));
+            return Err(Error::SegmentTooThin { colour: hex, patch });
         }
         let problem = synthesis::Problem {
             style: &input.style,

@@ -64,11 +64,7 @@ pub fn label_guides(
     let colours: Vec<Vec<f32>> = match mode {
         Segmentation::Palette => {
             if unique.len() > MAX_PALETTE {
-                return Err(Error::Segments(format!(
-                    "the segment guide has {} distinct colours (more than {MAX_PALETTE}); \
-                     quantize it with k-means (a segment count) instead",
-                    unique.len()
-                )));
+                return Err(Error::TooManyColours { colours: unique.len(), max: MAX_PALETTE });
             }
             unique.iter().map(|(key, _)| key[..channels].iter().map(|&v| f32::from(v) / 255.0).collect()).collect()
         }

@@ -259,7 +259,13 @@ fn texture_fields_must_fit_their_texture_and_the_style() {
         let mut banded = input.clone();
         banded.textures = Some(bad);
         let error = synthesize(&banded, &params, &mut NoProgress).unwrap_err();
-        assert!(matches!(error, Error::Presynth(_)), "{error}");
+        assert!(
+            matches!(
+                error,
+                Error::TextureFieldSize { .. } | Error::TextureFieldSource { .. } | Error::TextureFieldOutside { .. }
+            ),
+            "{error}"
+        );
     }
 }
 
