@@ -4,7 +4,7 @@
 use motif_core::Point;
 
 use crate::linear::{self, Matrix, Vector};
-use crate::params::{Domain, Error, Field};
+use crate::params::{Domain, DomainProblem, Error, Field};
 
 /// A domain prepared for dimension `D`.
 #[derive(Debug, Clone)]
@@ -26,45 +26,45 @@ pub struct StrokeProjection<const D: usize> {
 }
 
 impl<const D: usize> Region<D> {
-    /// Checks the domain against the dimension; returns a message for an unusable one.
-    pub fn new(domain: &Domain) -> Result<Self, String> {
+    /// Checks the domain against the dimension.
+    pub fn new(domain: &Domain) -> Result<Self, DomainProblem> {
         match domain {
             Domain::Box { min, max } => {
                 if min.len() != D || max.len() != D {
-                    return Err(format!("the box has {} coordinates but the exemplar is {D}D", min.len()));
+                    return Err(DomainProblem::BoxDimension { coordinates: min.len(), exemplar: D });
                 }
                 let min: Vector<D> = std::array::from_fn(|i| min[i]);
                 let max: Vector<D> = std::array::from_fn(|i| max[i]);
                 if (0..D).any(|i| !(min[i].is_finite() && max[i].is_finite() && max[i] > min[i])) {
-                    return Err("the box has zero or negative size (every side must be > 0)".into());
+                    return Err(DomainProblem::EmptyBox);
                 }
                 Ok(Region::Box { min, max })
             }
             Domain::Polygon(polygon) => {
                 if D != 2 {
-                    return Err("a polygon region needs a 2D exemplar".into());
+                    return Err(DomainProblem::PolygonIn3d);
                 }
                 if polygon.area() <= 0.0 {
-                    return Err("the polygon region has zero area".into());
+                    return Err(DomainProblem::ZeroAreaPolygon);
                 }
                 Ok(Region::Polygon(polygon.clone()))
             }
             Domain::Stroke(stroke) => {
                 if !(stroke.width.is_finite() && stroke.width > 0.0) {
-                    return Err(format!("brush width {} must be > 0", stroke.width));
+                    return Err(DomainProblem::BrushWidth(stroke.width));
                 }
                 for s in [stroke.scale_start, stroke.scale_end] {
                     if !(s.is_finite() && s > 0.0) {
-                        return Err(format!("stroke scale {s} must be > 0"));
+                        return Err(DomainProblem::StrokeScale(s));
                     }
                 }
                 let mut vertices: Vec<Vector<D>> = Vec::new();
                 for p in &stroke.points {
                     if p.len() != D {
-                        return Err(format!("a stroke vertex has {} coordinates but the exemplar is {D}D", p.len()));
+                        return Err(DomainProblem::StrokeVertexDimension { coordinates: p.len(), exemplar: D });
                     }
                     if p.iter().any(|v| !v.is_finite()) {
-                        return Err("a stroke vertex is not finite".into());
+                        return Err(DomainProblem::NonFiniteStrokeVertex);
                     }
                     let v: Vector<D> = std::array::from_fn(|i| p[i]);
                     if vertices.last().is_none_or(|last| linear::norm2(&linear::sub(&v, last)) > 1e-24) {
@@ -72,7 +72,7 @@ impl<const D: usize> Region<D> {
                     }
                 }
                 if vertices.len() < 2 {
-                    return Err("the stroke needs at least two distinct vertices".into());
+                    return Err(DomainProblem::ShortStroke);
                 }
                 let mut cumulative = vec![0.0];
                 for w in vertices.windows(2) {

@@ -90,8 +90,8 @@ mod tests_attributes;
 mod tests_synthesis;
 
 pub use params::{
-    AttributeRole, Domain, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params, PointSetProblem,
-    Refinement, Stroke, Window,
+    AttributeRole, Domain, DomainProblem, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params,
+    PointSetProblem, Refinement, Stroke, Window,
 };
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

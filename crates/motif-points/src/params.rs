@@ -71,9 +71,9 @@ pub enum Error {
         /// The rotation there, radians.
         rotation: f64,
     },
-    /// The domain holds no quadrature point, or less than one point at the exemplar's density.
+    /// The domain is unusable: malformed, or holding less than one point at the exemplar's density.
     #[error("empty domain: {0}")]
-    EmptyDomain(String),
+    EmptyDomain(DomainProblem),
     /// The domain needs more quadrature points than the memory cap allows.
     #[error(
         "domain too large: it needs {count} quadrature points, more than the {limit} allowed (about 2 GB); make it \
@@ -142,6 +142,55 @@ pub enum PointSetProblem {
         point: usize,
         /// The attribute.
         name: String,
+    },
+}
+
+/// What is wrong with a domain ([`Error::EmptyDomain`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DomainProblem {
+    /// A box's corner has the wrong number of coordinates.
+    #[error("the box has {coordinates} coordinates but the exemplar is {exemplar}D")]
+    BoxDimension {
+        /// Coordinates given.
+        coordinates: usize,
+        /// The exemplar's dimension.
+        exemplar: usize,
+    },
+    /// A box side is zero, negative or not finite.
+    #[error("the box has zero or negative size (every side must be > 0)")]
+    EmptyBox,
+    /// A polygon region with a 3D exemplar.
+    #[error("a polygon region needs a 2D exemplar")]
+    PolygonIn3d,
+    /// A polygon region without area.
+    #[error("the polygon region has zero area")]
+    ZeroAreaPolygon,
+    /// A brush width that is not a positive number.
+    #[error("brush width {0} must be > 0")]
+    BrushWidth(f64),
+    /// A stroke scale that is not a positive number.
+    #[error("stroke scale {0} must be > 0")]
+    StrokeScale(f64),
+    /// A stroke vertex with the wrong number of coordinates.
+    #[error("a stroke vertex has {coordinates} coordinates but the exemplar is {exemplar}D")]
+    StrokeVertexDimension {
+        /// Coordinates given.
+        coordinates: usize,
+        /// The exemplar's dimension.
+        exemplar: usize,
+    },
+    /// A stroke vertex that is NaN or infinite.
+    #[error("a stroke vertex is not finite")]
+    NonFiniteStrokeVertex,
+    /// A stroke of fewer than two distinct vertices.
+    #[error("the stroke needs at least two distinct vertices")]
+    ShortStroke,
+    /// The domain holds less than one point at the exemplar's density.
+    #[error("the domain holds {expected:.2} points at the exemplar's density; make it larger")]
+    TooSmall {
+        /// Points the exemplar's density asks for over it.
+        expected: f64,
     },
 }
 

@@ -14,7 +14,7 @@ use crate::fidelity::{self, Fidelity};
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
-use crate::params::{AttributeRole, Error, Initialization, Input, Params, Refinement};
+use crate::params::{AttributeRole, DomainProblem, Error, Initialization, Input, Params, Refinement};
 use crate::{PointSet, init, sampling};
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
@@ -245,9 +245,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         return Err(Error::TooManyPoints { expected, limit: params.max_points });
     }
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
-        return Err(Error::EmptyDomain(format!(
-            "the domain holds {expected:.2} points at the exemplar's density; make it larger"
-        )));
+        return Err(Error::EmptyDomain(DomainProblem::TooSmall { expected }));
     }
     let s_min = quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
     let cutoff = params.kernel_cutoff * sigma;
