@@ -3,8 +3,9 @@
 
 use motif_core::Point;
 
+use crate::error::{DomainProblem, Error};
 use crate::linear::{self, Matrix, Vector};
-use crate::params::{Domain, DomainProblem, Error, Field};
+use crate::params::{Domain, Field};
 
 /// A domain prepared for dimension `D`.
 #[derive(Debug, Clone)]

@@ -63,6 +63,7 @@
 
 mod domain;
 mod energy;
+mod error;
 mod exemplar_pairs;
 pub mod fidelity;
 mod grid;
@@ -89,9 +90,7 @@ mod tests_attributes;
 #[cfg(test)]
 mod tests_synthesis;
 
-pub use params::{
-    AttributeRole, Domain, DomainProblem, Error, Evaluator, Field, FieldFunction, Initialization, Input, Params,
-    PointSetProblem, Refinement, Stroke, Window,
-};
+pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
+pub use params::{Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

@@ -9,12 +9,13 @@ use motif_core::error::number;
 
 use crate::domain::{Quadrature, Region};
 use crate::energy::{Neighbours, Problem};
+use crate::error::{AttributeRole, DomainProblem, Error};
 use crate::exemplar_pairs::ExemplarPairs;
 use crate::fidelity::{self, Fidelity};
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
-use crate::params::{AttributeRole, DomainProblem, Error, Initialization, Input, Params, Refinement};
+use crate::params::{Initialization, Input, Params, Refinement};
 use crate::{PointSet, init, sampling};
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.

@@ -7,12 +7,13 @@ use motif_core::{InvalidParameter, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
 use crate::energy::{Evaluation, Problem};
+use crate::error::Error;
 use crate::fidelity::Fidelity;
 use crate::linear::Vector;
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::merging::{self, MergeSettings};
 use crate::model::State;
-use crate::params::{Error, Evaluator, Input, Params, Refinement};
+use crate::params::{Evaluator, Input, Params, Refinement};
 use crate::setup::{Setup, count_bounds, measure_fidelity, prepare, to_point_set};
 use crate::{PointSet, reference, sampling};
 

@@ -3,7 +3,8 @@
 
 use motif_core::NoProgress;
 
-use crate::params::{Domain, Error, Initialization, Input, Params};
+use crate::error::Error;
+use crate::params::{Domain, Initialization, Input, Params};
 use crate::samples::{hex_exemplar, ripple_exemplar};
 use crate::{PointSet, synthesize};
 

@@ -4,8 +4,9 @@
 use motif_core::random::Rng;
 use motif_core::{NoProgress, SeedStreams};
 
+use crate::error::Error;
 use crate::linear::{self, Vector};
-use crate::params::{Domain, Error, Field, Initialization, Input, Params, Stroke};
+use crate::params::{Domain, Field, Initialization, Input, Params, Stroke};
 use crate::tests::{box_domain, interior_nearest, jittered_grid, positions_of, quick_params, rows};
 use crate::{PointSet, synthesize};
 

@@ -1,0 +1,219 @@
+//! The engine's errors: typed, so that a front end can tell them apart; messages are lower-case
+//! and say what to change.
+
+use motif_core::InvalidParameter;
+
+/// Everything that can go wrong; messages are lower-case and say what to change.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A parameter is outside its range.
+    #[error(transparent)]
+    InvalidParameter(#[from] InvalidParameter),
+    /// A point set's shape or values are unusable.
+    #[error("{set}: {problem}")]
+    PointSet {
+        /// Which set ("exemplar", "existing points").
+        set: String,
+        /// What is wrong with it.
+        problem: PointSetProblem,
+    },
+    /// The exemplar has fewer than 3 points.
+    #[error("the exemplar has {count} points; it needs at least 3")]
+    TooFewPoints {
+        /// Its points.
+        count: usize,
+    },
+    /// The existing points and the exemplar differ in dimension.
+    #[error("the existing points are {existing}D but the exemplar is {exemplar}D")]
+    DimensionMismatch {
+        /// Dimension of the existing points.
+        existing: usize,
+        /// Dimension of the exemplar.
+        exemplar: usize,
+    },
+    /// Every exemplar point lies at one place.
+    #[error("the exemplar's points all coincide; they need a positive spacing")]
+    CoincidentPoints,
+    /// An attribute named in the parameters (or needed by the existing points) is not there.
+    #[error("{}", role.message(name, available))]
+    UnknownAttribute {
+        /// The attribute's name.
+        name: String,
+        /// Where it was named.
+        role: AttributeRole,
+        /// The attributes there are.
+        available: Vec<String>,
+    },
+    /// An attribute has one value at every exemplar point.
+    #[error(
+        "attribute {name:?} has the same value ({value}) at every exemplar point; it carries no structure: leave it \
+         out (choose the others with the attribute list)"
+    )]
+    ConstantAttribute {
+        /// The attribute's name.
+        name: String,
+        /// Its one value.
+        value: f64,
+    },
+    /// The rotation or scale field gives an unusable frame somewhere.
+    #[error(
+        "the guidance fields give scale {scale} and rotation {rotation} at a quadrature point; the scale must be \
+         positive and finite"
+    )]
+    InvalidField {
+        /// The scale there.
+        scale: f64,
+        /// The rotation there, radians.
+        rotation: f64,
+    },
+    /// The domain is unusable: malformed, or holding less than one point at the exemplar's density.
+    #[error("empty domain: {0}")]
+    EmptyDomain(DomainProblem),
+    /// The domain needs more quadrature points than the memory cap allows.
+    #[error(
+        "domain too large: it needs {count} quadrature points, more than the {limit} allowed (about 2 GB); make it \
+         smaller, raise the quadrature spacing or sigma"
+    )]
+    TooManyQuadraturePoints {
+        /// Quadrature points the domain needs.
+        count: usize,
+        /// The cap.
+        limit: usize,
+    },
+    /// The domain asks for more points than `max_points`.
+    #[error(
+        "domain too large: it asks for about {expected:.0} points at the exemplar's density, more than the {limit} \
+         allowed (max-points); use a smaller domain or a larger scale, or raise max-points"
+    )]
+    TooManyPoints {
+        /// Points the exemplar's density asks for over the domain.
+        expected: f64,
+        /// [`Params::max_points`].
+        limit: usize,
+    },
+}
+
+/// What is wrong with a point set ([`Error::PointSet`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PointSetProblem {
+    /// Points have neither 2 nor 3 coordinates.
+    #[error("points must have 2 or 3 coordinates, not {0}")]
+    Dimension(usize),
+    /// The coordinate list does not split into points.
+    #[error("coordinate count is not a multiple of the dimension")]
+    RaggedCoordinates,
+    /// The attribute values do not match points × attributes.
+    #[error("{values} attribute values for {points} points and {attributes} attributes")]
+    AttributeCount {
+        /// Values given.
+        values: usize,
+        /// Points.
+        points: usize,
+        /// Attribute names.
+        attributes: usize,
+    },
+    /// The element ids do not match the points.
+    #[error("{ids} element ids for {points} points")]
+    ElementCount {
+        /// Ids given.
+        ids: usize,
+        /// Points.
+        points: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("point {point} has a non-finite coordinate (NaN or infinity)")]
+    NonFiniteCoordinate {
+        /// The point's index.
+        point: usize,
+    },
+    /// An attribute value is NaN or infinite.
+    #[error(
+        "point {point} has a non-finite value (NaN or infinity) in attribute {name:?}; every attribute needs a number \
+         at every point"
+    )]
+    NonFiniteAttribute {
+        /// The point's index.
+        point: usize,
+        /// The attribute.
+        name: String,
+    },
+}
+
+/// What is wrong with a domain ([`Error::EmptyDomain`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DomainProblem {
+    /// A box's corner has the wrong number of coordinates.
+    #[error("the box has {coordinates} coordinates but the exemplar is {exemplar}D")]
+    BoxDimension {
+        /// Coordinates given.
+        coordinates: usize,
+        /// The exemplar's dimension.
+        exemplar: usize,
+    },
+    /// A box side is zero, negative or not finite.
+    #[error("the box has zero or negative size (every side must be > 0)")]
+    EmptyBox,
+    /// A polygon region with a 3D exemplar.
+    #[error("a polygon region needs a 2D exemplar")]
+    PolygonIn3d,
+    /// A polygon region without area.
+    #[error("the polygon region has zero area")]
+    ZeroAreaPolygon,
+    /// A brush width that is not a positive number.
+    #[error("brush width {0} must be > 0")]
+    BrushWidth(f64),
+    /// A stroke scale that is not a positive number.
+    #[error("stroke scale {0} must be > 0")]
+    StrokeScale(f64),
+    /// A stroke vertex with the wrong number of coordinates.
+    #[error("a stroke vertex has {coordinates} coordinates but the exemplar is {exemplar}D")]
+    StrokeVertexDimension {
+        /// Coordinates given.
+        coordinates: usize,
+        /// The exemplar's dimension.
+        exemplar: usize,
+    },
+    /// A stroke vertex that is NaN or infinite.
+    #[error("a stroke vertex is not finite")]
+    NonFiniteStrokeVertex,
+    /// A stroke of fewer than two distinct vertices.
+    #[error("the stroke needs at least two distinct vertices")]
+    ShortStroke,
+    /// The domain holds less than one point at the exemplar's density.
+    #[error("the domain holds {expected:.2} points at the exemplar's density; make it larger")]
+    TooSmall {
+        /// Points the exemplar's density asks for over it.
+        expected: f64,
+    },
+}
+
+/// Where an unknown attribute was named ([`Error::UnknownAttribute`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum AttributeRole {
+    /// In the list of attributes to synthesize.
+    Synthesized,
+    /// As discrete or continuous.
+    DiscreteOrContinuous,
+    /// With a weight.
+    Weighted,
+    /// Needed by the existing points (the exemplar has it, they do not).
+    Existing,
+}
+
+impl AttributeRole {
+    fn message(self, name: &str, available: &[String]) -> String {
+        let list = available.join(", ");
+        match self {
+            Self::Synthesized => format!("the exemplar has no attribute {name:?} (it has: {list})"),
+            Self::DiscreteOrContinuous => format!(
+                "attribute {name:?} (named as discrete or continuous) is not among the synthesized attributes ({list})"
+            ),
+            Self::Weighted => format!("attribute weight for {name:?}: no such synthesized attribute ({list})"),
+            Self::Existing => format!("the existing points have no attribute {name:?}"),
+        }
+    }
+}
