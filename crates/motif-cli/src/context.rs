@@ -68,6 +68,16 @@ impl Context {
         self.figures.insert(key.to_string(), value);
     }
 
+    /// Records a job's figures (`motif_jobs`), except its `command`: the report names the
+    /// subcommand as typed.
+    pub fn job_figures(&mut self, figures: Map<String, Value>) {
+        for (key, value) in figures {
+            if key != "command" {
+                self.figures.insert(key, value);
+            }
+        }
+    }
+
     /// Records an engine's own per-stage timings as the report's `stages_ms` (replacing the
     /// timings the CLI took from progress).
     pub fn stages(&mut self, stages: &[(String, f64)]) {

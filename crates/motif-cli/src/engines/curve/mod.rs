@@ -267,11 +267,7 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     if let Some(path) = &args.debug_overlay {
         motif_io::write_png(path, &motif_curve::debug_overlay(&output))?;
     }
-    for (key, value) in run.figures {
-        if key != "command" {
-            context.figure(&key, value);
-        }
-    }
+    context.job_figures(run.figures);
     for warning in &output.report.warnings {
         context.summary(&format!("warning: {warning}"));
     }

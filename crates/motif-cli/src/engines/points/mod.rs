@@ -379,11 +379,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             preview::preview_image(exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
         motif_io::write_png(preview, &image)?;
     }
-    for (key, value) in run.figures {
-        if key != "command" {
-            context.figure(&key, value);
-        }
-    }
+    context.job_figures(run.figures);
     context.summary(&format!(
         "motif points: {} points ({} added, {} removed; density {:.0} % of the exemplar's), T = {:.4}, \
          nearest-neighbour distance {:.3} (random {:.3}, tiled {:.3}), g(r) distance {:.3} (random {:.3}, tiled {:.3})",
@@ -431,44 +427,24 @@ mod tests {
         args: PointsArgs,
     }
 
+    /// The job a `motif points` command line with these extra flags describes.
+    fn job(extra: &[&str], seed: u64) -> PointsJob {
+        let base =
+            ["points", "--exemplar", "ex.csv", "--neighbourhood", "1.5", "--domain", "box:10,8", "--out", "out.ply"];
+        let command = Command::parse_from(base.iter().chain(extra));
+        job_of(&command.args, seed).unwrap()
+    }
+
     /// The command line's defaults are the job's (and so the engine's): a run from the CLI and one
     /// from any other front end with the same options get the same parameters.
     #[test]
     fn command_line_defaults_are_the_jobs() {
-        let command = Command::parse_from([
-            "points",
-            "--exemplar",
-            "ex.csv",
-            "--neighbourhood",
-            "1.5",
-            "--domain",
-            "box:10,8",
-            "--out",
-            "out.ply",
-        ]);
-        let from_cli = job_of(&command.args, 1).unwrap();
         let plain = PointsJob::new(1.5, DomainSpec::Box(vec![10.0, 8.0]));
         // Params hold closures (fields), so they are compared as printed.
         let printed = |job: &PointsJob| format!("{:?}", job.params(2, &[]).unwrap());
-        assert_eq!(printed(&from_cli), printed(&plain));
-        let command = Command::parse_from([
-            "points",
-            "--exemplar",
-            "ex.csv",
-            "--neighbourhood",
-            "1.5",
-            "--domain",
-            "box:10,8",
-            "--out",
-            "out.ply",
-            "--refine",
-            "none",
-            "--patch-candidates",
-            "3",
-            "--attribute-weight",
-            "dbh=0.5",
-        ]);
-        let params = job_of(&command.args, 4).unwrap().params(2, &[]).unwrap();
+        assert_eq!(printed(&job(&[], 1)), printed(&plain));
+        let extra = ["--refine", "none", "--patch-candidates", "3", "--attribute-weight", "dbh=0.5"];
+        let params = job(&extra, 4).params(2, &[]).unwrap();
         assert_eq!(params.refinement, Refinement::None);
         assert_eq!(params.patch_candidates, 3);
         assert_eq!(params.attribute_weights, vec![("dbh".to_string(), 0.5)]);

@@ -308,11 +308,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         let text = analysis_svg(&output.analysis, strokes, reference.width, reference.height, args.scale);
         motif_io::write_text(path, &text)?;
     }
-    for (key, value) in run.figures {
-        if key != "command" {
-            context.figure(&key, value);
-        }
-    }
+    context.job_figures(run.figures);
     let report = &output.report;
     context.summary(&format!(
         "motif strokes: {} reference strokes → {} elements; {} output elements ({} matched within thresholds, {} fell back) → {}",

@@ -285,12 +285,6 @@ fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn record(context: &mut Context, figures: &serde_json::Map<String, serde_json::Value>) {
-    for (key, value) in figures {
-        context.figure(key, value);
-    }
-}
-
 /// Runs `motif stylize`.
 pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<()> {
     let (style_path, out) = (&args.style, &args.out);
@@ -386,7 +380,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     if let Some(dir) = &args.debug_dir {
         write_debug(dir, output)?;
     }
-    record(context, &run.figures);
+    context.job_figures(run.figures);
     context.summary(&format!(
         "motif stylize: {}×{} in {:.0} ms, energy {:.0}, source coverage {:.1} % → {}",
         output.image.width(),
@@ -476,7 +470,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     if let Some(dir) = &args.debug_dir {
         write_debug(dir, output)?;
     }
-    record(context, &run.figures);
+    context.job_figures(run.figures);
     context.summary(&format!(
         "motif texture: {}×{}{} in {:.0} ms, energy {:.0} → {}",
         args.size.0,
