@@ -8,7 +8,7 @@
 //! - [`registry`]: the [`registry::Engine`] trait that `demo` and `bench` receive.
 //! - [`engines`]: one folder per engine subcommand (`curve`, `points`, `strokes`, `stylize` with
 //!   `texture`) and the list of engines.
-//! - [`demo`]: `motif demo`; [`bench`]: `motif bench`, the single entry point for performance figures.
+//! - [`demo`](mod@demo): `motif demo`; [`bench`](mod@bench): `motif bench`, the single entry point for performance figures.
 //! - `main.rs`: argument parsing (clap derive), running a subcommand with its report, error
 //!   printing and exit codes.
 

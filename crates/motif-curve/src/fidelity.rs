@@ -43,7 +43,7 @@ pub struct PatchFidelity {
     pub mean_distance: f64,
     /// The 90th percentile of the same distances.
     pub p90_distance: f64,
-    /// Fraction of output patches farther than [`BROKEN`] from every exemplar patch: seams that
+    /// Fraction of output patches farther than 0.05 (`BROKEN`) from every exemplar patch: seams that
     /// break the pattern, motifs cut in half, wrap-around seams of a tiled copy.
     pub broken_fraction: f64,
     /// Output patches showing some pattern (the ones measured).

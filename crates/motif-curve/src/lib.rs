@@ -5,24 +5,24 @@
 //! a dynamic program picks the exemplar position of every piece so that the colours across all
 //! piece boundaries match best (a global optimum). Modules, by section of the paper:
 //!
-//! - [`ribbon`]: the ribbon's offset curves (constant width or a width profile, §1.1) and the
+//! - `ribbon`: the ribbon's offset curves (constant width or a width profile, §1.1) and the
 //!   slicing into quadrilateral pieces (§1.3); `bends` first rounds bends tighter than the ribbon
 //!   (not in the paper, whose fold-over rule leaves those pieces empty).
-//! - [`piece`]: a piece in exemplar space (rotation `M`, scale `s`, edges `L_i`, `R_i`) and the
+//! - `piece`: a piece in exemplar space (rotation `M`, scale `s`, edges `L_i`, `R_i`) and the
 //!   validity test of positions (§1.3, §3.1), over `U = W × (H + C)` candidates (§1.4), plus a
 //!   minimum-coverage rule and the pattern's side margins (not in the paper); `bent` straightens
 //!   pieces that follow the ribbon (the default; the paper's pieces are rigid).
-//! - [`cost`]: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
+//! - `cost`: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
 //!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3).
-//! - [`dp`]: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
+//! - `dp`: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
 //!   solver, the exact fast solver (its branch and bound in `profile_tree`) and a brute-force
-//!   enumerator for tests; `solve` runs it (or [`closed`]) and the repetition control of
+//!   enumerator for tests; `solve` runs it (or `closed`) and the repetition control of
 //!   `variety` (not in the paper).
-//! - [`closed`]: closed curves, the single-DP approximation and an exact, certified mode (§1.5).
-//! - [`avoidance`]: avoidance maps and fold-over detection (§3.1).
-//! - [`stitch`]: the edge alignment of Eq. 2–3 and its propagation inside pieces (§3.2).
+//! - `closed`: closed curves, the single-DP approximation and an exact, certified mode (§1.5).
+//! - `avoidance`: avoidance maps and fold-over detection (§3.1).
+//! - `stitch`: the edge alignment of Eq. 2–3 and its propagation inside pieces (§3.2).
 //! - `render`: anti-aliased rasterization of the pieces; `repeat`: the classic arc-length
-//!   texture-mapping baseline; [`overlay`]: the debug drawing; [`fidelity`]: the result read back
+//!   texture-mapping baseline; `overlay`: the debug drawing; `fidelity`: the result read back
 //!   along the curve and compared with the exemplar patch by patch; [`samples`]: generated
 //!   exemplars for benchmarks.
 //! - `atlas` (several exemplars, §4's "matches across exemplars") and `incremental`
@@ -56,27 +56,27 @@
 //! ```
 
 mod atlas;
-pub mod avoidance;
+mod avoidance;
 mod bends;
 mod bent;
 mod canvas;
-pub mod closed;
-pub mod cost;
-pub mod dp;
+mod closed;
+mod cost;
+mod dp;
 mod exemplar;
-pub mod fidelity;
+mod fidelity;
 mod incremental;
-pub mod overlay;
+mod overlay;
 mod params;
-pub mod piece;
+mod piece;
 mod profile_tree;
 mod render;
 mod repeat;
 mod report;
-pub mod ribbon;
+mod ribbon;
 pub mod samples;
 mod solve;
-pub mod stitch;
+mod stitch;
 mod variety;
 mod warnings;
 
@@ -93,6 +93,7 @@ use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges}
 pub use crate::dp::Solver;
 use crate::dp::{DpCounters, RowSpec};
 use crate::exemplar::Exemplar;
+pub use crate::fidelity::{PatchFidelity, patch_fidelity};
 pub use crate::incremental::Incremental;
 pub use crate::overlay::debug_overlay;
 use crate::params::validate;

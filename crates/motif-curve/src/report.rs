@@ -117,7 +117,7 @@ pub struct Report {
     pub warnings: Vec<String>,
 }
 
-/// The result of [`synthesize`].
+/// The result of [`synthesize`](crate::synthesize).
 #[derive(Debug, Clone)]
 pub struct Output {
     /// The rendered canvas (transparent background).

@@ -62,11 +62,6 @@ impl Ribbon {
         self.centre.length()
     }
 
-    /// True for a closed curve.
-    pub fn is_closed(&self) -> bool {
-        self.centre.is_closed()
-    }
-
     /// Ribbon width `b` (times [`Ribbon::factor`] along a profile).
     pub fn width(&self) -> f64 {
         self.width
@@ -95,11 +90,6 @@ impl Ribbon {
     /// `B(x)`, the bottom offset curve.
     pub fn bottom(&self, x: f64) -> Point {
         self.point(x) - self.up(x) * (0.5 * self.width * self.factor(x))
-    }
-
-    /// The centre curve as resampled internally.
-    pub fn centre(&self) -> &Polyline {
-        &self.centre
     }
 }
 

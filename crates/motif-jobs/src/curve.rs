@@ -4,8 +4,8 @@
 //! The exemplars, the curve and the avoidance map come decoded (the CLI reads PNG and SVG).
 
 use motif_core::{Polyline, Progress, RgbaImage};
-use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
 use motif_curve::{AlphaMode, Canvas, ClosedMode, Input, Method, Output, Params, PieceShape, Solver};
+use motif_curve::{PatchFidelity, patch_fidelity};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 

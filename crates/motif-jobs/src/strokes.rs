@@ -189,7 +189,7 @@ pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
 #[cfg(test)]
 mod tests {
     use motif_core::NoProgress;
-    use motif_strokes::generate::{HatchRow, hatch_row};
+    use motif_strokes::samples::{HatchRow, hatch_row};
 
     use super::*;
 

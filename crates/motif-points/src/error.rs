@@ -89,7 +89,7 @@ pub enum Error {
     TooManyPoints {
         /// Points the exemplar's density asks for over the domain.
         expected: f64,
-        /// [`Params::max_points`].
+        /// [`Params::max_points`](crate::Params::max_points).
         limit: usize,
     },
 }

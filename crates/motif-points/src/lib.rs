@@ -5,7 +5,7 @@
 //! (§4.3) and the output is optimized so that every neighbourhood of it matches some neighbourhood
 //! of the exemplar under the similarity error T of Eq. 5–6. Modules, by section of the paper:
 //!
-//! - [`points`] (§4.1, Eq. 1): [`PointSet`], points with float attributes and element ids.
+//! - `points` (§4.1, Eq. 1): [`PointSet`], points with float attributes and element ids.
 //! - `model` (§4.3, Eq. 4–5): features, the kernel of the discrete error density for the box and
 //!   Gaussian windows with truncation at 3δ, exemplar/output state, rigid elements (§6.1).
 //! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, ∂S/∂m_k, point-centric and
@@ -28,7 +28,7 @@
 //!   its quadrature, the initial output; the output set, sampling control's count bounds and the
 //!   fidelity figures read off the final state.
 //! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
-//! - [`fidelity`]: nearest-neighbour and g(r) distances to the exemplar in units of its spacing,
+//! - `fidelity`: nearest-neighbour and g(r) distances to the exemplar in units of its spacing,
 //!   with a random set, a tiled copy and the exemplar's halves as baselines.
 //! - [`samples`]: generated exemplars (demo, benchmarks); [`EnergyCase`]: single evaluations of T
 //!   for benchmarks.
@@ -65,7 +65,7 @@ mod domain;
 mod energy;
 mod error;
 mod exemplar_pairs;
-pub mod fidelity;
+mod fidelity;
 mod grid;
 mod init;
 mod linear;
@@ -74,7 +74,7 @@ mod merging;
 mod model;
 mod pairs;
 mod params;
-pub mod points;
+mod points;
 mod quadratic;
 mod quilting;
 mod raster;
@@ -91,6 +91,7 @@ mod tests_attributes;
 mod tests_synthesis;
 
 pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
+pub use fidelity::{Distances, Fidelity, Statistics};
 pub use params::{Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};

@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use motif_core::{NoProgress, Point, Polygon, Polyline};
-use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
+use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Input, Params, Target, synthesize};
 
 fn one_d() -> (Input, Params) {

@@ -8,11 +8,13 @@
 
 use std::collections::{BTreeSet, VecDeque};
 
+use motif_core::StageTimer;
 use motif_core::geometry::perpendicular;
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{AABB, RTree};
 
 use crate::element::{FitSet, Moments, OrientedBox, fit_box};
+use crate::params::FitPoints;
 use crate::stroke::Stroke;
 
 /// An element of the reference pattern: a cluster of strokes and its fitted box.
@@ -117,6 +119,39 @@ fn finish(clusters: &mut [Option<Cluster>], order: Vec<usize>, strokes: &[Stroke
             Element { strokes: cluster.strokes, frame: cluster.frame, colour }
         })
         .collect()
+}
+
+/// The R-tree clustering against the paper's full scan on the same strokes: both results must
+/// agree, and the times give the speed-up figure of `motif bench --engine strokes`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ClusteringComparison {
+    /// Strokes clustered.
+    pub strokes: usize,
+    /// Elements found (by the R-tree queue).
+    pub elements: usize,
+    /// Milliseconds of the R-tree queue.
+    pub rtree_ms: f64,
+    /// Milliseconds of the full scan.
+    pub full_scan_ms: f64,
+    /// Whether both found the same elements in the same order.
+    pub agree: bool,
+}
+
+/// Clusters `strokes` at `scale` with the R-tree queue and with the full scan of §2.2 and times
+/// both (see [`ClusteringComparison`]).
+pub fn compare_clustering(strokes: &[Stroke], fit: FitPoints, scale: f64) -> ClusteringComparison {
+    let sets: Vec<FitSet> = strokes.iter().map(|stroke| FitSet::of_stroke(stroke, fit)).collect();
+    let mut timer = StageTimer::new();
+    let fast = timer.time("rtree", || cluster(strokes, &sets, scale));
+    let plain = timer.time("full scan", || cluster_plain(strokes, &sets, scale));
+    let stages = timer.finish();
+    ClusteringComparison {
+        strokes: strokes.len(),
+        elements: fast.len(),
+        rtree_ms: stages[0].1,
+        full_scan_ms: stages[1].1,
+        agree: fast == plain,
+    }
 }
 
 type Entry = GeomWithData<Rectangle<[f64; 2]>, usize>;

@@ -125,11 +125,6 @@ impl Moments {
         }
     }
 
-    /// Total length.
-    pub fn weight(&self) -> f64 {
-        self.weight
-    }
-
     /// Mean point (origin for an empty set).
     pub fn mean(&self) -> Point {
         if self.weight > 0.0 { (self.sum / self.weight).to_point() } else { Point::ORIGIN }

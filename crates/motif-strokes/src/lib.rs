@@ -5,24 +5,25 @@
 //! elements and their distribution, then a similar pattern is synthesized along a target path (1D)
 //! or inside a target region (2D). Modules, by section of the paper:
 //!
-//! - [`stroke`]: strokes as polylines with width and colour (§1).
-//! - [`element`]: oriented bounding boxes from the covariance of skeleton or contour points, and
+//! - `stroke`: strokes as polylines with width and colour (§1).
+//! - `element`: oriented bounding boxes from the covariance of skeleton or contour points, and
 //!   box Hausdorff distances (§2.1).
-//! - [`cluster`]: the greedy clustering queue with the proximity and continuation tests (§2.2).
-//! - [`distribution`]: chain and unskewed-Delaunay neighbour graphs, k-rings, shift vectors (§2.3).
-//! - [`analysis`]: the whole analysis of a reference (§2).
-//! - [`matching`]: relevant pairs, the five perceptual measures and the threshold test (§3.1).
-//! - [`seeds`]: Lloyd relaxation along a path and clipped centroidal Voronoi in a polygon (§3.2).
-//! - [`synthesis`]: seed layout and outward growth with partial neighbourhoods (§3.2, Algorithm 1).
-//! - [`variation`]: parameter exchange and position variation (§3.3).
-//! - [`generate`]: generated reference drawings for demos, benchmarks and tests.
+//! - `cluster`: the greedy clustering queue with the proximity and continuation tests (§2.2).
+//! - `distribution`: chain and unskewed-Delaunay neighbour graphs, k-rings, shift vectors (§2.3).
+//! - `analysis`: the whole analysis of a reference (§2).
+//! - `matching`: relevant pairs, the five perceptual measures and the threshold test (§3.1).
+//! - `seeds`: Lloyd relaxation along a path and clipped centroidal Voronoi in a polygon (§3.2).
+//! - `synthesis`: seed layout and outward growth with partial neighbourhoods (§3.2, Algorithm 1).
+//! - `variation`: parameter exchange and position variation (§3.3).
+//! - [`samples`]: generated reference drawings for demos, benchmarks and tests (the one public
+//!   module; everything else is re-exported flat below).
 //!
 //! The entry point is [`synthesize`]; [`analyse`] runs the analysis alone (for interactive tuning
 //! of ε). The crate does no I/O and builds for `wasm32`.
 //!
 //! ```
 //! use motif_core::{NoProgress, Point, Polyline};
-//! use motif_strokes::generate::{HatchRow, hatch_row};
+//! use motif_strokes::samples::{HatchRow, hatch_row};
 //! use motif_strokes::{Input, Params, Target, synthesize};
 //!
 //! // A reference row of 12 hatches, each of three sketchy strokes, continued along a longer line.
@@ -38,18 +39,18 @@
 //! assert_eq!(output.report.output_strokes, 3 * output.report.output_elements);
 //! ```
 
-pub mod analysis;
-pub mod cluster;
-pub mod distribution;
-pub mod element;
+mod analysis;
+mod cluster;
+mod distribution;
+mod element;
 mod error;
-pub mod generate;
-pub mod matching;
+mod matching;
 mod params;
-pub mod seeds;
-pub mod stroke;
-pub mod synthesis;
-pub mod variation;
+pub mod samples;
+mod seeds;
+mod stroke;
+mod synthesis;
+mod variation;
 
 use std::ops::Range;
 
@@ -58,7 +59,7 @@ use motif_core::{Point, Polygon, Polyline, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
 pub use analysis::{Analysis, analyse};
-pub use cluster::Element;
+pub use cluster::{ClusteringComparison, Element, compare_clustering};
 pub use element::OrientedBox;
 pub use error::Error;
 pub use params::{FitPoints, Params, Thresholds};

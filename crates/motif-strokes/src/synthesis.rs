@@ -136,11 +136,6 @@ impl ReferenceRings {
     pub fn len(&self) -> usize {
         self.starts.len() - 1
     }
-
-    /// True without reference elements.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
 }
 
 /// Distance evaluations (reference members × known target neighbours) above which one seed's

@@ -1,7 +1,7 @@
 //! End-to-end properties of analysis and synthesis.
 
 use motif_core::{NoProgress, Point, Polygon, Polyline};
-use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
+use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Error, Input, Output, Params, Stroke, Target, region_from_outline, synthesize};
 
 const RED: [u8; 4] = [220, 30, 30, 255];

@@ -6,7 +6,7 @@
 //! A : A' :: B : B'. Without guides it synthesizes a texture of any size (optionally tileable).
 //!
 //! Modules, by section of the paper:
-//! - [`params`]: every tunable with ebsynth's defaults (α, λ of Eq. 5, patch size, levels, N).
+//! - `params`: every tunable with ebsynth's defaults (α, λ of Eq. 5, patch size, levels, N).
 //! - `level`: one pyramid level with all channels stacked as 8-bit values (as ebsynth stores
 //!   them) so the weighted patch distance of Eq. 4 is a sum over contiguous rows against one row
 //!   of per-channel weights (any number of 1/3/4-channel guides, each with its own weight; target
@@ -18,10 +18,10 @@
 //! - `vote`: voting, the E-step of §3.3.
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
 //!   upsampling (§3.5), the optional 3×3 pass, the report.
-//! - [`segments`]: segment labels from guide colours, exact palette or k-means (§3.6).
+//! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
-//! - [`field`]: the public nearest-neighbour field, its PNG encoding and re-application.
+//! - `field`: the public nearest-neighbour field, its PNG encoding and re-application.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -49,13 +49,13 @@
 
 mod band;
 mod error;
-pub mod field;
+mod field;
 mod level;
 mod occurrence;
-pub mod params;
+mod params;
 pub mod samples;
 mod search;
-pub mod segments;
+mod segments;
 mod synthesis;
 mod vote;
 
@@ -70,7 +70,7 @@ use serde::Serialize;
 pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
 pub use params::{NnfMethod, Params, Segmentation};
-pub use segments::{SegmentLabels, label_guides};
+pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
 #[derive(Debug, Clone, PartialEq)]

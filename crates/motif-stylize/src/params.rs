@@ -24,7 +24,7 @@ pub enum NnfMethod {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Segmentation {
     /// Every distinct colour of the segment guide is a segment (at most
-    /// [`MAX_PALETTE`](crate::segments::MAX_PALETTE) colours): for flat, aliased map renders.
+    /// [`MAX_PALETTE`](crate::MAX_PALETTE) colours): for flat, aliased map renders.
     Palette,
     /// Quantize the guide colours into this many clusters by k-means (seeded, deterministic):
     /// for anti-aliased guides. Range 2..=64.

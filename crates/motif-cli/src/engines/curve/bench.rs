@@ -1,6 +1,6 @@
 //! `motif bench --engine curve`: the real-exemplar corpus (`data/real/curve/`: for every case, the
 //! DP time per row, the seam cost per piece, the valid fraction and the patch fidelity of the
-//! synthesis next to the repeat baseline's, see `motif_curve::fidelity`), the incremental edit,
+//! synthesis next to the repeat baseline's, see `motif_curve::patch_fidelity`), the incremental edit,
 //! and the generated exemplars of the paper's two sizes (both solvers).
 
 use std::path::Path;
@@ -8,8 +8,8 @@ use std::path::Path;
 use anyhow::Context as _;
 use motif_core::NoProgress;
 use motif_core::{Point, Polyline};
-use motif_curve::fidelity::{PatchFidelity, patch_fidelity};
 use motif_curve::{Input as CurveInput, Method, Output as CurveOutput, Params as CurveParams, Solver};
+use motif_curve::{PatchFidelity, patch_fidelity};
 
 use crate::suite::Bench;
 use crate::suite::{corpus_folder, read_cases};

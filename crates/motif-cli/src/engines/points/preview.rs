@@ -4,8 +4,8 @@
 use anyhow::Context as _;
 use motif_core::Point;
 use motif_io::{Stroke as SvgStroke, SvgWriter};
+use motif_points::Fidelity;
 use motif_points::PointSet;
-use motif_points::fidelity::Fidelity;
 use std::path::Path;
 
 /// A colour for `t` in [0, 1] (dark blue → teal → yellow).

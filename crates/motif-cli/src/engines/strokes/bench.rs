@@ -2,8 +2,8 @@
 
 use anyhow::bail;
 use motif_core::{NoProgress, Point, Polygon, Polyline};
-use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
-use motif_strokes::{FitPoints, Input, Output, Params, Target};
+use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
+use motif_strokes::{FitPoints, Input, Output, Params, Target, compare_clustering};
 use serde_json::{Value, json};
 
 use super::wave;
@@ -75,26 +75,19 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     // Clustering: R-tree queue against the paper's full scan, on a long sketchy hatching.
     let big = HatchRow { count: if bench.quick { 50 } else { 800 }, ..HatchRow::default() };
     let strokes = hatch_row(&big, Point::ORIGIN, |i| 0.2 * (i as f64 * 0.1).sin(), |_| [0, 0, 0, 255], bench.seed);
-    let sets: Vec<_> =
-        strokes.iter().map(|s| motif_strokes::element::FitSet::of_stroke(s, FitPoints::Skeleton)).collect();
-    let start = std::time::Instant::now();
-    let fast = motif_strokes::cluster::cluster(&strokes, &sets, 4.0);
-    let fast_ms = start.elapsed().as_secs_f64() * 1000.0;
-    let start = std::time::Instant::now();
-    let plain = motif_strokes::cluster::cluster_plain(&strokes, &sets, 4.0);
-    let plain_ms = start.elapsed().as_secs_f64() * 1000.0;
-    if fast != plain {
+    let clustering = compare_clustering(&strokes, FitPoints::Skeleton, 4.0);
+    if !clustering.agree {
         bail!("the R-tree clustering disagrees with the full scan");
     }
     Ok(json!({
         "path_1d": one_d,
         "region_2d": two_d,
         "clustering": {
-            "strokes": strokes.len(),
-            "elements": fast.len(),
-            "rtree_ms": fast_ms,
-            "full_scan_ms": plain_ms,
-            "speedup": plain_ms / fast_ms.max(1e-9),
+            "strokes": clustering.strokes,
+            "elements": clustering.elements,
+            "rtree_ms": clustering.rtree_ms,
+            "full_scan_ms": clustering.full_scan_ms,
+            "speedup": clustering.full_scan_ms / clustering.rtree_ms.max(1e-9),
         },
     }))
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 use kurbo::BezPath;
 use motif_core::Point;
 use motif_io::SvgWriter;
-use motif_strokes::generate::{FigureField, HatchRow, figure_field, hatch_row};
+use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 
 use super::{blob, wave, write_strokes_svg};
 use crate::gallery::{Demo, DemoCase};
