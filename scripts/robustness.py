@@ -108,6 +108,12 @@ CASES = [
     ("texture from a 16384^2 header", ["texture", "--exemplar", "huge-header.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
     ("stylize guide with a 16384^2 header", ["stylize", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "huge-header.png", "--out", "out.png"], "clean-error"),
     ("curve canvas 16384x16384", CURVE + ["--canvas", "16384x16384", "--out", "out.png"], "clean-error"),
+    # Memory estimated before allocating, and refused above --max-memory.
+    ("texture 4096x4096 over --max-memory 100M", ["--max-memory", "100M"] + TEXTURE + ["--size", "4096x4096", "--out", "out.png"], "clean-error"),
+    ("curve over --max-memory 2M", ["--max-memory", "2M"] + CURVE + ["--out", "out.png"], "clean-error"),
+    ("points over --max-memory 1M", ["--max-memory", "1M"] + POINTS + ["--domain", "box:200,200", "--out", "out.ply"], "clean-error"),
+    ("strokes over --max-memory 1M", ["--max-memory", "1M"] + STROKES + ["--rect", "20000,20000", "--out", "out.svg"], "clean-error"),
+    ("--max-memory not a size", ["--max-memory", "lots"] + TEXTURE + ["--size", "64x64", "--out", "out.png"], "clean-error"),
     # Hangs.
     ("curve piece length 0.01", CURVE[:-1] + ["0.01", "--out", "out.png"], "clean-error"),
     ("10 MB one-path SVG curve", ["curve", "--exemplar", "curve-chain.png", "--path", "big.svg", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),

@@ -18,6 +18,8 @@ pub struct Context {
     pub threads: usize,
     /// True with `--quiet`: engines print no summary.
     pub quiet: bool,
+    /// `--max-memory` in bytes (default: half of the machine's memory), passed to every job.
+    pub max_memory: u64,
     progress: CliProgress,
     figures: Map<String, Value>,
     /// `--report`, checked against every input the engine names.
@@ -36,12 +38,19 @@ impl Context {
             seed,
             threads,
             quiet,
+            max_memory: motif_core::DEFAULT_MAX_MEMORY,
             progress: CliProgress::new(visible),
             figures: Map::new(),
             report: None,
             inputs: std::cell::RefCell::new(Vec::new()),
             outputs: std::cell::RefCell::new(Vec::new()),
         }
+    }
+
+    /// The same context with a memory limit for every job.
+    pub fn with_max_memory(mut self, bytes: u64) -> Self {
+        self.max_memory = bytes;
+        self
     }
 
     /// The same context with `--report` to check against the inputs.

@@ -121,7 +121,9 @@ fn print_error(error: &anyhow::Error) {
 /// Runs an engine subcommand and writes `--report` if asked.
 fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
-    let mut context = Context::new(global.seed, threads, global.quiet).with_report(global.report.as_deref());
+    let mut context = Context::new(global.seed, threads, global.quiet)
+        .with_max_memory(options::max_memory(global))
+        .with_report(global.report.as_deref());
     // The run's outputs appear together, and only if the whole run succeeded: a failure part-way
     // leaves every previous file as it was.
     motif_io::begin_outputs();

@@ -142,6 +142,9 @@ pub enum Error {
         /// Height of the exemplar's non-transparent rows.
         pattern_height: usize,
     },
+    /// The run's estimated memory passes [`Params::max_memory`].
+    #[error(transparent)]
+    TooMuchMemory(#[from] motif_core::TooMuchMemory),
     /// The pinned first position is not valid.
     #[error("pin-first position ({x}, {y}) is not a valid position of the first piece ({count} valid positions exist)")]
     InvalidPin {
@@ -152,6 +155,21 @@ pub enum Error {
         /// Number of valid positions of the first piece.
         count: usize,
     },
+}
+
+const MEMORY_ADVICE: &str = "use a smaller canvas, longer pieces or a narrower ribbon";
+
+/// The peak memory of a synthesis: the canvas with its forbidden mask and render tiles (about 10
+/// bytes a pixel), the valid positions of every piece, the dynamic program's costs and back
+/// pointers per position, and the edge samples of two rows.
+fn memory_estimate(canvas_pixels: f64, pieces: f64, mean_valid: f64, samples: usize) -> motif_core::MemoryEstimate {
+    let mut estimate = motif_core::MemoryEstimate::new();
+    estimate
+        .add("canvas", canvas_pixels, 10.0)
+        .add("valid positions", pieces * mean_valid, std::mem::size_of::<piece::Position>() as f64)
+        .add("dynamic program", pieces * mean_valid, 12.0)
+        .add("edge samples", 2.0 * mean_valid * samples as f64, 16.0);
+    estimate
 }
 
 /// Number of rows of the exemplar holding non-transparent pixels (for error messages).
@@ -179,6 +197,8 @@ pub(crate) fn synthesize_with(
     let rounded = bends::round_bends(&curve, params.round_bends * params.width, 0.5 * params.width)?;
     let curve = rounded.curve;
     let (canvas_width, canvas_height, shift) = canvas_geometry(&curve, params, input.avoidance)?;
+    let canvas_pixels = (canvas_width * canvas_height) as f64;
+    let canvas_memory = memory_estimate(canvas_pixels, 0.0, 0.0, 0).check(params.max_memory, MEMORY_ADVICE)?;
     let curve = curve.transformed(Affine::translate(shift))?;
     let ribbon = Ribbon::new(&curve, params.width)?.with_profile(&params.width_profile);
     let quads = ribbon::slice(&ribbon, params.piece_length);
@@ -237,6 +257,7 @@ pub(crate) fn synthesize_with(
     let candidates = candidate_count(atlas.image.width(), atlas.image.height(), samples);
     let mut report = Report {
         method: params.method,
+        estimated_memory_bytes: canvas_memory,
         solver: params.solver,
         pieces: 0,
         samples_per_edge: samples,
@@ -298,6 +319,13 @@ pub(crate) fn synthesize_with(
 
     timer.start("valid positions");
     progress.report("valid positions", 0.0);
+    // The DP's memory follows the valid positions per piece: count them on a few pieces first.
+    let probes: Vec<usize> = (0..frames.len().min(8)).map(|k| k * frames.len() / frames.len().min(8)).collect();
+    let probed: usize =
+        probes.par_iter().map(|&i| frames[i].valid_positions(exemplar, &[], params.min_coverage).len()).sum();
+    let mean_valid = probed as f64 / probes.len().max(1) as f64;
+    report.estimated_memory_bytes = memory_estimate(canvas_pixels, frames.len() as f64, mean_valid, samples)
+        .check(params.max_memory, MEMORY_ADVICE)?;
     // Bent pieces are drawn (and tested against forbidden pixels) through the ribbon's triangles.
     let (triangles, stretch, spacing) = if bent {
         let (triangles, stretch) = repeat::triangulate(&ribbon);

@@ -141,6 +141,11 @@ pub struct Params {
     pub width_profile: Vec<(f64, f64)>,
     /// Rigid pieces (the paper) or pieces bent with the ribbon. Default [`PieceShape::Bent`].
     pub piece_shape: PieceShape,
+    /// Refuse runs whose estimated peak memory (canvas, valid positions and dynamic program over
+    /// all pieces, edge samples) passes this many bytes. Default
+    /// [`DEFAULT_MAX_MEMORY`](motif_core::DEFAULT_MAX_MEMORY) (4 GiB); the CLI sets half of the
+    /// machine's memory.
+    pub max_memory: u64,
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
     /// Default 8.
     pub variety_radius: usize,
@@ -171,6 +176,7 @@ impl Params {
         round_bends: 0.6,
         piece_shape: PieceShape::Bent,
         width_profile: Vec::new(),
+        max_memory: motif_core::DEFAULT_MAX_MEMORY,
     };
 }
 
@@ -204,6 +210,7 @@ motif_core::builders! { Params {
     with_round_bends => round_bends: f64,
     with_piece_shape => piece_shape: PieceShape,
     with_width_profile => width_profile: Vec<(f64, f64)>,
+    with_max_memory => max_memory: u64,
 }}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -297,6 +304,7 @@ impl Params {
         check_range("stitch-penalty", params.stitch_penalty, 0.0, 100_000.0)?;
         check_count("samples-per-axis", params.samples_per_axis, 1, 8)?;
         check_count("closed-max-starts", params.closed_max_starts, 1, 100_000)?;
+        motif_core::memory::check_max_memory(params.max_memory)?;
         check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
         check_range("variety", params.variety, 0.0, 1e6)?;
         check_range("round-bends", params.round_bends, 0.0, 8.0)?;

@@ -44,6 +44,9 @@ pub struct PlacedPiece {
 pub struct Report {
     /// Synthesis or repeat.
     pub method: Method,
+    /// The run's estimated peak memory, bytes (checked against `max-memory` before allocating).
+    pub estimated_memory_bytes: u64,
+
     /// Solver used.
     pub solver: Solver,
     /// Number of pieces.

@@ -193,3 +193,20 @@ fn bent_pieces_continue_the_exemplar_across_seams_on_a_curve() {
     let differing = bent.image.pixels().iter().zip(rigid.image.pixels()).filter(|(a, b)| a != b).count();
     assert!(differing * 100 < bent.image.pixels().len(), "{differing} pixels differ");
 }
+
+#[test]
+fn the_memory_limit_refuses_at_the_reported_estimate() {
+    let image = chain_strip(96, 24, 12, 6, 12);
+    let curve = circle(80.0, 80.0, 50.0, 120);
+    let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let output = synthesize(&input, &params(24.0, 14.0), &mut NoProgress).unwrap();
+    let estimate = output.report.estimated_memory_bytes;
+    // The estimate counts at least the canvas it rendered.
+    assert!(estimate >= (output.image.width() * output.image.height() * 4) as u64, "{estimate}");
+    let exact = synthesize(&input, &params(24.0, 14.0).with_max_memory(estimate), &mut NoProgress).unwrap();
+    assert_eq!(exact.image, output.image);
+    let error = synthesize(&input, &params(24.0, 14.0).with_max_memory(estimate - 1), &mut NoProgress).unwrap_err();
+    assert!(matches!(error, crate::Error::TooMuchMemory(_)), "{error}");
+    assert!(error.to_string().contains("max-memory"), "{error}");
+    assert!(params(24.0, 14.0).with_max_memory(1000).validate().unwrap_err().to_string().contains("max-memory"));
+}

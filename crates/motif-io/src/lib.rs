@@ -87,6 +87,24 @@ pub fn write_text(path: &Path, text: &str) -> Result<()> {
     write_bytes(path, text.as_bytes())
 }
 
+/// The memory this process may use, bytes: the machine's (`MemTotal` in `/proc/meminfo`), or the
+/// control group's limit (`/sys/fs/cgroup/memory.max`) when that is lower. `None` where neither
+/// can be read (other systems): callers then use a fixed default.
+pub fn physical_memory() -> Option<u64> {
+    let total = std::fs::read_to_string("/proc/meminfo").ok().and_then(|text| {
+        let line = text.lines().find(|line| line.starts_with("MemTotal:"))?;
+        let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        kib.checked_mul(1024)
+    });
+    // "max" (no limit) does not parse and leaves the machine's figure.
+    let limit =
+        std::fs::read_to_string("/sys/fs/cgroup/memory.max").ok().and_then(|text| text.trim().parse::<u64>().ok());
+    match (total, limit) {
+        (Some(total), Some(limit)) => Some(total.min(limit)),
+        (total, limit) => total.or(limit),
+    }
+}
+
 /// True when `a` and `b` name the same file (or would, once `b` is created): compares canonical
 /// paths, canonicalizing the parent directory for a file that does not exist yet.
 pub fn same_file(a: &Path, b: &Path) -> bool {

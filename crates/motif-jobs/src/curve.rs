@@ -85,6 +85,10 @@ pub struct CurveJob {
     /// Also measure patch fidelity (the result read back along the curve against the exemplar).
     #[serde(default)]
     pub fidelity: bool,
+    /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
+    /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    pub max_memory: Option<u64>,
 }
 
 /// A finished curve job.
@@ -139,6 +143,7 @@ impl CurveJob {
             round_bends: None,
             closed_max_starts: None,
             fidelity: false,
+            max_memory: None,
         }
     }
 
@@ -176,7 +181,8 @@ impl CurveJob {
             .with_variety_radius(self.variety_radius.unwrap_or(d.variety_radius))
             .with_round_bends(self.round_bends.unwrap_or(d.round_bends))
             .with_width_profile(self.width_profile.iter().map(|&[t, f]| (t, f)).collect())
-            .with_piece_shape(self.pieces_shape.unwrap_or(d.piece_shape));
+            .with_piece_shape(self.pieces_shape.unwrap_or(d.piece_shape))
+            .with_max_memory(self.max_memory.unwrap_or(d.max_memory));
         params.validate()?;
         Ok(params)
     }
@@ -209,6 +215,7 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
         figures.insert(key.to_string(), value);
     };
     put("command", json!("curve"));
+    put("estimated_memory_bytes", json!(report.estimated_memory_bytes));
     put("method", json!(report.method));
     put("solver", json!(report.solver));
     put("pieces", json!(report.pieces));

@@ -32,6 +32,7 @@
 
 pub mod curve;
 mod error;
+mod memory_size;
 pub mod points;
 pub mod strokes;
 pub mod stylize;

@@ -116,6 +116,10 @@ pub struct PointsJob {
     /// Refuse domains that ask for more points than this.
     #[serde(default)]
     pub max_points: Option<usize>,
+    /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
+    /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    pub max_memory: Option<u64>,
 }
 
 /// A finished points job.
@@ -155,6 +159,7 @@ impl PointsJob {
             reference: false,
             keep_margin: None,
             max_points: None,
+            max_memory: None,
         }
     }
 
@@ -237,6 +242,7 @@ impl PointsJob {
             .with_attribute_weights(self.attribute_weight.iter().map(|(name, w)| (name.clone(), *w)).collect())
             .with_keep_margin(self.keep_margin)
             .with_max_points(self.max_points.unwrap_or(defaults.max_points))
+            .with_max_memory(self.max_memory.unwrap_or(defaults.max_memory))
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)
@@ -263,6 +269,7 @@ impl PointsJob {
 pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
     let value = json!({
         "command": "points",
+        "estimated_memory_bytes": report.estimated_memory_bytes,
         "stages_ms": crate::stages(&report.stages_ms),
         "energy_per_iteration": report.energy,
         "final_energy": report.final_energy,
@@ -316,6 +323,20 @@ mod tests {
         assert_eq!(params.exemplar_window, Some((vec![1.0, 2.0], vec![5.0, 6.0])));
         let text = serde_json::to_string(&corners).unwrap();
         assert_eq!(serde_json::from_str::<PointsJob>(&text).unwrap(), corners);
+        // max-memory as bytes or as a size people write; a round trip keeps it.
+        let sized = |value: Value| {
+            let mut description = json!({ "neighbourhood": 14, "domain": { "box": [400, 400] } });
+            description["max-memory"] = value;
+            serde_json::from_value::<PointsJob>(description)
+        };
+        assert_eq!(sized(json!("1.5G")).unwrap().params(2, &[]).unwrap().max_memory, 3 << 29);
+        let bytes = sized(json!(1 << 24)).unwrap();
+        assert_eq!(bytes.max_memory, Some(1 << 24));
+        let text = serde_json::to_string(&bytes).unwrap();
+        assert_eq!(serde_json::from_str::<PointsJob>(&text).unwrap(), bytes);
+        assert!(sized(json!("8 parsecs")).unwrap_err().to_string().contains("not a size"));
+        let tiny = sized(json!(1000)).unwrap().params(2, &[]).unwrap_err().to_string();
+        assert!(tiny.contains("max-memory"), "{tiny}");
     }
 
     #[test]

@@ -58,6 +58,10 @@ pub struct StrokesJob {
     /// Lloyd relaxation iterations for the seeds.
     #[serde(default)]
     pub lloyd_iterations: Option<usize>,
+    /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
+    /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    pub max_memory: Option<u64>,
 }
 
 /// A finished strokes job.
@@ -82,6 +86,7 @@ impl StrokesJob {
             position_variation: false,
             thresholds: BTreeMap::new(),
             lloyd_iterations: None,
+            max_memory: None,
         }
     }
 
@@ -116,6 +121,7 @@ impl StrokesJob {
             .with_variation(self.variation.unwrap_or(defaults.variation))
             .with_position_variation(self.position_variation)
             .with_lloyd_iterations(self.lloyd_iterations.unwrap_or(defaults.lloyd_iterations))
+            .with_max_memory(self.max_memory.unwrap_or(defaults.max_memory))
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)
@@ -169,6 +175,7 @@ impl StrokesJob {
 pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
     let value = json!({
         "command": "strokes",
+        "estimated_memory_bytes": report.estimated_memory_bytes,
         "reference_strokes": report.reference_strokes,
         "reference_elements": report.reference_elements,
         "output_elements": report.output_elements,

@@ -29,6 +29,7 @@ struct Synthesis {
     nnf: Option<NnfMethod>,
     extra_pass_3x3: bool,
     max_pixels: Option<usize>,
+    max_memory: Option<u64>,
 }
 
 impl Synthesis {
@@ -45,6 +46,7 @@ impl Synthesis {
             .with_nnf(self.nnf.unwrap_or(d.nnf))
             .with_extra_pass_3x3(self.extra_pass_3x3)
             .with_max_pixels(self.max_pixels.unwrap_or(d.max_pixels))
+            .with_max_memory(self.max_memory.unwrap_or(d.max_memory))
             .with_seed(self.seed)
     }
 }
@@ -92,6 +94,10 @@ macro_rules! job_with_synthesis {
             /// Refuse runs that would synthesize more output pixels than this.
             #[serde(default)]
             pub max_pixels: Option<usize>,
+            /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
+            /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
+            #[serde(default, deserialize_with = "crate::memory_size::optional")]
+            pub max_memory: Option<u64>,
         }
 
         impl $name {
@@ -108,6 +114,7 @@ macro_rules! job_with_synthesis {
                     nnf: self.nnf,
                     extra_pass_3x3: self.extra_pass_3x3,
                     max_pixels: self.max_pixels,
+                    max_memory: self.max_memory,
                 }
             }
         }
@@ -317,6 +324,7 @@ pub fn figures(output: &Output) -> Map<String, Value> {
     let report = &output.report;
     let value = json!({
         "energy": report.energy,
+        "estimated_memory_bytes": report.estimated_memory_bytes,
         "source_coverage": report.source_coverage,
         "stages_ms": crate::stages(&report.stages_ms),
         "engine_ms": report.total_ms,

@@ -92,6 +92,9 @@ pub enum Error {
         /// [`Params::max_points`](crate::Params::max_points).
         limit: usize,
     },
+    /// The run's estimated memory passes [`Params::max_memory`](crate::Params::max_memory).
+    #[error(transparent)]
+    TooMuchMemory(#[from] motif_core::TooMuchMemory),
 }
 
 /// What is wrong with a point set ([`Error::PointSet`]).

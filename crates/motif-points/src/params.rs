@@ -243,6 +243,10 @@ pub struct Params {
     /// Refuse domains that ask for more points than this at the exemplar's density (default
     /// 150 000: about 2 minutes on two cores; the paper's largest case has 23 000).
     pub max_points: usize,
+    /// Refuse runs whose estimated peak memory (quadrature grid and points, output points, window
+    /// lists) passes this many bytes. Default [`DEFAULT_MAX_MEMORY`](motif_core::DEFAULT_MAX_MEMORY)
+    /// (4 GiB); the CLI sets half of the machine's memory.
+    pub max_memory: u64,
     /// Energy implementation. Default fast.
     pub evaluator: Evaluator,
     /// Seed of every random choice (matching starts, initialization).
@@ -288,6 +292,7 @@ impl Default for Params {
             attribute_weights: Vec::new(),
             keep_margin: None,
             max_points: 150_000,
+            max_memory: motif_core::DEFAULT_MAX_MEMORY,
             evaluator: Evaluator::Fast,
             seed: 0,
         }
@@ -358,6 +363,7 @@ impl Params {
         check_count("patch-candidates", self.patch_candidates, 1, 256)?;
         check_range("attribute-weight", self.attribute_weight, 1e-6, 100.0)?;
         check_count("max-points", self.max_points, 1, 100_000_000)?;
+        motif_core::memory::check_max_memory(self.max_memory)?;
         if let Some(margin) = self.keep_margin {
             check_range("keep-margin", margin, 0.0, f64::MAX)?;
         }
@@ -403,6 +409,7 @@ motif_core::builders! { Params {
     with_attribute_weights => attribute_weights: Vec<(String, f64)>,
     with_keep_margin => keep_margin: Option<f64>,
     with_max_points => max_points: usize,
+    with_max_memory => max_memory: u64,
     with_evaluator => evaluator: Evaluator,
     with_seed => seed: u64,
 }}

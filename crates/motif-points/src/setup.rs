@@ -35,6 +35,8 @@ pub(crate) struct AttributeMap {
 /// Everything fixed for a synthesis.
 pub(crate) struct Setup<const D: usize> {
     pub exemplar: Exemplar<D>,
+    /// Estimated peak memory, bytes.
+    pub estimated_memory_bytes: u64,
     pub attributes: AttributeMap,
     pub sigma: f64,
     pub delta: f64,
@@ -55,6 +57,29 @@ pub(crate) struct Setup<const D: usize> {
 }
 
 /// Three significant digits, for limits quoted in messages.
+const MEMORY_ADVICE: &str = "use a smaller domain, a larger scale or a smaller neighbourhood";
+
+/// The peak memory of a synthesis: the quadrature grid's look-up, the quadrature points with their
+/// frames, sources and matches, the output points with attributes, gradients and merge systems,
+/// and per output point the list of output points within a window's reach (the neighbour lists of
+/// matching and merging).
+fn memory_estimate<const D: usize>(
+    grid_cells: f64,
+    quadrature: f64,
+    points: f64,
+    channels: usize,
+    window_points: f64,
+) -> motif_core::MemoryEstimate {
+    let d = D as f64;
+    let mut estimate = motif_core::MemoryEstimate::new();
+    estimate
+        .add("quadrature grid", grid_cells, 4.0)
+        .add("quadrature points", quadrature, 8.0 * (3.0 * d + 2.0 * d * d + 3.0))
+        .add("output points", points, 8.0 * 8.0 * (d + channels as f64))
+        .add("neighbour lists", points * window_points, 8.0);
+    estimate
+}
+
 fn significant(value: f64) -> String {
     if value == 0.0 || !value.is_finite() {
         return number(value);
@@ -233,6 +258,8 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let keep = |q: &Vector<D>| {
         region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
     };
+    let grid_cells: f64 = (0..D).map(|a| ((high[a] - low[a]) / h).floor().max(0.0) + 1.0).product();
+    memory_estimate::<D>(grid_cells, grid_cells, 0.0, channels, 0.0).check(params.max_memory, MEMORY_ADVICE)?;
     let quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
     // The grid measures Ω with a boundary layer of half a cell on every side; where the region's
     // volume is known exactly (a fresh box or polygon) the expected count follows it instead (a
@@ -249,6 +276,12 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         return Err(Error::EmptyDomain(DomainProblem::TooSmall { expected }));
     }
     let s_min = quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
+    // Output points inside one window's reach (a cube of side 6δ), at the densest scale.
+    let reach: f64 = (0..D).map(|_| 6.0 * delta / s_min).product::<f64>() * exemplar.density();
+    let total = expected + existing.len() as f64;
+    let estimated_memory_bytes =
+        memory_estimate::<D>(grid_cells, quadrature.len() as f64, total, channels, reach.min(total))
+            .check(params.max_memory, MEMORY_ADVICE)?;
     let cutoff = params.kernel_cutoff * sigma;
     // Cells of the pair cut-off: a query of that radius scans 3 rows (2D) or 9 rows (3D) of 3 cells.
     // Half-size cells scan less volume but, measured in 3D, cost more in per-row overhead.
@@ -306,6 +339,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let has_elements = !exemplar.elements.is_empty()
         || input.existing.as_ref().is_some_and(|e| e.elements.as_ref().is_some_and(|ids| ids.iter().any(|&i| i >= 0)));
     Ok(Setup {
+        estimated_memory_bytes,
         exemplar,
         attributes,
         sigma,

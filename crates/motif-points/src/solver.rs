@@ -43,6 +43,8 @@ pub struct IterationEnergy {
 /// What the synthesis did.
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
+    /// The run's estimated peak memory, bytes (checked against `max-memory` before allocating).
+    pub estimated_memory_bytes: u64,
     /// σ used (output units).
     pub sigma: f64,
     /// The starting window size δ.
@@ -298,6 +300,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     Ok(Output {
         points,
         report: Report {
+            estimated_memory_bytes: setup.estimated_memory_bytes,
             sigma: setup.sigma,
             neighbourhood: setup.delta,
             shrink: params.effective_shrink(),

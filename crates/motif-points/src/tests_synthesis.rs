@@ -385,3 +385,27 @@ fn bad_input_gives_clear_errors() {
     let error = run(grid, Params { attributes: Some(vec!["colour".into()]), ..quick_params() }, domain).unwrap_err();
     assert!(error.to_string().contains("colour"), "{error}");
 }
+
+#[test]
+fn the_memory_limit_refuses_at_the_reported_estimate() {
+    let run = |exemplar: PointSet, params: Params, domain: Domain| {
+        synthesize(&Input { exemplar, domain, existing: None }, &params, &mut NoProgress)
+    };
+    let grid = jittered_grid(6, 0.1, 2);
+    let domain = box_domain(9.0, 9.0);
+    let output = run(grid.clone(), quick_params(), domain.clone()).unwrap();
+    let estimate = output.report.estimated_memory_bytes;
+    // At least the output points' coordinates and the quadrature points'.
+    assert!(estimate >= 16 * (output.points.len() + output.report.quadrature_points) as u64, "{estimate}");
+    let same = run(grid.clone(), quick_params().with_max_memory(estimate.max(1 << 20)), domain.clone()).unwrap();
+    assert_eq!(same.points, output.points);
+    if estimate > 1 << 20 {
+        let error = run(grid, quick_params().with_max_memory(estimate - 1), domain).unwrap_err();
+        assert!(matches!(error, Error::TooMuchMemory(_)), "{error}");
+    } else {
+        // A domain a thousand times larger passes a 1 MiB limit.
+        let large = box_domain(300.0, 300.0);
+        let error = run(grid, quick_params().with_max_memory(1 << 20), large).unwrap_err();
+        assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+    }
+}

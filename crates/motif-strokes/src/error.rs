@@ -29,4 +29,7 @@ pub enum Error {
         /// The limit ([`crate::Params::max_elements`]).
         limit: usize,
     },
+    /// The run's estimated memory passes [`crate::Params::max_memory`].
+    #[error(transparent)]
+    TooMuchMemory(#[from] motif_core::TooMuchMemory),
 }

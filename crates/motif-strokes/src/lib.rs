@@ -110,6 +110,9 @@ pub struct SynthesizedElement {
 pub struct Report {
     /// Strokes in the reference.
     pub reference_strokes: usize,
+    /// The run's estimated peak memory, bytes (checked against `max-memory` before allocating).
+    pub estimated_memory_bytes: u64,
+
     /// Elements found in the reference.
     pub reference_elements: usize,
     /// Elements synthesized (N_tar).
@@ -201,6 +204,25 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
     }
 }
 
+const MEMORY_ADVICE: &str = "use a smaller target, a larger scale or a simpler reference";
+
+/// The peak memory of a synthesis: the pair table of reference elements (when it is built), the
+/// output strokes (each element's strokes copied with their points) and the layout and growth
+/// state per output element.
+fn memory_estimate(analysis: &Analysis, strokes: &[Stroke], count: usize) -> motif_core::MemoryEstimate {
+    let elements = analysis.elements.len().max(1) as f64;
+    let tabled = if analysis.elements.len() <= matching::MAX_TABLE_ELEMENTS { elements } else { 0.0 };
+    let points: usize = strokes.iter().map(|stroke| stroke.polyline.points().len()).sum();
+    let count = count as f64;
+    let mut estimate = motif_core::MemoryEstimate::new();
+    estimate
+        .add("pair table", tabled * tabled, std::mem::size_of::<[f64; 5]>() as f64)
+        .add("output strokes", count * points as f64 / elements, 16.0)
+        .add("output stroke records", count * strokes.len() as f64 / elements, 96.0)
+        .add("layout and growth", count, 256.0);
+    estimate
+}
+
 /// Analyses the reference and synthesizes a similar pattern on the target (the paper's whole
 /// pipeline, §2–§3).
 pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
@@ -232,6 +254,8 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         });
     }
     let count = (expected.round() as usize).max(1);
+    let estimated_memory_bytes =
+        memory_estimate(&analysis, &input.strokes, count).check(params.max_memory, MEMORY_ADVICE)?;
     progress.report("seeds", 0.0);
     let layout = match &input.target {
         Target::Path(path) => layout_path(path, count, analysis.frame_angle, params.lloyd_iterations, &streams),
@@ -285,6 +309,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let stages_ms = timer.finish();
     let matched_elements = growth.matched.iter().filter(|&&m| m).count();
     let report = Report {
+        estimated_memory_bytes,
         reference_strokes: input.strokes.len(),
         reference_elements: analysis.elements.len(),
         output_elements: synthesized.len(),

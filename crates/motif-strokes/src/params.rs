@@ -75,6 +75,11 @@ pub struct Params {
     /// Refuses targets that would need more elements than this (guards against a unit mix-up).
     /// Default 200 000.
     pub max_elements: usize,
+    /// Refuse runs whose estimated peak memory (the reference's pair table, the output strokes,
+    /// the layout) passes this many bytes. Default
+    /// [`DEFAULT_MAX_MEMORY`](motif_core::DEFAULT_MAX_MEMORY) (4 GiB); the CLI sets half of the
+    /// machine's memory.
+    pub max_memory: u64,
     /// Seed of every random choice (initial seeds, candidate picks, exchanges). Default 0.
     pub seed: u64,
 }
@@ -90,6 +95,7 @@ impl Default for Params {
             position_variation: false,
             lloyd_iterations: 20,
             max_elements: 200_000,
+            max_memory: motif_core::DEFAULT_MAX_MEMORY,
             seed: 0,
         }
     }
@@ -113,6 +119,7 @@ impl Params {
         check_range("variation", self.variation, 0.0, 1.0)?;
         check_count("lloyd-iterations", self.lloyd_iterations, 1, 1000)?;
         check_count("max-elements", self.max_elements, 1, usize::MAX)?;
+        motif_core::memory::check_max_memory(self.max_memory)?;
         Ok(())
     }
 
@@ -132,5 +139,6 @@ motif_core::builders! { Params {
     with_position_variation => position_variation: bool,
     with_lloyd_iterations => lloyd_iterations: usize,
     with_max_elements => max_elements: usize,
+    with_max_memory => max_memory: u64,
     with_seed => seed: u64,
 }}

@@ -293,3 +293,31 @@ fn arbitrary_drawings_never_panic() {
         }
     }
 }
+
+#[test]
+fn the_memory_limit_refuses_at_the_reported_estimate() {
+    let row = HatchRow { count: 12, ..HatchRow::default() };
+    let strokes = hatch_row(&row, Point::new(10.0, 30.0), |i| 0.05 * i as f64, |_| [20, 20, 20, 255], 1);
+    let target = Target::Path(straight_path(4000.0));
+    let output = run(strokes.clone(), target.clone(), &params(6.0));
+    let estimate = output.report.estimated_memory_bytes;
+    let points: usize = output.strokes.iter().map(|s| s.polyline.points().len()).sum();
+    assert!(estimate >= 16 * points as u64, "{estimate} for {points} output points");
+    let limited = params(6.0).with_max_memory(estimate.max(1 << 20));
+    assert_eq!(run(strokes.clone(), target.clone(), &limited).strokes, output.strokes);
+    // A region a hundred times larger than a 1 MiB limit allows.
+    let square = Polygon::new(vec![
+        Point::new(0.0, 0.0),
+        Point::new(8_000.0, 0.0),
+        Point::new(8_000.0, 8_000.0),
+        Point::new(0.0, 8_000.0),
+    ])
+    .unwrap();
+    let error = synthesize(
+        &Input { strokes, target: Target::Region(square) },
+        &params(6.0).with_max_memory(1 << 20),
+        &mut NoProgress,
+    )
+    .unwrap_err();
+    assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+}

@@ -72,6 +72,9 @@ pub enum Error {
         /// The limit ([`crate::Params::max_pixels`]).
         max_pixels: usize,
     },
+    /// The run's estimated memory passes [`crate::Params::max_memory`].
+    #[error(transparent)]
+    TooMuchMemory(#[from] motif_core::TooMuchMemory),
     /// An exact palette of the segment guide would have too many colours.
     #[error(
         "segments: the segment guide has {colours} distinct colours (more than {max}); quantize it with k-means (a \

@@ -184,6 +184,8 @@ pub struct Report {
     pub total_ms: f64,
     /// Number of target patches that were optimized (all, or the band's in §3.7 mode).
     pub searched_pixels: usize,
+    /// The run's estimated peak memory, bytes (checked against `max-memory` before allocating).
+    pub estimated_memory_bytes: u64,
 }
 
 fn size_of(image: &FloatImage) -> String {
@@ -204,6 +206,29 @@ fn check_image(image: &FloatImage, what: &str) -> Result<(), Error> {
 fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
     if pixels > max_pixels { Err(Error::TooMuchWork { pixels, max_pixels }) } else { Ok(()) }
 }
+
+/// The peak memory of one synthesis: at each level (4/3 of the finest over the pyramid) the style
+/// and source-guide stack with its quantized copy, the target guides with theirs, the output, the
+/// field with its errors, the vote's sums and the occurrence counts.
+fn memory_estimate(
+    style_pixels: usize,
+    style_channels: usize,
+    guide_channels: usize,
+    target_pixels: usize,
+) -> motif_core::MemoryEstimate {
+    const PYRAMID: f64 = 4.0 / 3.0;
+    let (style_pixels, target_pixels) = (style_pixels as f64 * PYRAMID, target_pixels as f64 * PYRAMID);
+    let (style_channels, guide_channels) = (style_channels as f64, guide_channels as f64);
+    let mut estimate = motif_core::MemoryEstimate::new();
+    estimate
+        .add("style and source guides", style_pixels, (style_channels + guide_channels) * 4.0 * 2.0 + 4.0)
+        .add("target guides", target_pixels, guide_channels * 4.0 * 2.0)
+        .add("output and vote sums", target_pixels, (style_channels * 3.0 + 1.0) * 4.0)
+        .add("nearest-neighbour field", target_pixels, 16.0);
+    estimate
+}
+
+const MEMORY_ADVICE: &str = "use a smaller size or fewer guides";
 
 /// Most guide channels in all (so a patch row's integer sum of squares cannot overflow).
 pub const MAX_GUIDE_CHANNELS: usize = 252;
@@ -285,6 +310,10 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     };
     check_work(target_size.0 * target_size.1, params.max_pixels)?;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
+    let style_pixels = style.width() * style.height();
+    let estimated_memory_bytes =
+        memory_estimate(style_pixels, style.channels(), guide_channels, target_size.0 * target_size.1)
+            .check(params.max_memory, MEMORY_ADVICE)?;
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
             "guide",
@@ -357,7 +386,9 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         composition,
         seeds,
     };
-    synthesis::run(&problem, params, progress)
+    let mut output = synthesis::run(&problem, params, progress)?;
+    output.report.estimated_memory_bytes = estimated_memory_bytes;
+    Ok(output)
 }
 
 /// The composed target, the band, and (when the textures carry fields) the starting source centre
@@ -494,6 +525,14 @@ pub fn presynthesize(
     let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
     check_work(width * height * labels.colours.len(), params.max_pixels)?;
     let (sw, sh) = (input.style.width(), input.style.height());
+    // Segments are synthesized one after the other; each keeps its texture and field.
+    let mut estimate = memory_estimate(sw * sh, input.style.channels(), 0, width * height);
+    estimate.add(
+        "finished textures",
+        (width * height * labels.colours.len()) as f64,
+        (input.style.channels() + 3) as f64 * 4.0,
+    );
+    estimate.check(params.max_memory, MEMORY_ADVICE)?;
     let r = patch / 2;
     let mut textures = Vec::with_capacity(labels.colours.len());
     let style_weights: Vec<f32> =

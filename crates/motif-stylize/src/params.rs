@@ -86,6 +86,11 @@ pub struct Params {
     /// Refuse runs that would synthesize more output pixels than this (summed over the textures of
     /// a presynthesis). Default 64 000 000 (about 8 × 8 k pixels; some 15 minutes on two cores).
     pub max_pixels: usize,
+    /// Refuse runs whose estimated peak memory (style and guide stacks, output, fields and vote
+    /// buffers over the pyramid) passes this many bytes. Default
+    /// [`DEFAULT_MAX_MEMORY`](motif_core::DEFAULT_MAX_MEMORY) (4 GiB); the CLI sets half of the
+    /// machine's memory.
+    pub max_memory: u64,
     /// Non-guided synthesis only: wrap patches around the borders so the output tiles seamlessly.
     /// Default off.
     pub tileable: bool,
@@ -111,6 +116,7 @@ impl Default for Params {
             band_search_vote_iterations: 3,
             band_patchmatch_iterations: 2,
             max_pixels: 64_000_000,
+            max_memory: motif_core::DEFAULT_MAX_MEMORY,
             tileable: false,
             seed: 0,
         }
@@ -122,6 +128,7 @@ impl Params {
     pub fn validate(&self) -> Result<(), Error> {
         check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
         check_count("max-pixels", self.max_pixels, 1, 1 << 40)?;
+        motif_core::memory::check_max_memory(self.max_memory)?;
         check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
         if self.patch_size < 3 || self.patch_size % 2 == 0 || self.patch_size > 31 {
             return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd and between 3 and 31").into());
@@ -157,6 +164,7 @@ motif_core::builders! { Params {
     with_band_search_vote_iterations => band_search_vote_iterations: usize,
     with_band_patchmatch_iterations => band_patchmatch_iterations: usize,
     with_max_pixels => max_pixels: usize,
+    with_max_memory => max_memory: u64,
     with_tileable => tileable: bool,
     with_seed => seed: u64,
 }}

@@ -262,6 +262,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
             stages_ms: timer.finish(),
             total_ms: motif_core::timing::elapsed_ms(start),
             searched_pixels: searched,
+            estimated_memory_bytes: 0,
         },
     })
 }
@@ -301,6 +302,7 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
             stages_ms: vec![("composition".to_string(), total_ms)],
             total_ms,
             searched_pixels: 0,
+            estimated_memory_bytes: 0,
         },
     }
 }

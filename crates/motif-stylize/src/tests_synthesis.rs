@@ -327,3 +327,19 @@ fn bad_input_gives_clear_errors() {
     let two_channels = Input::texture(FloatImage::new(8, 8, 2), 10, 10);
     assert!(synthesize(&two_channels, &params, &mut NoProgress).unwrap_err().to_string().contains("1, 3 or 4"));
 }
+
+#[test]
+fn the_memory_limit_refuses_at_the_reported_estimate() {
+    let input = guided_input(40);
+    let output = synthesize(&input, &Params::default(), &mut NoProgress).unwrap();
+    let estimate = output.report.estimated_memory_bytes;
+    // At least the output image and its field.
+    let pixels = (output.image.width() * output.image.height()) as u64;
+    assert!(estimate >= pixels * (3 * 4 + 8), "{estimate}");
+    // The guided input is small: a texture of 4096² passes a limit of 64 MiB.
+    let texture = Input::texture(texture(32, 32, 3, 5), 4096, 4096);
+    let error = synthesize(&texture, &Params::default().with_max_memory(64 << 20), &mut NoProgress).unwrap_err();
+    assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+    let error = Params::default().with_max_memory(0).validate().unwrap_err();
+    assert!(error.to_string().contains("max-memory"), "{error}");
+}

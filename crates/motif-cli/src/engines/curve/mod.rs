@@ -249,7 +249,8 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         curve: &curve,
         avoidance: avoidance.as_ref(),
     };
-    let run = job_of(args).run(inputs, context.progress())?;
+    let job = CurveJob { max_memory: Some(context.max_memory), ..job_of(args) };
+    let run = job.run(inputs, context.progress())?;
     let output = run.output;
     motif_io::write_png(&args.out, &output.image)?;
     if let Some(path) = &args.pieces {

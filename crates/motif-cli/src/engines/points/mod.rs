@@ -365,7 +365,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         Some(path) => Some(read_set(path, "existing points")?.0),
         None => None,
     };
-    let job = job_of(args, context.seed)?;
+    let job = PointsJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed)? };
     let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
     let run = job.run(exemplar, existing, &integer, context.progress())?;
     let output = run.output;

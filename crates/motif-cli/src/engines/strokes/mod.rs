@@ -292,7 +292,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         );
     }
     let (target, width, height) = read_target(args)?;
-    let job = job_of(args, context.seed, target);
+    let job = StrokesJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed, target) };
     let shown_strokes = args.analysis.as_ref().map(|_| strokes.clone());
     let run = job
         .run(strokes, context.progress())

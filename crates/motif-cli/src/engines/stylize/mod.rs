@@ -59,10 +59,12 @@ pub struct SynthesisOptions {
 
 /// Sets the shared synthesis options of any stylize-family job (they have the same fields).
 macro_rules! with_synthesis {
-    ($job:expr, $options:expr, $seed:expr) => {{
+    ($job:expr, $options:expr, $context:expr) => {{
         let mut job = $job;
         let options: &SynthesisOptions = $options;
-        job.seed = $seed;
+        let context: &Context = $context;
+        job.seed = context.seed;
+        job.max_memory = Some(context.max_memory);
         job.style_weight = Some(options.style_weight);
         job.uniformity = Some(options.uniformity);
         job.patch_size = Some(options.patch_size);
@@ -303,7 +305,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
         band: Some(args.band),
         band_iters: Some(args.band_iterations),
         band_patchmatch_iters: Some(args.band_patchmatch_iterations),
-        ..with_synthesis!(StylizeJob::new(), &args.synthesis, context.seed)
+        ..with_synthesis!(StylizeJob::new(), &args.synthesis, context)
     };
     // The options are checked before the guides are read.
     let params = job.params(args.presynth.is_some())?;
@@ -422,7 +424,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     let job = PresynthJob {
         size: Some([args.size.0, args.size.1]),
         segment_count: args.segment_count,
-        ..with_synthesis!(PresynthJob::new(), &args.synthesis, context.seed)
+        ..with_synthesis!(PresynthJob::new(), &args.synthesis, context)
     };
     let params = job.params()?;
     let textures = job.run(style_float(&style_image), guide_image.to_float_channels(&channels), context.progress())?;
@@ -462,7 +464,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     let exemplar = style_float(&load(&args.exemplar)?);
     let job = TextureJob {
         tileable: args.tileable,
-        ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context.seed)
+        ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context)
     };
     let run = job.run(exemplar, context.progress())?;
     let output = &run.output;
