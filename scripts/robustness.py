@@ -52,6 +52,9 @@ def digest(path):
 def prepare(folder, binary):
     """Inputs: the demo's files, and crafted ones."""
     subprocess.run([binary, "--quiet", "demo", "--out", folder], check=True, timeout=900)
+    # A presynth cache mixing two runs: one texture replaced by another (an interrupted re-run).
+    shutil.copytree(os.path.join(folder, "stylize-presynth"), os.path.join(folder, "mixed-presynth"))
+    shutil.copy(os.path.join(folder, "mixed-presynth", "segment-2.png"), os.path.join(folder, "mixed-presynth", "segment-1.png"))
     with open(os.path.join(folder, "huge-header.png"), "wb") as handle:
         handle.write(png_with_header(16384, 16384))
     # A real image cut to a third (a JPEG when the demo has none: re-encode is not available, so
@@ -130,6 +133,8 @@ CASES = [
     ("points non-integer elements", ["points", "--exemplar", "bad-elements.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
     ("truncated image", TEXTURE[:-1] + ["truncated.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
     ("curve canvas 1x1", CURVE + ["--canvas", "1x1", "--out", "out.png"], "clean-error"),
+    # Caches: a partial presynth folder is detected, not used.
+    ("stylize with a mixed presynth cache", STYLE + ["--presynth", "mixed-presynth", "--out", "out.png"], "clean-error"),
     # Messages name the flag, for negatives too.
     ("negative width", CURVE[:6] + ["-40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("negative scale", STROKES[:4] + ["-6", "--rect", "100,100", "--out", "out.svg"], "clean-error"),

@@ -3,6 +3,7 @@
 //! switch: `-style` → `--style`, `-guide A B -weight W` → `--guide A B --weight W`, and so on.
 
 mod bench;
+mod cache;
 mod demo;
 
 use std::path::{Path, PathBuf};
@@ -11,8 +12,7 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob};
-use motif_stylize::{NearestNeighbourField, NnfMethod, Output, SegmentTexture, apply_field};
-use serde::{Deserialize, Serialize};
+use motif_stylize::{NearestNeighbourField, NnfMethod, Output, apply_field};
 
 use crate::context::Context;
 use crate::gallery::Demo;
@@ -204,24 +204,6 @@ fn parse_size(text: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-/// The manifest of a presynth directory.
-#[derive(Serialize, Deserialize, Debug)]
-struct Manifest {
-    patch_size: usize,
-    segments: Vec<ManifestEntry>,
-}
-
-#[derive(Serialize, Deserialize, Debug)]
-struct ManifestEntry {
-    /// Guide colour as `#rrggbb` (or `#rrggbbaa`, `#gg` for grey guides).
-    colour: String,
-    file: String,
-    /// Where each texture pixel came from (the presynthesis field as written by `--debug-dir`'s
-    /// `nnf.png`): seeds the band's field. Absent in older caches (random start then).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    field: Option<String>,
-}
-
 fn load(path: &Path) -> anyhow::Result<RgbaImage> {
     let image = motif_io::read_image(path)?;
     if image.is_empty() {
@@ -257,24 +239,6 @@ fn pair_channels(source: &RgbaImage, target: &RgbaImage) -> (Vec<usize>, Vec<usi
 
 fn style_float(image: &RgbaImage) -> FloatImage {
     if image.is_fully_opaque() { image.to_float_channels(&[0, 1, 2]) } else { image.to_float() }
-}
-
-fn hex(colour: &[f32]) -> String {
-    colour.iter().map(|v| format!("{:02x}", (v.clamp(0.0, 1.0) * 255.0).round() as u8)).collect::<String>()
-}
-
-fn parse_hex(text: &str) -> anyhow::Result<Vec<f32>> {
-    let digits = text.trim_start_matches('#');
-    if digits.is_empty() || digits.len() % 2 != 0 || digits.len() > 8 {
-        bail!("`{text}` is not a #rrggbb colour");
-    }
-    (0..digits.len() / 2)
-        .map(|i| {
-            u8::from_str_radix(&digits[2 * i..2 * i + 2], 16)
-                .map(|v| f32::from(v) / 255.0)
-                .map_err(|_| anyhow::anyhow!("`{text}` is not a #rrggbb colour"))
-        })
-        .collect()
 }
 
 fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
@@ -341,35 +305,9 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     }
     let mut textures = None;
     if let Some(dir) = &args.presynth {
-        let manifest_path = dir.join("presynth.json");
-        let manifest: Manifest = motif_io::read_json(&manifest_path)
-            .with_context(|| format!("cannot read {} (make it with `motif presynth`)", manifest_path.display()))?;
-        if manifest.patch_size != params.patch_size {
-            bail!(
-                "the textures in {} were made with --patch-size {} but this run uses {}",
-                dir.display(),
-                manifest.patch_size,
-                params.patch_size
-            );
-        }
-        let mut loaded = Vec::with_capacity(manifest.segments.len());
-        for entry in &manifest.segments {
-            let image = load(&dir.join(&entry.file))?;
-            let image = if style.channels() == 4 { image.to_float() } else { image.to_float_channels(&[0, 1, 2]) };
-            let field = match &entry.field {
-                Some(file) => {
-                    let path = dir.join(file);
-                    let encoded = load(&path)?;
-                    let (width, height) = (style.width(), style.height());
-                    let field = NearestNeighbourField::from_rgba(&encoded, width, height, manifest.patch_size)
-                        .with_context(|| {
-                            format!("{} does not fit the style {}", path.display(), style_path.display())
-                        })?;
-                    Some(field)
-                }
-                None => None,
-            };
-            loaded.push(SegmentTexture { colour: parse_hex(&entry.colour)?, image, field });
+        let (loaded, generation) = cache::read(dir, &style, params.patch_size)?;
+        if let Some(generation) = generation {
+            context.figure("presynth_generation", generation);
         }
         textures = Some(loaded);
     }
@@ -416,7 +354,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     }
     // The manifest stands for the folder's outputs, so that --report is checked against the inputs.
     if args.out_dir.is_dir() {
-        context.check_output(&args.out_dir.join("presynth.json"), &[&args.style, &args.guide])?;
+        context.check_output(&args.out_dir.join(cache::MANIFEST), &[&args.style, &args.guide])?;
     }
     let style_image = load(&args.style)?;
     let guide_image = load(&args.guide)?;
@@ -429,23 +367,8 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     let params = job.params()?;
     let textures = job.run(style_float(&style_image), guide_image.to_float_channels(&channels), context.progress())?;
     std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
-    let mut segments = Vec::with_capacity(textures.len());
-    for (index, texture) in textures.iter().enumerate() {
-        let file = format!("segment-{}.png", index + 1);
-        motif_io::write_png(&args.out_dir.join(&file), &RgbaImage::from_float(&texture.image))?;
-        // The field seeds the band's search; a source too large for its PNG encoding just goes without.
-        let field = match texture.field.as_ref().map(NearestNeighbourField::to_rgba) {
-            Some(Ok(encoded)) => {
-                let name = format!("segment-{}-nnf.png", index + 1);
-                motif_io::write_png(&args.out_dir.join(&name), &encoded)?;
-                Some(name)
-            }
-            _ => None,
-        };
-        segments.push(ManifestEntry { colour: format!("#{}", hex(&texture.colour)), file, field });
-    }
-    let manifest = Manifest { patch_size: params.patch_size, segments };
-    motif_io::write_json(&args.out_dir.join("presynth.json"), &manifest)?;
+    let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
+    context.figure("generation", generation);
     context.figure("segments", textures.len());
     context.figure("texture_size", [args.size.0, args.size.1]);
     context.summary(&format!(
