@@ -165,3 +165,64 @@ fn run_demo_case(args: &[String], context: &mut Context) -> anyhow::Result<()> {
     let Command::Engine(command) = &cli.command else { bail!("a demo case must run an engine") };
     command.run(context)
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::{CommandFactory, Parser};
+    use proptest::prelude::*;
+    use proptest::test_runner::{Config, RngSeed};
+
+    use super::Cli;
+
+    /// Every `--flag` of every subcommand (and the global ones).
+    fn flags() -> Vec<String> {
+        let command = Cli::command();
+        let mut flags: Vec<String> = command.get_arguments().filter_map(|a| a.get_long()).map(str::to_string).collect();
+        for sub in command.get_subcommands() {
+            flags.extend(sub.get_arguments().filter_map(|a| a.get_long()).map(str::to_string));
+        }
+        flags.sort_unstable();
+        flags.dedup();
+        flags.into_iter().map(|flag| format!("--{flag}")).collect()
+    }
+
+    fn subcommands() -> Vec<String> {
+        Cli::command().get_subcommands().map(|sub| sub.get_name().to_string()).collect()
+    }
+
+    /// Values as careless hands and scripts write them.
+    fn token() -> impl Strategy<Value = String> {
+        prop_oneof![
+            proptest::sample::select(vec![
+                "-1", "0", "1e-300", "1e300", "NaN", "inf", "-inf", "64x64", "0x0", "16384x16384", "99999999999x2",
+                "box:4,4", "box:1e300,1", "box:", "corners", "1,2,3,4", "a=1", "=", "8G", "0.5M", "auto", "exact", "",
+                "x", ",", "#ff00ff", "-", "--",
+            ])
+            .prop_map(str::to_string),
+            "[ -~]{0,12}",
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(Config { cases: 512, rng_seed: RngSeed::Fixed(20261202), failure_persistence: None, ..Config::default() })]
+
+        /// Any command line parses or gives clap's usage error; none panics (value parsers
+        /// included: sizes, memory sizes, ranges, enums).
+        #[test]
+        fn random_command_lines_parse_or_fail_cleanly(
+            sub in proptest::sample::select(subcommands()),
+            parts in proptest::collection::vec((proptest::sample::select(flags()), token(), any::<bool>()), 0..8),
+        ) {
+            let mut arguments = vec!["motif".to_string(), sub];
+            for (flag, value, with_value) in parts {
+                arguments.push(flag);
+                if with_value {
+                    arguments.push(value);
+                }
+            }
+            if let Err(error) = Cli::try_parse_from(&arguments) {
+                prop_assert!(!error.to_string().is_empty());
+            }
+        }
+    }
+}

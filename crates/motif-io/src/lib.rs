@@ -24,8 +24,8 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub use json::{read_json, write_json};
-pub use points::{Column, ColumnKind, PointFormat, PointTable, read_points, write_points};
-pub use raster::{read_image, write_png};
+pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
+pub use raster::{decode_image, read_image, write_png};
 pub(crate) use staging::write_with;
 pub use staging::{begin_outputs, commit_outputs, discard_outputs, remove_temporaries};
 pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};

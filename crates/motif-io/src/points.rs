@@ -79,15 +79,20 @@ impl PointFormat {
 /// Reads points from PLY (any encoding; the `vertex` element, scalar properties) or CSV (chosen
 /// by the `.csv` extension). Fails when there are no points or a value is not a number.
 pub fn read_points(path: &Path) -> Result<PointTable> {
-    let table = if PointFormat::from_path(path) == PointFormat::Csv { read_csv(path)? } else { read_ply(path)? };
+    parse_points(&crate::read_bytes(path)?, PointFormat::from_path(path), path)
+}
+
+/// Parses the bytes of a point file as [`read_points`] does: CSV for [`PointFormat::Csv`], PLY
+/// (any encoding) otherwise; `path` is the file (or label) errors name.
+pub fn parse_points(bytes: &[u8], format: PointFormat, path: &Path) -> Result<PointTable> {
+    let table = if format == PointFormat::Csv { parse_csv(bytes, path)? } else { parse_ply(bytes, path)? };
     if table.rows == 0 {
         return Err(IoError::format(path, "holds no points"));
     }
     Ok(table)
 }
 
-fn read_ply(path: &Path) -> Result<PointTable> {
-    let bytes = crate::read_bytes(path)?;
+fn parse_ply(bytes: &[u8], path: &Path) -> Result<PointTable> {
     let parser = ply_rs_bw::parser::Parser::<DefaultElement>::new();
     let ply = parser
         .read_ply(&mut std::io::Cursor::new(bytes))
@@ -126,9 +131,8 @@ fn read_ply(path: &Path) -> Result<PointTable> {
     Ok(PointTable { columns, rows: vertices.len(), values })
 }
 
-fn read_csv(path: &Path) -> Result<PointTable> {
-    let bytes = crate::read_bytes(path)?;
-    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(bytes.as_slice());
+fn parse_csv(bytes: &[u8], path: &Path) -> Result<PointTable> {
+    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(bytes);
     let headers =
         reader.headers().map_err(|error| IoError::format(path, format!("invalid CSV header: {error}")))?.clone();
     let mut columns: Vec<Column> =

@@ -17,7 +17,11 @@ pub const MAX_PIXELS: u64 = 16_384 * 16_384;
 /// The format is detected from the content, not the name, so a text file named `.png` is
 /// reported as such.
 pub fn read_image(path: &Path) -> Result<RgbaImage> {
-    let bytes = crate::read_bytes(path)?;
+    decode_image(crate::read_bytes(path)?, path)
+}
+
+/// Decodes PNG or JPEG bytes as [`read_image`] does; `path` is the file (or label) errors name.
+pub fn decode_image(bytes: Vec<u8>, path: &Path) -> Result<RgbaImage> {
     let reader = ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|source| IoError::Io { path: path.to_path_buf(), source })?;

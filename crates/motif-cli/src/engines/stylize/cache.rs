@@ -207,4 +207,40 @@ mod tests {
         let message = format!("{:#}", read(dir.path(), &style, 7).unwrap_err());
         assert!(message.contains("--patch-size 5"), "{message}");
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::test_runner::Config {
+            cases: 128,
+            rng_seed: proptest::test_runner::RngSeed::Fixed(20261202),
+            failure_persistence: None,
+            ..Default::default()
+        })]
+
+        /// A manifest with any bytes changed, cut or inserted reads as textures or as an error
+        /// naming the folder or file; never a panic.
+        #[test]
+        fn damaged_manifests_are_refused_cleanly(
+            edits in proptest::collection::vec((proptest::prelude::any::<usize>(), proptest::prelude::any::<u8>(), 0..3u8), 1..6),
+        ) {
+            let dir = tempfile::tempdir().unwrap();
+            write(dir.path(), 5, &[texture(0.0, 0.2), texture(1.0, 0.8)]).unwrap();
+            let mut bytes = std::fs::read(dir.path().join(MANIFEST)).unwrap();
+            for (at, byte, kind) in edits {
+                if bytes.is_empty() {
+                    break;
+                }
+                let at = at % bytes.len();
+                match kind {
+                    0 => bytes[at] = byte,
+                    1 => bytes.truncate(at),
+                    _ => bytes.insert(at, byte),
+                }
+            }
+            std::fs::write(dir.path().join(MANIFEST), &bytes).unwrap();
+            if let Err(error) = read(dir.path(), &FloatImage::new(6, 5, 3), 5) {
+                let message = format!("{error:#}");
+                proptest::prop_assert!(message.contains(&dir.path().display().to_string()), "{}", message);
+            }
+        }
+    }
 }
