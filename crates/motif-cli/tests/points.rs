@@ -262,7 +262,7 @@ fn bad_input_gives_clear_errors() {
     };
     assert!(run("two.csv", "1", "box:5,5").contains("at least 3"));
     assert!(run("nan.csv", "1", "box:5,5").contains("non-finite coordinate"));
-    assert!(run("noxy.csv", "1", "box:5,5").contains("no x and y columns"));
+    assert!(run("noxy.csv", "1", "box:5,5").contains("x and y columns"));
     assert!(run("grid.csv", "0", "box:5,5").contains("invalid neighbourhood"));
     assert!(run("grid.csv", "-1", "box:5,5").contains("invalid neighbourhood"));
     assert!(run("grid.csv", "1", "box:0,5").contains("empty domain"));

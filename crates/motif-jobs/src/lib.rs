@@ -30,6 +30,7 @@
 //! assert!(error.unwrap_err().to_string().contains("patchsize"));
 //! ```
 
+pub mod columns;
 pub mod curve;
 mod error;
 mod memory_size;

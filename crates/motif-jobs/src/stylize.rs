@@ -4,12 +4,52 @@
 //! (ebsynth's names where it has them). Images come decoded as float images with their channels
 //! chosen by the front end (the CLI reads PNG and matches the channels of guide pairs).
 
-use motif_core::{InvalidParameter, Progress};
+use motif_core::{FloatImage, InvalidParameter, Progress, RgbaImage};
 use motif_stylize::{Guide, Input, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::JobError;
+
+/// Channels of a decoded guide image: 4 with any transparency, else 1 when grey, else 3.
+fn guide_channel_count(image: &RgbaImage) -> usize {
+    if !image.is_fully_opaque() {
+        4
+    } else if image.pixels().iter().all(|p| p[0] == p[1] && p[1] == p[2]) {
+        1
+    } else {
+        3
+    }
+}
+
+fn channel_list(channels: usize) -> Vec<usize> {
+    match channels {
+        1 => vec![0],
+        3 => vec![0, 1, 2],
+        _ => vec![0, 1, 2, 3],
+    }
+}
+
+/// A style (or texture exemplar) as the engine takes it: RGB when fully opaque, else RGBA.
+pub fn style_image_channels(image: &RgbaImage) -> FloatImage {
+    if image.is_fully_opaque() { image.to_float_channels(&[0, 1, 2]) } else { image.to_float() }
+}
+
+/// A guide on its own (presynth's segment guide): grey, RGB or RGBA as its pixels are.
+pub fn guide_image_channels(image: &RgbaImage) -> FloatImage {
+    image.to_float_channels(&channel_list(guide_channel_count(image)))
+}
+
+/// A source and target guide pair with matching channels: equal counts stay; a grey image next
+/// to an RGB one is read as RGB (grey is a special RGB); transparency on one side only is a
+/// mismatch the engine reports.
+pub fn guide_pair(source: &RgbaImage, target: &RgbaImage) -> (FloatImage, FloatImage) {
+    let (a, b) = match (guide_channel_count(source), guide_channel_count(target)) {
+        (1, 3) | (3, 1) => (3, 3),
+        pair => pair,
+    };
+    (source.to_float_channels(&channel_list(a)), target.to_float_channels(&channel_list(b)))
+}
 
 fn default_seed() -> u64 {
     1

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Polygon, Polyline};
-use motif_io::{Column, ColumnKind, PointFormat, PointTable};
+use motif_io::{ColumnKind, PointFormat, PointTable};
 use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
 use motif_points::{Initialization, PointSet, Refinement, Window};
 use serde_json::Value;
@@ -146,85 +146,35 @@ pub struct PointsArgs {
     pub colour_by: Option<String>,
 }
 
-/// Converts a point table into a point set: x, y [, z], `element`, attributes. Integer columns
-/// other than `element` are attributes that are always discrete (returned second).
+/// Converts a point table into a point set (see `motif_jobs::columns`); integer columns other
+/// than `element` are attributes that are always discrete (returned second).
 pub fn table_to_points(table: &PointTable, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
-    let (Some(x), Some(y)) = (table.column("x"), table.column("y")) else {
-        let names: Vec<&str> = table.columns.iter().map(|c| c.name.as_str()).collect();
-        bail!("the {what} has no x and y columns (it has: {}); points need x, y and optionally z", names.join(", "));
-    };
-    let z = table.column("z");
-    let element = table.column("element");
-    let dimension = if z.is_some() { 3 } else { 2 };
-    let attribute_columns: Vec<usize> =
-        (0..table.columns.len()).filter(|&c| Some(c) != z && c != x && c != y && Some(c) != element).collect();
-    let mut positions = Vec::with_capacity(table.rows * dimension);
-    let mut attributes = Vec::with_capacity(table.rows * attribute_columns.len());
-    let mut elements = Vec::new();
-    for row in 0..table.rows {
-        let values = table.row(row);
-        positions.push(values[x]);
-        positions.push(values[y]);
-        if let Some(z) = z {
-            positions.push(values[z]);
-        }
-        for &c in &attribute_columns {
-            attributes.push(values[c]);
-        }
-        if let Some(e) = element {
-            let id = values[e];
-            if !(id.is_finite() && id.fract() == 0.0 && id.abs() < 1e15) {
-                bail!(
-                    "the {what}'s element column holds {id} on row {}; element ids are whole numbers (points sharing \
-                     one form a rigid element; -1 for none)",
-                    row + 1
-                );
-            }
-            elements.push(id as i64);
-        }
-    }
-    let discrete = attribute_columns
+    let columns: Vec<motif_jobs::columns::Column> = table
+        .columns
         .iter()
-        .filter(|&&c| table.columns[c].kind == ColumnKind::Int)
-        .map(|&c| table.columns[c].name.clone())
+        .enumerate()
+        .map(|(c, column)| motif_jobs::columns::Column {
+            name: column.name.clone(),
+            integer: column.kind == ColumnKind::Int,
+            values: (0..table.rows).map(|row| table.row(row)[c]).collect(),
+        })
         .collect();
-    let set = PointSet {
-        dimension,
-        positions,
-        attribute_names: attribute_columns.iter().map(|&c| table.columns[c].name.clone()).collect(),
-        attributes,
-        elements: element.map(|_| elements),
-    };
-    Ok((set, discrete))
+    Ok(motif_jobs::columns::point_set(&columns, what)?)
 }
 
 /// Converts a point set into a point table (attributes listed in `integer` are written as ints).
 pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
-    let mut columns = vec![
-        Column { name: "x".into(), kind: ColumnKind::Float },
-        Column { name: "y".into(), kind: ColumnKind::Float },
-    ];
-    if set.dimension == 3 {
-        columns.push(Column { name: "z".into(), kind: ColumnKind::Float });
-    }
-    for name in &set.attribute_names {
-        let kind = if integer.contains(name) { ColumnKind::Int } else { ColumnKind::Float };
-        columns.push(Column { name: name.clone(), kind });
-    }
-    if set.elements.is_some() {
-        columns.push(Column { name: "element".into(), kind: ColumnKind::Int });
-    }
-    let mut values = Vec::with_capacity(set.len() * columns.len());
-    for i in 0..set.len() {
-        values.extend_from_slice(set.position(i));
-        for (c, &value) in set.attributes_of(i).iter().enumerate() {
-            values.push(if integer.contains(&set.attribute_names[c]) { value.round() } else { value });
-        }
-        if let Some(elements) = &set.elements {
-            values.push(elements[i] as f64);
-        }
-    }
-    PointTable { columns, rows: set.len(), values }
+    let columns = motif_jobs::columns::columns(set, integer);
+    let rows = set.len();
+    let values = (0..rows).flat_map(|row| columns.iter().map(move |column| column.values[row])).collect();
+    let columns = columns
+        .iter()
+        .map(|column| motif_io::Column {
+            name: column.name.clone(),
+            kind: if column.integer { ColumnKind::Int } else { ColumnKind::Float },
+        })
+        .collect();
+    PointTable { columns, rows, values }
 }
 
 fn parse_box(spec: &str) -> anyhow::Result<Vec<f64>> {

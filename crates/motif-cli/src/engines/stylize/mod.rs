@@ -10,8 +10,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use clap::Args;
-use motif_core::{FloatImage, RgbaImage};
-use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob};
+use motif_core::RgbaImage;
+use motif_jobs::stylize::{
+    PresynthJob, StylizeJob, TextureJob, guide_image_channels, guide_pair, style_image_channels,
+};
 use motif_stylize::{NearestNeighbourField, NnfMethod, Output, apply_field};
 
 use crate::context::Context;
@@ -212,35 +214,6 @@ fn load(path: &Path) -> anyhow::Result<RgbaImage> {
     Ok(image)
 }
 
-/// Channels of a decoded file: 4 with any transparency, else 1 when grey, else 3.
-fn file_channels(image: &RgbaImage) -> usize {
-    if !image.is_fully_opaque() {
-        4
-    } else if image.pixels().iter().all(|p| p[0] == p[1] && p[1] == p[2]) {
-        1
-    } else {
-        3
-    }
-}
-
-/// Channel lists for a guide pair: equal counts stay; a grey file next to an RGB one is read as
-/// RGB (grey is a special RGB); transparency on one side only is a mismatch the engine reports.
-fn pair_channels(source: &RgbaImage, target: &RgbaImage) -> (Vec<usize>, Vec<usize>) {
-    let list = |channels: usize| match channels {
-        1 => vec![0],
-        3 => vec![0, 1, 2],
-        _ => vec![0, 1, 2, 3],
-    };
-    match (file_channels(source), file_channels(target)) {
-        (1, 3) | (3, 1) => (list(3), list(3)),
-        (a, b) => (list(a), list(b)),
-    }
-}
-
-fn style_float(image: &RgbaImage) -> FloatImage {
-    if image.is_fully_opaque() { image.to_float_channels(&[0, 1, 2]) } else { image.to_float() }
-}
-
 fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     motif_io::write_png(&dir.join("nnf.png"), &output.field.to_rgba()?)?;
@@ -260,7 +233,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     inputs.extend(args.apply_nnf.iter().map(PathBuf::as_path));
     context.check_output(out, &inputs)?;
     let style_image = load(style_path)?;
-    let style = style_float(&style_image);
+    let style = style_image_channels(&style_image);
     let job = StylizeJob {
         weight: args.weight.clone(),
         segments: args.segment.segments,
@@ -300,8 +273,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     for (source_path, target_path) in &pairs {
         let source = load(source_path)?;
         let target = load(target_path)?;
-        let (source_channels, target_channels) = pair_channels(&source, &target);
-        guides.push((source.to_float_channels(&source_channels), target.to_float_channels(&target_channels)));
+        guides.push(guide_pair(&source, &target));
     }
     let mut textures = None;
     if let Some(dir) = &args.presynth {
@@ -358,14 +330,14 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     }
     let style_image = load(&args.style)?;
     let guide_image = load(&args.guide)?;
-    let channels: Vec<usize> = (0..file_channels(&guide_image)).collect();
     let job = PresynthJob {
         size: Some([args.size.0, args.size.1]),
         segment_count: args.segment_count,
         ..with_synthesis!(PresynthJob::new(), &args.synthesis, context)
     };
     let params = job.params()?;
-    let textures = job.run(style_float(&style_image), guide_image.to_float_channels(&channels), context.progress())?;
+    let textures =
+        job.run(style_image_channels(&style_image), guide_image_channels(&guide_image), context.progress())?;
     std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
     context.figure("generation", generation);
@@ -384,7 +356,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
 /// Runs `motif texture`.
 pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.exemplar])?;
-    let exemplar = style_float(&load(&args.exemplar)?);
+    let exemplar = style_image_channels(&load(&args.exemplar)?);
     let job = TextureJob {
         tileable: args.tileable,
         ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context)
