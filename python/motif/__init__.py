@@ -1,0 +1,330 @@
+"""motif: synthesize patterns from examples, numpy in and out.
+
+One function per engine; keyword arguments are the ``motif`` CLI's flags with ``-`` written ``_``
+(``patch_size=7`` for ``--patch-size 7``) and have the CLI's defaults, so a command line and a call
+with the same options and ``seed`` give the same bytes. Images are ``uint8`` arrays H×W, H×W×1,
+H×W×3 or H×W×4 (results are H×W×4, straight alpha). Every call releases the GIL while the engine
+runs; ``threads`` caps its worker threads (default: all cores; results do not depend on it).
+``report=True`` also returns the run's figures as a dict (the CLI's ``--report``).
+
+Bad options raise ``ValueError`` naming the option; files that cannot be read or written raise
+``OSError``.
+
+>>> import numpy as np, motif
+>>> exemplar = (np.random.default_rng(1).random((32, 32, 3)) * 255).astype(np.uint8)
+>>> motif.texture(exemplar, (64, 48), seed=3).shape
+(48, 64, 4)
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _motif
+
+__all__ = [
+    "texture",
+    "stylize",
+    "curve",
+    "points",
+    "strokes",
+    "read_image",
+    "write_png",
+    "read_points",
+    "options",
+]
+
+ArrayLike = Any
+
+
+# Job fields that each function takes as its own arguments, not as options.
+_ARGUMENTS = {
+    "texture": {"size", "seed"},
+    "stylize": {"weight", "seed"},
+    "curve": {"width", "piece-length"},
+    "points": {"neighbourhood", "domain", "seed"},
+    "strokes": {"scale", "target", "seed"},
+}
+
+
+def _job(engine: str, fixed: Dict[str, Any], options: Dict[str, Any]) -> str:
+    """The JSON job: fixed fields plus the options, named as the CLI's flags."""
+    known = set(_motif.options(engine)) - _ARGUMENTS[engine]
+    description = dict(fixed)
+    for name, value in options.items():
+        flag = name.replace("_", "-")
+        if flag not in known:
+            allowed = ", ".join(sorted(n.replace("-", "_") for n in known))
+            raise TypeError(f"motif.{engine}() got an unknown option {name!r}; options: {allowed}")
+        if value is None:
+            continue
+        value = _plain(value)
+        if _has_non_finite(value):
+            raise ValueError(f"invalid {flag} = {value!r}: NaN and infinite values are not allowed")
+        description[flag] = value
+    return json.dumps(description, allow_nan=False)
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars and arrays as JSON values."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    return value
+
+
+def _seed(seed: Any) -> int:
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)) or not 0 <= seed < 2**64:
+        raise ValueError(f"seed must be an integer between 0 and 2**64 - 1, not {seed!r}")
+    return int(seed)
+
+
+def _has_non_finite(value: Any) -> bool:
+    if isinstance(value, float):
+        return not np.isfinite(value)
+    if isinstance(value, list):
+        return any(_has_non_finite(v) for v in value)
+    if isinstance(value, dict):
+        return any(_has_non_finite(v) for v in value.values())
+    return False
+
+
+def _image(array: ArrayLike, what: str) -> np.ndarray:
+    array = np.asarray(array)
+    if array.dtype != np.uint8:
+        raise ValueError(f"{what}: images are uint8 arrays (0–255), not {array.dtype}; convert with .astype(np.uint8)")
+    return array
+
+
+def _finish(result: Any, report_text: str, report: bool) -> Any:
+    return (result, json.loads(report_text)) if report else result
+
+
+def texture(
+    exemplar: ArrayLike,
+    size: Tuple[int, int],
+    *,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Grows a texture of ``size`` = (width, height) from ``exemplar`` (``motif texture``).
+
+    Options: ``patch_size`` (5), ``uniformity`` (3500), ``pyramid_levels``, ``search_vote_iters``,
+    ``patchmatch_iters``, ``stop_threshold``, ``nnf`` ('patchmatch' or 'exact'), ``tileable``,
+    ``max_pixels``, ``max_memory``; see ``motif texture --help``. Returns an H×W×4 uint8 array.
+    """
+    width, height = _size(size)
+    job = _job("texture", {"size": [width, height], "seed": _seed(seed)}, options)
+    image, report_text = _motif.texture(_image(exemplar, "exemplar"), job, threads)
+    return _finish(image, report_text, report)
+
+
+def _size(size: Any) -> Tuple[int, int]:
+    try:
+        width, height = (int(v) for v in size)
+    except (TypeError, ValueError):
+        raise ValueError(f"size must be (width, height), not {size!r}") from None
+    if width <= 0 or height <= 0:
+        raise ValueError(f"size must be positive, not {width}×{height}")
+    return width, height
+
+
+def stylize(
+    style: ArrayLike,
+    guides: Sequence[Sequence[ArrayLike]],
+    *,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Stylizes: ``style`` is A', ``guides`` a list of (A, B) or (A, B, weight) (``motif stylize``).
+
+    The output has the target guides' size. Options: ``style_weight``, ``uniformity``,
+    ``patch_size``, ``pyramid_levels``, ``search_vote_iters``, ``patchmatch_iters``,
+    ``stop_threshold``, ``nnf``, ``extra_pass_3x3``, ``segments``, ``segment_count``,
+    ``segment_guide``, ``max_pixels``, ``max_memory``. Returns an H×W×4 uint8 array.
+    """
+    pairs = []
+    weights = []
+    for index, guide in enumerate(guides):
+        if len(guide) not in (2, 3):
+            raise ValueError(f"guide {index + 1}: give (source, target) or (source, target, weight)")
+        pairs.append((_image(guide[0], f"source guide {index + 1}"), _image(guide[1], f"target guide {index + 1}")))
+        if len(guide) == 3:
+            weights.append(float(guide[2]))
+    if weights and len(weights) != len(pairs):
+        raise ValueError("give a weight for every guide pair or for none")
+    fixed: Dict[str, Any] = {"seed": _seed(seed)}
+    if weights:
+        fixed["weight"] = weights
+    job = _job("stylize", fixed, options)
+    image, report_text = _motif.stylize(_image(style, "style"), pairs, job, threads)
+    return _finish(image, report_text, report)
+
+
+def curve(
+    exemplar: ArrayLike,
+    path: ArrayLike,
+    width: float,
+    piece_length: float,
+    *,
+    more_exemplars: Iterable[ArrayLike] = (),
+    avoid: Optional[ArrayLike] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Lays the pattern of ``exemplar`` along ``path``, an (N, 2) array of points (closed when the
+    last repeats the first), in a ribbon ``width`` wide cut into pieces of ``piece_length``
+    (``motif curve``).
+
+    Options: ``scale``, ``closed``, ``method``, ``solver``, ``alpha``, ``gamma``, ``stitch``,
+    ``canvas`` ((W, H)), ``margin``, ``samples``, ``variety``, ``pieces_shape``, ``width_profile``,
+    ``round_bends``, ``fidelity``, ``max_memory``, ... Returns (image, pieces): an H×W×4 uint8 array
+    and a list of dicts, one per piece (the CLI's ``--pieces`` entries).
+    """
+    del seed  # The curve engine is deterministic; accepted for a uniform signature.
+    points = np.ascontiguousarray(np.asarray(path, dtype=np.float64))
+    if points.ndim != 2 or points.shape[1] != 2:
+        raise ValueError(f"path must be an (N, 2) array of points, not shape {points.shape}")
+    job = _job("curve", {"width": float(width), "piece-length": float(piece_length)}, options)
+    more = [_image(m, f"exemplar {i + 2}") for i, m in enumerate(more_exemplars)]
+    avoid_image = None if avoid is None else _image(avoid, "avoid")
+    image, pieces, report_text = _motif.curve(_image(exemplar, "exemplar"), points, job, more, avoid_image, threads)
+    return _finish((image, json.loads(pieces)), report_text, report)
+
+
+PointData = Union[ArrayLike, Dict[str, ArrayLike]]
+
+
+def _columns(data: PointData, what: str) -> List[Tuple[str, bool, np.ndarray]]:
+    if isinstance(data, dict):
+        columns = []
+        for name, values in data.items():
+            values = np.asarray(values)
+            if values.ndim != 1:
+                raise ValueError(f"{what}: column {name!r} must be one-dimensional, not shape {values.shape}")
+            integer = np.issubdtype(values.dtype, np.integer) or values.dtype == np.bool_
+            columns.append((str(name), bool(integer), np.ascontiguousarray(values, dtype=np.float64)))
+        return columns
+    array = np.asarray(data, dtype=np.float64)
+    if array.ndim != 2 or array.shape[1] not in (2, 3):
+        raise ValueError(f"{what}: give a dict of columns or an (N, 2) or (N, 3) array, not shape {array.shape}")
+    return [(axis, False, np.ascontiguousarray(array[:, a])) for a, axis in enumerate("xyz"[: array.shape[1]])]
+
+
+def points(
+    exemplar: PointData,
+    neighbourhood: float,
+    *,
+    domain: Any = None,
+    along: Optional[ArrayLike] = None,
+    brush_width: Optional[float] = None,
+    scale_along: Optional[Tuple[float, float]] = None,
+    existing: Optional[PointData] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Synthesizes a point pattern like ``exemplar`` (``motif points``).
+
+    ``exemplar`` is a dict of 1-D arrays (``x``, ``y``, optionally ``z``, ``element``, and any
+    attributes; integer arrays stay discrete) or an (N, 2|3) array of positions. The domain is
+    ``domain=(W, H)`` or ``(W, H, D)`` (a box from the origin), ``domain=polygon`` (an (M, 2)
+    outline), or ``along=polyline, brush_width=w`` (a brush stroke). ``neighbourhood`` is δ.
+    Options: ``sigma``, ``init``, ``refine``, ``patch_size``, ``exemplar_window``,
+    ``attribute_weight``, ``max_points``, ``max_memory``, ... Returns a dict of 1-D arrays.
+    """
+    if along is not None:
+        if brush_width is None:
+            raise ValueError("along needs brush_width")
+        stroke: Dict[str, Any] = {"points": _plain(np.asarray(along, dtype=np.float64)), "width": float(brush_width)}
+        if scale_along is not None:
+            stroke["scale-along"] = [float(v) for v in scale_along]
+        spec: Dict[str, Any] = {"stroke": stroke}
+    elif domain is None:
+        raise ValueError("give domain=(W, H) (a box), domain=polygon, or along=polyline with brush_width")
+    else:
+        shape = np.asarray(domain, dtype=np.float64)
+        spec = {"box": shape.tolist()} if shape.ndim == 1 else {"region": shape.tolist()}
+    job = _job("points", {"neighbourhood": float(neighbourhood), "domain": spec, "seed": _seed(seed)}, options)
+    existing_columns = None if existing is None else _columns(existing, "existing")
+    columns, report_text = _motif.points(_columns(exemplar, "exemplar"), job, existing_columns, threads)
+    result = {name: (values.astype(np.int64) if integer else values) for name, integer, values in columns}
+    return _finish(result, report_text, report)
+
+
+def strokes(
+    reference_svg: str,
+    scale: float,
+    *,
+    rect: Optional[Tuple[float, float]] = None,
+    along: Optional[ArrayLike] = None,
+    region: Optional[ArrayLike] = None,
+    size: Optional[Tuple[float, float]] = None,
+    tolerance: float = 0.1,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Grows the stroke pattern of ``reference_svg`` (SVG text) at scale ε = ``scale`` inside
+    ``rect=(W, H)``, along a polyline ``along`` or inside a polygon ``region`` (``motif strokes``).
+
+    ``size`` is the output document's (width, height) (default: the rectangle, or the target's
+    extent). Options: ``fit``, ``rings``, ``variation``, ``position_variation``, ``thresholds``
+    (a dict of shape, par, ov, sup, col), ``lloyd_iterations``, ``max_memory``. Returns SVG text.
+    """
+    given = [name for name, value in (("rect", rect), ("along", along), ("region", region)) if value is not None]
+    if len(given) != 1:
+        raise ValueError("give exactly one target: rect=(W, H), along=polyline or region=polygon")
+    if rect is not None:
+        width, height = (float(v) for v in rect)
+        target: Dict[str, Any] = {"rect": [width, height]}
+        extent = (width, height)
+    else:
+        outline = np.asarray(along if along is not None else region, dtype=np.float64)
+        if outline.ndim != 2 or outline.shape[1] != 2:
+            raise ValueError(f"{given[0]} must be an (N, 2) array of points, not shape {outline.shape}")
+        target = {given[0]: outline.tolist()}
+        extent = (float(outline[:, 0].max()), float(outline[:, 1].max()))
+    document = tuple(float(v) for v in (size if size is not None else extent))
+    job = _job("strokes", {"scale": float(scale), "target": target, "seed": _seed(seed)}, options)
+    svg, report_text = _motif.strokes(reference_svg, job, document, float(tolerance), threads)
+    return _finish(svg, report_text, report)
+
+
+def read_image(path: str) -> np.ndarray:
+    """Reads a PNG or JPEG as an H×W×4 uint8 array."""
+    return _motif.read_image(path)
+
+
+def write_png(path: str, image: ArrayLike) -> None:
+    """Writes an image array as an 8-bit RGBA PNG (atomically)."""
+    _motif.write_png(path, _image(image, "image"))
+
+
+def read_points(path: str) -> Dict[str, np.ndarray]:
+    """Reads a PLY or CSV point file as a dict of 1-D arrays (integer columns as int64)."""
+    return {name: (v.astype(np.int64) if integer else v) for name, integer, v in _motif.read_points(path)}
+
+
+def options(engine: str) -> List[str]:
+    """The option names an engine accepts (``'curve'``, ``'points'``, ``'strokes'``, ``'stylize'``,
+    ``'texture'``), as keyword names."""
+    if engine not in _ARGUMENTS:
+        raise ValueError(f"no engine named {engine!r}; engines: {', '.join(sorted(_ARGUMENTS))}")
+    return sorted(name.replace("-", "_") for name in set(_motif.options(engine)) - _ARGUMENTS[engine])

@@ -1,0 +1,74 @@
+"""Type stubs of motif's Python API (see motif/__init__.py for the documentation)."""
+
+from typing import Any, Dict, Iterable, List, Literal, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+ImageArray = npt.NDArray[np.uint8]
+PointData = Union[npt.ArrayLike, Dict[str, npt.ArrayLike]]
+
+@overload
+def texture(
+    exemplar: npt.ArrayLike, size: Tuple[int, int], *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[False] = ..., **options: Any
+) -> ImageArray: ...
+@overload
+def texture(
+    exemplar: npt.ArrayLike, size: Tuple[int, int], *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[True], **options: Any
+) -> Tuple[ImageArray, Dict[str, Any]]: ...
+@overload
+def stylize(
+    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[False] = ..., **options: Any
+) -> ImageArray: ...
+@overload
+def stylize(
+    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[True], **options: Any
+) -> Tuple[ImageArray, Dict[str, Any]]: ...
+@overload
+def curve(
+    exemplar: npt.ArrayLike, path: npt.ArrayLike, width: float, piece_length: float, *,
+    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
+) -> Tuple[ImageArray, List[Dict[str, Any]]]: ...
+@overload
+def curve(
+    exemplar: npt.ArrayLike, path: npt.ArrayLike, width: float, piece_length: float, *,
+    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[True], **options: Any
+) -> Tuple[Tuple[ImageArray, List[Dict[str, Any]]], Dict[str, Any]]: ...
+@overload
+def points(
+    exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
+    brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
+    existing: Optional[PointData] = ..., seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[False] = ..., **options: Any
+) -> Dict[str, np.ndarray]: ...
+@overload
+def points(
+    exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
+    brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
+    existing: Optional[PointData] = ..., seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[True], **options: Any
+) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
+@overload
+def strokes(
+    reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
+    along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: float = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
+) -> str: ...
+@overload
+def strokes(
+    reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
+    along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: float = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[True], **options: Any
+) -> Tuple[str, Dict[str, Any]]: ...
+def read_image(path: str) -> ImageArray: ...
+def write_png(path: str, image: npt.ArrayLike) -> None: ...
+def read_points(path: str) -> Dict[str, np.ndarray]: ...
+def options(engine: str) -> List[str]: ...

@@ -1,0 +1,320 @@
+//! `motif._motif`: the native half of the Python package. Each function takes numpy arrays and a
+//! job description as JSON (built by `motif/__init__.py` from keyword arguments named as the CLI's
+//! flags), converts the arrays into engine inputs, releases the GIL, runs the job through
+//! `motif-jobs` (the layer the CLI uses too, so the same seed gives the same bytes) and returns
+//! numpy arrays and the report as JSON text.
+//!
+//! Errors: a bad description or parameter is a `ValueError` naming the option; a file that cannot
+//! be read or written is an `OSError`; nothing reaches the interpreter as a crash.
+
+use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+use motif_jobs::JobError;
+use motif_jobs::columns::Column;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyList;
+
+type Image<'py> = Bound<'py, numpy::PyArray3<u8>>;
+type PyColumns<'py> = Vec<(String, bool, PyReadonlyArray1<'py, f64>)>;
+type OutColumns<'py> = Vec<(String, bool, Bound<'py, PyArray1<f64>>)>;
+
+fn value_error(error: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(error.to_string())
+}
+
+fn job_error(error: JobError) -> PyErr {
+    value_error(error)
+}
+
+fn io_error(error: motif_io::IoError) -> PyErr {
+    PyOSError::new_err(error.to_string())
+}
+
+fn description<T: serde::de::DeserializeOwned>(job: &str) -> PyResult<T> {
+    serde_json::from_str(job).map_err(|error| value_error(format!("bad options: {error}")))
+}
+
+/// An H×W (grey), H×W×1, H×W×3 or H×W×4 uint8 array as an RGBA image. `what` names it in errors.
+fn image_of(array: &PyReadonlyArrayDyn<'_, u8>, what: &str) -> PyResult<RgbaImage> {
+    let shape = array.shape();
+    let (height, width, channels) = match *shape {
+        [h, w] => (h, w, 1),
+        [h, w, c] if [1, 3, 4].contains(&c) => (h, w, c),
+        _ => {
+            return Err(value_error(format!(
+                "{what}: an image must be a uint8 array of shape H×W or H×W×C with C = 1, 3 or 4, not {shape:?}"
+            )));
+        }
+    };
+    if width == 0 || height == 0 {
+        return Err(value_error(format!("{what}: the image is empty ({height}×{width})")));
+    }
+    if (width as u64) * (height as u64) > motif_io::raster::MAX_PIXELS {
+        return Err(value_error(format!("{what}: {height}×{width} is larger than 16384×16384 pixels")));
+    }
+    // Contiguous arrays are read in place; others (slices, transposes) through numpy's view.
+    let view = array.as_array();
+    let pixel = |y: usize, x: usize| -> [u8; 4] {
+        let at = |c: usize| if shape.len() == 2 { view[[y, x]] } else { view[[y, x, c]] };
+        match channels {
+            1 => [at(0), at(0), at(0), 255],
+            3 => [at(0), at(1), at(2), 255],
+            _ => [at(0), at(1), at(2), at(3)],
+        }
+    };
+    let pixels = match array.as_slice() {
+        Ok(data) => data
+            .chunks_exact(channels)
+            .map(|p| match channels {
+                1 => [p[0], p[0], p[0], 255],
+                3 => [p[0], p[1], p[2], 255],
+                _ => [p[0], p[1], p[2], p[3]],
+            })
+            .collect(),
+        Err(_) => (0..height).flat_map(|y| (0..width).map(move |x| (y, x))).map(|(y, x)| pixel(y, x)).collect(),
+    };
+    RgbaImage::from_pixels(width, height, pixels).map_err(value_error)
+}
+
+/// An RGBA image as an H×W×4 uint8 array.
+fn array_of<'py>(py: Python<'py>, image: &RgbaImage) -> PyResult<Image<'py>> {
+    let data = image.as_bytes().to_vec();
+    PyArray1::from_vec(py, data).reshape([image.height(), image.width(), 4])
+}
+
+/// Runs `work` without the GIL, in a pool of `threads` workers when given.
+fn detached<T: Send>(py: Python<'_>, threads: Option<usize>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    match threads {
+        None => Ok(py.detach(work)),
+        Some(0) => Err(value_error("threads must be at least 1")),
+        Some(count) => {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(count).build().map_err(value_error)?;
+            Ok(py.detach(|| pool.install(work)))
+        }
+    }
+}
+
+fn report_json(figures: &serde_json::Map<String, serde_json::Value>) -> String {
+    serde_json::Value::Object(figures.clone()).to_string()
+}
+
+/// Reads a PNG or JPEG as an H×W×4 uint8 array.
+#[pyfunction]
+fn read_image<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Image<'py>> {
+    let image = py.detach(|| motif_io::read_image(&path)).map_err(io_error)?;
+    array_of(py, &image)
+}
+
+/// Writes an image array as an 8-bit RGBA PNG, atomically.
+#[pyfunction]
+fn write_png(py: Python<'_>, path: std::path::PathBuf, image: PyReadonlyArrayDyn<'_, u8>) -> PyResult<()> {
+    let image = image_of(&image, "image")?;
+    py.detach(|| motif_io::write_png(&path, &image)).map_err(io_error)
+}
+
+/// Reads a PLY or CSV point file as `[(name, integer, values)]`.
+#[pyfunction]
+fn read_points<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<OutColumns<'py>> {
+    let table = py.detach(|| motif_io::read_points(&path)).map_err(io_error)?;
+    Ok(table
+        .columns
+        .iter()
+        .enumerate()
+        .map(|(c, column)| {
+            let values: Vec<f64> = (0..table.rows).map(|row| table.row(row)[c]).collect();
+            (column.name.clone(), column.kind == motif_io::ColumnKind::Int, PyArray1::from_vec(py, values))
+        })
+        .collect())
+}
+
+/// `motif texture`: (image, report JSON).
+#[pyfunction]
+#[pyo3(signature = (exemplar, job, threads=None))]
+fn texture<'py>(
+    py: Python<'py>,
+    exemplar: PyReadonlyArrayDyn<'py, u8>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Image<'py>, String)> {
+    let job: motif_jobs::stylize::TextureJob = description(job)?;
+    let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?);
+    let run = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
+    Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
+}
+
+/// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs.
+#[pyfunction]
+#[pyo3(signature = (style, guides, job, threads=None))]
+fn stylize<'py>(
+    py: Python<'py>,
+    style: PyReadonlyArrayDyn<'py, u8>,
+    guides: Vec<(PyReadonlyArrayDyn<'py, u8>, PyReadonlyArrayDyn<'py, u8>)>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Image<'py>, String)> {
+    let job: motif_jobs::stylize::StylizeJob = description(job)?;
+    let style = motif_jobs::stylize::style_image_channels(&image_of(&style, "style")?);
+    let mut pairs = Vec::with_capacity(guides.len());
+    for (index, (source, target)) in guides.iter().enumerate() {
+        let source = image_of(source, &format!("source guide {}", index + 1))?;
+        let target = image_of(target, &format!("target guide {}", index + 1))?;
+        pairs.push(motif_jobs::stylize::guide_pair(&source, &target));
+    }
+    let run = detached(py, threads, || job.run(style, pairs, None, &mut NoProgress))?.map_err(job_error)?;
+    Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
+}
+
+/// `motif curve` along a polyline of (N, 2) points (closed when the last repeats the first):
+/// (image, pieces JSON, report JSON).
+#[pyfunction]
+#[pyo3(signature = (exemplar, points, job, more_exemplars=Vec::new(), avoid=None, threads=None))]
+fn curve<'py>(
+    py: Python<'py>,
+    exemplar: PyReadonlyArrayDyn<'py, u8>,
+    points: PyReadonlyArray2<'py, f64>,
+    job: &str,
+    more_exemplars: Vec<PyReadonlyArrayDyn<'py, u8>>,
+    avoid: Option<PyReadonlyArrayDyn<'py, u8>>,
+    threads: Option<usize>,
+) -> PyResult<(Image<'py>, String, String)> {
+    let job: motif_jobs::curve::CurveJob = description(job)?;
+    let exemplar = image_of(&exemplar, "exemplar")?;
+    let more: Vec<RgbaImage> = more_exemplars
+        .iter()
+        .enumerate()
+        .map(|(index, image)| image_of(image, &format!("exemplar {}", index + 2)))
+        .collect::<PyResult<_>>()?;
+    let avoidance = avoid.as_ref().map(|image| image_of(image, "avoid")).transpose()?;
+    let shape = points.shape();
+    if shape[1] != 2 || shape[0] < 2 {
+        return Err(value_error(format!("path: the curve must be an (N, 2) array of N ≥ 2 points, not {shape:?}")));
+    }
+    let view = points.as_array();
+    let mut list: Vec<Point> = (0..shape[0]).map(|i| Point::new(view[[i, 0]], view[[i, 1]])).collect();
+    let closed = list.len() > 2 && list.first() == list.last();
+    if closed {
+        list.pop();
+    }
+    let curve = Polyline::new(list, closed).map_err(|error| value_error(format!("path: {error}")))?;
+    let inputs = motif_jobs::curve::CurveInputs {
+        exemplar: &exemplar,
+        more_exemplars: &more,
+        curve: &curve,
+        avoidance: avoidance.as_ref(),
+    };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
+    let pieces = serde_json::to_string(&run.output.pieces).map_err(value_error)?;
+    Ok((array_of(py, &run.output.image)?, pieces, report_json(&run.figures)))
+}
+
+fn columns_of(columns: &PyColumns<'_>) -> Vec<Column> {
+    columns
+        .iter()
+        .map(|(name, integer, values)| Column {
+            name: name.clone(),
+            integer: *integer,
+            values: values.as_array().to_vec(),
+        })
+        .collect()
+}
+
+/// `motif points`: (columns `[(name, integer, values)]`, report JSON).
+#[pyfunction]
+#[pyo3(signature = (exemplar, job, existing=None, threads=None))]
+fn points<'py>(
+    py: Python<'py>,
+    exemplar: PyColumns<'py>,
+    job: &str,
+    existing: Option<PyColumns<'py>>,
+    threads: Option<usize>,
+) -> PyResult<(OutColumns<'py>, String)> {
+    let job: motif_jobs::points::PointsJob = description(job)?;
+    let (exemplar, integer) = motif_jobs::columns::point_set(&columns_of(&exemplar), "exemplar").map_err(job_error)?;
+    let existing = match &existing {
+        Some(columns) => {
+            Some(motif_jobs::columns::point_set(&columns_of(columns), "existing points").map_err(job_error)?.0)
+        }
+        None => None,
+    };
+    let run = detached(py, threads, || job.run(exemplar, existing, &integer, &mut NoProgress))?.map_err(job_error)?;
+    let columns = motif_jobs::columns::columns(&run.output.points, &integer)
+        .into_iter()
+        .map(|column| (column.name, column.integer, PyArray1::from_vec(py, column.values)))
+        .collect();
+    Ok((columns, report_json(&run.figures)))
+}
+
+/// `motif strokes`: (SVG text, report JSON). The reference is SVG text; the output document is
+/// `size` (width, height) user units.
+#[pyfunction]
+#[pyo3(signature = (reference_svg, job, size, tolerance=0.1, threads=None))]
+fn strokes(
+    py: Python<'_>,
+    reference_svg: &str,
+    job: &str,
+    size: (f64, f64),
+    tolerance: f64,
+    threads: Option<usize>,
+) -> PyResult<(String, String)> {
+    let job: motif_jobs::strokes::StrokesJob = description(job)?;
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(value_error(format!("invalid tolerance = {tolerance}: must be a finite number > 0")));
+    }
+    let document = motif_io::parse_svg(reference_svg, std::path::Path::new("reference_svg")).map_err(value_error)?;
+    let mut reference = Vec::new();
+    for path in &document.paths {
+        let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
+        let pieces = motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill)
+            .map_err(|error| value_error(format!("reference_svg: path `{}`: {error}", path.id)))?;
+        reference.extend(pieces.into_iter().filter(motif_strokes::Stroke::is_visible));
+    }
+    if reference.is_empty() {
+        return Err(value_error("reference_svg: no stroked or filled path with a length > 0"));
+    }
+    let run = detached(py, threads, || job.run(reference, &mut NoProgress))?.map_err(job_error)?;
+    let mut writer = motif_io::SvgWriter::new(size.0, size.1);
+    writer.begin_group("strokes");
+    for stroke in &run.output.strokes {
+        let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
+        writer.polyline(stroke.polyline.points(), stroke.polyline.is_closed(), line, stroke.fill);
+    }
+    writer.end_group();
+    Ok((writer.finish(), report_json(&run.figures)))
+}
+
+/// The option names (flag names) each engine's job accepts, for `help()` and error messages.
+#[pyfunction]
+fn options<'py>(py: Python<'py>, engine: &str) -> PyResult<Bound<'py, PyList>> {
+    let job = match engine {
+        "curve" => serde_json::to_value(motif_jobs::curve::CurveJob::new(1.0, 1.0)),
+        "points" => serde_json::to_value(motif_jobs::points::PointsJob::new(
+            1.0,
+            motif_jobs::points::DomainSpec::Box(vec![1.0, 1.0]),
+        )),
+        "strokes" => serde_json::to_value(motif_jobs::strokes::StrokesJob::new(
+            1.0,
+            motif_jobs::strokes::TargetSpec::Rect([1.0, 1.0]),
+        )),
+        "stylize" => serde_json::to_value(motif_jobs::stylize::StylizeJob::new()),
+        "texture" => serde_json::to_value(motif_jobs::stylize::TextureJob::new(1, 1)),
+        other => return Err(value_error(format!("no engine named {other}"))),
+    }
+    .map_err(value_error)?;
+    let names: Vec<String> = job.as_object().map(|o| o.keys().cloned().collect()).unwrap_or_default();
+    PyList::new(py, names)
+}
+
+#[pymodule]
+fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
+    module.add_function(wrap_pyfunction!(read_image, module)?)?;
+    module.add_function(wrap_pyfunction!(write_png, module)?)?;
+    module.add_function(wrap_pyfunction!(read_points, module)?)?;
+    module.add_function(wrap_pyfunction!(texture, module)?)?;
+    module.add_function(wrap_pyfunction!(stylize, module)?)?;
+    module.add_function(wrap_pyfunction!(curve, module)?)?;
+    module.add_function(wrap_pyfunction!(points, module)?)?;
+    module.add_function(wrap_pyfunction!(strokes, module)?)?;
+    module.add_function(wrap_pyfunction!(options, module)?)?;
+    Ok(())
+}

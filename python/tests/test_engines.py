@@ -1,0 +1,139 @@
+"""Every engine from Python on small real inputs: the same bytes as the CLI for the same seed,
+the GIL released while the engine works, and clear exceptions for bad arguments."""
+
+import json
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import motif
+from conftest import ROOT, grey_guide
+
+CURVE = ROOT / "data" / "real" / "curve"
+POINTS = ROOT / "data" / "real" / "points"
+
+
+def test_texture_equals_the_cli(cli, tmp_path, photo):
+    exemplar = np.ascontiguousarray(photo[40:104, 40:104, :3])
+    motif.write_png(str(tmp_path / "exemplar.png"), exemplar)
+    cli(["--seed", "5", "texture", "--exemplar", "exemplar.png", "--size", "96x80", "--out", "out.png"], tmp_path)
+    image, report = motif.texture(exemplar, (96, 80), seed=5, report=True)
+    assert image.shape == (80, 96, 4) and image.dtype == np.uint8
+    assert np.array_equal(image, motif.read_image(str(tmp_path / "out.png")))
+    assert report["output_size"] == [96, 80] and report["estimated_memory_bytes"] > 0
+
+
+def test_stylize_equals_the_cli_and_takes_weights(cli, tmp_path, photo):
+    style = np.ascontiguousarray(photo[:96, :96, :3])
+    source = grey_guide(style)
+    target = grey_guide(np.ascontiguousarray(photo[100:180, 60:160, :3]))
+    for name, array in (("A1.png", style), ("A.png", source), ("B.png", target)):
+        motif.write_png(str(tmp_path / name), array)
+    cli(["--seed", "3", "stylize", "--style", "A1.png", "--guide", "A.png", "B.png", "--out", "B1.png"], tmp_path)
+    image = motif.stylize(style, [(source, target)], seed=3)
+    assert image.shape == (80, 100, 4)
+    assert np.array_equal(image, motif.read_image(str(tmp_path / "B1.png")))
+    # A weighted pair and an option by its flag name run too.
+    weighted = motif.stylize(style, [(source, target, 2.0)], seed=3, patch_size=7)
+    assert weighted.shape == image.shape
+
+
+def test_curve_equals_the_cli(cli, tmp_path):
+    exemplar = motif.read_image(str(CURVE / "chain_small.png"))
+    t = np.linspace(0.0, 1.0, 40)
+    path = np.stack([30 + 340 * t, 120 + 60 * np.sin(2.5 * np.pi * t)], axis=1)
+    (tmp_path / "path.csv").write_text("x,y\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in path))
+    arguments = ["curve", "--exemplar", str(CURVE / "chain_small.png"), "--path", "path.csv", "--width", "82"]
+    cli(arguments + ["--piece-length", "24", "--out", "out.png", "--pieces", "pieces.json"], tmp_path)
+    image, pieces = motif.curve(exemplar, path, 82, 24)
+    assert np.array_equal(image, motif.read_image(str(tmp_path / "out.png")))
+    assert pieces == json.loads((tmp_path / "pieces.json").read_text())["pieces"]
+    assert len(pieces) > 10
+
+
+def test_points_equal_the_cli(cli, tmp_path):
+    arguments = ["points", "--exemplar", str(POINTS / "swedishpines.csv"), "--neighbourhood", "32"]
+    cli(["--seed", "4"] + arguments + ["--exemplar-window", "96,100", "--domain", "box:140,120", "--out", "out.csv"], tmp_path)
+    exemplar = motif.read_points(str(POINTS / "swedishpines.csv"))
+    result = motif.points(exemplar, 32, domain=(140, 120), exemplar_window=[96, 100], seed=4)
+    written = motif.read_points(str(tmp_path / "out.csv"))
+    assert sorted(result) == sorted(written)
+    for name in written:
+        assert np.array_equal(result[name], written[name]), name
+
+
+def test_points_keep_labels_as_integers(cli):
+    exemplar = motif.read_points(str(POINTS / "amacrine.csv"))
+    assert exemplar["label"].dtype == np.int64
+    result = motif.points(exemplar, 0.17, domain=(1.2, 0.8), exemplar_window=[1.6012084592, 1.0], seed=2)
+    assert result["label"].dtype == np.int64
+    assert set(np.unique(result["label"])) <= {0, 1}
+
+
+def test_strokes_equal_the_cli(cli, tmp_path):
+    reference = (ROOT / "data" / "real" / "curve" / "letter_s.svg").read_text()
+    (tmp_path / "reference.svg").write_text(reference)
+    cli(["strokes", "--reference", "reference.svg", "--scale", "30", "--rect", "400,300", "--out", "out.svg"], tmp_path)
+    svg, report = motif.strokes(reference, 30, rect=(400, 300), report=True)
+    assert svg == (tmp_path / "out.svg").read_text()
+    assert report["output_elements"] >= 1
+
+
+def test_a_call_releases_the_gil(photo):
+    exemplar = np.ascontiguousarray(photo[:64, :64, :3])
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.002)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    start = time.perf_counter()
+    motif.texture(exemplar, (384, 384), seed=1, threads=1)
+    end = time.perf_counter()
+    stop.set()
+    ticker.join()
+    during = [t for t in ticks if start < t < end]
+    # Holding the GIL for the whole call would leave the ticker silent until it returned.
+    assert end - start > 0.05
+    assert len(during) >= 5, f"{len(during)} ticks in {end - start:.2f} s"
+
+
+def test_bad_arguments_raise_clear_exceptions(photo):
+    exemplar = np.ascontiguousarray(photo[:32, :32, :3])
+    with pytest.raises(ValueError, match="uint8"):
+        motif.texture(exemplar.astype(np.float32), (32, 32))
+    with pytest.raises(ValueError, match="shape"):
+        motif.texture(np.zeros((4, 4, 2), dtype=np.uint8), (32, 32))
+    with pytest.raises(ValueError, match="size"):
+        motif.texture(exemplar, (-5, 32))
+    with pytest.raises(TypeError, match="patchsize"):
+        motif.texture(exemplar, (32, 32), patchsize=3)
+    with pytest.raises(ValueError, match="patch-size"):
+        motif.texture(exemplar, (32, 32), patch_size=4)
+    with pytest.raises(ValueError, match="uniformity = nan"):
+        motif.texture(exemplar, (32, 32), uniformity=float("nan"))
+    with pytest.raises(ValueError, match="max-memory"):
+        motif.texture(exemplar, (4096, 4096), max_memory="64M")
+    path = np.array([[0.0, 0.0], [100.0, float("nan")], [200.0, 0.0]])
+    with pytest.raises(ValueError, match="path"):
+        motif.curve(exemplar, path, 20, 10)
+    with pytest.raises(ValueError, match="neighbourhood"):
+        motif.points({"x": [0.0, 1.0, 2.0, 0.5], "y": [0.0, 1.0, 0.0, 2.0]}, -1.0, domain=(5, 5))
+    with pytest.raises(ValueError, match="x and y"):
+        motif.points({"u": [0.0, 1.0, 2.0]}, 1.0, domain=(5, 5))
+    with pytest.raises(ValueError, match="target"):
+        motif.strokes("<svg/>", 10)
+    with pytest.raises(OSError, match="missing.png"):
+        motif.read_image("missing.png")
+
+
+def test_options_list_the_cli_flags():
+    assert "patch_size" in motif.options("texture")
+    assert "exemplar_window" in motif.options("points")
+    assert "pieces_shape" in motif.options("curve")
