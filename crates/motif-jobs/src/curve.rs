@@ -189,6 +189,27 @@ impl CurveJob {
 
     /// Runs the job on decoded inputs.
     pub fn run(&self, inputs: CurveInputs<'_>, progress: &mut dyn Progress) -> Result<CurveRun, JobError> {
+        self.run_in(inputs, None, progress)
+    }
+
+    /// [`run`](Self::run) within an editing session: what the session's previous run computed
+    /// and still holds is reused (the playground calls this while a curve is dragged; the result
+    /// is byte-identical to a fresh run).
+    pub fn run_in_session(
+        &self,
+        inputs: CurveInputs<'_>,
+        session: &mut motif_curve::Incremental,
+        progress: &mut dyn Progress,
+    ) -> Result<CurveRun, JobError> {
+        self.run_in(inputs, Some(session), progress)
+    }
+
+    fn run_in(
+        &self,
+        inputs: CurveInputs<'_>,
+        session: Option<&mut motif_curve::Incremental>,
+        progress: &mut dyn Progress,
+    ) -> Result<CurveRun, JobError> {
         let params = self.params()?;
         let input = Input {
             exemplar: inputs.exemplar,
@@ -196,7 +217,10 @@ impl CurveJob {
             avoidance: inputs.avoidance,
             more_exemplars: inputs.more_exemplars,
         };
-        let output = motif_curve::synthesize(&input, &params, progress)?;
+        let output = match session {
+            Some(session) => session.synthesize(&input, &params, progress)?,
+            None => motif_curve::synthesize(&input, &params, progress)?,
+        };
         let fidelity = self.fidelity.then(|| {
             patch_fidelity(inputs.exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         });

@@ -127,7 +127,7 @@ impl Params {
     /// Checks every field's range; the first bad one is the error.
     pub fn validate(&self) -> Result<(), Error> {
         check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
-        check_count("max-pixels", self.max_pixels, 1, 1 << 40)?;
+        check_count("max-pixels", self.max_pixels, 1, usize::MAX)?;
         motif_core::memory::check_max_memory(self.max_memory)?;
         check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
         if self.patch_size < 3 || self.patch_size % 2 == 0 || self.patch_size > 31 {

@@ -1,0 +1,200 @@
+"""Tests the built playground (web/dist) in a real browser: headless Chromium through Selenium.
+
+Usage: python web/test_page.py [--screenshots DIR] [--json FIGURES.json]
+
+Serves web/dist on a free local port, loads the page, and with real input events drags a curve
+handle, brushes a stroke on the points canvas, moves the strokes scale slider and synthesizes,
+and paints on the stylize guide. Checks that each canvas changed and is not blank, that no panel
+shows an error, and that the browser console has no errors; saves a screenshot per step. Prints
+the speed figures the page measured (single thread, in the Web Worker). Exits non-zero on any
+failure. Needs Debian's `chromium` and `chromium-driver` and `pip install selenium`.
+"""
+
+import argparse
+import functools
+import http.server
+import json
+import os
+import pathlib
+import statistics
+import sys
+import tempfile
+import threading
+import time
+
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
+from selenium.webdriver.common.by import By
+
+DIST = pathlib.Path(__file__).resolve().parent / "dist"
+
+
+class QuietHandler(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *arguments):
+        pass
+
+
+def serve(folder):
+    handler = functools.partial(QuietHandler, directory=str(folder))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def browser():
+    options = webdriver.ChromeOptions()
+    options.binary_location = os.environ.get("CHROMIUM", "/usr/bin/chromium")
+    for flag in ("--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1400,1800"):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    service = Service(os.environ.get("CHROMEDRIVER", "/usr/bin/chromedriver"))
+    return webdriver.Chrome(service=service, options=options)
+
+
+def wait_for(driver, script, timeout, what):
+    deadline = time.time() + timeout
+    while time.time() < deadline:
+        value = driver.execute_script(script)
+        if value:
+            return value
+        time.sleep(0.05)
+    raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+
+
+CANVAS_STATE = """
+const canvas = document.getElementById(arguments[0]);
+const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+let inked = 0, hash = 0;
+for (let i = 0; i < data.length; i += 4) {
+  if (data[i] < 245 || data[i + 1] < 245 || data[i + 2] < 245) inked++;
+  hash = (hash * 31 + data[i] + 7 * data[i + 1] + 13 * data[i + 2]) | 0;
+}
+return [inked / (data.length / 4), hash];
+"""
+
+
+def canvas_state(driver, canvas):
+    return driver.execute_script(CANVAS_STATE, canvas)
+
+
+def timings(driver, panel):
+    return driver.execute_script(f"return window.motifTimings.{panel}.slice()")
+
+
+def drag(driver, element, start, moves, pause=0.03):
+    """Presses at `start` (canvas pixels from its top-left corner) and moves through `moves`."""
+    box = driver.execute_script("const b = arguments[0].getBoundingClientRect(); return [b.width, b.height];", element)
+    size = driver.execute_script("return [arguments[0].width, arguments[0].height];", element)
+    to_offset = lambda p: (p[0] * box[0] / size[0] - box[0] / 2, p[1] * box[1] / size[1] - box[1] / 2)
+    chain = ActionChains(driver, duration=10)
+    x, y = to_offset(start)
+    chain.move_to_element_with_offset(element, int(x), int(y)).click_and_hold()
+    for point in moves:
+        x, y = to_offset(point)
+        chain.move_to_element_with_offset(element, int(x), int(y)).pause(pause)
+    chain.release().perform()
+
+
+def check_panel_ok(driver, panel):
+    element = driver.find_element(By.ID, f"{panel}-info")
+    assert "error" not in element.get_attribute("class"), f"{panel} shows an error: {element.text}"
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--screenshots", default=None)
+    parser.add_argument("--json", default=None)
+    arguments = parser.parse_args()
+    if not (DIST / "index.html").is_file():
+        sys.exit("web/dist is not built: run web/build.sh first")
+    shots = pathlib.Path(arguments.screenshots or tempfile.mkdtemp(prefix="motif-web-"))
+    shots.mkdir(parents=True, exist_ok=True)
+    server = serve(DIST)
+    driver = browser()
+    figures = {}
+    try:
+        driver.get(f"http://127.0.0.1:{server.server_address[1]}/index.html")
+        wait_for(driver, "return document.getElementById('status').textContent === 'ready'", 180, "the page to be ready")
+        driver.save_screenshot(str(shots / "1-ready.png"))
+        for panel in ("curve", "points", "strokes", "stylize"):
+            check_panel_ok(driver, panel)
+
+        # Curve: about 50 pieces (piece length 14 on this curve), then drag the middle handle.
+        driver.execute_script("const s = document.getElementById('curve-piece'); s.value = 14; s.dispatchEvent(new Event('input'));")
+        wait_for(driver, "return window.motifTimings.curve.some(t => t.pieces >= 45)", 60, "a curve of about 50 pieces")
+        before = canvas_state(driver, "curve-canvas")
+        count = len(timings(driver, "curve"))
+        canvas = driver.find_element(By.ID, "curve-canvas")
+        drag(driver, canvas, (320, 250), [(320, 250 - 8 * k) for k in range(1, 16)])
+        wait_for(driver, f"return window.motifTimings.curve.length > {count}", 60, "the curve to re-synthesize")
+        time.sleep(1.0)
+        after = canvas_state(driver, "curve-canvas")
+        assert after[0] > 0.03 and after[1] != before[1], f"curve canvas {before} → {after}"
+        check_panel_ok(driver, "curve")
+        edits = [t for t in timings(driver, "curve")[count:] if t["pieces"] >= 45]
+        figures["curve_edit_ms"] = {
+            "edits": len(edits),
+            "pieces": edits[-1]["pieces"] if edits else None,
+            "engine_median": statistics.median(t["engine_ms"] for t in edits),
+            "redraw_median": statistics.median(t["total_ms"] for t in edits),
+            "redraw_max": max(t["total_ms"] for t in edits),
+        }
+        driver.save_screenshot(str(shots / "2-curve-dragged.png"))
+
+        # Points: brush strokes across the canvas.
+        canvas = driver.find_element(By.ID, "points-canvas")
+        before = canvas_state(driver, "points-canvas")
+        for row in (90, 180, 270):
+            count = len(timings(driver, "points"))
+            drag(driver, canvas, (60, row), [(60 + 25 * k, row + 10 * ((-1) ** k)) for k in range(1, 12)], pause=0.01)
+            wait_for(driver, f"return window.motifTimings.points.length > {count}", 60, "the brush stroke to grow points")
+        after = canvas_state(driver, "points-canvas")
+        assert after[0] > 0.01 and after[1] != before[1], f"points canvas {before} → {after}"
+        check_panel_ok(driver, "points")
+        brushes = timings(driver, "points")
+        figures["points_brush"] = [
+            {"added": t["added"], "engine_ms": round(t["engine_ms"], 1), "updates_per_second_per_100": round(1000 / max(t["engine_ms"], 1e-3) * t["added"] / 100, 1)}
+            for t in brushes
+        ]
+        driver.save_screenshot(str(shots / "3-points-brushed.png"))
+
+        # Strokes: move the scale slider (the analysis follows), then synthesize.
+        before = canvas_state(driver, "strokes-output")
+        count = len(timings(driver, "strokes"))
+        slider = driver.find_element(By.ID, "strokes-scale")
+        ActionChains(driver).click_and_hold(slider).move_by_offset(40, 0).pause(0.2).move_by_offset(-20, 0).release().perform()
+        wait_for(driver, f"return window.motifTimings.strokes.length > {count}", 30, "a new analysis")
+        driver.find_element(By.ID, "strokes-run").click()
+        wait_for(driver, "return window.motifTimings.strokes.some(t => t.kind === 'synthesis')", 60, "the strokes synthesis")
+        after = canvas_state(driver, "strokes-output")
+        assert after[0] > 0.005 and after[1] != before[1], f"strokes output {before} → {after}"
+        check_panel_ok(driver, "strokes")
+        analyses = [t for t in timings(driver, "strokes") if t["kind"] == "analysis"]
+        figures["strokes_analysis_ms"] = {"count": len(analyses), "median": statistics.median(t["engine_ms"] for t in analyses), "max": max(t["engine_ms"] for t in analyses)}
+
+        # Stylize: paint on the target guide; the band re-synthesis updates the output.
+        before = canvas_state(driver, "stylize-output")
+        count = len(timings(driver, "stylize"))
+        canvas = driver.find_element(By.ID, "stylize-guide")
+        drag(driver, canvas, (40, 96), [(40 + 10 * k, 96) for k in range(1, 12)], pause=0.01)
+        wait_for(driver, f"return window.motifTimings.stylize.length > {count}", 120, "the band re-stylization")
+        after = canvas_state(driver, "stylize-output")
+        assert after[0] > 0.2 and after[1] != before[1], f"stylize output {before} → {after}"
+        check_panel_ok(driver, "stylize")
+        figures["stylize_band_ms"] = [round(t["engine_ms"], 1) for t in timings(driver, "stylize")]
+        driver.save_screenshot(str(shots / "4-all-panels.png"))
+
+        errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
+        assert not errors, f"browser console errors: {errors}"
+    finally:
+        driver.quit()
+        server.shutdown()
+    print(json.dumps(figures, indent=2))
+    if arguments.json:
+        pathlib.Path(arguments.json).write_text(json.dumps(figures, indent=2))
+    print(f"web page test passed; screenshots in {shots}")
+
+
+if __name__ == "__main__":
+    main()
