@@ -30,6 +30,22 @@ from selenium.webdriver.common.by import By
 DIST = pathlib.Path(__file__).resolve().parent / "dist"
 
 
+def png(width, height, rgb):
+    """A fully opaque RGB PNG (no alpha channel)."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    rows = b"".join(b"\x00" + bytes(rgb) * width for _ in range(height))
+    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
+
+
+OPAQUE_PNG = png(64, 24, (200, 160, 40))
+
+
 class QuietHandler(http.server.SimpleHTTPRequestHandler):
     def log_message(self, *arguments):
         pass
@@ -184,6 +200,32 @@ def main():
         check_panel_ok(driver, "stylize")
         figures["stylize_band_ms"] = [round(t["engine_ms"], 1) for t in timings(driver, "stylize")]
         driver.save_screenshot(str(shots / "4-all-panels.png"))
+
+        # Bad input shows a message in the page and leaves the worker alive.
+        files = pathlib.Path(tempfile.mkdtemp(prefix="motif-web-input-"))
+        opaque = files / "opaque.png"
+        opaque.write_bytes(OPAQUE_PNG)
+        (files / "notes.svg").write_text("these are notes, not a drawing")
+        with open(files / "huge.png", "wb") as handle:
+            handle.truncate(25 * 1024 * 1024)
+        for panel, field, path, message in (
+            ("curve", "curve-file", opaque, "transparent"),
+            ("curve", "curve-file", files / "huge.png", "MB"),
+            ("strokes", "strokes-file", files / "notes.svg", "not an SVG"),
+        ):
+            driver.execute_script(f"document.getElementById('{panel}-info').textContent = ''")
+            driver.find_element(By.ID, field).send_keys(str(path))
+            text = wait_for(driver, f"const e = document.getElementById('{panel}-info'); return e.className.includes('error') && e.textContent", 30, f"the {panel} panel to refuse {path.name}")
+            assert message in text, f"{path.name}: {text}"
+        count = len(timings(driver, "curve"))
+        driver.execute_script("const s = document.getElementById('curve-exemplar'); s.value = 'exemplars/rope.png'; s.dispatchEvent(new Event('change'));")
+        wait_for(driver, f"return window.motifTimings.curve.length > {count}", 60, "the worker to synthesize again after bad input")
+        check_panel_ok(driver, "curve")
+        driver.save_screenshot(str(shots / "5-after-bad-input.png"))
+        # A real SVG drawing (a glyph outline) loads as the strokes reference.
+        driver.find_element(By.ID, "strokes-file").send_keys(str(DIST.parent.parent / "data" / "real" / "curve" / "letter_s.svg"))
+        wait_for(driver, "return /elements at/.test(document.getElementById('strokes-info').textContent)", 30, "the SVG reference's analysis")
+        check_panel_ok(driver, "strokes")
 
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert not errors, f"browser console errors: {errors}"

@@ -31,8 +31,8 @@ const handlers = {
     sessions.points.clear();
     return {};
   },
-  async strokesStart({ reference }) {
-    sessions.strokes = new StrokesPanel(reference);
+  async strokesStart({ reference, strokes }) {
+    sessions.strokes = strokes ? StrokesPanel.from_strokes(JSON.stringify(strokes)) : new StrokesPanel(reference);
     return { reference: JSON.parse(sessions.strokes.reference()) };
   },
   async strokesAnalyse({ scale }) {

@@ -259,6 +259,50 @@ impl StrokesPanel {
         Ok(StrokesPanel { reference })
     }
 
+    /// A panel on your own reference: strokes as JSON (`[{points: [[x, y], ...], closed, width,
+    /// colour: [r, g, b, a], fill: [r, g, b, a] | null}]`), as the page samples them from an SVG.
+    pub fn from_strokes(strokes: &str) -> Result<StrokesPanel, JsError> {
+        let value: serde_json::Value =
+            serde_json::from_str(strokes).map_err(|e| error(format!("reference strokes: {e}")))?;
+        let list = value.as_array().ok_or_else(|| error("reference strokes: expected a list"))?;
+        let colour = |value: &serde_json::Value| -> Option<[u8; 4]> {
+            let parts = value.as_array()?;
+            let mut out = [0u8; 4];
+            for (slot, part) in out.iter_mut().zip(parts) {
+                *slot = part.as_f64()?.clamp(0.0, 255.0) as u8;
+            }
+            (parts.len() == 4).then_some(out)
+        };
+        let mut reference = Vec::new();
+        for (index, item) in list.iter().enumerate() {
+            let points: Vec<Point> = item["points"]
+                .as_array()
+                .map(|points| {
+                    points.iter().filter_map(|p| Some(Point::new(p.get(0)?.as_f64()?, p.get(1)?.as_f64()?))).collect()
+                })
+                .unwrap_or_default();
+            let closed = item["closed"].as_bool().unwrap_or(false);
+            let Ok(polyline) = Polyline::new(points, closed) else { continue };
+            let width = item["width"].as_f64().unwrap_or(1.0);
+            if !(width.is_finite() && width >= 0.0) {
+                return Err(error(format!("reference stroke {}: width {width}", index + 1)));
+            }
+            let stroke = motif_strokes::Stroke {
+                polyline,
+                width,
+                colour: colour(&item["colour"]).unwrap_or([0, 0, 0, 255]),
+                fill: colour(&item["fill"]),
+            };
+            if stroke.is_visible() {
+                reference.push(stroke);
+            }
+        }
+        if reference.is_empty() {
+            return Err(error("the drawing has no stroked or filled path with a length > 0"));
+        }
+        Ok(StrokesPanel { reference })
+    }
+
     /// The reference strokes as JSON (`[{points, closed, width, colour, fill}]`).
     pub fn reference(&self) -> String {
         strokes_json(&self.reference).to_string()
