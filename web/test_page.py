@@ -161,9 +161,15 @@ def main():
         # Points: brush strokes across the canvas.
         canvas = driver.find_element(By.ID, "points-canvas")
         before = canvas_state(driver, "points-canvas")
-        for row in (90, 180, 270):
+        # Two long strokes (about 100 new points each), then one crossing both.
+        strokes = [
+            ((60, 90), [(60 + 25 * k, 90 + 10 * ((-1) ** k)) for k in range(1, 17)]),
+            ((60, 220), [(60 + 25 * k, 220 + 10 * ((-1) ** k)) for k in range(1, 17)]),
+            ((120, 40), [(120 + 20 * k, 40 + 15 * k) for k in range(1, 17)]),
+        ]
+        for start, moves in strokes:
             count = len(timings(driver, "points"))
-            drag(driver, canvas, (60, row), [(60 + 25 * k, row + 10 * ((-1) ** k)) for k in range(1, 12)], pause=0.01)
+            drag(driver, canvas, start, moves, pause=0.01)
             wait_for(driver, f"return window.motifTimings.points.length > {count}", 60, "the brush stroke to grow points")
         after = canvas_state(driver, "points-canvas")
         assert after[0] > 0.01 and after[1] != before[1], f"points canvas {before} → {after}"
