@@ -172,6 +172,10 @@ fn memory_estimate(canvas_pixels: f64, pieces: f64, mean_valid: f64, samples: us
     estimate
 }
 
+/// A piece's valid positions, whether it was left empty by a forbidden area, and its signature
+/// (the key of the incremental cache).
+type PieceValid = (Vec<Position>, bool, u64);
+
 /// Number of rows of the exemplar holding non-transparent pixels (for error messages).
 fn pattern_height(image: &RgbaImage) -> usize {
     image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
@@ -319,13 +323,6 @@ pub(crate) fn synthesize_with(
 
     timer.start("valid positions");
     progress.report("valid positions", 0.0);
-    // The DP's memory follows the valid positions per piece: count them on a few pieces first.
-    let probes: Vec<usize> = (0..frames.len().min(8)).map(|k| k * frames.len() / frames.len().min(8)).collect();
-    let probed: usize =
-        probes.par_iter().map(|&i| frames[i].valid_positions(exemplar, &[], params.min_coverage).len()).sum();
-    let mean_valid = probed as f64 / probes.len().max(1) as f64;
-    report.estimated_memory_bytes = memory_estimate(canvas_pixels, frames.len() as f64, mean_valid, samples)
-        .check(params.max_memory, MEMORY_ADVICE)?;
     // Bent pieces are drawn (and tested against forbidden pixels) through the ribbon's triangles.
     let (triangles, stretch, spacing) = if bent {
         let (triangles, stretch) = repeat::triangulate(&ribbon);
@@ -351,25 +348,36 @@ pub(crate) fn synthesize_with(
         })
         .collect();
     let previous_valid = cache.as_deref_mut().map(|cache| std::mem::take(&mut cache.valid)).unwrap_or_default();
-    let valid: Vec<(Vec<Position>, bool, u64)> = frames
-        .par_iter()
-        .zip(&piece_forbidden)
-        .map(|(frame, samples)| {
-            let runs = avoidance::forbidden_runs(samples);
-            let signature = incremental::piece_signature(frame, &runs);
-            let positions = match previous_valid.get(&signature) {
-                Some(positions) => positions.clone(),
-                None => frame.valid_positions(exemplar, &runs, params.min_coverage),
-            };
-            // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
-            // position stays empty; the DP pays for the gap at its seams.
-            if positions.is_empty() && !runs.is_empty() {
-                (vec![frame.empty_position()], true, signature)
-            } else {
-                (positions, false, signature)
-            }
-        })
-        .collect();
+    let valid_of = |i: usize| -> PieceValid {
+        let frame = &frames[i];
+        let runs = avoidance::forbidden_runs(&piece_forbidden[i]);
+        let signature = incremental::piece_signature(frame, &runs);
+        let positions = match previous_valid.get(&signature) {
+            Some(positions) => positions.clone(),
+            None => frame.valid_positions(exemplar, &runs, params.min_coverage),
+        };
+        // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
+        // position stays empty; the DP pays for the gap at its seams.
+        if positions.is_empty() && !runs.is_empty() {
+            (vec![frame.empty_position()], true, signature)
+        } else {
+            (positions, false, signature)
+        }
+    };
+    // The DP's memory follows the valid positions per piece: a few pieces go first, and their
+    // counts decide whether the rest may be computed (their lists are kept, not redone).
+    let probe_count = frames.len().min(8);
+    let mut slots: Vec<Option<PieceValid>> = vec![None; frames.len()];
+    let probed: Vec<(usize, PieceValid)> =
+        (0..probe_count).into_par_iter().map(|k| k * frames.len() / probe_count).map(|i| (i, valid_of(i))).collect();
+    let mean_valid = probed.iter().map(|(_, (p, _, _))| p.len()).sum::<usize>() as f64 / probe_count.max(1) as f64;
+    report.estimated_memory_bytes = memory_estimate(canvas_pixels, frames.len() as f64, mean_valid, samples)
+        .check(params.max_memory, MEMORY_ADVICE)?;
+    for (i, lists) in probed {
+        slots[i] = Some(lists);
+    }
+    let valid: Vec<PieceValid> =
+        slots.into_par_iter().enumerate().map(|(i, slot)| slot.unwrap_or_else(|| valid_of(i))).collect();
     if let Some(cache) = cache.as_deref_mut() {
         cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
     }
