@@ -11,61 +11,11 @@ use rayon::prelude::*;
 
 use crate::domain::Quadrature;
 use crate::exemplar_pairs::ExemplarPairs;
-use crate::grid::{CellLists, StaticGrid};
+use crate::grid::{CellLists, Neighbours, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, State, feature_dot};
 use crate::params::Window;
 use crate::quadratic::{AttributeQuadratic, RowQuadratic};
-
-/// Compressed neighbour lists (each point's neighbours within a radius, itself excluded).
-#[derive(Debug, Clone, Default)]
-pub struct Neighbours {
-    starts: Vec<u32>,
-    items: Vec<u32>,
-    /// The points in the grid's cell order.
-    order: Vec<u32>,
-}
-
-impl Neighbours {
-    /// Neighbours within `radius` of every point, through a uniform grid.
-    pub fn build<const D: usize>(positions: &[Vector<D>], radius: f64) -> Self {
-        let grid = StaticGrid::new(positions, radius);
-        let lists: Vec<Vec<u32>> = positions
-            .par_iter()
-            .enumerate()
-            .map(|(i, p)| {
-                let mut list = Vec::new();
-                grid.for_each_within(p, radius, |j, _, _| {
-                    if j != i {
-                        list.push(j as u32);
-                    }
-                });
-                // Grid order depends only on the positions, but sort anyway so sums are reproducible.
-                list.sort_unstable();
-                list
-            })
-            .collect();
-        let mut starts = Vec::with_capacity(positions.len() + 1);
-        let mut items = Vec::with_capacity(lists.iter().map(Vec::len).sum());
-        starts.push(0);
-        for list in lists {
-            items.extend_from_slice(&list);
-            starts.push(items.len() as u32);
-        }
-        Self { starts, items, order: grid.cell_order().to_vec() }
-    }
-
-    /// The points in the grid's cell order (neighbours close together in the sequence).
-    pub fn order(&self) -> &[u32] {
-        &self.order
-    }
-
-    /// The neighbours of point `i`.
-    #[inline(always)]
-    pub fn of(&self, i: usize) -> &[u32] {
-        &self.items[self.starts[i] as usize..self.starts[i + 1] as usize]
-    }
-}
 
 /// The fixed parts of the problem at one window size δ.
 pub struct Problem<'a, const D: usize> {

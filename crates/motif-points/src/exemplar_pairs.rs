@@ -29,7 +29,7 @@ pub struct ExemplarPairs<const D: usize> {
 
 impl<const D: usize> ExemplarPairs<D> {
     /// The pairs of `exemplar` closer than `cutoff` (in exemplar units), for window reaches up to `reach`.
-    pub fn new(exemplar: &Exemplar<D>, neighbours: &crate::energy::Neighbours, cutoff: f64, reach: f64) -> Self {
+    pub fn new(exemplar: &Exemplar<D>, neighbours: &crate::grid::Neighbours, cutoff: f64, reach: f64) -> Self {
         let mut mids = Vec::new();
         let mut distance2 = Vec::new();
         let mut weight = Vec::new();

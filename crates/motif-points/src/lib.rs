@@ -34,7 +34,7 @@
 //!   for benchmarks.
 //! - `quilting` (§5.2 with image quilting): each initial patch's source chosen by how well its
 //!   surroundings agree with the points already placed.
-//! - `grid`, `raster`, `linear`: uniform-grid and per-cell-list neighbour queries, multilinear
+//! - `grid`, `raster`, `linear`: uniform-grid and per-cell-list neighbour queries and compressed neighbour lists, multilinear
 //!   rasters, small vectors.
 //!
 //! The entry point is [`synthesize`]; [`Params::validate`] checks the parameters alone. The crate

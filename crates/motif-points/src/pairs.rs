@@ -12,7 +12,8 @@
 
 use rayon::prelude::*;
 
-use crate::energy::{Neighbours, Problem};
+use crate::energy::Problem;
+use crate::grid::Neighbours;
 use crate::linear::{self, Vector};
 use crate::model::{State, feature_dot};
 

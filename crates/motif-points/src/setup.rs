@@ -8,10 +8,11 @@ use motif_core::error::check_range;
 use motif_core::error::number;
 
 use crate::domain::{Quadrature, Region};
-use crate::energy::{Neighbours, Problem};
+use crate::energy::Problem;
 use crate::error::{AttributeRole, DomainProblem, Error};
 use crate::exemplar_pairs::ExemplarPairs;
 use crate::fidelity::{self, Fidelity};
+use crate::grid::Neighbours;
 use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
