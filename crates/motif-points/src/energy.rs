@@ -230,13 +230,43 @@ impl<const D: usize> Problem<'_, D> {
         exemplar_self: f64,
         features: bool,
     ) -> Evaluation<D> {
+        self.evaluate_rows(state, matches, exemplar_self, features, None)
+    }
+
+    /// The part of T that changes when only the `active` points move (matches fixed), with the
+    /// gradients of the active points (the others' are zero): the active points' rows, each pair
+    /// with an inactive point in both orders. T is this plus a constant, the rows of the inactive
+    /// points among themselves; merging, where interiors of copied patches are frozen, evaluates
+    /// this instead of every row (Gaussian window only: see [`Problem::restricts`]).
+    pub fn evaluate_active(&self, state: &State<D>, matches: &[Vector<D>], active: &[bool]) -> Evaluation<D> {
+        debug_assert!(self.restricts());
+        self.evaluate_rows(state, matches, 0.0, false, Some(active))
+    }
+
+    /// Whether [`Problem::evaluate_active`] applies: with the box window a row's pair test depends
+    /// on both points, so rows keep their pairs and cannot be split.
+    pub fn restricts(&self) -> bool {
+        self.kernel.window == Window::Gaussian
+    }
+
+    fn evaluate_rows(
+        &self,
+        state: &State<D>,
+        matches: &[Vector<D>],
+        exemplar_self: f64,
+        features: bool,
+        active: Option<&[bool]>,
+    ) -> Evaluation<D> {
         let n = state.positions.len();
         let neighbours = Neighbours::build(&state.positions, self.kernel.cutoff);
         // With the Gaussian window the output pairs are summed pair by pair (see `crate::pairs`);
         // the box window's pair test depends on both points, so its rows keep them.
-        let pairs = (self.kernel.window == Window::Gaussian).then(|| self.pair_terms(state, &neighbours));
+        let pairs = (self.kernel.window == Window::Gaussian).then(|| self.pair_terms(state, &neighbours, active));
         let row =
             |scratch: &mut RowScratch<D>, i: usize, gradient: &mut Vector<D>, mut q: Option<&mut RowQuadratic>| {
+                if active.is_some_and(|a| !a[i]) {
+                    return 0.0;
+                }
                 let (ra, rb) = self.point_row(
                     state,
                     matches,
@@ -249,7 +279,7 @@ impl<const D: usize> Problem<'_, D> {
                 );
                 let pa = pairs
                     .as_ref()
-                    .map_or(0.0, |p| p.row(i, state, &neighbours, gradient, q.map(|q| &mut q.coefficients)));
+                    .map_or(0.0, |p| p.row(i, state, &neighbours, gradient, q.map(|q| &mut q.coefficients), active));
                 ra + rb + pa
             };
         // Rows are computed in the grid's cell order, so that consecutive rows read the same

@@ -245,6 +245,11 @@ impl<const D: usize> State<D> {
         }
     }
 
+    /// Per point: whether merging may move it (its unit is alive and not frozen).
+    pub fn movable(&self) -> Vec<bool> {
+        self.unit_of.iter().map(|&u| self.units[u as usize].alive && !self.units[u as usize].frozen).collect()
+    }
+
     /// Marks a unit and its points dead (compacted later).
     pub fn kill(&mut self, unit: usize) {
         self.units[unit].alive = false;

@@ -125,9 +125,12 @@ impl<const D: usize> Problem<'_, D> {
         (total, own)
     }
 
-    /// The terms of every pair of output points within the cut-off, in parallel.
-    pub fn pair_terms(&self, state: &State<D>, neighbours: &Neighbours) -> PairTerms<D> {
+    /// The terms of every pair of output points within the cut-off, in parallel. With `active`,
+    /// only the pairs with at least one active point (the others do not change while only the
+    /// active points move; their entries stay zero).
+    pub fn pair_terms(&self, state: &State<D>, neighbours: &Neighbours, active: Option<&[bool]>) -> PairTerms<D> {
         let kernel = &self.kernel;
+        let is_active = |i: usize| active.is_none_or(|a| a[i]);
         // In the grid's cell order for cache locality (see `Problem::evaluate`), then placed back.
         let computed: Vec<(PairTerm<D>, Vec<PairTerm<D>>)> = neighbours
             .order()
@@ -135,12 +138,16 @@ impl<const D: usize> Problem<'_, D> {
             .map_init(Vec::new, |tables, &i| {
                 let i = i as usize;
                 let x = state.positions[i];
-                let own = self.pair_term(&x, 1.0 - kernel.pair_floor, &[0.0; D], tables);
+                let own = if is_active(i) {
+                    self.pair_term(&x, 1.0 - kernel.pair_floor, &[0.0; D], tables)
+                } else {
+                    PairTerm::default()
+                };
                 let entries = neighbours
                     .of(i)
                     .iter()
                     .map(|&j| {
-                        if (j as usize) < i {
+                        if (j as usize) < i || !(is_active(i) || is_active(j as usize)) {
                             return PairTerm::default();
                         }
                         let xj = state.positions[j as usize];
@@ -168,6 +175,10 @@ impl<const D: usize> PairTerms<D> {
     /// Point `i`'s share `Σ_j a_i·a_j Σ_k K(u_i, u_j)` (itself included), adding its derivative by
     /// `x_i` (both orders of each pair) to `gradient` and, when given, appending `(j, Σ_k K)` for the
     /// point itself and then each neighbour to `coefficients`.
+    ///
+    /// With `active` (an evaluation of the active rows alone, `i` active), a pair with an inactive
+    /// point counts twice in the share: the inactive point's row, which held the other order, is
+    /// not computed.
     pub fn row(
         &self,
         i: usize,
@@ -175,6 +186,7 @@ impl<const D: usize> PairTerms<D> {
         neighbours: &Neighbours,
         gradient: &mut Vector<D>,
         mut coefficients: Option<&mut Vec<(u32, f64)>>,
+        active: Option<&[bool]>,
     ) -> f64 {
         let a = state.feature(i);
         let own = &self.own[i];
@@ -198,7 +210,8 @@ impl<const D: usize> PairTerms<D> {
                 (term.value, term.second)
             };
             let weight = feature_dot(a, state.feature(j));
-            total += weight * value;
+            let orders = if active.is_some_and(|a| !a[j]) { 2.0 } else { 1.0 };
+            total += orders * weight * value;
             linear::axpy(gradient, 2.0 * weight, &derivative);
             if let Some(c) = coefficients.as_deref_mut() {
                 c.push((j as u32, value));

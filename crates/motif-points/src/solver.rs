@@ -248,10 +248,31 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                     |s: &State<D>, f: bool| evaluate_with(&problem, params.evaluator, s, &matches, exemplar_self, f);
                 let allowed = |p: &Vector<D>| setup.allowed(p);
                 let attributes = state.channels > 1 && merge_settings.attribute_iterations > 0;
-                let (steps, last) =
-                    merging::merge_positions(&mut state, merge_settings, attributes, &evaluate, &allowed);
+                let movable = state.movable();
+                let restricted =
+                    params.evaluator == Evaluator::Fast && problem.restricts() && movable.iter().any(|m| !m);
+                let (steps, last) = if restricted {
+                    // Frozen points (copied interiors, existing points) keep their rows' values while
+                    // the others move: the steps evaluate the movable rows alone, plus the constant
+                    // that one full evaluation gives, and the attribute form, when needed, comes
+                    // from one full pass afterwards.
+                    let full = problem.evaluate(&state, &matches, exemplar_self, false).energy;
+                    let constant = full - problem.evaluate_active(&state, &matches, &movable).energy;
+                    let evaluate_movable = |s: &State<D>, _: bool| {
+                        let mut evaluation = problem.evaluate_active(s, &matches, &movable);
+                        evaluation.energy += constant;
+                        evaluation
+                    };
+                    let (steps, last) =
+                        merging::merge_positions(&mut state, merge_settings, false, &evaluate_movable, &allowed);
+                    (steps, (!attributes).then_some(last))
+                } else {
+                    let (steps, last) =
+                        merging::merge_positions(&mut state, merge_settings, attributes, &evaluate, &allowed);
+                    (steps, Some(last))
+                };
                 let discrete = &setup.attributes.discrete;
-                let after = merging::merge_attributes(&mut state, merge_settings, discrete, Some(last), &evaluate)
+                let after = merging::merge_attributes(&mut state, merge_settings, discrete, last, &evaluate)
                     .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
                 energies.push(IterationEnergy {
                     scale,

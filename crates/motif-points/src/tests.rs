@@ -368,3 +368,46 @@ fn energy_decreases_across_merging_steps() {
     let final_energy = evaluate(&state, false).energy;
     assert!((final_energy - energies[energies.len() - 1]).abs() < 1e-9 * final_energy.abs().max(1.0));
 }
+
+#[test]
+fn movable_rows_give_the_full_energy_change_and_gradient() {
+    // Merging with frozen points evaluates the movable rows alone plus a constant: after moving
+    // the movable points, that sum must equal a full evaluation, and their gradients must too.
+    let (fixture, params) = fixture_2d(Window::Gaussian, true);
+    let problem = fixture.setup.problem(fixture.setup.delta, &params);
+    let mut state = fixture.setup.state.clone();
+    for (u, unit) in state.units.iter_mut().enumerate() {
+        unit.frozen = u % 3 != 0;
+    }
+    let movable = state.movable();
+    assert!(movable.iter().any(|m| *m) && movable.iter().any(|m| !m));
+    let (matches, exemplar_self) = (&fixture.matches, fixture.exemplar_self);
+    let full = problem.evaluate(&state, matches, exemplar_self, false).energy;
+    let constant = full - problem.evaluate_active(&state, matches, &movable).energy;
+    let mut stream = SeedStreams::new(11).stream("move", 0);
+    for (p, position) in state.positions.iter_mut().enumerate() {
+        if movable[p] {
+            for c in position.iter_mut() {
+                *c += 0.2 * fixture.setup.sigma * (stream.random::<f64>() - 0.5);
+            }
+        }
+    }
+    let moved_full = problem.evaluate(&state, matches, exemplar_self, false);
+    let moved_active = problem.evaluate_active(&state, matches, &movable);
+    assert!((moved_full.energy - full).abs() > 1e-6 * full.abs(), "the move should change T");
+    let restricted = moved_active.energy + constant;
+    assert!(
+        (restricted - moved_full.energy).abs() < 1e-9 * moved_full.energy.abs().max(1.0),
+        "{restricted} vs {}",
+        moved_full.energy
+    );
+    for (p, (a, f)) in moved_active.positions.iter().zip(&moved_full.positions).enumerate() {
+        for c in 0..2 {
+            if movable[p] {
+                assert!((a[c] - f[c]).abs() < 1e-9 * (1.0 + f[c].abs()), "point {p}: {a:?} vs {f:?}");
+            } else {
+                assert_eq!(a[c], 0.0);
+            }
+        }
+    }
+}
