@@ -225,7 +225,7 @@ impl PointsJob {
             .with_sigma(self.sigma)
             .with_rotation(self.rotation.filter(|&r| r != 0.0).map_or(Field::None, Field::Uniform))
             .with_scale(self.scale.filter(|&s| s != 1.0).map_or(Field::None, Field::Uniform))
-            .with_quadrature_spacing(self.quadrature_spacing.unwrap_or(defaults.quadrature_spacing))
+            .with_quadrature_spacing(self.quadrature_spacing.or(defaults.quadrature_spacing))
             .with_sampling_rounds(self.sampling_rounds.unwrap_or(defaults.sampling_rounds))
             .with_merge_iterations(self.merge_iterations.unwrap_or(defaults.merge_iterations))
             .with_shrink(self.shrink)

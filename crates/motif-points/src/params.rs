@@ -152,11 +152,17 @@ pub struct Params {
     /// `exp(-π²) ≈ 1e-4`, so regular arrangements are indistinguishable from random ones of the same
     /// density; at half the spacing it keeps `exp(-π²/4) ≈ 0.08` and structure is reproduced.
     pub spacing_fraction: f64,
-    /// Spacing of the quadrature grid, in units of σ (0.25–4, default 2). §4.3 derives the spacing
-    /// from the band limit of the σ-Gaussians and §7.1 sets σ to the exemplar spacing; with σ at half
-    /// the spacing (see `spacing_fraction`) the default keeps the quadrature grid at the exemplar
-    /// spacing, as in the paper.
-    pub quadrature_spacing: f64,
+    /// Spacing of the quadrature grid, in units of σ (0.25–4). §4.3 derives the spacing from the
+    /// band limit of the σ-Gaussians and §7.1 sets σ to the exemplar spacing; with σ at half the
+    /// spacing (see `spacing_fraction`) 2 keeps the quadrature grid at the exemplar spacing, as in
+    /// the paper. Default `None`: 2, or an eighth of the neighbourhood δ when that is coarser.
+    ///
+    /// Why the second: the sum over quadrature points integrates `S(q)`, a window average over δ,
+    /// which varies on the window's scale wherever matches are coherent; a window of many σ (the
+    /// traced chain contours: δ = 35σ) needs no node every 2σ. There, 4.4σ instead of 2σ gave the
+    /// same fidelity figures (nearest-neighbour 0.0050 against 0.0048, g(r) 0.638 against 0.634) in
+    /// a quarter of the time; at the usual δ of 4 spacings (8σ) the two rules agree.
+    pub quadrature_spacing: Option<f64>,
     /// Pairs of points farther apart than this many σ are ignored (the σ-Gaussian is below
     /// `exp(-c²/2)` there; 2–6, default 3).
     pub kernel_cutoff: f64,
@@ -260,7 +266,7 @@ impl Default for Params {
             window: Window::Gaussian,
             sigma: None,
             spacing_fraction: 0.5,
-            quadrature_spacing: 2.0,
+            quadrature_spacing: None,
             kernel_cutoff: 3.0,
             shrink: None,
             final_fraction: 0.5,
@@ -341,7 +347,9 @@ impl Params {
             check_positive("sigma", sigma)?;
         }
         check_range("spacing-fraction", self.spacing_fraction, 0.1, 2.0)?;
-        check_range("quadrature-spacing", self.quadrature_spacing, 0.25, 4.0)?;
+        if let Some(spacing) = self.quadrature_spacing {
+            check_range("quadrature-spacing", spacing, 0.25, 4.0)?;
+        }
         check_range("kernel-cutoff", self.kernel_cutoff, 2.0, 6.0)?;
         if let Some(shrink) = self.shrink {
             check_range("shrink", shrink, 0.5, 0.99)?;
@@ -377,7 +385,7 @@ motif_core::builders! { Params {
     with_window => window: Window,
     with_sigma => sigma: Option<f64>,
     with_spacing_fraction => spacing_fraction: f64,
-    with_quadrature_spacing => quadrature_spacing: f64,
+    with_quadrature_spacing => quadrature_spacing: Option<f64>,
     with_kernel_cutoff => kernel_cutoff: f64,
     with_shrink => shrink: Option<f64>,
     with_final_fraction => final_fraction: f64,

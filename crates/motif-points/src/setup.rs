@@ -255,7 +255,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
             high[a] += margin;
         }
     }
-    let h = params.quadrature_spacing * sigma;
+    let h = params.quadrature_spacing.map_or((2.0 * sigma).max(delta / 8.0), |spacing| spacing * sigma);
     let keep = |q: &Vector<D>| {
         region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
     };

@@ -18,7 +18,7 @@ fn bench_case(
 ) -> anyhow::Result<Value> {
     let mut params = Params::default();
     params.neighbourhood = Some(neighbourhood);
-    params.quadrature_spacing = quadrature;
+    params.quadrature_spacing = Some(quadrature);
     params.seed = seed;
     let input = Input::new(exemplar.clone(), domain);
     let start = std::time::Instant::now();

@@ -112,9 +112,10 @@ pub struct PointsArgs {
     /// Uniform scale field (> 0), multiplied with --scale-along.
     #[arg(long, value_name = "S", default_value_t = 1.0)]
     pub scale: f64,
-    /// Quadrature grid spacing in units of σ (0.25–4; 2 = the exemplar's point spacing).
-    #[arg(long, value_name = "H", default_value_t = 2.0)]
-    pub quadrature_spacing: f64,
+    /// Quadrature grid spacing in units of σ (0.25–4; 2 = the exemplar's point spacing). Default:
+    /// 2, or an eighth of the neighbourhood when that is coarser (wide windows)
+    #[arg(long, value_name = "H")]
+    pub quadrature_spacing: Option<f64>,
     /// Sampling-control rounds per window size (1–20).
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub sampling_rounds: usize,
@@ -284,7 +285,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         sigma: args.sigma,
         rotation: Some(args.rotation),
         scale: Some(args.scale),
-        quadrature_spacing: Some(args.quadrature_spacing),
+        quadrature_spacing: args.quadrature_spacing,
         sampling_rounds: Some(args.sampling_rounds),
         merge_iterations: Some(args.merge_iterations),
         shrink: args.shrink,
