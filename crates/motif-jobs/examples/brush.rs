@@ -1,0 +1,63 @@
+//! The playground's points brushing, natively: the three strokes of `web/test_page.py` (two long
+//! ones, then one crossing both) on the built-in hex exemplar with the page's settings, with the
+//! engine's stage times per stroke. Run single-threaded to compare with the browser:
+//! `RAYON_NUM_THREADS=1 cargo run --release -p motif-jobs --example brush`.
+
+use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
+
+fn main() {
+    let exemplar = motif_points::samples::hex_exemplar(9, 8, 0.08, 1);
+    let discrete = vec!["shade".to_string()];
+    // The page's scale: 14 canvas pixels per exemplar spacing (from the bounding box).
+    let (mut low, mut high) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for i in 0..exemplar.len() {
+        for a in 0..2 {
+            low[a] = low[a].min(exemplar.position(i)[a]);
+            high[a] = high[a].max(exemplar.position(i)[a]);
+        }
+    }
+    let spacing = ((high[0] - low[0]) * (high[1] - low[1]) / exemplar.len() as f64).sqrt();
+    let scale = 14.0 / spacing;
+    let strokes: Vec<Vec<(f64, f64)>> = vec![
+        std::iter::once((60.0, 90.0))
+            .chain((1..17).map(|k| (60.0 + 25.0 * k as f64, 90.0 + 10.0 * (-1f64).powi(k))))
+            .collect(),
+        std::iter::once((60.0, 220.0))
+            .chain((1..17).map(|k| (60.0 + 25.0 * k as f64, 220.0 + 10.0 * (-1f64).powi(k))))
+            .collect(),
+        std::iter::once((120.0, 40.0))
+            .chain((1..17).map(|k| (120.0 + 20.0 * k as f64, 40.0 + 15.0 * k as f64)))
+            .collect(),
+    ];
+    // The margin of grown points that may move, in spacings (the page uses 2).
+    let keep_margin: f64 = std::env::args().nth(1).map_or(2.0, |a| a.parse().expect("a number"));
+    let mut grown = None;
+    for stroke in strokes {
+        let job = format!(
+            r#"{{"neighbourhood": {}, "domain": {{"box": [1, 1]}}, "max-points": 20000, "shrink": 0.6, "patch-candidates": 16, "keep-margin": {}}}"#,
+            2.0 * spacing,
+            keep_margin * spacing
+        );
+        let mut job: PointsJob = serde_json::from_str(&job).expect("job");
+        job.domain = DomainSpec::Stroke(StrokeSpec {
+            points: stroke.iter().map(|&(x, y)| vec![x / scale, y / scale]).collect(),
+            width: 3.0 * spacing,
+            scale_along: None,
+        });
+        let before = grown.as_ref().map_or(0, |g: &motif_points::PointSet| g.len());
+        let start = std::time::Instant::now();
+        let run = job.run(exemplar.clone(), grown.clone(), &discrete, &mut motif_core::NoProgress).expect("run");
+        let ms = start.elapsed().as_secs_f64() * 1000.0;
+        let added = run.output.points.len() as i64 - before as i64;
+        let report = &run.output.report;
+        let steps: Vec<usize> = report.energy.iter().map(|e| e.merge_steps).collect();
+        println!(
+            "added {added:4} in {ms:6.1} ms ({} points, {} fixed, {} quadrature points, merge steps {steps:?}); stages {}",
+            report.final_points,
+            report.fixed_points,
+            report.quadrature_points,
+            serde_json::to_string(&report.stages_ms).unwrap()
+        );
+        grown = Some(run.output.points);
+    }
+}
