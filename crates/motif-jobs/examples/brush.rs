@@ -3,6 +3,8 @@
 //! engine's stage times per stroke. Run single-threaded to compare with the browser:
 //! `RAYON_NUM_THREADS=1 cargo run --release -p motif-jobs --example brush`.
 
+use std::io::Write;
+
 use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
 
 fn main() {
@@ -51,13 +53,15 @@ fn main() {
         let added = run.output.points.len() as i64 - before as i64;
         let report = &run.output.report;
         let steps: Vec<usize> = report.energy.iter().map(|e| e.merge_steps).collect();
-        println!(
+        writeln!(
+            std::io::stdout().lock(),
             "added {added:4} in {ms:6.1} ms ({} points, {} fixed, {} quadrature points, merge steps {steps:?}); stages {}",
             report.final_points,
             report.fixed_points,
             report.quadrature_points,
             serde_json::to_string(&report.stages_ms).unwrap()
-        );
+        )
+        .expect("stdout");
         grown = Some(run.output.points);
     }
 }
