@@ -61,6 +61,7 @@
 // formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+mod cut;
 mod domain;
 mod energy;
 mod error;
