@@ -13,7 +13,6 @@ use crate::{avoidance, stitch};
 use rayon::prelude::*;
 
 const TILE: usize = 32;
-const BLOCK: usize = 8;
 
 /// A shape to draw: its canvas pixel box and a sampler returning a premultiplied colour for the
 /// canvas points it covers (`None` outside).
@@ -40,55 +39,48 @@ pub(crate) fn render(width: usize, height: usize, samples_per_axis: usize, shape
                     sx0 < x1 && sx1 > x0 && sy0 < y1 && sy1 > y0
                 })
                 .collect();
-            let mut pixels = vec![[0_u8; 4]; (x1 - x0) * (y1 - y0)];
+            let (tile_width, tile_height) = (x1 - x0, y1 - y0);
             if relevant.is_empty() {
-                return pixels;
+                return vec![[0_u8; 4]; tile_width * tile_height];
             }
-            // Blocks of BLOCK × BLOCK pixels narrow the shapes down again, so that a pixel tests
-            // the boxes of a few shapes, not of every one in the tile (the bent pieces and the
-            // repeat baseline draw thousands of small triangles).
-            let mut block_shapes: Vec<&Shape<'_>> = Vec::new();
-            let mut covering: Vec<&Shape<'_>> = Vec::new();
-            for by in (y0..y1).step_by(BLOCK) {
-                for bx in (x0..x1).step_by(BLOCK) {
-                    let (bx1, by1) = ((bx + BLOCK).min(x1), (by + BLOCK).min(y1));
-                    block_shapes.clear();
-                    block_shapes.extend(relevant.iter().copied().filter(|shape| {
-                        let (sx0, sy0, sx1, sy1) = shape.bounds;
-                        sx0 < bx1 && sx1 > bx && sy0 < by1 && sy1 > by
-                    }));
-                    if block_shapes.is_empty() {
-                        continue;
-                    }
-                    for y in by..by1 {
-                        for x in bx..bx1 {
-                            let mut sum = [0.0_f32; 4];
-                            covering.clear();
-                            covering.extend(block_shapes.iter().copied().filter(|shape| {
-                                let (sx0, sy0, sx1, sy1) = shape.bounds;
-                                x >= sx0 && x < sx1 && y >= sy0 && y < sy1
-                            }));
-                            if covering.is_empty() {
-                                continue;
-                            }
-                            for p in crate::avoidance::sample_points(x, y, n) {
-                                let mut colour = [0.0_f32; 4];
-                                for shape in &covering {
-                                    if let Some(src) = (shape.sampler)(p) {
-                                        let keep = 1.0 - src[3];
-                                        for c in 0..4 {
-                                            colour[c] = src[c] + colour[c] * keep;
-                                        }
-                                    }
-                                }
+            // Shape by shape over the pixels of its box, each sample composited "over" what the
+            // earlier shapes left there: per sample the same operations in the same order as
+            // pixel by pixel over the shapes covering it, without testing every pixel against
+            // the boxes of every shape near it (the bent pieces and the repeat baseline draw
+            // thousands of small triangles).
+            let per_pixel = n * n;
+            let mut samples = vec![[0.0_f32; 4]; tile_width * tile_height * per_pixel];
+            let mut covered = vec![false; tile_width * tile_height];
+            for shape in &relevant {
+                let (sx0, sy0, sx1, sy1) = shape.bounds;
+                for y in sy0.max(y0)..sy1.min(y1) {
+                    for x in sx0.max(x0)..sx1.min(x1) {
+                        let pixel = (y - y0) * tile_width + x - x0;
+                        covered[pixel] = true;
+                        let slots = &mut samples[pixel * per_pixel..(pixel + 1) * per_pixel];
+                        for (colour, p) in slots.iter_mut().zip(crate::avoidance::sample_points(x, y, n)) {
+                            if let Some(src) = (shape.sampler)(p) {
+                                let keep = 1.0 - src[3];
                                 for c in 0..4 {
-                                    sum[c] += colour[c];
+                                    colour[c] = src[c] + colour[c] * keep;
                                 }
                             }
-                            pixels[(y - y0) * (x1 - x0) + x - x0] = to_straight(sum, (n * n) as f32);
                         }
                     }
                 }
+            }
+            let mut pixels = vec![[0_u8; 4]; tile_width * tile_height];
+            for (pixel, out) in pixels.iter_mut().enumerate() {
+                if !covered[pixel] {
+                    continue;
+                }
+                let mut sum = [0.0_f32; 4];
+                for colour in &samples[pixel * per_pixel..(pixel + 1) * per_pixel] {
+                    for c in 0..4 {
+                        sum[c] += colour[c];
+                    }
+                }
+                *out = to_straight(sum, per_pixel as f32);
             }
             pixels
         })

@@ -33,12 +33,15 @@ fn main() {
     ];
     // The margin of grown points that may move, in spacings (the page uses 2).
     let keep_margin: f64 = std::env::args().nth(1).map_or(2.0, |a| a.parse().expect("a number"));
+    // Extra job settings as JSON members, e.g. `"merge-iterations": 10`.
+    let extra = std::env::args().nth(2).map_or(String::new(), |members| format!(", {members}"));
     let mut grown = None;
     for stroke in strokes {
         let job = format!(
-            r#"{{"neighbourhood": {}, "domain": {{"box": [1, 1]}}, "max-points": 20000, "shrink": 0.6, "patch-candidates": 16, "keep-margin": {}}}"#,
+            r#"{{"neighbourhood": {}, "domain": {{"box": [1, 1]}}, "max-points": 20000, "shrink": 0.6, "patch-candidates": 16, "keep-margin": {}{}}}"#,
             2.0 * spacing,
-            keep_margin * spacing
+            keep_margin * spacing,
+            extra
         );
         let mut job: PointsJob = serde_json::from_str(&job).expect("job");
         job.domain = DomainSpec::Stroke(StrokeSpec {
