@@ -26,19 +26,28 @@ pub(crate) fn render(width: usize, height: usize, samples_per_axis: usize, shape
     let n = samples_per_axis;
     let tiles_x = width.div_ceil(TILE);
     let tiles_y = height.div_ceil(TILE);
-    let tiles: Vec<Vec<[u8; 4]>> = (0..tiles_x * tiles_y)
+    // Each tile's shapes, in shape order: binned once by their boxes (testing every shape's box
+    // against every tile cost more than drawing on the canvases of the bent pieces, which are
+    // thousands of small triangles).
+    let mut binned: Vec<Vec<&Shape<'_>>> = vec![Vec::new(); tiles_x * tiles_y];
+    for shape in shapes {
+        let (sx0, sy0, sx1, sy1) = shape.bounds;
+        if sx0 >= sx1.min(width) || sy0 >= sy1.min(height) {
+            continue;
+        }
+        for ty in sy0 / TILE..=(sy1.min(height) - 1) / TILE {
+            for tx in sx0 / TILE..=(sx1.min(width) - 1) / TILE {
+                binned[ty * tiles_x + tx].push(shape);
+            }
+        }
+    }
+    let tiles: Vec<Vec<[u8; 4]>> = binned
         .into_par_iter()
-        .map(|tile| {
+        .enumerate()
+        .map(|(tile, relevant)| {
             let (tx, ty) = (tile % tiles_x, tile / tiles_x);
             let (x0, y0) = (tx * TILE, ty * TILE);
             let (x1, y1) = ((x0 + TILE).min(width), (y0 + TILE).min(height));
-            let relevant: Vec<&Shape<'_>> = shapes
-                .iter()
-                .filter(|shape| {
-                    let (sx0, sy0, sx1, sy1) = shape.bounds;
-                    sx0 < x1 && sx1 > x0 && sy0 < y1 && sy1 > y0
-                })
-                .collect();
             let (tile_width, tile_height) = (x1 - x0, y1 - y0);
             if relevant.is_empty() {
                 return vec![[0_u8; 4]; tile_width * tile_height];
