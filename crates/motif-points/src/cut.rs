@@ -141,9 +141,7 @@ impl Overlap {
         let mut positions = vec![0.0; rows];
         for row in (0..rows).rev() {
             // At the cell's far side: the last column keeps everything placed (the cut then runs
-            // along the band's edge), so a copy that has nothing to offer in the band (its source
-            // ends at the exemplar's border) removes nothing; cutting at cell centres removed half
-            // a cell of placed points on every cut (regular patterns came out 5-17 % too sparse).
+            // along the band's edge), so a cut that prefers to replace nothing can.
             positions[row] = self.across_range.0 + (column as f64 + 1.0) * self.cell;
             column = from[row * columns + column];
         }
