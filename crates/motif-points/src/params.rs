@@ -48,7 +48,8 @@ pub enum Initialization {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Refinement {
-    /// Only points near the patches' borders move, and sampling control removes only those
+    /// Only points near the patches' borders move (in 2D: points with a point of another copy
+    /// within a quarter band, copies meeting along cuts), and sampling control removes only those
     /// (default). With random initialization every point moves.
     #[default]
     Seams,
