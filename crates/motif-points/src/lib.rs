@@ -34,6 +34,8 @@
 //!   for benchmarks.
 //! - `quilting` (§5.2 with image quilting): each initial patch's source chosen by how well its
 //!   surroundings agree with the points already placed.
+//! - `cut` (§5.2 with image quilting's minimum error boundary cut): in 2D, neighbouring copies
+//!   overlap by a band and are joined along the path where they agree best.
 //! - `grid`, `raster`, `linear`: uniform-grid and per-cell-list neighbour queries and compressed neighbour lists, multilinear
 //!   rasters, small vectors.
 //!
