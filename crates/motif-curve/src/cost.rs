@@ -103,6 +103,12 @@ impl CostModel {
         self.gamma_floor
     }
 
+    /// Whether colour differences add to the alpha bound (γ ≥ 442, the largest RGB distance).
+    #[inline]
+    pub(crate) fn colour_bounds(&self) -> bool {
+        self.gamma >= 442.0
+    }
+
     /// A lower bound of ξ for a pixel where one edge is solid (alpha ≥ 224) and the other clear
     /// (alpha ≤ 31): their alpha difference is at least 193 (255 in binary mode). One unit is kept
     /// for float rounding.
@@ -390,40 +396,69 @@ fn chunk_cost(model: &CostModel, a: &[u8], b: &[u8], stride: usize, start: usize
 /// ‖p − q‖ ≥ (|Δr| + |Δg| + |Δb|)/√3. Summing over a
 /// block, the sum of absolute differences is at least the absolute difference of the sums
 /// (triangle inequality), so block sums bound both totals; one unit per sample covers rounding.
-#[inline]
+/// The search computes it in two steps ([`alpha_bound_of_distance`], then [`bound_of_distances`]).
+#[cfg(test)]
 pub(crate) fn profile_bound(model: &CostModel, right: &[u16], left: &[u16], samples: usize) -> u64 {
-    let len = right.len() / 4;
-    let alpha = u64::from(l1_u16(&right[3 * len..], &left[3 * len..]));
-    let alpha_bound = alpha * model.gamma_floor / 255;
-    if model.gamma < 442.0 {
-        return alpha_bound.saturating_sub(samples as u64);
+    let alpha = alpha_profile_distance(right, left);
+    if !model.colour_bounds() {
+        return alpha_bound_of_distance(model, alpha, samples);
     }
-    // With γ ≥ 442 ≥ ‖p − q‖: ξ ≥ 8‖p − q‖ + 8·(|a − b|/255)·(γ − 442), so colour and alpha add up.
-    let colour_bound = u64::from(l1_u16(&right[..3 * len], &left[..3 * len])) * 4618 / 1000;
-    let both = colour_bound + alpha * model.gamma_floor.saturating_sub(8 * 442) / 255;
-    alpha_bound.max(both).saturating_sub(samples as u64)
+    bound_of_distances(model, colour_profile_distance(right, left), alpha, samples)
 }
 
-/// The alpha part of [`profile_bound`] alone (cheaper; used as a first filter).
+/// The L1 distance of two profiles' alpha block sums.
 #[inline]
-pub(crate) fn profile_alpha_bound(model: &CostModel, right: &[u16], left: &[u16], samples: usize) -> u64 {
+pub(crate) fn alpha_profile_distance(right: &[u16], left: &[u16]) -> u32 {
     let len = right.len() / 4;
-    (u64::from(l1_u16(&right[3 * len..], &left[3 * len..])) * model.gamma_floor / 255).saturating_sub(samples as u64)
+    l1_u16(&right[3 * len..], &left[3 * len..])
+}
+
+/// The L1 distance of two profiles' colour block sums.
+#[inline]
+pub(crate) fn colour_profile_distance(right: &[u16], left: &[u16]) -> u32 {
+    let len = right.len() / 4;
+    l1_u16(&right[..3 * len], &left[..3 * len])
+}
+
+/// The alpha part of [`profile_bound`] alone, from the alpha distance (cheaper; a first filter).
+#[inline]
+pub(crate) fn alpha_bound_of_distance(model: &CostModel, alpha: u32, samples: usize) -> u64 {
+    (u64::from(alpha) * model.gamma_floor / 255).saturating_sub(samples as u64)
+}
+
+/// [`profile_bound`] from the colour and alpha distances of the block sums (the colour term
+/// counts only when [`CostModel::colour_bounds`]).
+#[inline]
+pub(crate) fn bound_of_distances(model: &CostModel, colour: u32, alpha: u32, samples: usize) -> u64 {
+    let alpha_only = alpha_bound_of_distance(model, alpha, samples);
+    if !model.colour_bounds() {
+        return alpha_only;
+    }
+    // With γ ≥ 442 ≥ ‖p − q‖: ξ ≥ 8‖p − q‖ + 8·(|a − b|/255)·(γ − 442), so colour and alpha add up.
+    let colour_bound = u64::from(colour) * 4618 / 1000;
+    let both = colour_bound + u64::from(alpha) * model.gamma_floor.saturating_sub(8 * 442) / 255;
+    alpha_only.max(both.saturating_sub(samples as u64))
 }
 
 /// L1 distance of two `u16` slices whose length is a multiple of 8, written for SSE2
 /// (saturating differences, 8 lanes).
 #[inline(always)]
 pub(crate) fn l1_u16(a: &[u16], b: &[u16]) -> u32 {
-    let mut lanes = [0_u32; 8];
-    for (x, y) in a.chunks_exact(8).zip(b.chunks_exact(8)) {
-        let x: &[u16; 8] = x.try_into().expect("8 lanes");
-        let y: &[u16; 8] = y.try_into().expect("8 lanes");
-        for i in 0..8 {
-            lanes[i] += u32::from(x[i].saturating_sub(y[i]) | y[i].saturating_sub(x[i]));
+    // Block sums are at most 4 × 255, so 64 chunks of differences fit a u16 lane: the lanes stay
+    // 16 bits wide (one SSE2 register) and widen once per 64 chunks.
+    let mut total = 0_u32;
+    for (a, b) in a.chunks(64 * 8).zip(b.chunks(64 * 8)) {
+        let mut lanes = [0_u16; 8];
+        for (x, y) in a.chunks_exact(8).zip(b.chunks_exact(8)) {
+            let x: &[u16; 8] = x.try_into().expect("8 lanes");
+            let y: &[u16; 8] = y.try_into().expect("8 lanes");
+            for i in 0..8 {
+                lanes[i] = lanes[i].wrapping_add(x[i].saturating_sub(y[i]) | y[i].saturating_sub(x[i]));
+            }
         }
+        total += lanes.iter().map(|&lane| u32::from(lane)).sum::<u32>();
     }
-    lanes.iter().sum()
+    total
 }
 
 /// Lower bound of `D` from the masks: `mask_weight × #(solid vs clear samples)`.
