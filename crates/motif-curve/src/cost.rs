@@ -407,7 +407,7 @@ pub(crate) fn profile_bound(model: &CostModel, right: &[u16], left: &[u16], samp
 }
 
 /// The L1 distance of two profiles' alpha block sums.
-#[inline]
+#[cfg(test)]
 pub(crate) fn alpha_profile_distance(right: &[u16], left: &[u16]) -> u32 {
     let len = right.len() / 4;
     l1_u16(&right[3 * len..], &left[3 * len..])

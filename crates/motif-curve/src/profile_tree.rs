@@ -4,8 +4,8 @@
 use rayon::prelude::*;
 
 use crate::cost::{
-    CostModel, EdgeSet, alpha_bound_of_distance, alpha_profile_distance, bound_of_distances, colour_profile_distance,
-    edge_distance_bounded, mask_bound,
+    CostModel, EdgeSet, alpha_bound_of_distance, bound_of_distances, colour_profile_distance,
+    edge_distance_bounded, l1_u16, mask_bound,
 };
 use crate::dp::{DpCounters, RowResult, Seeds};
 
@@ -87,6 +87,9 @@ struct ProfileTree {
     boxes: Vec<u16>,
     /// Entries of an alpha profile.
     dims: usize,
+    /// The alpha profiles in leaf order, contiguous: the first filter of every visit reads only
+    /// these, and a scan then walks memory in order (about 4 × less traffic than whole profiles).
+    alphas: Vec<u16>,
 }
 
 impl ProfileTree {
@@ -99,6 +102,7 @@ impl ProfileTree {
             nodes: Vec::new(),
             boxes: Vec::new(),
             dims: rights.profile_len,
+            alphas: Vec::new(),
         };
         let mut members: Vec<u32> = (0..previous.len() as u32).collect();
         tree.build(&mut members, previous, rights);
@@ -106,6 +110,7 @@ impl ProfileTree {
             tree.position_of[v as usize] = position as u32;
         }
         tree.edges = rights.permuted(&tree.original);
+        tree.alphas = (0..tree.original.len()).flat_map(|p| alpha_profile(&tree.edges, p).iter().copied()).collect();
         tree
     }
 
@@ -169,7 +174,8 @@ pub(crate) fn exact_row(
     seeds: &Seeds,
 ) -> RowResult {
     let tree = ProfileTree::new(previous, rights);
-    let ProfileTree { edges, costs, original, position_of, nodes, .. } = &tree;
+    let ProfileTree { edges, costs, original, position_of, nodes, alphas, dims, .. } = &tree;
+    let dims = *dims;
     let cheapest = (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0);
     let weight = model.mask_weight();
     let samples = lefts.samples;
@@ -193,11 +199,11 @@ pub(crate) fn exact_row(
                     let cost = costs[position];
                     let v = original[position];
                     counters.visited += 1;
-                    let right_profile = edges.profile_of(position);
-                    let alpha = alpha_profile_distance(right_profile, left_profile);
+                    let alpha = l1_u16(&alphas[position * dims..(position + 1) * dims], left_alpha);
                     if (cost + alpha_bound_of_distance(model, alpha, samples), v) >= *best {
                         return;
                     }
+                    let right_profile = edges.profile_of(position);
                     if model.colour_bounds() {
                         let colour = colour_profile_distance(right_profile, left_profile);
                         if (cost + bound_of_distances(model, colour, alpha, samples), v) >= *best {
