@@ -349,8 +349,11 @@ pub(crate) fn edge_distance(model: &CostModel, rights: &EdgeSet, r: usize, lefts
     total
 }
 
-/// `D`, stopping as soon as the partial sum exceeds `limit` (returns `None` then). Sums the same
-/// per-chunk integers in the same order as [`edge_distance`], so a completed sum is identical.
+/// `D`, stopping as soon as the partial sum plus a lower bound of the rest exceeds `limit`
+/// (returns `None` then). `profile_distances` are the L1 distances (colour, alpha) of the two
+/// edges' whole profiles; each chunk of 16 samples covers 4 block sums per channel, so the bound
+/// of the chunks still to come is that of the distances less those of the chunks done (samples
+/// are compared in the order of [`edge_distance`], so a completed sum is identical).
 #[inline]
 pub(crate) fn edge_distance_bounded(
     model: &CostModel,
@@ -359,17 +362,41 @@ pub(crate) fn edge_distance_bounded(
     lefts: &EdgeSet,
     l: usize,
     limit: u64,
+    profile_distances: (u32, u32),
 ) -> Option<u32> {
     let (a, b) = (rights.planes_of(r), lefts.planes_of(l));
-    let stride = rights.stride;
+    let (right_profile, left_profile) = (rights.profile_of(r), lefts.profile_of(l));
+    let (len, stride, samples) = (rights.profile_len, rights.stride, rights.samples);
+    let colour_bounds = model.colour_bounds();
+    let (mut colour_rest, mut alpha_rest) = profile_distances;
     let mut total = 0_u32;
     for chunk in 0..stride / 16 {
         total += chunk_cost(model, a, b, stride, chunk * 16);
-        if u64::from(total) > limit {
+        let entries = |channel: usize| channel * len + 4 * chunk..channel * len + 4 * chunk + 4;
+        alpha_rest -= l1_small(&right_profile[entries(3)], &left_profile[entries(3)]);
+        if colour_bounds {
+            for channel in 0..3 {
+                colour_rest -= l1_small(&right_profile[entries(channel)], &left_profile[entries(channel)]);
+            }
+        }
+        let samples_rest = samples.saturating_sub(16 * (chunk + 1));
+        if u64::from(total) + bound_of_distances(model, colour_rest, alpha_rest, samples_rest) > limit {
             return None;
         }
     }
     Some(total)
+}
+
+/// L1 distance of two short `u16` slices.
+#[inline(always)]
+fn l1_small(a: &[u16], b: &[u16]) -> u32 {
+    a.iter().zip(b).map(|(&x, &y)| u32::from(x.abs_diff(y))).sum()
+}
+
+/// The L1 distances (colour, alpha) of two whole profiles, as [`edge_distance_bounded`] takes them.
+#[cfg(test)]
+pub(crate) fn profile_distances(right: &[u16], left: &[u16]) -> (u32, u32) {
+    (colour_profile_distance(right, left), alpha_profile_distance(right, left))
 }
 
 /// ξ summed over 16 consecutive samples; written on fixed-size lanes without bounds checks or
@@ -510,8 +537,30 @@ mod tests {
         a.push((0..40).map(|k| [k as u8 * 3, 7, 9, if k < 20 { 255 } else { 0 }]));
         b.push((0..40).map(|k| [k as u8, 70, 9, if k < 25 { 255 } else { 10 }]));
         let full = edge_distance(&model, &a, 0, &b, 0);
-        assert_eq!(edge_distance_bounded(&model, &a, 0, &b, 0, u64::from(full)), Some(full));
-        assert_eq!(edge_distance_bounded(&model, &a, 0, &b, 0, u64::from(full) - 1), None);
+        assert_eq!(
+            edge_distance_bounded(
+                &model,
+                &a,
+                0,
+                &b,
+                0,
+                u64::from(full),
+                profile_distances(a.profile_of(0), b.profile_of(0))
+            ),
+            Some(full)
+        );
+        assert_eq!(
+            edge_distance_bounded(
+                &model,
+                &a,
+                0,
+                &b,
+                0,
+                u64::from(full) - 1,
+                profile_distances(a.profile_of(0), b.profile_of(0))
+            ),
+            None
+        );
         let bound = mask_bound(model.mask_weight(), a.masks_of(0), b.masks_of(0));
         assert!(bound <= u64::from(full) && bound > 0);
         let profile = profile_bound(&model, a.profile_of(0), b.profile_of(0), 40);
@@ -541,6 +590,7 @@ mod tests {
             b in proptest::collection::vec(proptest::prelude::any::<[u8; 4]>(), 90),
             binary in proptest::prelude::any::<bool>(),
             gamma in 1.0_f64..5000.0,
+            limit_fraction in 0_u64..200,
         ) {
             let model = CostModel::new(if binary { AlphaMode::Binary } else { AlphaMode::Continuous }, gamma);
             let fix = |p: [u8; 4]| [p[0], p[1], p[2], model.matching_alpha(p[3])];
@@ -551,6 +601,13 @@ mod tests {
             let full = u64::from(edge_distance(&model, &right, 0, &left, 0));
             proptest::prop_assert!(mask_bound(model.mask_weight(), right.masks_of(0), left.masks_of(0)) <= full);
             proptest::prop_assert!(profile_bound(&model, right.profile_of(0), left.profile_of(0), samples) <= full);
+            // The early exit (partial sums plus the bound of the chunks to come) never drops an
+            // edge within the limit, and a completed sum is the full one.
+            let distances = profile_distances(right.profile_of(0), left.profile_of(0));
+            for limit in [full.saturating_sub(1), full, full + 1, full / 2, limit_fraction * full / 100] {
+                let bounded = edge_distance_bounded(&model, &right, 0, &left, 0, limit, distances);
+                proptest::prop_assert_eq!(bounded, (full <= limit).then_some(full as u32));
+            }
         }
     }
 }

@@ -4,8 +4,8 @@
 use rayon::prelude::*;
 
 use crate::cost::{
-    CostModel, EdgeSet, alpha_bound_of_distance, bound_of_distances, colour_profile_distance,
-    edge_distance_bounded, l1_u16, mask_bound,
+    CostModel, EdgeSet, alpha_bound_of_distance, bound_of_distances, colour_profile_distance, edge_distance_bounded,
+    l1_u16, mask_bound,
 };
 use crate::dp::{DpCounters, RowResult, Seeds};
 
@@ -204,18 +204,23 @@ pub(crate) fn exact_row(
                         return;
                     }
                     let right_profile = edges.profile_of(position);
-                    if model.colour_bounds() {
+                    let colour = if model.colour_bounds() {
                         let colour = colour_profile_distance(right_profile, left_profile);
                         if (cost + bound_of_distances(model, colour, alpha, samples), v) >= *best {
                             return;
                         }
-                    }
+                        colour
+                    } else {
+                        0
+                    };
                     if (cost + mask_bound(weight, edges.masks_of(position), left_masks), v) >= *best {
                         return;
                     }
                     counters.compared += 1;
                     let limit = best.0.saturating_sub(cost);
-                    if let Some(distance) = edge_distance_bounded(model, edges, position, lefts, u, limit) {
+                    if let Some(distance) =
+                        edge_distance_bounded(model, edges, position, lefts, u, limit, (colour, alpha))
+                    {
                         counters.completed += 1;
                         let total = cost + u64::from(distance);
                         if (total, v) < *best {
