@@ -1,11 +1,14 @@
-//! The global step of Algorithm 1 (§5.1): gradient descent on T, first on the positions, then on
-//! the attributes (Gauss–Seidel), with discrete attributes snapped afterwards (§4.4).
+//! The global step of Algorithm 1 (§5.1): descent on T, first on the positions, then on the
+//! attributes (Gauss–Seidel), with discrete attributes snapped afterwards (§4.4).
 //!
-//! Free points follow `−∂T/∂x_i`; a discrete element (§6.1) is a rigid body that follows the summed
-//! force (translation) and torque (rotation about its centre), so its points keep their relative
-//! positions exactly. The step is the root-mean-square movement in units of σ (0.03 by default,
-//! §7.1); a step that does not lower T is undone and halved, an accepted one grows by 20 %, so T
-//! decreases monotonically. Units that would leave the domain stay where they are.
+//! The paper descends along `−∂T/∂x_i` with a step given as the root-mean-square movement in
+//! units of σ (0.03 by default, §7.1). Free points take limited-memory BFGS steps instead, started
+//! by that gradient step and capped at 0.5 σ: within a merging step the matches are fixed and T is
+//! smooth in the positions. A discrete element (§6.1) is a rigid body that follows the summed force
+//! (translation) and torque (rotation about its centre), so its points keep their relative
+//! positions exactly; states with moving elements keep the paper's descent. Either way a step that
+//! does not lower T is undone and halved, so T decreases monotonically. Units that would leave the
+//! domain stay where they are.
 
 use crate::energy::Evaluation;
 use crate::linear::{self, Vector};
@@ -22,10 +25,27 @@ pub struct MergeSettings {
     pub sigma: f64,
 }
 
-/// Gradient descent on the positions. Returns T after every accepted step (the first entry is T
+/// Descent on the positions (quasi-Newton for free points, [`gradient_descent`] when rigid
+/// elements move). Returns T after every accepted step (the first entry is T
 /// before merging) and the evaluation of the final state. With `attributes`, every evaluation also
 /// collects the attribute form, so that the attribute step that follows needs no pass of its own.
 pub fn merge_positions<const D: usize>(
+    state: &mut State<D>,
+    settings: MergeSettings,
+    attributes: bool,
+    evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> (Vec<f64>, Evaluation<D>) {
+    if state.units.iter().all(|unit| !unit.alive || unit.frozen || unit.rigid.is_none()) {
+        merge_free_positions(state, settings, attributes, evaluate, allowed)
+    } else {
+        gradient_descent(state, settings, attributes, evaluate, allowed)
+    }
+}
+
+/// The paper's descent, for states with rigid elements: every unit follows its force (and torque)
+/// with one step length, grown by 20 % after an accepted step and halved after a rejected one.
+pub(crate) fn gradient_descent<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     attributes: bool,
@@ -124,6 +144,127 @@ pub fn merge_positions<const D: usize>(
                 break;
             }
         } else {
+            eta *= 0.5;
+            if eta < 1e-6 * settings.step {
+                break;
+            }
+        }
+    }
+    (energies, current)
+}
+
+/// Curvature pairs kept by the quasi-Newton descent.
+const MEMORY: usize = 5;
+
+/// [`merge_positions`] when every movable unit is a free point: limited-memory BFGS (two-loop
+/// recursion over the last [`MEMORY`] steps) on the movable coordinates, with the same monotone
+/// acceptance (a step that does not lower T is halved), the same cap on the root-mean-square
+/// movement (`0.5 σ`) and the same stopping rules. Within one merging step the matches are fixed,
+/// so T is smooth in the positions, and plain gradient descent spent most of its steps growing its
+/// step length (from `0.03 σ`, by 20 % per step): a stroke crossing grown structure took 17 steps
+/// on the first window size, the quasi-Newton steps reach the same T in fewer evaluations.
+fn merge_free_positions<const D: usize>(
+    state: &mut State<D>,
+    settings: MergeSettings,
+    attributes: bool,
+    evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> (Vec<f64>, Evaluation<D>) {
+    let sigma = settings.sigma;
+    let mut current = evaluate(state, attributes);
+    let mut energies = vec![current.energy];
+    let movable: Vec<usize> =
+        state.units.iter().filter(|u| u.alive && !u.frozen).map(|u| u.points[0] as usize).collect();
+    if movable.is_empty() {
+        return (energies, current);
+    }
+    let gradient_of =
+        |evaluation: &Evaluation<D>| -> Vec<f64> { movable.iter().flat_map(|&p| evaluation.positions[p]).collect() };
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let rms = |v: &[f64]| (dot(v, v) / movable.len() as f64).sqrt();
+    let mut gradient = gradient_of(&current);
+    // (s, y, 1 / (s·y)), oldest first.
+    let mut pairs: std::collections::VecDeque<(Vec<f64>, Vec<f64>, f64)> = std::collections::VecDeque::new();
+    let mut eta = settings.step;
+    let mut iteration = 0;
+    while iteration < settings.iterations {
+        iteration += 1;
+        let size = rms(&gradient);
+        if size == 0.0 || !size.is_finite() {
+            break;
+        }
+        // Two-loop recursion: direction = −H·g.
+        let mut direction: Vec<f64> = gradient.iter().map(|g| -g).collect();
+        let mut alphas = Vec::with_capacity(pairs.len());
+        for (s, y, rho) in pairs.iter().rev() {
+            let alpha = rho * dot(s, &direction);
+            for (d, y) in direction.iter_mut().zip(y) {
+                *d -= alpha * y;
+            }
+            alphas.push(alpha);
+        }
+        match pairs.back() {
+            Some((s, y, _)) => {
+                let scale = dot(s, y) / dot(y, y);
+                direction.iter_mut().for_each(|d| *d *= scale);
+            }
+            // No curvature yet: the gradient step of the plain descent.
+            None => direction.iter_mut().for_each(|d| *d *= eta * sigma / size),
+        }
+        for ((s, y, rho), alpha) in pairs.iter().zip(alphas.iter().rev()) {
+            let beta = rho * dot(y, &direction);
+            for (d, s) in direction.iter_mut().zip(s) {
+                *d += (alpha - beta) * s;
+            }
+        }
+        if dot(&direction, &gradient) >= 0.0 {
+            // Not a descent direction: forget the curvature and take a gradient step.
+            pairs.clear();
+            direction = gradient.iter().map(|g| -g * eta * sigma / size).collect();
+        }
+        let cap = 0.5 * sigma;
+        let length = rms(&direction);
+        if length > cap {
+            direction.iter_mut().for_each(|d| *d *= cap / length);
+        }
+        let mut trial = state.clone();
+        let mut displacement = vec![0.0; direction.len()];
+        let mut movement = 0.0;
+        for (slot, &p) in movable.iter().enumerate() {
+            let step: Vector<D> = std::array::from_fn(|a| direction[slot * D + a]);
+            let moved = linear::add(&trial.positions[p], &step);
+            if allowed(&moved) {
+                trial.positions[p] = moved;
+                displacement[slot * D..slot * D + D].copy_from_slice(&step);
+                movement += linear::norm2(&step).sqrt();
+            }
+        }
+        let candidate = evaluate(&trial, attributes);
+        if candidate.energy < current.energy {
+            let decrease = current.energy - candidate.energy;
+            let next_gradient = gradient_of(&candidate);
+            let change: Vec<f64> = next_gradient.iter().zip(&gradient).map(|(a, b)| a - b).collect();
+            let curvature = dot(&displacement, &change);
+            if curvature > 1e-12 * dot(&displacement, &displacement).sqrt() * dot(&change, &change).sqrt() {
+                if pairs.len() == MEMORY {
+                    pairs.pop_front();
+                }
+                pairs.push_back((displacement, change, 1.0 / curvature));
+            }
+            *state = trial;
+            current = candidate;
+            gradient = next_gradient;
+            energies.push(current.energy);
+            eta = (eta * 1.2).min(0.5);
+            if movement / (movable.len() as f64) < settings.tolerance * sigma {
+                break;
+            }
+            if decrease < settings.stagnation * (energies[0] - current.energy) {
+                break;
+            }
+        } else {
+            // Too long: forget the curvature (it promised a decrease) and shorten the gradient step.
+            pairs.clear();
             eta *= 0.5;
             if eta < 1e-6 * settings.step {
                 break;

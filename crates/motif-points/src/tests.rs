@@ -370,6 +370,31 @@ fn energy_decreases_across_merging_steps() {
 }
 
 #[test]
+fn quasi_newton_merging_ends_lower_than_gradient_descent_in_as_many_steps() {
+    let (fixture, params) = fixture_2d(Window::Gaussian, false);
+    let problem = fixture.setup.problem(fixture.setup.delta, &params);
+    let evaluate =
+        |s: &State<2>, f: bool| evaluate_with(&problem, Evaluator::Fast, s, &fixture.matches, fixture.exemplar_self, f);
+    let allowed = |p: &Vector<2>| fixture.setup.allowed(p);
+    for iterations in [5, 15] {
+        let settings = crate::merging::MergeSettings {
+            iterations,
+            attribute_iterations: 0,
+            step: 0.03,
+            tolerance: 1e-6,
+            stagnation: 0.0,
+            sigma: fixture.setup.sigma,
+        };
+        let mut quasi_newton = fixture.setup.state.clone();
+        let (energies, _) = crate::merging::merge_positions(&mut quasi_newton, settings, false, &evaluate, &allowed);
+        let mut plain = fixture.setup.state.clone();
+        let (plain_energies, _) = crate::merging::gradient_descent(&mut plain, settings, false, &evaluate, &allowed);
+        let (last, plain_last) = (energies[energies.len() - 1], plain_energies[plain_energies.len() - 1]);
+        assert!(last < plain_last, "{iterations} steps: {last} against {plain_last}");
+    }
+}
+
+#[test]
 fn movable_rows_give_the_full_energy_change_and_gradient() {
     // Merging with frozen points evaluates the movable rows alone plus a constant: after moving
     // the movable points, that sum must equal a full evaluation, and their gradients must too.
