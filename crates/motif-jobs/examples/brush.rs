@@ -58,10 +58,12 @@ fn main() {
         let steps: Vec<usize> = report.energy.iter().map(|e| e.merge_steps).collect();
         writeln!(
             std::io::stdout().lock(),
-            "added {added:4} in {ms:6.1} ms ({} points, {} fixed, {} quadrature points, merge steps {steps:?}); stages {}",
+            "added {added:4} in {ms:6.1} ms ({} points, {} fixed, {} quadrature points, merge steps {steps:?}, NN {:.3}, g(r) {:.3}); stages {}",
             report.final_points,
             report.fixed_points,
             report.quadrature_points,
+            report.fidelity.output.nearest_neighbour,
+            report.fidelity.output.radial_distribution,
             serde_json::to_string(&report.stages_ms).unwrap()
         )
         .expect("stdout");
