@@ -18,8 +18,9 @@
 //!   and scale fields stored at the quadrature points (Eq. 8).
 //! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts and
 //!   from the grid neighbours' last matches (propagation, as in PatchMatch).
-//! - `merging` (§5.1, global step): gradient descent on positions (rigid motions for elements), then
-//!   attributes, discrete attributes snapped (§4.4).
+//! - `merging` (§5.1, global step): descent on positions (quasi-Newton for free points, the
+//!   paper's gradient steps with rigid motions for elements), then attributes, discrete attributes
+//!   snapped (§4.4).
 //! - `sampling` (§5.1, Eq. 7): sampling control by the signed density difference P, within count
 //!   bounds around the exemplar's density.
 //! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its

@@ -178,14 +178,15 @@ pub struct Params {
     pub sampling_rounds: usize,
     /// Matching/merging alternations per sampling round (Algorithm 1; 1–20, default 1).
     pub local_global_iterations: usize,
-    /// Gradient-descent iterations of one position merging step (§7.1; 1–1000, default 30).
+    /// Descent iterations of one position merging step (§7.1; 1–1000, default 30).
     pub merge_iterations: usize,
     /// Descent iterations of one attribute merging step (§5.1, Gauss–Seidel after the positions):
     /// conjugate-gradient steps with exact line search, since T is quadratic in the attributes at fixed
     /// positions (0–1000, default 5; 0 keeps the attributes as initialized).
     pub attribute_iterations: usize,
     /// Initial gradient step, as the root-mean-square movement per iteration in units of σ (§7.1;
-    /// 1e-4–1, default 0.03). Steps that raise the energy are halved and retried.
+    /// 1e-4–1, default 0.03); free points continue with quasi-Newton steps. Steps that raise the
+    /// energy are halved and retried.
     pub step: f64,
     /// Merging stops when the mean movement falls below this (units of σ; default 1e-6, §7.1).
     pub tolerance: f64,
