@@ -58,6 +58,28 @@ impl AlphaBound {
     }
 }
 
+/// Whether the coarse sums of an alpha profile of `dims` entries fit `u16` (each entry is at
+/// most 4 × 255).
+fn coarse_fits(dims: usize) -> bool {
+    dims >= 8 && dims / 8 * 1020 <= usize::from(u16::MAX)
+}
+
+/// An alpha profile summed over eight consecutive runs of `len / 8` entries.
+fn coarse_profile(alpha: &[u16]) -> [u16; 8] {
+    let run = alpha.len() / 8;
+    std::array::from_fn(|i| alpha[i * run..(i + 1) * run].iter().sum())
+}
+
+/// L1 distance of two coarse profiles (one SSE2 register each).
+#[inline(always)]
+fn coarse_distance(a: &[u16; 8], b: &[u16; 8]) -> u32 {
+    let mut lanes = [0_u16; 8];
+    for i in 0..8 {
+        lanes[i] = a[i].saturating_sub(b[i]) | b[i].saturating_sub(a[i]);
+    }
+    lanes.iter().map(|&lane| u32::from(lane)).sum()
+}
+
 /// A node of the profile tree: arranged predecessors `start..end`, their lowest `P`, and the
 /// children (`None` for a leaf, whose predecessors are sorted by ascending `P`).
 #[derive(Debug, Clone, Copy)]
@@ -73,8 +95,6 @@ struct Node {
 /// alpha bound of its box distance cannot beat the best total is skipped whole. (The index has to
 /// carry the lowest `P` of every subtree, which no k-d tree crate offers.)
 struct ProfileTree {
-    /// Predecessor edges in leaf order.
-    edges: EdgeSet,
     /// `P` in leaf order.
     costs: Vec<u64>,
     /// Original predecessor index in leaf order.
@@ -90,12 +110,15 @@ struct ProfileTree {
     /// The alpha profiles in leaf order, contiguous: the first filter of every visit reads only
     /// these, and a scan then walks memory in order (about 4 × less traffic than whole profiles).
     alphas: Vec<u16>,
+    /// Per predecessor in leaf order: its alpha profile summed over eight runs of `dims / 8`
+    /// entries (empty when a sum could pass `u16::MAX`). The L1 distance of these sums is at most
+    /// that of the profiles, so one 8-lane difference rejects most visits before the full one.
+    coarse: Vec<[u16; 8]>,
 }
 
 impl ProfileTree {
     fn new(previous: &[u64], rights: &EdgeSet) -> Self {
         let mut tree = Self {
-            edges: EdgeSet::default(),
             costs: Vec::with_capacity(previous.len()),
             original: Vec::with_capacity(previous.len()),
             position_of: vec![0; previous.len()],
@@ -103,14 +126,20 @@ impl ProfileTree {
             boxes: Vec::new(),
             dims: rights.profile_len,
             alphas: Vec::new(),
+            coarse: Vec::new(),
         };
         let mut members: Vec<u32> = (0..previous.len() as u32).collect();
         tree.build(&mut members, previous, rights);
         for (position, &v) in tree.original.iter().enumerate() {
             tree.position_of[v as usize] = position as u32;
         }
-        tree.edges = rights.permuted(&tree.original);
-        tree.alphas = (0..tree.original.len()).flat_map(|p| alpha_profile(&tree.edges, p).iter().copied()).collect();
+        // Only the alpha profiles are copied into leaf order: the first filter reads them for every
+        // visit, the rest of an edge only for the tenth of visits that pass it (copying whole
+        // edges, 7.6 MB a row on the wide chain, cost more than their locality saved).
+        tree.alphas = tree.original.iter().flat_map(|&v| alpha_profile(rights, v as usize).iter().copied()).collect();
+        if coarse_fits(tree.dims) {
+            tree.coarse = tree.alphas.chunks_exact(tree.dims).map(coarse_profile).collect();
+        }
         tree
     }
 
@@ -174,7 +203,7 @@ pub(crate) fn exact_row(
     seeds: &Seeds,
 ) -> RowResult {
     let tree = ProfileTree::new(previous, rights);
-    let ProfileTree { edges, costs, original, position_of, nodes, alphas, dims, .. } = &tree;
+    let ProfileTree { costs, original, position_of, nodes, alphas, dims, coarse, .. } = &tree;
     let dims = *dims;
     let cheapest = (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0);
     let weight = model.mask_weight();
@@ -193,17 +222,24 @@ pub(crate) fn exact_row(
                 let left_masks = lefts.masks_of(u);
                 let left_profile = lefts.profile_of(u);
                 let left_alpha = alpha_profile(lefts, u);
+                let left_coarse = if coarse.is_empty() { [0; 8] } else { coarse_profile(left_alpha) };
                 // (total, original predecessor index); compare lexicographically for ties.
                 let mut best = (u64::MAX, u32::MAX);
                 let consider = |position: usize, best: &mut (u64, u32), counters: &mut DpCounters| {
                     let cost = costs[position];
                     let v = original[position];
                     counters.visited += 1;
+                    if !coarse.is_empty() {
+                        let near = coarse_distance(&coarse[position], &left_coarse);
+                        if (cost + alpha_bound_of_distance(model, near, samples), v) >= *best {
+                            return;
+                        }
+                    }
                     let alpha = l1_u16(&alphas[position * dims..(position + 1) * dims], left_alpha);
                     if (cost + alpha_bound_of_distance(model, alpha, samples), v) >= *best {
                         return;
                     }
-                    let right_profile = edges.profile_of(position);
+                    let right_profile = rights.profile_of(v as usize);
                     let colour = if model.colour_bounds() {
                         let colour = colour_profile_distance(right_profile, left_profile);
                         if (cost + bound_of_distances(model, colour, alpha, samples), v) >= *best {
@@ -213,13 +249,13 @@ pub(crate) fn exact_row(
                     } else {
                         0
                     };
-                    if (cost + mask_bound(weight, edges.masks_of(position), left_masks), v) >= *best {
+                    if (cost + mask_bound(weight, rights.masks_of(v as usize), left_masks), v) >= *best {
                         return;
                     }
                     counters.compared += 1;
                     let limit = best.0.saturating_sub(cost);
                     if let Some(distance) =
-                        edge_distance_bounded(model, edges, position, lefts, u, limit, (colour, alpha))
+                        edge_distance_bounded(model, rights, v as usize, lefts, u, limit, (colour, alpha))
                     {
                         counters.completed += 1;
                         let total = cost + u64::from(distance);
@@ -339,7 +375,7 @@ mod tests {
                 prop_assert_eq!(node.lowest_cost, tree.costs[range.clone()].iter().copied().min().unwrap());
                 let bound = gap_of_left(index as u32);
                 for position in range.clone() {
-                    let distance = u64::from(edge_distance(&model, &tree.edges, position, &lefts, 0));
+                    let distance = u64::from(edge_distance(&model, &rights, tree.original[position] as usize, &lefts, 0));
                     prop_assert!(bound <= distance, "node {} bound {} > D {}", index, bound, distance);
                 }
                 match node.children {
