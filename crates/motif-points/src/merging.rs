@@ -136,21 +136,27 @@ pub(crate) fn gradient_descent<const D: usize>(
             current = candidate;
             energies.push(current.energy);
             eta = (eta * 1.2).min(0.5);
-            if movement / (forces.len() as f64) < settings.tolerance * sigma {
+            if converged(&settings, &energies, decrease, movement / forces.len() as f64) {
                 break;
             }
-            // Stagnation: the step gained almost nothing compared with this merging step so far.
-            if decrease < settings.stagnation * (energies[0] - current.energy) {
-                break;
-            }
-        } else {
-            eta *= 0.5;
-            if eta < 1e-6 * settings.step {
-                break;
-            }
+        } else if shortened(&mut eta, &settings) {
+            break;
         }
     }
     (energies, current)
+}
+
+/// The stopping rules after an accepted step: the mean movement fell below the tolerance, or the
+/// step gained almost nothing compared with this merging step so far (stagnation).
+fn converged(settings: &MergeSettings, energies: &[f64], decrease: f64, mean_movement: f64) -> bool {
+    let gained = energies[0] - energies[energies.len() - 1];
+    mean_movement < settings.tolerance * settings.sigma || decrease < settings.stagnation * gained
+}
+
+/// Halves the step after a rejected one; true when it became too short to go on.
+fn shortened(eta: &mut f64, settings: &MergeSettings) -> bool {
+    *eta *= 0.5;
+    *eta < 1e-6 * settings.step
 }
 
 /// Curvature pairs kept by the quasi-Newton descent.
@@ -256,17 +262,13 @@ fn merge_free_positions<const D: usize>(
             gradient = next_gradient;
             energies.push(current.energy);
             eta = (eta * 1.2).min(0.5);
-            if movement / (movable.len() as f64) < settings.tolerance * sigma {
-                break;
-            }
-            if decrease < settings.stagnation * (energies[0] - current.energy) {
+            if converged(&settings, &energies, decrease, movement / movable.len() as f64) {
                 break;
             }
         } else {
             // Too long: forget the curvature (it promised a decrease) and shorten the gradient step.
             pairs.clear();
-            eta *= 0.5;
-            if eta < 1e-6 * settings.step {
+            if shortened(&mut eta, &settings) {
                 break;
             }
         }
