@@ -6,8 +6,9 @@ Serves web/dist on a free local port, loads the page, and with real input events
 handle, brushes a stroke on the points canvas, moves the strokes scale slider and synthesizes,
 and paints on the stylize guide. Checks that each canvas changed and is not blank, that no panel
 shows an error, and that the browser console has no errors; saves a screenshot per step. Prints
-the speed figures the page measured (single thread, in the Web Worker). Exits non-zero on any
-failure. Needs Debian's `chromium` and `chromium-driver` and `pip install selenium`.
+the speed figures the page measured (single thread, in the Web Worker). Checks that brush strokes
+give the same bits in the page's WebAssembly as natively (`cargo run --example brush`). Exits
+non-zero on any failure. Needs Debian's `chromium` and `chromium-driver` and `pip install selenium`.
 """
 
 import argparse
@@ -17,6 +18,7 @@ import json
 import os
 import pathlib
 import statistics
+import subprocess
 import sys
 import tempfile
 import threading
@@ -115,6 +117,47 @@ def drag(driver, element, start, moves, pause=0.03):
 def check_panel_ok(driver, panel):
     element = driver.find_element(By.ID, f"{panel}-info")
     assert "error" not in element.get_attribute("class"), f"{panel} shows an error: {element.text}"
+
+
+# Runs the three strokes of `crates/motif-jobs/examples/brush.rs` on the built-in hex exemplar in
+# the page's WebAssembly module (on the main thread, a fresh panel) and returns the FNV-1a digest
+# of the result's bits, as the example prints it.
+BRUSH_DIGEST_SCRIPT = """
+const done = arguments[arguments.length - 1];
+(async () => {
+  const wasm = await import('./pkg/motif_web.js');
+  await wasm.default();
+  const panel = new wasm.PointsPanel('hex');
+  const ex = panel.exemplar();
+  const lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+  for (let i = 0; i < ex.length / 3; i++) for (let a = 0; a < 2; a++) {
+    lo[a] = Math.min(lo[a], ex[3 * i + a]); hi[a] = Math.max(hi[a], ex[3 * i + a]);
+  }
+  const spacing = Math.sqrt((hi[0] - lo[0]) * (hi[1] - lo[1]) / (ex.length / 3));
+  const scale = 14.0 / spacing;
+  const wave = (x0, y0) => [[x0, y0], ...Array.from({ length: 16 }, (_, j) => [x0 + 25 * (j + 1), y0 + 10 * (-1) ** (j + 1)])];
+  const strokes = [wave(60, 90), wave(60, 220), [[120, 40], ...Array.from({ length: 16 }, (_, j) => [120 + 20 * (j + 1), 40 + 15 * (j + 1)])]];
+  let result;
+  for (const stroke of strokes) {
+    const job = { neighbourhood: 2.0 * spacing, domain: { box: [1, 1] }, "max-points": 20000, shrink: 0.6, "patch-candidates": 16, "keep-margin": 2.0 * spacing, "merge-iterations": 6 };
+    result = panel.brush(new Float64Array(stroke.flatMap(([x, y]) => [x / scale, y / scale])), 3.0 * spacing, JSON.stringify(job));
+  }
+  const bits = new BigUint64Array(new Float64Array(result.points).buffer);
+  let digest = 0xcbf29ce484222325n;
+  for (const b of bits) digest = ((digest ^ b) * 0x100000001b3n) & 0xffffffffffffffffn;
+  done(digest.toString(16).padStart(16, '0'));
+})().catch((e) => done('error: ' + e));
+"""
+
+
+def native_brush_digest():
+    """The digest the brush example prints for the same strokes, built and run natively."""
+    root = DIST.parent.parent
+    output = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "brush", "--", "2", '"merge-iterations": 6'],
+        cwd=root, check=True, capture_output=True, text=True,
+    ).stdout
+    return output.strip().splitlines()[-1].split("digest ")[1]
 
 
 def main():
@@ -232,6 +275,12 @@ def main():
         driver.find_element(By.ID, "strokes-file").send_keys(str(DIST.parent.parent / "data" / "real" / "curve" / "letter_s.svg"))
         wait_for(driver, "return /elements at/.test(document.getElementById('strokes-info').textContent)", 30, "the SVG reference's analysis")
         check_panel_ok(driver, "strokes")
+
+        # The same strokes give the same bits in the browser as natively (the brush example).
+        browser_digest = driver.execute_async_script(BRUSH_DIGEST_SCRIPT)
+        native_digest = native_brush_digest()
+        assert browser_digest == native_digest, f"points brush: browser {browser_digest}, native {native_digest}"
+        figures["points_brush_digest"] = browser_digest
 
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert not errors, f"browser console errors: {errors}"

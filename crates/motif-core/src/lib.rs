@@ -24,6 +24,7 @@ mod builders;
 pub mod error;
 pub mod geometry;
 pub mod image;
+pub mod math;
 pub mod memory;
 pub mod progress;
 pub mod random;

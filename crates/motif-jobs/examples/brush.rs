@@ -69,4 +69,22 @@ fn main() {
         .expect("stdout");
         grown = Some(run.output.points);
     }
+    // A digest of the final structure as the playground returns it (x, y, first attribute), to
+    // compare with the page's result for the same strokes.
+    let set = grown.expect("three strokes");
+    let mut digest = 0xcbf2_9ce4_8422_2325_u64;
+    for i in 0..set.len() {
+        for value in [set.position(i)[0], set.position(i)[1], set.attributes_of(i).first().copied().unwrap_or(0.0)] {
+            digest = (digest ^ value.to_bits()).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    writeln!(std::io::stdout().lock(), "{} points, digest {digest:016x}", set.len()).expect("stdout");
+    if let Ok(path) = std::env::var("BRUSH_DUMP") {
+        let values: Vec<f64> = (0..set.len())
+            .flat_map(|i| {
+                [set.position(i)[0], set.position(i)[1], set.attributes_of(i).first().copied().unwrap_or(0.0)]
+            })
+            .collect();
+        std::fs::write(path, serde_json::to_string(&values).expect("json")).expect("dump");
+    }
 }

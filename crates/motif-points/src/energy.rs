@@ -7,6 +7,7 @@
 //! computed independently (in parallel, in a fixed order, hence identical for any thread count),
 //! with neighbour lists from a uniform grid instead of the window's all-pairs loops.
 
+use motif_core::math;
 use rayon::prelude::*;
 
 use crate::domain::Quadrature;
@@ -130,7 +131,7 @@ impl<const D: usize> Problem<'_, D> {
             if d2 >= kernel.cutoff2 {
                 continue;
             }
-            let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+            let pair_exp = math::exp(-d2 * kernel.half_inv_sigma2);
             scratch.push(PairCache {
                 other: j,
                 pair: pair_exp - kernel.pair_floor,
@@ -149,7 +150,7 @@ impl<const D: usize> Problem<'_, D> {
                 for c in 0..D {
                     for n in 0..width {
                         let t = cache.mid[c] - self.quadrature.node_coordinate(c, low[c] + n);
-                        windows.push((-t * t * kernel.inv_delta_prime2).exp());
+                        windows.push(math::exp(-t * t * kernel.inv_delta_prime2));
                     }
                 }
             }
@@ -416,15 +417,15 @@ impl<const D: usize> Problem<'_, D> {
                     if mid2 >= kernel.window2 {
                         return;
                     }
-                    let pair = (-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor;
-                    let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                    let pair = math::exp(-d2 * kernel.half_inv_sigma2) - kernel.pair_floor;
+                    let window_exp = math::exp(-mid2 * kernel.inv_delta_prime2);
                     total += weight * pair * (window_exp - kernel.window_floor);
                     linear::axpy(&mut g, weight * pair * window_exp * s2 * kernel.inv_delta_prime2, &sum);
                 } else {
                     if s2 * linear::norm2(&linear::sub(o, m)) >= kernel.window2 {
                         return;
                     }
-                    total += weight * ((-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor);
+                    total += weight * (math::exp(-d2 * kernel.half_inv_sigma2) - kernel.pair_floor);
                 }
             };
             visit(j);
@@ -486,11 +487,11 @@ impl<const D: usize> Problem<'_, D> {
                     continue;
                 }
             }
-            let pair_exp = (-d2 * kernel.half_inv_sigma2).exp();
+            let pair_exp = math::exp(-d2 * kernel.half_inv_sigma2);
             let pair = pair_exp - kernel.pair_floor;
             let offset = linear::sub(y, e);
             if gaussian {
-                let window_exp = (-mid2 * kernel.inv_delta_prime2).exp();
+                let window_exp = math::exp(-mid2 * kernel.inv_delta_prime2);
                 let window = window_exp - kernel.window_floor;
                 let p = pair_exp * s2 * kernel.inv_sigma2 * window;
                 let w = pair * window_exp * 0.5 * s2 * kernel.inv_delta_prime2;

@@ -10,6 +10,7 @@
 use crate::grid::CellLists;
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, Kernel, feature_dot};
+use motif_core::math;
 
 /// The exemplar's pairs within the pair cut-off (each unordered pair once, and each point with
 /// itself), for the Gaussian-window `C_k`.
@@ -95,8 +96,8 @@ impl<const D: usize> ExemplarPairs<D> {
             if !(kept(j) && kept(o)) {
                 continue;
             }
-            let pair = (-d2 * kernel.half_inv_sigma2).exp() - kernel.pair_floor;
-            let window_exp = (-s2 * mid_distance2 * kernel.inv_delta_prime2).exp();
+            let pair = math::exp(-d2 * kernel.half_inv_sigma2) - kernel.pair_floor;
+            let window_exp = math::exp(-s2 * mid_distance2 * kernel.inv_delta_prime2);
             let weight = self.weight[p];
             total += weight * pair * (window_exp - kernel.window_floor);
             if gradient.is_some() {

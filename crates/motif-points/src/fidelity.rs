@@ -13,6 +13,7 @@
 //!   `r ∈ [0.5 s, 4 s]` (below half a spacing both are mostly zero and only noise differs).
 
 use motif_core::SeedStreams;
+use motif_core::math;
 use motif_core::random::Rng;
 use serde::Serialize;
 
@@ -348,7 +349,7 @@ pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
     let (low, high) = crate::grid::bounds(points);
     let volume: f64 = (0..D).map(|a| (high[a] - low[a]).max(1e-12)).product();
     // Start from the spacing a uniform set of this size would have, and widen until found.
-    let radius = 2.0 * (volume / points.len() as f64).powf(1.0 / D as f64);
+    let radius = 2.0 * math::powf(volume / points.len() as f64, 1.0 / D as f64);
     let grid = StaticGrid::new(points, radius);
     let mut total = 0.0;
     for (i, p) in points.iter().enumerate() {

@@ -2,6 +2,7 @@
 //! exemplar patches. The solver is meant to reach the same kind of result from either.
 
 use motif_core::SeedStreams;
+use motif_core::math;
 use motif_core::random::Rng;
 
 use crate::cut::Overlap;
@@ -20,7 +21,7 @@ fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
     let z: f64 = stream.random::<f64>() * 2.0 - 1.0;
     let phi = stream.random::<f64>() * std::f64::consts::TAU;
     let r = (1.0 - z * z).max(0.0).sqrt();
-    linear::rotation_axis_angle::<D>([r * phi.cos(), r * phi.sin(), z], angle)
+    linear::rotation_axis_angle::<D>([r * math::cos(phi), r * math::sin(phi), z], angle)
 }
 
 /// Adds exemplar point `j` (or its whole element) mapped by `x = anchor + frame (e − origin)`.

@@ -2,6 +2,7 @@
 //!
 //! The solver is generic over the dimension through const generics, so every hot loop works on
 //! stack arrays the compiler can unroll; nothing here allocates.
+use motif_core::math;
 
 /// A point or vector in `D` dimensions.
 pub type Vector<const D: usize> = [f64; D];
@@ -86,7 +87,7 @@ pub fn identity<const D: usize>() -> Matrix<D> {
 /// Rotation by `angle` radians in the xy-plane (about z in 3D), counter-clockwise for y up.
 pub fn rotation_xy<const D: usize>(angle: f64) -> Matrix<D> {
     let mut m = identity::<D>();
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = math::sin_cos(angle);
     m[0][0] = cos;
     m[0][1] = -sin;
     m[1][0] = sin;
@@ -100,7 +101,7 @@ pub fn rotation_axis_angle<const D: usize>(axis: [f64; 3], angle: f64) -> Matrix
     if D == 2 {
         return rotation_xy::<D>(angle);
     }
-    let (s, c) = angle.sin_cos();
+    let (s, c) = math::sin_cos(angle);
     let t = 1.0 - c;
     let [x, y, z] = axis;
     let full = [
@@ -114,7 +115,7 @@ pub fn rotation_axis_angle<const D: usize>(axis: [f64; 3], angle: f64) -> Matrix
 /// The smallest rotation taking the x axis onto the unit vector `direction`.
 pub fn rotation_from_x<const D: usize>(direction: &Vector<D>) -> Matrix<D> {
     if D == 2 {
-        return rotation_xy::<D>(direction[1].atan2(direction[0]));
+        return rotation_xy::<D>(math::atan2(direction[1], direction[0]));
     }
     // Axis = x × d, angle = acos(x·d).
     let (dx, dy, dz) = (direction[0], direction[1], direction[2]);
@@ -126,7 +127,7 @@ pub fn rotation_from_x<const D: usize>(direction: &Vector<D>) -> Matrix<D> {
         }
         return rotation_axis_angle::<D>([0.0, 0.0, 1.0], std::f64::consts::PI);
     }
-    let angle = sin.atan2(dx);
+    let angle = math::atan2(sin, dx);
     rotation_axis_angle::<D>([axis[0] / sin, axis[1] / sin, axis[2] / sin], angle)
 }
 

@@ -11,6 +11,7 @@
 //! makes the step never raise T.
 
 use motif_core::SeedStreams;
+use motif_core::math;
 use motif_core::random::Rng;
 use rayon::prelude::*;
 
@@ -51,7 +52,7 @@ impl<const D: usize> SearchFields<D> {
         let inv = 0.5 / (sigma * sigma);
         let smoothed = Raster::new(low, high, fine, channels, |y, out| {
             problem.exemplar_grid.for_each_within(y, cutoff, |j, _, d2| {
-                let g = (-d2 * inv).exp();
+                let g = math::exp(-d2 * inv);
                 for (o, b) in out.iter_mut().zip(exemplar.feature(j)) {
                     *o += b * g;
                 }
@@ -166,7 +167,7 @@ fn match_one<const D: usize>(
     for (u, i) in &window {
         let r2 = linear::norm2(u);
         let w = match kernel.window {
-            Window::Gaussian if r2 < 9.0 * kernel.delta * kernel.delta => (-r2 / delta_prime2).exp(),
+            Window::Gaussian if r2 < 9.0 * kernel.delta * kernel.delta => math::exp(-r2 / delta_prime2),
             Window::Box if r2 < kernel.delta * kernel.delta => 1.0,
             _ => 0.0,
         };

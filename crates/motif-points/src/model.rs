@@ -19,6 +19,7 @@
 
 use crate::linear::{self, Matrix, Vector};
 use crate::params::Window;
+use motif_core::math;
 
 /// The kernel `K(u, v)` with its truncation (pairs beyond the cut-off, midpoints beyond 3δ).
 #[derive(Debug, Clone, Copy)]
@@ -55,9 +56,9 @@ impl Kernel {
             inv_delta_prime2: 1.0 / (delta * delta + 0.5 * sigma * sigma),
             window2: window_radius * window_radius,
             cutoff2: cutoff * cutoff,
-            pair_floor: (-0.5 * cutoff_sigmas * cutoff_sigmas).exp(),
+            pair_floor: math::exp(-0.5 * cutoff_sigmas * cutoff_sigmas),
             window_floor: match window {
-                Window::Gaussian => (-9.0 * delta * delta / (delta * delta + 0.5 * sigma * sigma)).exp(),
+                Window::Gaussian => math::exp(-9.0 * delta * delta / (delta * delta + 0.5 * sigma * sigma)),
                 Window::Box => 0.0,
             },
             gather,
@@ -86,13 +87,13 @@ impl Kernel {
             Window::Box if linear::norm2(u) >= self.window2 || linear::norm2(v) >= self.window2 => return None,
             _ => {}
         }
-        let pair_exp = (-d2 * self.half_inv_sigma2).exp();
+        let pair_exp = math::exp(-d2 * self.half_inv_sigma2);
         let pair = pair_exp - self.pair_floor;
         // ∂pair/∂u = −pair_exp d/σ², ∂pair/∂v = +pair_exp d/σ².
         let pair_slope = pair_exp * self.inv_sigma2;
         match self.window {
             Window::Gaussian => {
-                let window_exp = (-mid2 * self.inv_delta_prime2).exp();
+                let window_exp = math::exp(-mid2 * self.inv_delta_prime2);
                 let window = window_exp - self.window_floor;
                 // ∂window/∂u = ∂window/∂v = −window_exp mid/δ'².
                 let window_slope = pair * window_exp * self.inv_delta_prime2;

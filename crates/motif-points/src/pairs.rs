@@ -10,6 +10,7 @@
 //! and the nodes lie on a grid). Results are stored per neighbour-list entry and gathered per point
 //! afterwards, so the sums stay in a fixed order for any thread count.
 
+use motif_core::math;
 use rayon::prelude::*;
 
 use crate::energy::Problem;
@@ -58,7 +59,7 @@ impl<const D: usize> Problem<'_, D> {
                 let t = mid[c] - self.quadrature.node_coordinate(c, low[c] + n);
                 tables[(3 * c) * width + n] = t;
                 tables[(3 * c + 1) * width + n] = t * t;
-                tables[(3 * c + 2) * width + n] = (-t * t * kernel.inv_delta_prime2).exp();
+                tables[(3 * c + 2) * width + n] = math::exp(-t * t * kernel.inv_delta_prime2);
             }
         }
         let mut sum = 0.0;
@@ -92,7 +93,7 @@ impl<const D: usize> Problem<'_, D> {
         }
         let xj = state.positions[j];
         let d = linear::sub(&x, &xj);
-        let pair_exp = (-linear::norm2(&d) * kernel.half_inv_sigma2).exp();
+        let pair_exp = math::exp(-linear::norm2(&d) * kernel.half_inv_sigma2);
         let mid = std::array::from_fn(|c| 0.5 * (x[c] + xj[c]));
         let slope = linear::scale(&d, pair_exp * kernel.inv_sigma2);
         let term = self.pair_term(&mid, pair_exp - kernel.pair_floor, &slope, tables);
@@ -152,7 +153,7 @@ impl<const D: usize> Problem<'_, D> {
                         }
                         let xj = state.positions[j as usize];
                         let d = linear::sub(&x, &xj);
-                        let pair_exp = (-linear::norm2(&d) * kernel.half_inv_sigma2).exp();
+                        let pair_exp = math::exp(-linear::norm2(&d) * kernel.half_inv_sigma2);
                         let mid = std::array::from_fn(|c| 0.5 * (x[c] + xj[c]));
                         let slope = linear::scale(&d, pair_exp * kernel.inv_sigma2);
                         self.pair_term(&mid, pair_exp - kernel.pair_floor, &slope, tables)

@@ -116,6 +116,7 @@ impl<const D: usize> Band<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use motif_core::math;
 
     #[test]
     fn the_source_a_band_was_copied_from_agrees_exactly() {
@@ -124,7 +125,7 @@ mod tests {
         let exemplar: Vec<Vector<2>> = (0..400)
             .map(|i| {
                 let t = i as f64;
-                [(t * 7.31).rem_euclid(20.0), (t * 3.17 + (t * 0.7).sin()).rem_euclid(20.0)]
+                [(t * 7.31).rem_euclid(20.0), (t * 3.17 + math::sin(t * 0.7)).rem_euclid(20.0)]
             })
             .collect();
         let grid = StaticGrid::new(&exemplar, 1.0);

@@ -2,6 +2,7 @@
 //! (a 2D grid-like arrangement, sand ripples, a 3D organic lattice, rigid leaves) drawn from a seed.
 
 use motif_core::SeedStreams;
+use motif_core::math;
 use motif_core::random::Rng;
 
 use crate::PointSet;
@@ -33,17 +34,18 @@ pub fn ripple_exemplar(count: usize, seed: u64) -> PointSet {
     for i in 0..count {
         let (row, column) = (i / side, i % side);
         let x = column as f64 + 0.15 * (stream.random::<f64>() - 0.5);
-        let y = row as f64 + 0.35 * (2.0 * std::f64::consts::PI * x / 6.0).sin() + 0.1 * (stream.random::<f64>() - 0.5);
+        let y =
+            row as f64 + 0.35 * math::sin(2.0 * std::f64::consts::PI * x / 6.0) + 0.1 * (stream.random::<f64>() - 0.5);
         positions.push(x);
         positions.push(y);
-        attributes.push((2.0 * std::f64::consts::PI * (x + y) / 5.0).sin());
+        attributes.push(math::sin(2.0 * std::f64::consts::PI * (x + y) / 5.0));
     }
     PointSet { dimension: 2, positions, attribute_names: vec!["height".into()], attributes, elements: None }
 }
 
 /// A 3D lattice-like organic structure: points on jittered cubic cells with a `radius` attribute.
 pub fn lattice_exemplar(count: usize, seed: u64) -> PointSet {
-    let side = (count as f64).cbrt().ceil() as usize;
+    let side = math::cbrt(count as f64).ceil() as usize;
     let mut stream = SeedStreams::new(seed).stream("lattice exemplar", 0);
     let mut positions = Vec::new();
     let mut attributes = Vec::new();
@@ -70,8 +72,8 @@ pub fn leaf_exemplar(seed: u64) -> PointSet {
             let cy = row as f64 * 3.0 + 0.3 * (stream.random::<f64>() - 0.5);
             let angle = 0.5 * (stream.random::<f64>() - 0.5);
             for t in [-0.6, 0.0, 0.6] {
-                positions.push(cx + t * angle.cos() - 0.25 * t * t * angle.sin());
-                positions.push(cy + t * angle.sin() + 0.25 * t * t * angle.cos());
+                positions.push(cx + t * math::cos(angle) - 0.25 * t * t * math::sin(angle));
+                positions.push(cy + t * math::sin(angle) + 0.25 * t * t * math::cos(angle));
                 elements.push(id);
             }
             id += 1;

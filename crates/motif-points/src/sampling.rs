@@ -11,6 +11,7 @@
 //! neighbourhood that is farthest from any output point, placed by the match's frame, then takes a
 //! few gradient steps; the change in T is computed exactly from the terms that hold the unit.
 
+use motif_core::math;
 use rayon::prelude::*;
 
 use crate::energy::Problem;
@@ -81,7 +82,7 @@ pub fn sampling_density<const D: usize>(problem: &Problem<'_, D>, state: &State<
 #[inline]
 fn weight(width: Option<f64>, d2: f64) -> f64 {
     match width {
-        Some(w) => (-d2 / (w * w)).exp(),
+        Some(w) => math::exp(-d2 / (w * w)),
         None => 1.0,
     }
 }
@@ -97,7 +98,7 @@ fn thresholds<const D: usize>(problem: &Problem<'_, D>, exemplar: &Exemplar<D>, 
     let density = exemplar.density();
     let spread = match problem.kernel.density_width() {
         // Σ g(u)² over a Poisson set: ρ ∫ exp(−2|u|²/w²) du = ρ (π w²/2)^(D/2).
-        Some(w) => (std::f64::consts::PI * w * w / 2.0).powf(D as f64 / 2.0),
+        Some(w) => math::powf(std::f64::consts::PI * w * w / 2.0, D as f64 / 2.0),
         // Points counted inside δ: ρ times the ball's volume.
         None => {
             let unit_ball = if D == 2 { std::f64::consts::PI } else { 4.0 / 3.0 * std::f64::consts::PI };

@@ -6,6 +6,7 @@ use motif_core::InvalidParameter;
 use motif_core::SeedStreams;
 use motif_core::error::check_range;
 use motif_core::error::number;
+use motif_core::math;
 
 use crate::domain::{Quadrature, Region};
 use crate::energy::Problem;
@@ -85,7 +86,7 @@ fn significant(value: f64) -> String {
     if value == 0.0 || !value.is_finite() {
         return number(value);
     }
-    let decimals = 2 - value.abs().log10().floor() as i32;
+    let decimals = 2 - math::log10(value.abs()).floor() as i32;
     if (0..=12).contains(&decimals) { format!("{value:.*}", decimals as usize) } else { number(value) }
 }
 
