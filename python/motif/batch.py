@@ -106,8 +106,10 @@ def stylize_tiles(
     grid = tile_grid(height, width, int(tile), int(overlap))
     dask_client, close = _client(client)
     try:
-        shared_style = dask_client.scatter(style, broadcast=True)
-        shared_sources = dask_client.scatter(sources, broadcast=True)
+        # Unique keys (hash=False): scattered by content, an identical style from an earlier call
+        # shares its key, and that call releasing it could cancel these tiles ("lost dependencies").
+        shared_style = dask_client.scatter(style, broadcast=True, hash=False)
+        shared_sources = dask_client.scatter(sources, broadcast=True, hash=False)
         futures = []
         for index, (_, _, extent) in enumerate(grid):
             tile_options = dict(options, seed=int(seed) + index, threads=int(threads))
