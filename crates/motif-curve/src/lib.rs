@@ -13,7 +13,8 @@
 //!   minimum-coverage rule and the pattern's side margins (not in the paper); `bent` straightens
 //!   pieces that follow the ribbon (the default; the paper's pieces are rigid).
 //! - `cost`: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
-//!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3).
+//!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3); `bounds`: lower bounds of `D` from block-sum
+//!   profiles and alpha masks, for the exact solver's pruning (not in the paper).
 //! - `dp`: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
 //!   solver, the exact fast solver (its branch and bound in `profile_tree`) and a brute-force
 //!   enumerator for tests; `solve` runs it (or `closed`) and the repetition control of
@@ -59,6 +60,7 @@ mod atlas;
 mod avoidance;
 mod bends;
 mod bent;
+mod bounds;
 mod canvas;
 mod closed;
 mod cost;

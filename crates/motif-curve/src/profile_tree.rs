@@ -3,10 +3,8 @@
 
 use rayon::prelude::*;
 
-use crate::cost::{
-    CostModel, EdgeSet, alpha_bound_of_distance, bound_of_distances, colour_profile_distance, edge_distance_bounded,
-    l1_u16, mask_bound,
-};
+use crate::bounds::{alpha_bound_of_distance, bound_of_distances, colour_profile_distance, l1_u16, mask_bound};
+use crate::cost::{CostModel, EdgeSet, edge_distance_bounded};
 use crate::dp::{DpCounters, RowResult, Seeds};
 
 /// Predecessors per leaf of the profile tree (small under test, so that the tiny property-test
