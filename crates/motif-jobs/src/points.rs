@@ -62,6 +62,8 @@ pub struct PointsJob {
     /// Candidate sources judged per patch.
     #[serde(default)]
     pub patch_candidates: Option<usize>,
+    /// Steering of patch sources to the least-copied parts of the exemplar (default 2).
+    pub patch_balance: Option<f64>,
     /// Which points move after a patch initialization: `seams`, `everywhere` or `none`.
     #[serde(default)]
     pub refine: Option<Refinement>,
@@ -141,6 +143,7 @@ impl PointsJob {
             init: None,
             patch_size: None,
             patch_candidates: None,
+            patch_balance: None,
             refine: None,
             exemplar_window: None,
             attributes: None,
@@ -236,6 +239,7 @@ impl PointsJob {
             .with_discrete_attributes(discrete)
             .with_patch_size(self.patch_size.unwrap_or(defaults.patch_size))
             .with_patch_candidates(self.patch_candidates.unwrap_or(defaults.patch_candidates))
+            .with_patch_balance(self.patch_balance.unwrap_or(defaults.patch_balance))
             .with_refinement(self.refine.unwrap_or(defaults.refinement))
             .with_exemplar_window(exemplar_window)
             .with_continuous_attributes(self.continuous.clone())
@@ -283,6 +287,7 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
         "output_points": report.final_points,
         "fixed_points": report.fixed_points,
         "patch_interior_points": report.patch_interior_points,
+        "patch_usage_variation": report.patch_usage_variation,
         "shrink": report.shrink,
         "sigma": report.sigma,
         "neighbourhood": report.neighbourhood,

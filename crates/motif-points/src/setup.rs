@@ -56,6 +56,8 @@ pub(crate) struct Setup<const D: usize> {
     pub expected_points: f64,
     /// Points initialized in patch interiors and kept as copied (see `Refinement::Seams`).
     pub patch_interiors: usize,
+    /// See [`crate::init::Copies::usage_variation`] (`None` without patch initialization).
+    pub patch_usage_variation: Option<f64>,
 }
 
 /// Three significant digits, for limits quoted in messages.
@@ -358,6 +360,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         has_elements,
         expected_points: expected,
         patch_interiors: 0,
+        patch_usage_variation: None,
     })
 }
 
@@ -393,13 +396,15 @@ impl<const D: usize> Setup<D> {
                     side: patch,
                     band,
                     candidates: params.patch_candidates,
+                    balance: params.patch_balance,
                     seam: (params.refinement == Refinement::Seams).then_some(0.25 * band),
                 };
-                let (sources, interiors) =
+                let copies =
                     init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);
-                self.patch_interiors = interiors;
+                self.patch_interiors = copies.interiors;
+                self.patch_usage_variation = Some(copies.usage_variation);
                 let centre = std::array::from_fn(|a| 0.5 * (self.exemplar.low[a] + self.exemplar.high[a]));
-                sources.into_iter().map(|m| m.unwrap_or(centre)).collect()
+                copies.sources.into_iter().map(|m| m.unwrap_or(centre)).collect()
             }
         };
         state.compact();

@@ -77,6 +77,10 @@ pub struct Report {
     pub fixed_points: usize,
     /// Points copied into patch interiors and kept as copied ([`Refinement::Seams`]).
     pub patch_interior_points: usize,
+    /// How unevenly the patches copied the exemplar: the coefficient of variation of how many
+    /// output points copy each exemplar point (0: all equally often, as in a tiled copy; `None`
+    /// without patch initialization).
+    pub patch_usage_variation: Option<f64>,
     /// Structure fidelity on the interior.
     pub fidelity: Fidelity,
     /// Milliseconds per stage.
@@ -343,6 +347,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             final_energy,
             fixed_points,
             patch_interior_points: setup.patch_interiors,
+            patch_usage_variation: setup.patch_usage_variation,
             fidelity,
             stages_ms,
         },

@@ -70,6 +70,11 @@ pub struct PointsArgs {
     /// the points already placed around the patch is copied. 1 copies a random source.
     #[arg(long, value_name = "N", default_value_t = 48)]
     pub patch_candidates: usize,
+    /// How strongly each patch's source is steered to the parts of the exemplar copied least so
+    /// far (0–100; 0 judges candidates by their seams and count alone), so that every part of the
+    /// exemplar is copied about equally often.
+    #[arg(long, value_name = "W", default_value_t = 2.0)]
+    pub patch_balance: f64,
     /// Which points the optimization moves after a patch initialization: the seams between patches
     /// (default; on real exemplars moving the copies' interiors lowered fidelity), every point, or
     /// none (the patches are the output).
@@ -275,6 +280,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         init: Some(args.init),
         patch_size: Some(args.patch_size),
         patch_candidates: Some(args.patch_candidates),
+        patch_balance: Some(args.patch_balance),
         refine: Some(args.refine),
         exemplar_window: args.exemplar_window.clone(),
         attributes: args.attributes.clone(),
