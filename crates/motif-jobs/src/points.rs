@@ -62,7 +62,7 @@ pub struct PointsJob {
     /// Candidate sources judged per patch.
     #[serde(default)]
     pub patch_candidates: Option<usize>,
-    /// Steering of patch sources to the least-copied parts of the exemplar (default 2).
+    /// Balancing of patch sources: tolerance above the best candidate's score (default 0.5).
     pub patch_balance: Option<f64>,
     /// Which points move after a patch initialization: `seams`, `everywhere` or `none`.
     #[serde(default)]

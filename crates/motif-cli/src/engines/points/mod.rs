@@ -70,10 +70,10 @@ pub struct PointsArgs {
     /// the points already placed around the patch is copied. 1 copies a random source.
     #[arg(long, value_name = "N", default_value_t = 48)]
     pub patch_candidates: usize,
-    /// How strongly each patch's source is steered to the parts of the exemplar copied least so
-    /// far (0–100; 0 judges candidates by their seams and count alone), so that every part of the
-    /// exemplar is copied about equally often.
-    #[arg(long, value_name = "W", default_value_t = 2.0)]
+    /// Balancing of patch sources (0–10; 0 takes the best-scored candidate): of the candidates
+    /// scored within this fraction of the best, the one whose exemplar points were copied least so
+    /// far is taken, so that every part of the exemplar is copied about equally often.
+    #[arg(long, value_name = "F", default_value_t = 0.5)]
     pub patch_balance: f64,
     /// Which points the optimization moves after a patch initialization: the seams between patches
     /// (default; on real exemplars moving the copies' interiors lowered fidelity), every point, or
