@@ -231,10 +231,11 @@ async function brushPoints(stroke) {
   const list = stroke.map(unit).flat();
   if (list.length < 4) return;
   const width = Number($("points-width").value) * points.spacing;
-  // Interactive settings: two window sizes (shrink 0.6), 16 quilting candidates and at most 6
-  // merging steps per window size, about half the CLI defaults' work with the same
-  // nearest-neighbour fidelity on the hex exemplar (docs/performance.md).
-  const job = { neighbourhood: 2 * points.spacing, domain: { box: [1, 1] }, "max-points": 20000, shrink: 0.6, "patch-candidates": 16, "merge-iterations": 6, "keep-margin": points.spacing * 2 };
+  // Interactive settings: two window sizes (shrink 0.6), 16 quilting candidates, at most 6
+  // merging steps per window size and the window truncated at 1.5 δ instead of 2 δ: a fraction
+  // of the CLI defaults' work with nearly the same fidelity on the hex exemplar
+  // (docs/performance.md).
+  const job = { neighbourhood: 2 * points.spacing, domain: { box: [1, 1] }, "max-points": 20000, shrink: 0.6, "patch-candidates": 16, "merge-iterations": 6, "window-cutoff": 1.5, "keep-margin": points.spacing * 2 };
   const start = performance.now();
   try {
     const result = await request("pointsBrush", { points: list, width, job });

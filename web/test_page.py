@@ -139,7 +139,7 @@ const done = arguments[arguments.length - 1];
   const strokes = [wave(60, 90), wave(60, 220), [[120, 40], ...Array.from({ length: 16 }, (_, j) => [120 + 20 * (j + 1), 40 + 15 * (j + 1)])]];
   let result;
   for (const stroke of strokes) {
-    const job = { neighbourhood: 2.0 * spacing, domain: { box: [1, 1] }, "max-points": 20000, shrink: 0.6, "patch-candidates": 16, "keep-margin": 2.0 * spacing, "merge-iterations": 6 };
+    const job = { neighbourhood: 2.0 * spacing, domain: { box: [1, 1] }, "max-points": 20000, shrink: 0.6, "patch-candidates": 16, "keep-margin": 2.0 * spacing, "merge-iterations": 6, "window-cutoff": 1.5 };
     result = panel.brush(new Float64Array(stroke.flatMap(([x, y]) => [x / scale, y / scale])), 3.0 * spacing, JSON.stringify(job));
   }
   const bits = new BigUint64Array(new Float64Array(result.points).buffer);
@@ -154,7 +154,7 @@ def native_brush_digest():
     """The digest the brush example prints for the same strokes, built and run natively."""
     root = DIST.parent.parent
     output = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "brush", "--", "2", '"merge-iterations": 6'],
+        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "brush", "--", "2", '"merge-iterations": 6, "window-cutoff": 1.5'],
         cwd=root, check=True, capture_output=True, text=True,
     ).stdout
     return output.strip().splitlines()[-1].split("digest ")[1]

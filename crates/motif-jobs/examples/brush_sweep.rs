@@ -3,7 +3,8 @@
 //! example, shifted by a seed-dependent offset) on the built-in hex exemplar, with the page's
 //! settings plus any extra job members. Prints the mean time of fresh and crossing strokes and the
 //! mean fidelity of the grown structure. Run single-threaded, as the page runs:
-//! `RAYON_NUM_THREADS=1 cargo run --release -p motif-jobs --example brush_sweep -- 10 '"merge-iterations": 6'`.
+//! `RAYON_NUM_THREADS=1 cargo run --release -p motif-jobs --example brush_sweep -- 100 '"merge-iterations": 6' [KEEP_MARGIN]`
+//! (seeds, extra job members, the keep margin in spacings; the page's is 2).
 
 use std::io::Write;
 
@@ -12,7 +13,9 @@ use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
 
 fn main() {
     let seeds: u64 = std::env::args().nth(1).map_or(10, |a| a.parse().expect("a number of seeds"));
-    let extra = std::env::args().nth(2).map_or(String::new(), |members| format!(", {members}"));
+    let extra = std::env::args().nth(2).unwrap_or_default();
+    // The margin of grown points that may move, in spacings (the page uses 2).
+    let keep_margin: f64 = std::env::args().nth(3).map_or(2.0, |a| a.parse().expect("a number"));
     let exemplar = motif_points::samples::hex_exemplar(9, 8, 0.08, 1);
     let discrete = vec!["shade".to_string()];
     let (mut low, mut high) = ([f64::MAX; 2], [f64::MIN; 2]);
@@ -26,6 +29,7 @@ fn main() {
     let scale = 14.0 / spacing;
     let (mut fresh_ms, mut crossing_ms, mut crossing_added) = (Vec::new(), Vec::new(), Vec::new());
     let (mut nearest, mut radial) = (0.0, 0.0);
+    let mut crossing_stages: std::collections::BTreeMap<String, f64> = Default::default();
     for seed in 1..=seeds {
         let mut stream = motif_core::SeedStreams::new(seed).stream("brush sweep", 0);
         let (dx, dy, tilt) = (stream.random::<f64>() * 40.0, stream.random::<f64>() * 40.0, stream.random::<f64>());
@@ -36,13 +40,16 @@ fn main() {
         ];
         let mut grown: Option<motif_points::PointSet> = None;
         for (index, stroke) in strokes.iter().enumerate() {
-            let job = format!(
-                r#"{{"neighbourhood": {}, "domain": {{"box": [1, 1]}}, "seed": {seed}, "max-points": 20000, "shrink": 0.6, "patch-candidates": 16, "keep-margin": {}{}}}"#,
-                2.0 * spacing,
-                2.0 * spacing,
-                extra
-            );
-            let mut job: PointsJob = serde_json::from_str(&job).expect("job");
+            let mut job = serde_json::json!({
+                "neighbourhood": 2.0 * spacing, "domain": {"box": [1, 1]}, "seed": seed, "max-points": 20000,
+                "shrink": 0.6, "patch-candidates": 16, "keep-margin": keep_margin * spacing,
+            });
+            // Extra members replace the page's.
+            let extra: serde_json::Value = serde_json::from_str(&format!("{{{extra}}}")).expect("extra job members");
+            for (key, value) in extra.as_object().expect("an object") {
+                job[key] = value.clone();
+            }
+            let mut job: PointsJob = serde_json::from_value(job).expect("job");
             job.domain = DomainSpec::Stroke(StrokeSpec {
                 points: stroke.iter().map(|&(x, y)| vec![x / scale, y / scale]).collect(),
                 width: 3.0 * spacing,
@@ -58,6 +65,9 @@ fn main() {
                 crossing_ms.push(ms);
                 crossing_added.push(run.output.points.len() as f64 - before as f64);
                 nearest += run.output.report.fidelity.output.nearest_neighbour;
+                for (stage, ms) in &run.output.report.stages_ms {
+                    *crossing_stages.entry(stage.clone()).or_default() += ms / seeds as f64;
+                }
                 radial += run.output.report.fidelity.output.radial_distribution;
             }
             grown = Some(run.output.points);
@@ -80,4 +90,6 @@ fn main() {
         radial / n,
     )
     .expect("stdout");
+    let stages: Vec<String> = crossing_stages.iter().map(|(stage, ms)| format!("{stage} {ms:.1}")).collect();
+    writeln!(std::io::stdout().lock(), "crossing strokes, mean ms per stage: {}", stages.join(", ")).expect("stdout");
 }

@@ -103,6 +103,15 @@ pub struct PointsJob {
     /// Merging iterations per step.
     #[serde(default)]
     pub merge_iterations: Option<usize>,
+    /// Truncation radius of the Gaussian window, in δ (default 3).
+    #[serde(default)]
+    pub window_cutoff: Option<f64>,
+    /// Random starts of each quadrature point's matching search (default 5).
+    #[serde(default)]
+    pub matching_starts: Option<usize>,
+    /// Descent iterations per matching start (default 8).
+    #[serde(default)]
+    pub matching_iterations: Option<usize>,
     /// Window shrink factor per scale.
     #[serde(default)]
     pub shrink: Option<f64>,
@@ -157,6 +166,9 @@ impl PointsJob {
             quadrature_spacing: None,
             sampling_rounds: None,
             merge_iterations: None,
+            window_cutoff: None,
+            matching_starts: None,
+            matching_iterations: None,
             shrink: None,
             no_sampling_control: false,
             reference: false,
@@ -231,6 +243,9 @@ impl PointsJob {
             .with_quadrature_spacing(self.quadrature_spacing.or(defaults.quadrature_spacing))
             .with_sampling_rounds(self.sampling_rounds.unwrap_or(defaults.sampling_rounds))
             .with_merge_iterations(self.merge_iterations.unwrap_or(defaults.merge_iterations))
+            .with_window_cutoff(self.window_cutoff.unwrap_or(defaults.window_cutoff))
+            .with_matching_starts(self.matching_starts.unwrap_or(defaults.matching_starts))
+            .with_matching_iterations(self.matching_iterations.unwrap_or(defaults.matching_iterations))
             .with_shrink(self.shrink)
             .with_sampling_control(!self.no_sampling_control)
             .with_evaluator(if self.reference { Evaluator::Reference } else { Evaluator::Fast })

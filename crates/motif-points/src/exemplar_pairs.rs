@@ -82,7 +82,7 @@ impl<const D: usize> ExemplarPairs<D> {
             }
         };
         let s2 = s * s;
-        let reach = 3.0 * kernel.delta / s;
+        let reach = kernel.window_radius / s;
         let count = self.mids.collect_within(m, reach, found);
         let mut total = 0.0;
         let mut g = [0.0; D];

@@ -7,7 +7,7 @@
 //!
 //! - `points` (§4.1, Eq. 1): [`PointSet`], points with float attributes and element ids.
 //! - `model` (§4.3, Eq. 4–5): features, the kernel of the discrete error density for the box and
-//!   Gaussian windows with truncation at 3δ, exemplar/output state, rigid elements (§6.1).
+//!   Gaussian windows truncated at `window_cutoff` δ (2δ by default), exemplar/output state, rigid elements (§6.1).
 //! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, ∂S/∂m_k, point-centric and
 //!   parallel; `pairs`: its output–output term summed once per pair over the nodes around the
 //!   pair's midpoint; `exemplar_pairs`: the exemplar's own term `C_k` over listed exemplar pairs;

@@ -21,7 +21,7 @@ use crate::linear::{self, Matrix, Vector};
 use crate::params::Window;
 use motif_core::math;
 
-/// The kernel `K(u, v)` with its truncation (pairs beyond the cut-off, midpoints beyond 3δ).
+/// The kernel `K(u, v)` with its truncation (pairs beyond the cut-off, midpoints beyond the window radius).
 #[derive(Debug, Clone, Copy)]
 pub struct Kernel {
     pub window: Window,
@@ -34,6 +34,8 @@ pub struct Kernel {
     pub cutoff2: f64,
     pub pair_floor: f64,
     pub window_floor: f64,
+    /// Distance from the window centre beyond which a pair's midpoint is outside the window.
+    pub window_radius: f64,
     /// Distance from the window centre beyond which a point takes part in no pair.
     pub gather: f64,
     /// The pair cut-off distance.
@@ -41,10 +43,11 @@ pub struct Kernel {
 }
 
 impl Kernel {
-    pub fn new(window: Window, sigma: f64, delta: f64, cutoff_sigmas: f64) -> Self {
+    /// `window_deltas`: the Gaussian window's truncation radius in units of δ.
+    pub fn new(window: Window, sigma: f64, delta: f64, cutoff_sigmas: f64, window_deltas: f64) -> Self {
         let cutoff = cutoff_sigmas * sigma;
         let (window_radius, gather) = match window {
-            Window::Gaussian => (3.0 * delta, 3.0 * delta + 0.5 * cutoff),
+            Window::Gaussian => (window_deltas * delta, window_deltas * delta + 0.5 * cutoff),
             Window::Box => (delta, delta),
         };
         Self {
@@ -58,9 +61,10 @@ impl Kernel {
             cutoff2: cutoff * cutoff,
             pair_floor: math::exp(-0.5 * cutoff_sigmas * cutoff_sigmas),
             window_floor: match window {
-                Window::Gaussian => math::exp(-9.0 * delta * delta / (delta * delta + 0.5 * sigma * sigma)),
+                Window::Gaussian => math::exp(-window_radius * window_radius / (delta * delta + 0.5 * sigma * sigma)),
                 Window::Box => 0.0,
             },
+            window_radius,
             gather,
             cutoff,
         }
@@ -69,7 +73,7 @@ impl Kernel {
     /// `K(u, v)`, `∂K/∂u` and `∂K/∂v`; `None` when the pair is truncated.
     ///
     /// Truncation is made continuous by subtracting each Gaussian's value at its cut-off (the pair
-    /// factor at `cutoff`, the window factor at 3δ), so that a pair leaving the neighbourhood does
+    /// factor at `cutoff`, the window factor at the window radius), so that a pair leaving the neighbourhood does
     /// not make T jump — with plain truncation the jumps (about 1 % of a pair's weight at a 3σ
     /// cut-off) are larger than the decrease of a small gradient step and stall the descent.
     #[inline(always)]

@@ -2,7 +2,7 @@
 //!
 //! For a pair of output points the kernel is `K = pair(x_i − x_j) · window(mid − q_k)` with `mid`
 //! their midpoint, so the pair factor leaves the sum over quadrature points: the term of the pair
-//! is `pair · W(mid)` with `W(mid) = Σ_k (exp(−|mid − q_k|²/δ'²) − floor)` over the nodes within 3δ
+//! is `pair · W(mid)` with `W(mid) = Σ_k (exp(−|mid − q_k|²/δ'²) − floor)` over the nodes within the window radius
 //! of the midpoint, and its derivatives need `G(mid) = Σ_k exp(…)(mid − q_k)` besides. Each
 //! unordered pair is summed once here (the point-centric row of [`crate::energy`] visits it from
 //! both ends, each time over all of its point's nodes and testing the midpoint's reach), with
@@ -45,7 +45,7 @@ impl<const D: usize> Problem<'_, D> {
     /// The sums of one pair with midpoint `mid` and pair factor `pair` (`slope = −∂pair/∂x_i`).
     fn pair_term(&self, mid: &Vector<D>, pair: f64, slope: &Vector<D>, tables: &mut Vec<f64>) -> PairTerm<D> {
         let kernel = &self.kernel;
-        let reach = 3.0 * kernel.delta;
+        let reach = kernel.window_radius;
         let Some((low, high)) = self.quadrature.node_range(mid, reach) else {
             return PairTerm::default();
         };

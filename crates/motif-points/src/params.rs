@@ -12,7 +12,7 @@ use crate::error::Error;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Window {
-    /// `w(s) = exp(-|s|²/δ²)`, truncated at `3δ`; smooth in the positions (default).
+    /// `w(s) = exp(-|s|²/δ²)`, truncated at `window_cutoff` δ (default 2δ); smooth in the positions (default).
     #[default]
     Gaussian,
     /// The box `|s| < δ` of Eq. 5: only points inside the window count.
@@ -167,6 +167,9 @@ pub struct Params {
     /// Pairs of points farther apart than this many σ are ignored (the σ-Gaussian is below
     /// `exp(-c²/2)` there; 2–6, default 3).
     pub kernel_cutoff: f64,
+    /// The Gaussian window is truncated at this many δ (1.5–4, default 3: its weight is
+    /// `exp(-9)` there). Smaller is faster (the work grows with the window's area).
+    pub window_cutoff: f64,
     /// Window shrink factor α per scale (§5.1; 0.5–0.99). Default `None`: the paper's 0.9, or 0.8
     /// after a patch initialization with [`Refinement::Seams`], where the copies start close to
     /// the optimum and fewer window sizes give the same fidelity in 35–40 % less time (measured on
@@ -278,6 +281,7 @@ impl Default for Params {
             spacing_fraction: 0.5,
             quadrature_spacing: None,
             kernel_cutoff: 3.0,
+            window_cutoff: 2.0,
             shrink: None,
             final_fraction: 0.5,
             sampling_rounds: 1,
@@ -362,6 +366,7 @@ impl Params {
             check_range("quadrature-spacing", spacing, 0.25, 4.0)?;
         }
         check_range("kernel-cutoff", self.kernel_cutoff, 2.0, 6.0)?;
+        check_range("window-cutoff", self.window_cutoff, 1.5, 4.0)?;
         if let Some(shrink) = self.shrink {
             check_range("shrink", shrink, 0.5, 0.99)?;
         }
@@ -399,6 +404,7 @@ motif_core::builders! { Params {
     with_spacing_fraction => spacing_fraction: f64,
     with_quadrature_spacing => quadrature_spacing: Option<f64>,
     with_kernel_cutoff => kernel_cutoff: f64,
+    with_window_cutoff => window_cutoff: f64,
     with_shrink => shrink: Option<f64>,
     with_final_fraction => final_fraction: f64,
     with_sampling_rounds => sampling_rounds: usize,

@@ -292,7 +292,8 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let exemplar_grid = StaticGrid::new(&exemplar.positions, cutoff / s_min);
     let exemplar_cells = CellLists::new(&exemplar.positions, cutoff / s_min);
     let exemplar_neighbours = Neighbours::build(&exemplar.positions, cutoff / s_min);
-    let exemplar_pairs = ExemplarPairs::new(&exemplar, &exemplar_neighbours, cutoff / s_min, 3.0 * delta / s_min);
+    let exemplar_pairs =
+        ExemplarPairs::new(&exemplar, &exemplar_neighbours, cutoff / s_min, params.window_cutoff * delta / s_min);
     // Existing points (progressive synthesis): fixed unless near the new region.
     let mut state = State::new(channels);
     if let Some(set) = &input.existing {
@@ -413,7 +414,7 @@ impl<const D: usize> Setup<D> {
     }
 
     pub fn problem(&self, delta: f64, params: &Params) -> Problem<'_, D> {
-        let kernel = Kernel::new(params.window, self.sigma, delta, params.kernel_cutoff);
+        let kernel = Kernel::new(params.window, self.sigma, delta, params.kernel_cutoff, params.window_cutoff);
         // A window is interior when everything it reaches (and the grid node each place rounds to)
         // is inside Ω; then the exemplar needs no masking there.
         let h = self.quadrature.spacing();

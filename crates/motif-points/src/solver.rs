@@ -231,7 +231,9 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     let optimized = if params.refinement == Refinement::None { 0 } else { deltas.len() };
     for (scale, &delta) in deltas.iter().enumerate().take(optimized) {
         let problem = setup.problem(delta, params);
-        timer.start("matching");
+        // The exemplar's search rasters at this window size (part of matching's work; a stage of
+        // its own because a brush stroke, a small synthesis, pays it in full every time).
+        timer.start("search fields");
         let fields = match &mut fields {
             Some(fields) => {
                 fields.set_window(&problem);

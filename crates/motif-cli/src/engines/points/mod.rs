@@ -121,6 +121,10 @@ pub struct PointsArgs {
     /// 2, or an eighth of the neighbourhood when that is coarser (wide windows)
     #[arg(long, value_name = "H")]
     pub quadrature_spacing: Option<f64>,
+    /// Truncation radius of the Gaussian window, in units of the neighbourhood δ (1.5–4; its
+    /// weight there is exp(-c²)). Smaller is faster
+    #[arg(long, value_name = "C", default_value_t = 2.0)]
+    pub window_cutoff: f64,
     /// Sampling-control rounds per window size (1–20).
     #[arg(long, value_name = "N", default_value_t = 1)]
     pub sampling_rounds: usize,
@@ -292,6 +296,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         rotation: Some(args.rotation),
         scale: Some(args.scale),
         quadrature_spacing: args.quadrature_spacing,
+        window_cutoff: Some(args.window_cutoff),
         sampling_rounds: Some(args.sampling_rounds),
         merge_iterations: Some(args.merge_iterations),
         shrink: args.shrink,
