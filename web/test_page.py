@@ -150,6 +150,41 @@ const done = arguments[arguments.length - 1];
 """
 
 
+# Runs the curve job of `crates/motif-jobs/examples/curve_digest.rs` in the page's WebAssembly
+# module on the exemplar bytes the example printed, and returns the FNV-1a digest of the result's
+# RGBA bytes, as the example prints it.
+CURVE_DIGEST_SCRIPT = """
+const [hex, width, height, points, job, done] = arguments;
+(async () => {
+  const wasm = await import('./pkg/motif_web.js');
+  await wasm.default();
+  const bytes = new Uint8Array(hex.length / 2);
+  for (let i = 0; i < bytes.length; i++) bytes[i] = parseInt(hex.substr(2 * i, 2), 16);
+  const panel = new wasm.CurvePanel(bytes, width, height);
+  const result = panel.synthesize(new Float64Array(points), job);
+  let digest = 0xcbf29ce484222325n;
+  for (const b of result.rgba) digest = ((digest ^ BigInt(b)) * 0x100000001b3n) & 0xffffffffffffffffn;
+  done(digest.toString(16).padStart(16, '0'));
+})().catch((e) => done('error: ' + e));
+"""
+
+
+def native_curve_run():
+    """The curve example's exemplar, polyline, job and result digest, built and run natively."""
+    root = DIST.parent.parent
+    output = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "curve_digest"],
+        cwd=root, check=True, capture_output=True, text=True,
+    ).stdout
+    lines = dict(line.split(" ", 1) for line in output.strip().splitlines()[:3])
+    width, height, hex_bytes = lines["exemplar"].split(" ")
+    return {
+        "hex": hex_bytes, "width": int(width), "height": int(height),
+        "points": json.loads(lines["points"]), "job": lines["job"],
+        "digest": output.strip().splitlines()[-1].split("digest ")[1],
+    }
+
+
 def native_brush_digest():
     """The digest the brush example prints for the same strokes, built and run natively."""
     root = DIST.parent.parent
@@ -281,6 +316,13 @@ def main():
         native_digest = native_brush_digest()
         assert browser_digest == native_digest, f"points brush: browser {browser_digest}, native {native_digest}"
         figures["points_brush_digest"] = browser_digest
+        # The same for a curve: a generated chain strip along a bent polyline.
+        curve_run = native_curve_run()
+        browser_digest = driver.execute_async_script(
+            CURVE_DIGEST_SCRIPT, curve_run["hex"], curve_run["width"], curve_run["height"], curve_run["points"], curve_run["job"]
+        )
+        assert browser_digest == curve_run["digest"], f"curve: browser {browser_digest}, native {curve_run['digest']}"
+        figures["curve_digest"] = browser_digest
 
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert not errors, f"browser console errors: {errors}"
