@@ -169,6 +169,38 @@ const [hex, width, height, points, job, done] = arguments;
 """
 
 
+# Runs the strokes job of `crates/motif-jobs/examples/strokes_digest.rs` in the page's WebAssembly
+# module (the built-in `figures` reference into a 300 × 300 square) and returns the FNV-1a digest of
+# the output's coordinates and widths, as the example prints it.
+STROKES_DIGEST_SCRIPT = """
+const [job, done] = arguments;
+(async () => {
+  const wasm = await import('./pkg/motif_web.js');
+  await wasm.default();
+  const panel = new wasm.StrokesPanel('figures');
+  const result = JSON.parse(panel.synthesize(300, 300, job));
+  const values = [];
+  for (const stroke of result.strokes) {
+    for (const [x, y] of stroke.points) values.push(x, y);
+    values.push(stroke.width);
+  }
+  let digest = 0xcbf29ce484222325n;
+  for (const b of new BigUint64Array(new Float64Array(values).buffer)) digest = ((digest ^ b) * 0x100000001b3n) & 0xffffffffffffffffn;
+  done(digest.toString(16).padStart(16, '0'));
+})().catch((e) => done('error: ' + e));
+"""
+
+
+def native_strokes_run():
+    """The strokes example's job and result digest, built and run natively."""
+    root = DIST.parent.parent
+    output = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "strokes_digest"],
+        cwd=root, check=True, capture_output=True, text=True,
+    ).stdout.strip().splitlines()
+    return {"job": output[0].split(" ", 1)[1], "digest": output[-1].split("digest ")[1]}
+
+
 def native_curve_run():
     """The curve example's exemplar, polyline, job and result digest, built and run natively."""
     root = DIST.parent.parent
@@ -323,6 +355,11 @@ def main():
         )
         assert browser_digest == curve_run["digest"], f"curve: browser {browser_digest}, native {curve_run['digest']}"
         figures["curve_digest"] = browser_digest
+        # And for strokes: the built-in figures synthesized into a square.
+        strokes_run = native_strokes_run()
+        browser_digest = driver.execute_async_script(STROKES_DIGEST_SCRIPT, strokes_run["job"])
+        assert browser_digest == strokes_run["digest"], f"strokes: browser {browser_digest}, native {strokes_run['digest']}"
+        figures["strokes_digest"] = browser_digest
 
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert not errors, f"browser console errors: {errors}"

@@ -11,6 +11,8 @@
 
 use kurbo::{Affine, BezPath, ParamCurveNearest, PathEl, Point, Rect, Vec2};
 
+use crate::{math, vector};
+
 use crate::error::InvalidParameter;
 
 /// A polyline with arc-length parameterization; open or closed.
@@ -37,11 +39,11 @@ impl Polyline {
         }
         let mut kept: Vec<Point> = Vec::with_capacity(points.len());
         for point in points {
-            if kept.last().is_none_or(|last| last.distance(point) > 1e-9) {
+            if kept.last().is_none_or(|last| vector::distance(*last, point) > 1e-9) {
                 kept.push(point);
             }
         }
-        if closed && kept.len() > 1 && kept[0].distance(*kept.last().expect("non-empty")) <= 1e-9 {
+        if closed && kept.len() > 1 && vector::distance(kept[0], *kept.last().expect("non-empty")) <= 1e-9 {
             kept.pop();
         }
         if kept.len() < 2 {
@@ -55,11 +57,11 @@ impl Polyline {
         let mut total = 0.0;
         cumulative.push(0.0);
         for pair in kept.windows(2) {
-            total += pair[0].distance(pair[1]);
+            total += vector::distance(pair[0], pair[1]);
             cumulative.push(total);
         }
         if closed {
-            total += kept[kept.len() - 1].distance(kept[0]);
+            total += vector::distance(kept[kept.len() - 1], kept[0]);
             cumulative.push(total);
         }
         Ok(Self { points: kept, closed, cumulative })
@@ -165,7 +167,7 @@ impl Polyline {
 
     /// Unit direction of segment `segment`.
     pub fn segment_direction(&self, segment: usize) -> Vec2 {
-        (self.vertex(segment + 1) - self.vertex(segment)).normalize()
+        vector::normalized(self.vertex(segment + 1) - self.vertex(segment))
     }
 
     /// Unit tangent at arc length `s` (the direction of the segment holding `s`).
@@ -187,7 +189,11 @@ impl Polyline {
                 let incoming = if i > 0 || self.closed { Some(self.segment_direction((i + n - 1) % n)) } else { None };
                 let outgoing = if i + 1 < n || self.closed { Some(self.segment_direction(i)) } else { None };
                 let sum = incoming.unwrap_or(Vec2::ZERO) + outgoing.unwrap_or(Vec2::ZERO);
-                if sum.hypot() > 1e-12 { sum.normalize() } else { outgoing.or(incoming).expect("two points") }
+                if vector::length(sum) > 1e-12 {
+                    vector::normalized(sum)
+                } else {
+                    outgoing.or(incoming).expect("two points")
+                }
             })
             .collect()
     }
@@ -210,8 +216,8 @@ impl Polyline {
                 let here = self.points[i];
                 let next = self.vertex(i + 1);
                 let (a, b) = (here - previous, next - here);
-                let angle = a.cross(b).atan2(a.dot(b));
-                angle / (0.5 * (a.hypot() + b.hypot()))
+                let angle = math::atan2(a.cross(b), a.dot(b));
+                angle / (0.5 * (vector::length(a) + vector::length(b)))
             })
             .collect()
     }
@@ -425,7 +431,7 @@ mod tests {
     fn circle(radius: f64, count: usize) -> Polyline {
         let points = (0..count).map(|i| {
             let angle = TAU * i as f64 / count as f64;
-            Point::new(radius * angle.cos(), radius * angle.sin())
+            Point::new(radius * math::cos(angle), radius * math::sin(angle))
         });
         Polyline::new(points.collect(), true).unwrap()
     }
@@ -448,11 +454,11 @@ mod tests {
         for s in [0.0, 3.0, 17.5, 30.0] {
             let p = curve.point_at(s);
             let n = curve.normal_at(s);
-            let to_centre = (Point::ORIGIN - p).normalize();
+            let to_centre = vector::normalized(Point::ORIGIN - p);
             assert!(n.dot(to_centre) > 0.99, "at s={s}: {n:?} vs {to_centre:?}");
         }
         for (p, n) in curve.points().iter().zip(curve.vertex_normals()) {
-            assert!(n.dot((Point::ORIGIN - *p).normalize()) > 0.999);
+            assert!(n.dot(vector::normalized(Point::ORIGIN - *p)) > 0.999);
         }
         let inner = curve.offset(1.0).unwrap();
         assert!((inner.length() - TAU * 4.0).abs() < 0.01);
@@ -469,9 +475,9 @@ mod tests {
         .unwrap();
         assert_eq!(square.length(), 4.0);
         assert_eq!(square.segment_count(), 4);
-        assert!(square.point_at(3.5).distance(Point::new(0.0, 0.5)) < 1e-12);
-        assert!(square.point_at(4.25).distance(Point::new(0.25, 0.0)) < 1e-12);
-        assert!(square.point_at(-0.5).distance(Point::new(0.0, 0.5)) < 1e-12);
+        assert!(vector::distance(square.point_at(3.5), Point::new(0.0, 0.5)) < 1e-12);
+        assert!(vector::distance(square.point_at(4.25), Point::new(0.25, 0.0)) < 1e-12);
+        assert!(vector::distance(square.point_at(-0.5), Point::new(0.0, 0.5)) < 1e-12);
         assert_eq!(square.tangent_at(3.5), Vec2::new(0.0, -1.0));
         let open = Polyline::new(square.points().to_vec(), false).unwrap();
         assert_eq!(open.length(), 3.0);
@@ -494,7 +500,7 @@ mod tests {
         assert!(polylines[0].is_closed());
         assert!((polylines[0].length() - TAU * 20.0).abs() < 0.1);
         for p in polylines[0].points() {
-            assert!((p.distance(Point::ORIGIN) - 20.0).abs() < 0.011);
+            assert!((vector::distance(*p, Point::ORIGIN) - 20.0).abs() < 0.011);
         }
         let mut two = BezPath::new();
         two.move_to((0.0, 0.0));
@@ -514,7 +520,7 @@ mod tests {
         assert!(square.signed_area() > 0.0);
         assert!(square.contains(Point::new(1.0, 1.5)));
         assert!(!square.contains(Point::new(3.0, 1.0)));
-        assert!(square.centroid().distance(Point::new(1.0, 1.0)) < 1e-12);
+        assert!(vector::distance(square.centroid(), Point::new(1.0, 1.0)) < 1e-12);
         assert!((square.distance_to_boundary(Point::new(1.0, 0.5)) - 0.5).abs() < 1e-12);
         assert!(square.is_simple());
         let bowtie =

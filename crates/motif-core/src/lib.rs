@@ -29,6 +29,7 @@ pub mod memory;
 pub mod progress;
 pub mod random;
 pub mod timing;
+pub mod vector;
 
 pub use error::InvalidParameter;
 pub use geometry::{Polygon, Polyline};

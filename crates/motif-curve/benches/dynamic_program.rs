@@ -3,6 +3,7 @@
 //! reports the per-row figures of both solvers at full size as JSON).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use motif_core::math;
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_curve::samples::chain;
 use motif_curve::{Input as CurveInput, Params as CurveParams, Solver, synthesize};
@@ -18,7 +19,7 @@ fn run(exemplar: &RgbaImage, solver: Solver, pieces: usize) -> f64 {
     let points = (0..=200)
         .map(|i| {
             let angle = i as f64 / 200.0 * length / radius;
-            Point::new(radius * angle.sin(), 400.0 - radius * angle.cos())
+            Point::new(radius * math::sin(angle), 400.0 - radius * math::cos(angle))
         })
         .collect();
     let curve = Polyline::new(points, false).expect("curve");

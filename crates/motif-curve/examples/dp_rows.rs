@@ -24,7 +24,7 @@ fn main() {
     let points = (0..=200)
         .map(|i| {
             let angle = i as f64 / 200.0 * length / radius;
-            Point::new(radius * angle.sin(), 400.0 - radius * angle.cos())
+            Point::new(radius * motif_core::math::sin(angle), 400.0 - radius * motif_core::math::cos(angle))
         })
         .collect();
     let curve = Polyline::new(points, false).expect("curve");

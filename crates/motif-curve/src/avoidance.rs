@@ -161,6 +161,7 @@ mod tests {
     use super::*;
     use crate::ribbon::{Ribbon, slice};
     use motif_core::Polyline;
+    use motif_core::math;
 
     #[test]
     fn a_tight_turn_folds_over_and_a_straight_ribbon_does_not() {
@@ -175,7 +176,7 @@ mod tests {
         let mut points = vec![Point::new(10.0, 20.0), Point::new(50.0, 20.0)];
         for i in 1..20 {
             let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * i as f64 / 20.0;
-            points.push(Point::new(50.0 + 4.0 * a.cos(), 24.0 + 4.0 * a.sin()));
+            points.push(Point::new(50.0 + 4.0 * math::cos(a), 24.0 + 4.0 * math::sin(a)));
         }
         points.extend([Point::new(50.0, 28.0), Point::new(10.0, 28.0)]);
         let hairpin = Polyline::new(points, false).unwrap();

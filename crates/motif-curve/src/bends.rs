@@ -9,6 +9,7 @@
 //! the curve moved.
 
 use motif_core::{InvalidParameter, Point, Polyline};
+use motif_core::{math, vector};
 
 /// Largest number of smoothing steps; a bend still too tight after them is left to the fold-over
 /// avoidance.
@@ -46,8 +47,8 @@ fn curvature_at(points: &[Point], closed: bool, span: usize, i: usize) -> f64 {
     }
     let (previous, here, next) = (points[(i + n - span) % n], points[i], points[(i + span) % n]);
     let (a, b) = (here - previous, next - here);
-    let angle = a.cross(b).atan2(a.dot(b)).abs();
-    angle / (0.5 * (a.hypot() + b.hypot())).max(1e-12)
+    let angle = math::atan2(a.cross(b), a.dot(b)).abs();
+    angle / (0.5 * (vector::length(a) + vector::length(b))).max(1e-12)
 }
 
 /// The indices within `reach` vertices of `i` (cyclic when `closed`, clipped otherwise).
@@ -132,7 +133,7 @@ pub(crate) fn round_bends(curve: &Polyline, min_radius: f64, max_shift: f64) -> 
             }
             let (previous, following) = (points[(i + n - 1) % n], points[(i + 1) % n]);
             let candidate = points[i].lerp(previous.midpoint(following), 0.5);
-            if candidate.distance(original[i]) <= max_shift {
+            if vector::distance(candidate, original[i]) <= max_shift {
                 next[i] = candidate;
                 moved.push(i);
             }
@@ -151,7 +152,7 @@ pub(crate) fn round_bends(curve: &Polyline, min_radius: f64, max_shift: f64) -> 
             curvature[i] = curvature_at(&points, closed, span, i);
         }
     }
-    let max_shift = points.iter().zip(&original).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    let max_shift = points.iter().zip(&original).map(|(a, b)| vector::distance(*a, *b)).fold(0.0, f64::max);
     Ok(Rounded { curve: Polyline::new(points, closed)?, bends, max_shift, unresolved })
 }
 
@@ -163,7 +164,7 @@ mod tests {
         // Two 200-unit legs meeting at the origin with the given turning angle.
         let turn = angle_degrees.to_radians();
         let start = Point::new(-200.0, 0.0);
-        let end = Point::new(200.0 * turn.cos(), 200.0 * turn.sin());
+        let end = Point::new(200.0 * math::cos(turn), 200.0 * math::sin(turn));
         let points: Vec<Point> = (0..=100)
             .map(|i| start.lerp(Point::ORIGIN, i as f64 / 100.0))
             .chain((1..=100).map(|i| Point::ORIGIN.lerp(end, i as f64 / 100.0)))
@@ -186,8 +187,8 @@ mod tests {
         assert!(rounded.max_shift > 1.0 && rounded.max_shift < 60.0, "{}", rounded.max_shift);
         // The ends stay where they were.
         let (a, b) = (rounded.curve.points(), curve.points());
-        assert!(a[0].distance(b[0]) < 1e-9);
-        assert!(a[a.len() - 1].distance(b[b.len() - 1]) < 1e-9);
+        assert!(vector::distance(a[0], b[0]) < 1e-9);
+        assert!(vector::distance(a[a.len() - 1], b[b.len() - 1]) < 1e-9);
         // Far from the corner the curve has not moved.
         assert!(a[2].y.abs() < 1e-9 && a[2].x < -190.0, "{:?}", a[2]);
     }
@@ -197,7 +198,7 @@ mod tests {
         let points: Vec<Point> = (0..=60)
             .map(|i| {
                 let t = i as f64 / 60.0 * std::f64::consts::PI;
-                Point::new(300.0 * t.cos(), 300.0 * t.sin())
+                Point::new(300.0 * math::cos(t), 300.0 * math::sin(t))
             })
             .collect();
         let curve = Polyline::new(points, false).unwrap();

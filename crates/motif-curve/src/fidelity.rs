@@ -15,6 +15,7 @@
 //! the nearest exemplar patch of some output patch. A result that repeats one window of the
 //! exemplar scores low however well that window is copied.
 
+use motif_core::vector;
 use motif_core::{Point, RgbaImage};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -210,15 +211,18 @@ fn output_patches(image: &RgbaImage, top: &[Point], bottom: &[Point], scale: f64
     if count < 2 {
         return Vec::new();
     }
-    let length: f64 =
-        top.windows(2).zip(bottom.windows(2)).map(|(t, b)| t[0].midpoint(b[0]).distance(t[1].midpoint(b[1]))).sum();
+    let length: f64 = top
+        .windows(2)
+        .zip(bottom.windows(2))
+        .map(|(t, b)| vector::distance(t[0].midpoint(b[0]), t[1].midpoint(b[1])))
+        .sum();
     let spacing = length / (count - 1) as f64;
     let half = SPAN as f64 / 2.0;
     // Keep whole patches on the curve: skip half a patch at each end.
     let margin = (half / scale / spacing).ceil() as usize;
     let step = ((STEP as f64 / scale / spacing).round() as usize).max(1);
     let along: Vec<usize> = (margin..count.saturating_sub(margin)).step_by(step).collect();
-    let ribbon_width = top[0].distance(bottom[0]) * scale;
+    let ribbon_width = vector::distance(top[0], bottom[0]) * scale;
     let across: Vec<f64> =
         (0..).map(|i| (i * STEP) as f64).take_while(|&y0| y0 + SPAN as f64 <= ribbon_width.ceil() + half).collect();
     let stride = (along.len() * across.len()).div_ceil(MAX_PATCHES).max(1);
@@ -227,7 +231,7 @@ fn output_patches(image: &RgbaImage, top: &[Point], bottom: &[Point], scale: f64
         .par_iter()
         .flat_map_iter(|&k| {
             let (t, b) = (top[k], bottom[k]);
-            let normal = (b - t).normalize();
+            let normal = vector::normalized(b - t);
             let tangent = motif_core::Vec2::new(normal.y, -normal.x);
             let pixels = &pixels;
             across.iter().filter_map(move |&y0| {

@@ -43,7 +43,7 @@
 //! });
 //! let arc: Vec<Point> = (0..=40).map(|i| {
 //!     let a = f64::from(i) / 40.0;
-//!     Point::new(20.0 + 200.0 * a, 80.0 - 60.0 * (a * std::f64::consts::PI).sin())
+//!     Point::new(20.0 + 200.0 * a, 80.0 - 60.0 * motif_core::math::sin(a * std::f64::consts::PI))
 //! }).collect();
 //! let curve = Polyline::new(arc, false).unwrap();
 //! let params = Params::default().with_width(24.0).with_piece_length(12.0);

@@ -1,6 +1,7 @@
 //! The debug overlay: the result with the ribbon, the piece borders, the forbidden areas and the
 //! cost of every seam as a heat colour drawn on top.
 
+use motif_core::vector;
 use motif_core::{Point, RgbaImage};
 
 use crate::Output;
@@ -40,7 +41,7 @@ fn draw_line(image: &mut RgbaImage, a: Point, b: Point, thickness: f64, colour: 
         for x in x0..x1 {
             let p = Point::new(x as f64 + 0.5, y as f64 + 0.5);
             let t = if length_sq > 0.0 { ((p - a).dot(direction) / length_sq).clamp(0.0, 1.0) } else { 0.0 };
-            let distance = p.distance(a + direction * t);
+            let distance = vector::distance(p, a + direction * t);
             let coverage = (half + 0.5 - distance).clamp(0.0, 1.0);
             if coverage > 0.0 {
                 let mut pixel = image.get(x, y);

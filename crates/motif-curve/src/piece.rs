@@ -10,6 +10,7 @@
 //! for all positions, which lets us precompute pixel offsets and bilinear weights once per piece.
 
 use motif_core::{Point, Vec2};
+use motif_core::{math, vector};
 
 use crate::exemplar::{Exemplar, Run, runs_from_offsets};
 use crate::ribbon::PieceQuad;
@@ -62,13 +63,13 @@ impl PieceFrame {
         let [top_left, bottom_left, bottom_right, top_right] = quad.corners;
         let left = bottom_left - top_left;
         // Rotate so that the left edge points down the exemplar (+y).
-        let angle = std::f64::consts::FRAC_PI_2 - left.y.atan2(left.x);
-        let rotation = (angle.cos(), angle.sin());
+        let angle = std::f64::consts::FRAC_PI_2 - math::atan2(left.y, left.x);
+        let rotation = (math::cos(angle), math::sin(angle));
         let mut frame = Self {
             origin: top_left,
             rotation,
             scale,
-            height: scale * left.hypot(),
+            height: scale * vector::length(left),
             top_right: Vec2::ZERO,
             bottom_right: Vec2::ZERO,
             right_direction: Vec2::new(0.0, 1.0),
@@ -82,7 +83,8 @@ impl PieceFrame {
         frame.top_right = frame.to_local(top_right);
         frame.bottom_right = frame.to_local(bottom_right);
         let right = frame.bottom_right - frame.top_right;
-        frame.right_direction = if right.hypot() > 1e-12 { right.normalize() } else { Vec2::new(0.0, 1.0) };
+        frame.right_direction =
+            if vector::length(right) > 1e-12 { vector::normalized(right) } else { Vec2::new(0.0, 1.0) };
         frame.right_taps = (0..samples)
             .map(|k| {
                 let p = frame.top_right + frame.right_direction * (k as f64 + 0.5);
@@ -125,7 +127,7 @@ impl PieceFrame {
 
     /// The rotation canvas → exemplar, in radians.
     pub fn angle(&self) -> f64 {
-        self.rotation.1.atan2(self.rotation.0)
+        math::atan2(self.rotation.1, self.rotation.0)
     }
 
     /// Continuous exemplar coordinates of local point `local` for a piece at `u`.
@@ -136,7 +138,7 @@ impl PieceFrame {
     fn compute_edge_runs(&self) -> Vec<Run> {
         let mut offsets = Vec::new();
         for (start, end) in [(Vec2::ZERO, self.top_right), (Vec2::new(0.0, self.height), self.bottom_right)] {
-            let steps = ((end - start).hypot() * 2.0).ceil().max(1.0) as usize;
+            let steps = (vector::length(end - start) * 2.0).ceil().max(1.0) as usize;
             for step in 0..=steps {
                 let p = start.lerp(end, step as f64 / steps as f64);
                 let (ix, iy) = (p.x.floor() as i32, (p.y - 0.5).floor() as i32);
@@ -312,11 +314,11 @@ mod tests {
     fn straight_piece_maps_to_an_upright_rectangle() {
         let frame = PieceFrame::new(&straight_quad(8.0, 5.0), 2.0, 16);
         assert!((frame.height - 16.0).abs() < 1e-12);
-        assert!((frame.top_right - Vec2::new(10.0, 0.0)).hypot() < 1e-9);
-        assert!((frame.bottom_right - Vec2::new(10.0, 16.0)).hypot() < 1e-9);
+        assert!(vector::length(frame.top_right - Vec2::new(10.0, 0.0)) < 1e-9);
+        assert!(vector::length(frame.bottom_right - Vec2::new(10.0, 16.0)) < 1e-9);
         assert!(frame.angle().abs() < 1e-12);
         let back = frame.to_canvas(frame.to_local(Point::new(12.0, 13.0)));
-        assert!(back.distance(Point::new(12.0, 13.0)) < 1e-12);
+        assert!(vector::distance(back, Point::new(12.0, 13.0)) < 1e-12);
         // Right samples sit exactly on pixel centres of column 9 (offset 10 − 0.5 → dx 10 from the anchor).
         assert_eq!(frame.right_taps[0].dx, 10);
         assert_eq!(frame.right_taps[0].dy, 0);
@@ -334,8 +336,8 @@ mod tests {
         };
         let frame = PieceFrame::new(&quad, 1.0, 10);
         let bottom_left = frame.to_local(Point::new(6.0, 8.0));
-        assert!((bottom_left - Vec2::new(0.0, 10.0)).hypot() < 1e-9, "{bottom_left:?}");
-        assert!((frame.top_right - Vec2::new(10.0, 0.0)).hypot() < 1e-9, "{:?}", frame.top_right);
+        assert!(vector::length(bottom_left - Vec2::new(0.0, 10.0)) < 1e-9, "{bottom_left:?}");
+        assert!(vector::length(frame.top_right - Vec2::new(10.0, 0.0)) < 1e-9, "{:?}", frame.top_right);
     }
 
     #[test]

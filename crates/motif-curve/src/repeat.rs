@@ -9,6 +9,7 @@
 //! This bends the pattern with the curve (stretching it outside bends and squeezing it inside)
 //! and shows a seam wherever the tile wraps; both are measured for comparison.
 
+use motif_core::vector;
 use motif_core::{Point, Vec2};
 
 use crate::exemplar::Exemplar;
@@ -50,9 +51,9 @@ pub(crate) fn triangulate(ribbon: &Ribbon) -> (Vec<Triangle>, Vec<f64>) {
     for pair in xs.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         let (ta, ba, tb, bb) = (ribbon.top(a), ribbon.bottom(a), ribbon.top(b), ribbon.bottom(b));
-        let centre = ribbon.point(a).distance(ribbon.point(b)).max(1e-12);
-        stretch.push(ta.distance(tb) / centre);
-        stretch.push(ba.distance(bb) / centre);
+        let centre = vector::distance(ribbon.point(a), ribbon.point(b)).max(1e-12);
+        stretch.push(vector::distance(ta, tb) / centre);
+        stretch.push(vector::distance(ba, bb) / centre);
         // The offset coordinate is in units of the base width (a width profile is divided out:
         // `top` and `bottom` carry it), so that the pattern's height always spans the ribbon.
         for band in 0..bands {
@@ -167,6 +168,7 @@ pub(crate) fn shapes<'a>(
 mod tests {
     use super::*;
     use motif_core::Polyline;
+    use motif_core::math;
 
     #[test]
     fn straight_ribbons_are_not_stretched_and_bends_are() {
@@ -177,7 +179,7 @@ mod tests {
         assert!((inside.y).abs() < 0.5, "{inside:?}");
         let points = (0..100).map(|i| {
             let a = i as f64 / 100.0 * std::f64::consts::TAU;
-            Point::new(30.0 * a.cos(), 30.0 * a.sin())
+            Point::new(30.0 * math::cos(a), 30.0 * math::sin(a))
         });
         let circle = Polyline::new(points.collect(), true).unwrap();
         let (_, stretch) = triangulate(&Ribbon::new(&circle, 10.0).unwrap());

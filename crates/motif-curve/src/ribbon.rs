@@ -7,6 +7,7 @@
 //! smoothly along a finely resampled copy of the curve, so `‖B(x) − T(x)‖ = b` exactly at every
 //! slice and every left edge has the same length (hence one `C` for all pieces).
 
+use motif_core::vector;
 use motif_core::{InvalidParameter, Point, Polyline, Vec2};
 
 /// The ribbon: a finely resampled centre curve with smooth normals, and a width, constant or
@@ -79,7 +80,7 @@ impl Ribbon {
         let a = self.up[segment % n];
         let b = self.up[(segment + 1) % n];
         let mixed = a.lerp(b, t);
-        if mixed.hypot() > 1e-9 { mixed.normalize() } else { a }
+        if vector::length(mixed) > 1e-9 { vector::normalized(mixed) } else { a }
     }
 
     /// `T(x)`, the top offset curve.
@@ -139,6 +140,7 @@ pub fn slice(ribbon: &Ribbon, delta: f64) -> Vec<PieceQuad> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use motif_core::math;
 
     #[test]
     fn slicing_adds_a_shorter_final_piece() {
@@ -154,23 +156,23 @@ mod tests {
         let pieces = slice(&ribbon, 25.0);
         assert_eq!(pieces.len(), 4);
         let first = pieces[0].corners;
-        assert!(first[0].distance(Point::new(0.0, 40.0)) < 1e-9, "{first:?}");
-        assert!(first[1].distance(Point::new(0.0, 60.0)) < 1e-9);
-        assert!(first[2].distance(Point::new(25.0, 60.0)) < 1e-9);
-        assert!(first[3].distance(Point::new(25.0, 40.0)) < 1e-9);
+        assert!(vector::distance(first[0], Point::new(0.0, 40.0)) < 1e-9, "{first:?}");
+        assert!(vector::distance(first[1], Point::new(0.0, 60.0)) < 1e-9);
+        assert!(vector::distance(first[2], Point::new(25.0, 60.0)) < 1e-9);
+        assert!(vector::distance(first[3], Point::new(25.0, 40.0)) < 1e-9);
     }
 
     #[test]
     fn every_slice_edge_has_the_ribbon_width() {
         let points = (0..200).map(|i| {
             let a = i as f64 / 200.0 * std::f64::consts::TAU;
-            Point::new(100.0 + 60.0 * a.cos(), 100.0 + 40.0 * a.sin())
+            Point::new(100.0 + 60.0 * math::cos(a), 100.0 + 40.0 * math::sin(a))
         });
         let curve = Polyline::new(points.collect(), true).unwrap();
         let ribbon = Ribbon::new(&curve, 16.0).unwrap();
         for piece in slice(&ribbon, 13.0) {
-            assert!((piece.corners[0].distance(piece.corners[1]) - 16.0).abs() < 1e-9);
-            assert!((piece.corners[3].distance(piece.corners[2]) - 16.0).abs() < 1e-9);
+            assert!((vector::distance(piece.corners[0], piece.corners[1]) - 16.0).abs() < 1e-9);
+            assert!((vector::distance(piece.corners[3], piece.corners[2]) - 16.0).abs() < 1e-9);
         }
     }
 }

@@ -3,6 +3,7 @@
 //! columns, and a shaded gold chain of oval and edge-on links.
 
 use motif_core::RgbaImage;
+use motif_core::math;
 
 /// A `width × height` strip of elliptical rings, one every `period` pixels and `chain_height`
 /// pixels tall, on a transparent background. `noise > 0` adds a fixed per-pixel colour jitter of
@@ -15,7 +16,7 @@ pub fn chain(width: usize, height: usize, period: f64, chain_height: f64, noise:
         let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
         let (dx, dy) = (px.rem_euclid(period) - period * 0.5, py - cy);
         let e = ((dx / rx).powi(2) + (dy / ry).powi(2)).sqrt();
-        let g = (dx / (rx * rx)).hypot(dy / (ry * ry)) / e.max(1e-9);
+        let g = math::hypot(dx / (rx * rx), dy / (ry * ry)) / e.max(1e-9);
         let ring = (thickness / 2.0 + 0.5 - (e - 1.0).abs() / g.max(1e-9)).clamp(0.0, 1.0);
         let a = (ring * 255.0).round() as u8;
         // A fixed hash of the pixel, so runs are repeatable.
@@ -44,12 +45,12 @@ pub fn gold_chain(width: usize, height: usize, period: f64, chain_height: f64) -
         let dy = py - cy;
         // Distance to the ellipse, to first order: (e − 1) / |∇e|.
         let ellipse = ((dx / ring_rx).powi(2) + (dy / ring_ry).powi(2)).sqrt();
-        let gradient = (dx / (ring_rx * ring_rx)).hypot(dy / (ring_ry * ring_ry)) / ellipse.max(1e-9);
+        let gradient = math::hypot(dx / (ring_rx * ring_rx), dy / (ring_ry * ring_ry)) / ellipse.max(1e-9);
         let ring_distance = (ellipse - 1.0).abs() / gradient.max(1e-9);
         let ring = (thickness / 2.0 + 0.5 - ring_distance).clamp(0.0, 1.0);
         let edge_dx = if phase < period * 0.5 { phase } else { period - phase };
         let bar_half_length = period * 0.3;
-        let bar_distance = (edge_dx - bar_half_length).max(0.0).hypot((dy.abs() - thickness * 0.45).max(0.0));
+        let bar_distance = math::hypot((edge_dx - bar_half_length).max(0.0), (dy.abs() - thickness * 0.45).max(0.0));
         let bar = (1.0 - bar_distance).clamp(0.0, 1.0) * if dy.abs() < thickness { 1.0 } else { 0.0 };
         let coverage = ring.max(bar);
         if coverage <= 0.0 {

@@ -13,6 +13,7 @@
 //! increases the seam cost.
 
 use motif_core::Vec2;
+use motif_core::vector;
 
 use crate::cost::{CostModel, EdgeSet};
 use crate::piece::PieceFrame;
@@ -101,11 +102,11 @@ pub(crate) fn align(model: &CostModel, rights: &EdgeSet, r: usize, lefts: &EdgeS
 pub(crate) fn deform(frame: &PieceFrame, remap: &[usize], p: Vec2) -> Vec2 {
     let top = frame.top_right;
     let bottom = frame.bottom_right - Vec2::new(0.0, frame.height);
-    if top.hypot() < 1e-9 || bottom.hypot() < 1e-9 {
+    if vector::length(top) < 1e-9 || vector::length(bottom) < 1e-9 {
         return p;
     }
     let height_fraction = (p.y / frame.height).clamp(0.0, 1.0);
-    let d = top.normalize().lerp(bottom.normalize(), height_fraction);
+    let d = vector::normalized(top).lerp(vector::normalized(bottom), height_fraction);
     if d.x.abs() < 1e-9 {
         return p;
     }

@@ -1,6 +1,7 @@
 //! Engine-level tests: solver optimality against brute force, closed curves, avoidance,
 //! stitching, determinism and bad input.
 
+use motif_core::math;
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use proptest::prelude::*;
 
@@ -134,7 +135,7 @@ fn exact_solver_is_optimal_on_real_crops() {
         // A gentle arc (radius 30) in three pieces of 4 px: every seam is tilted by about 8°.
         let arc: Vec<Point> = (0..=24)
             .map(|i| f64::from(i) / 24.0 * 0.4)
-            .map(|a| Point::new(30.0 * a.sin(), 40.0 - 30.0 * a.cos()))
+            .map(|a| Point::new(30.0 * math::sin(a), 40.0 - 30.0 * math::cos(a)))
             .collect();
         let curve = Polyline::new(arc, false).unwrap();
         let height = image.height() as f64;
@@ -158,7 +159,7 @@ pub(crate) fn chain_strip(width: usize, height: usize, period: usize, top: usize
         let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
         let cy = top as f64 + size as f64 / 2.0;
         let cx = ((px / period as f64).floor() + 0.5) * period as f64;
-        let ring = ((px - cx).hypot((py - cy) * 1.3) - radius * 0.75).abs();
+        let ring = (math::hypot(px - cx, (py - cy) * 1.3) - radius * 0.75).abs();
         let bar = if (py - cy).abs() < 1.5 { 1.0 } else { 0.0 };
         let coverage = (2.0 - ring).clamp(0.0, 1.0).max(bar * if (py - top as f64) > 0.0 { 1.0 } else { 0.0 });
         let alpha = (coverage * 255.0).round() as u8;
@@ -173,7 +174,7 @@ pub(crate) fn line(x0: f64, y0: f64, x1: f64, y1: f64) -> Polyline {
 pub(crate) fn circle(cx: f64, cy: f64, radius: f64, count: usize) -> Polyline {
     let points = (0..count).map(|i| {
         let a = i as f64 / count as f64 * std::f64::consts::TAU;
-        Point::new(cx + radius * a.cos(), cy + radius * a.sin())
+        Point::new(cx + radius * math::cos(a), cy + radius * math::sin(a))
     });
     Polyline::new(points.collect(), true).unwrap()
 }
@@ -206,7 +207,7 @@ fn a_periodic_exemplar_along_a_straight_line_has_no_seam_cost() {
 fn exact_and_reference_solvers_agree_on_a_curved_ribbon() {
     let image = chain_strip(40, 16, 10, 4, 8);
     let points: Vec<Point> =
-        (0..40).map(|i| Point::new(i as f64 * 3.0, 30.0 + 12.0 * (i as f64 * 0.15).sin())).collect();
+        (0..40).map(|i| Point::new(i as f64 * 3.0, 30.0 + 12.0 * math::sin(i as f64 * 0.15))).collect();
     let curve = Polyline::new(points, false).unwrap();
     let mut p = params(16.0, 14.0);
     let input = Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] };
@@ -266,7 +267,7 @@ fn foldovers_of_a_tight_curve_stay_empty() {
     let mut points = vec![Point::new(10.0, 30.0), Point::new(60.0, 30.0)];
     for i in 1..24 {
         let a = -std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * i as f64 / 24.0;
-        points.push(Point::new(60.0 + 7.0 * a.cos(), 37.0 + 7.0 * a.sin()));
+        points.push(Point::new(60.0 + 7.0 * math::cos(a), 37.0 + 7.0 * math::sin(a)));
     }
     points.extend([Point::new(60.0, 44.0), Point::new(10.0, 44.0)]);
     let curve = Polyline::new(points, false).unwrap();

@@ -1,6 +1,7 @@
 //! Tests of what motif adds to the paper's curve method: bent pieces, repetition control, width
 //! profiles, several exemplars and incremental runs.
 
+use motif_core::math;
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 
 use crate::tests::{chain_strip, circle, line, params, random_exemplar};
@@ -13,7 +14,7 @@ fn variety_uses_more_windows_on_a_straight_line() {
         let cell = x / 16;
         let (cx, cy) = (cell as f64 * 16.0 + 8.0, 14.0);
         let radius = 3.0 + (cell % 5) as f64;
-        let ring = ((x as f64 + 0.5 - cx).hypot(y as f64 + 0.5 - cy) - radius).abs();
+        let ring = (math::hypot(x as f64 + 0.5 - cx, y as f64 + 0.5 - cy) - radius).abs();
         if ring < 1.5 || (y as f64 + 0.5 - cy).abs() < 1.0 { [180, 120 + cell as u8 * 9, 40, 255] } else { [0; 4] }
     });
     let curve = line(10.0, 40.0, 330.0, 40.0);

@@ -18,7 +18,10 @@ fn main() {
     let points: Vec<Point> = (0..=40)
         .map(|i| {
             let t = i as f64 / 40.0;
-            Point::new(30.0 + 360.0 * t, 120.0 + 70.0 * (t * 7.0 - 3.5) / (1.0 + (t * 7.0 - 3.5).abs()) * (1.0 - 2.0 * t * t))
+            Point::new(
+                30.0 + 360.0 * t,
+                120.0 + 70.0 * (t * 7.0 - 3.5) / (1.0 + (t * 7.0 - 3.5).abs()) * (1.0 - 2.0 * t * t),
+            )
         })
         .collect();
     let curve = Polyline::new(points.clone(), false).expect("a polyline");

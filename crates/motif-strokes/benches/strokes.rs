@@ -3,18 +3,19 @@
 //! its area (`motif bench --engine strokes` reports the same workloads as JSON).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use motif_core::math;
 use motif_core::{NoProgress, Point, Polygon, Polyline};
 use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Input, Params, Target, synthesize};
 
 fn one_d() -> (Input, Params) {
     let row = HatchRow { count: 60, jitter: 1.5, ..HatchRow::default() };
-    let strokes = hatch_row(&row, Point::ORIGIN, |i| 0.3 * (i as f64 * 0.3).sin(), |_| [20, 20, 20, 255], 1);
+    let strokes = hatch_row(&row, Point::ORIGIN, |i| 0.3 * math::sin(i as f64 * 0.3), |_| [20, 20, 20, 255], 1);
     let length = 10.0 * row.count as f64 * row.spacing;
     let points = (0..=400)
         .map(|i| {
             let x = length * i as f64 / 400.0;
-            Point::new(x, 0.05 * length * (x / length * std::f64::consts::TAU * 2.5).sin())
+            Point::new(x, 0.05 * length * math::sin(x / length * std::f64::consts::TAU * 2.5))
         })
         .collect();
     let mut params = Params::default();

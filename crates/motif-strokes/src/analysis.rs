@@ -3,6 +3,7 @@
 
 use kurbo::{Affine, Vec2};
 use motif_core::Point;
+use motif_core::{math, vector};
 
 use crate::Error;
 use crate::cluster::{Element, cluster};
@@ -43,7 +44,7 @@ pub struct Analysis {
 impl Analysis {
     /// The rotation from document to pattern frame.
     pub fn to_pattern(&self) -> Affine {
-        Affine::rotate(-self.frame_angle)
+        vector::rotation(-self.frame_angle)
     }
 
     /// Element `i`'s centre in the pattern frame.
@@ -102,13 +103,13 @@ pub fn relate(mut elements: Vec<Element>, scale: f64, along_path: bool) -> Analy
             yy += d.y * d.y;
         }
         let axis = if count >= 2 && (xx + yy) > 0.0 {
-            let angle = 0.5 * (2.0 * xy).atan2(xx - yy);
-            Vec2::new(angle.cos(), angle.sin())
+            let angle = 0.5 * math::atan2(2.0 * xy, xx - yy);
+            Vec2::new(math::cos(angle), math::sin(angle))
         } else {
             Vec2::new(1.0, 0.0)
         };
         let axis = if axis.x < 0.0 || (axis.x == 0.0 && axis.y < 0.0) { -axis } else { axis };
-        frame_angle = axis.y.atan2(axis.x);
+        frame_angle = math::atan2(axis.y, axis.x);
         let project = |e: &Element| e.frame.centre.to_vec2().dot(axis);
         elements.sort_by(|a, b| project(a).total_cmp(&project(b)));
         graph = Graph::chain(count, false);

@@ -250,6 +250,7 @@ pub fn cluster_plain(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Ele
 mod tests {
     use super::*;
     use crate::params::FitPoints;
+    use motif_core::math;
     use motif_core::random::Rng;
     use motif_core::{Point, Polyline, SeedStreams};
 
@@ -290,11 +291,11 @@ mod tests {
         (0..5)
             .map(|k| {
                 let angle = std::f64::consts::TAU * k as f64 / 5.0;
-                let (cx, cy) = (centre.0 + 1.6 * petal * angle.cos(), centre.1 + 1.6 * petal * angle.sin());
+                let (cx, cy) = (centre.0 + 1.6 * petal * math::cos(angle), centre.1 + 1.6 * petal * math::sin(angle));
                 let ring: Vec<(f64, f64)> = (0..16)
                     .map(|i| {
                         let t = std::f64::consts::TAU * i as f64 / 16.0;
-                        (cx + petal * t.cos(), cy + petal * t.sin())
+                        (cx + petal * math::cos(t), cy + petal * math::sin(t))
                     })
                     .collect();
                 stroke(&ring, true)
@@ -351,7 +352,7 @@ mod tests {
                     let (x, y): (f64, f64) = (random.random_range(0.0..200.0), random.random_range(0.0..200.0));
                     let angle: f64 = random.random_range(0.0..std::f64::consts::PI);
                     let length: f64 = random.random_range(2.0..25.0);
-                    stroke(&[(x, y), (x + length * angle.cos(), y + length * angle.sin())], false)
+                    stroke(&[(x, y), (x + length * math::cos(angle), y + length * math::sin(angle))], false)
                 })
                 .collect();
             let elements = run(&strokes, 6.0);

@@ -4,6 +4,7 @@
 
 use kurbo::Vec2;
 use motif_core::Point;
+use motif_core::{math, vector};
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 /// The largest angle a triangle may have and still count as unskewed: 2π/3 (§2.3).
@@ -135,8 +136,8 @@ impl HasPosition for Site {
 pub fn max_angle(a: Point, b: Point, c: Point) -> f64 {
     let angle = |p: Point, q: Point, r: Point| {
         let (u, v) = (q - p, r - p);
-        let norms = u.hypot() * v.hypot();
-        if norms <= 0.0 { std::f64::consts::PI } else { (u.dot(v) / norms).clamp(-1.0, 1.0).acos() }
+        let norms = vector::length(u) * vector::length(v);
+        if norms <= 0.0 { std::f64::consts::PI } else { math::acos((u.dot(v) / norms).clamp(-1.0, 1.0)) }
     };
     angle(a, b, c).max(angle(b, c, a)).max(angle(c, a, b))
 }
@@ -203,7 +204,7 @@ pub fn neighbourhood_size(offsets: &[Vec2], along_path: bool) -> f64 {
         return 0.0;
     }
     let mut sorted: Vec<Vec2> = offsets.to_vec();
-    sorted.sort_by(|a, b| a.y.atan2(a.x).total_cmp(&b.y.atan2(b.x)));
+    sorted.sort_by(|a, b| math::atan2(a.y, a.x).total_cmp(&math::atan2(b.y, b.x)));
     let n = sorted.len();
     0.5 * (0..n).map(|i| sorted[i].cross(sorted[(i + 1) % n])).sum::<f64>().abs()
 }

@@ -8,6 +8,7 @@
 use kurbo::{Rect, Vec2};
 use motif_core::geometry::perpendicular;
 use motif_core::{Point, Polyline};
+use motif_core::{math, vector};
 
 use crate::params::FitPoints;
 use crate::stroke::Stroke;
@@ -33,7 +34,7 @@ impl OrientedBox {
 
     /// Orientation of the principal axis in `[0, π)` (axes are undirected).
     pub fn angle(&self) -> f64 {
-        self.axis.y.atan2(self.axis.x).rem_euclid(std::f64::consts::PI)
+        math::atan2(self.axis.y, self.axis.x).rem_euclid(std::f64::consts::PI)
     }
 
     /// The four corners.
@@ -48,7 +49,7 @@ impl OrientedBox {
         let d = point - self.centre;
         let u = (d.dot(self.axis).abs() - 0.5 * self.length).max(0.0);
         let v = (d.dot(self.secondary_axis()).abs() - 0.5 * self.thickness).max(0.0);
-        u.hypot(v)
+        math::hypot(u, v)
     }
 
     /// Directed Hausdorff distance d_H(self, other) between the solid boxes. The distance to a
@@ -65,7 +66,7 @@ impl OrientedBox {
 
     /// The box rotated by `angle` radians about its centre.
     pub fn rotated(&self, angle: f64) -> OrientedBox {
-        let (sin, cos) = angle.sin_cos();
+        let (sin, cos) = math::sin_cos(angle);
         let axis = Vec2::new(cos * self.axis.x - sin * self.axis.y, sin * self.axis.x + cos * self.axis.y);
         OrientedBox { axis, ..*self }
     }
@@ -90,7 +91,7 @@ pub struct Moments {
 impl Moments {
     /// Adds segment `p0 → p1` as a uniform density along it.
     pub fn add_segment(&mut self, p0: Point, p1: Point) {
-        let length = p0.distance(p1);
+        let length = vector::distance(p0, p1);
         if length <= 0.0 {
             return;
         }
@@ -144,8 +145,8 @@ impl Moments {
         if ((cxx - cyy).abs() + 2.0 * cxy.abs()) <= 1e-12 * scale {
             return Vec2::new(1.0, 0.0);
         }
-        let angle = 0.5 * (2.0 * cxy).atan2(cxx - cyy);
-        canonical_axis(Vec2::new(angle.cos(), angle.sin()))
+        let angle = 0.5 * math::atan2(2.0 * cxy, cxx - cyy);
+        canonical_axis(Vec2::new(math::cos(angle), math::sin(angle)))
     }
 }
 
@@ -194,7 +195,7 @@ impl FitSet {
             (0..=8)
                 .map(|i| {
                     let angle = std::f64::consts::PI * i as f64 / 8.0;
-                    centre + (normal * angle.cos() + direction * angle.sin()) * half_width
+                    centre + (normal * math::cos(angle) + direction * math::sin(angle)) * half_width
                 })
                 .collect()
         };
@@ -254,7 +255,7 @@ mod tests {
         let fitted = fit_box(&set.moments, std::iter::once(&set));
         assert!((fitted.length - 50.0).abs() < 1e-9);
         assert!(fitted.thickness.abs() < 1e-9);
-        assert!(fitted.centre.distance(Point::new(15.0, 20.0)) < 1e-9);
+        assert!(vector::distance(fitted.centre, Point::new(15.0, 20.0)) < 1e-9);
         assert!((fitted.axis.dot(Vec2::new(0.6, 0.8)).abs() - 1.0).abs() < 1e-12);
     }
 
@@ -265,7 +266,7 @@ mod tests {
         let fitted = fit_box(&set.moments, std::iter::once(&set));
         assert!((fitted.length - 24.0).abs() < 1e-9, "{fitted:?}");
         assert!((fitted.thickness - 4.0).abs() < 1e-9, "{fitted:?}");
-        assert!(fitted.centre.distance(Point::new(10.0, 0.0)) < 1e-9);
+        assert!(vector::distance(fitted.centre, Point::new(10.0, 0.0)) < 1e-9);
     }
 
     #[test]

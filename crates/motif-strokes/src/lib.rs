@@ -52,6 +52,7 @@ mod stroke;
 mod synthesis;
 mod variation;
 
+use motif_core::{math, vector};
 use std::ops::Range;
 
 use kurbo::{Affine, Vec2};
@@ -179,11 +180,11 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
             // and never runs on a valid region.
             let mut kept: Vec<Point> = Vec::with_capacity(points.len());
             for p in points {
-                if kept.last().is_none_or(|last: &Point| last.distance(p) > 1e-9) {
+                if kept.last().is_none_or(|last: &Point| vector::distance(*last, p) > 1e-9) {
                     kept.push(p);
                 }
             }
-            if kept.len() > 1 && kept[0].distance(kept[kept.len() - 1]) <= 1e-9 {
+            if kept.len() > 1 && vector::distance(kept[0], kept[kept.len() - 1]) <= 1e-9 {
                 kept.pop();
             }
             let n = kept.len();
@@ -331,15 +332,15 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
 /// (exchanged length and thickness), rotate about its centre, move the centre to `position`.
 fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, exchange: &Exchange) -> Affine {
     let to_origin = Affine::translate(-frame.centre.to_vec2());
-    let axis_angle = frame.axis.y.atan2(frame.axis.x);
+    let axis_angle = math::atan2(frame.axis.y, frame.axis.x);
     let scale = if exchange.length_scale != 1.0 || exchange.thickness_scale != 1.0 {
-        Affine::rotate(axis_angle)
+        vector::rotation(axis_angle)
             * Affine::scale_non_uniform(exchange.length_scale, exchange.thickness_scale)
-            * Affine::rotate(-axis_angle)
+            * vector::rotation(-axis_angle)
     } else {
         Affine::IDENTITY
     };
-    Affine::translate(position.to_vec2()) * Affine::rotate(rotation) * scale * to_origin
+    Affine::translate(position.to_vec2()) * vector::rotation(rotation) * scale * to_origin
 }
 
 fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
@@ -363,7 +364,8 @@ fn shifted_positions(layout: &Layout, assigned: &[u32], analysis: &Analysis, tar
                     // x is arc length along the path, y the offset along its normal.
                     let s = moved.x;
                     let chord = path.point_at(s + 1e-3 * path.length()) - path.point_at(s - 1e-3 * path.length());
-                    let tangent = if chord.hypot() > 1e-12 { chord.normalize() } else { path.tangent_at(s) };
+                    let tangent =
+                        if vector::length(chord) > 1e-12 { vector::normalized(chord) } else { path.tangent_at(s) };
                     path.point_at(s) + Vec2::new(-tangent.y, tangent.x) * moved.y
                 }
                 Target::Region(region) => {

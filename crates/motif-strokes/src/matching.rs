@@ -8,6 +8,7 @@
 //! every measure from the boxes instead, as the reference implementation.
 
 use kurbo::Vec2;
+use motif_core::math;
 
 use crate::element::OrientedBox;
 use crate::params::Thresholds;
@@ -38,7 +39,7 @@ impl Measures {
         let aligned = target.moved_to(reference.centre);
         let shape = reference.directed_hausdorff(&aligned).max(aligned.directed_hausdorff(reference));
         let cosine = reference.axis.dot(target.axis).abs().min(1.0);
-        let parallelism = cosine.acos();
+        let parallelism = math::acos(cosine);
         let (long, short) = if reference.length >= target.length {
             (reference.length, target.length)
         } else {
@@ -267,7 +268,7 @@ mod tests {
     use motif_core::{Point, SeedStreams};
 
     fn frame(angle: f64, length: f64, thickness: f64) -> OrientedBox {
-        OrientedBox { centre: Point::ORIGIN, axis: Vec2::new(angle.cos(), angle.sin()), length, thickness }
+        OrientedBox { centre: Point::ORIGIN, axis: Vec2::new(math::cos(angle), math::sin(angle)), length, thickness }
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! Generated reference drawings, for demos, benchmarks and tests: a 1D row of sketchy hatches and
 //! a 2D field of small three-stroke figures. Pure functions of their arguments and seed.
 
+use motif_core::math;
 use motif_core::random::Rng;
 use motif_core::{Point, Polyline, SeedStreams};
 
@@ -46,7 +47,7 @@ pub fn hatch_row(
         let jitter = if row.jitter > 0.0 { random.random_range(-row.jitter..=row.jitter) } else { 0.0 };
         let centre = origin + kurbo::Vec2::new(i as f64 * row.spacing, jitter);
         let theta = angle(i);
-        let direction = kurbo::Vec2::new(theta.sin(), -theta.cos());
+        let direction = kurbo::Vec2::new(math::sin(theta), -math::cos(theta));
         let normal = kurbo::Vec2::new(-direction.y, direction.x);
         // Pieces of length 1.6 L / parts that overlap and together cover [-L/2, L/2].
         let piece = (1.6 * row.length / parts as f64).min(row.length);
@@ -108,7 +109,7 @@ pub fn figure_field(field: &FigureField, origin: Point, seed: u64) -> Vec<Stroke
             let turn: f64 = random.random_range(0.0..std::f64::consts::TAU);
             let corner = |k: usize| {
                 let a = turn + std::f64::consts::TAU * k as f64 / 3.0;
-                centre + kurbo::Vec2::new(a.cos(), a.sin()) * field.radius
+                centre + kurbo::Vec2::new(math::cos(a), math::sin(a)) * field.radius
             };
             let star = (row + column) % 2 == 0;
             for k in 0..3 {

@@ -8,6 +8,7 @@
 //! edge skip the clip.
 
 use motif_core::random::Rng;
+use motif_core::vector;
 use motif_core::{Point, Polygon, SeedStreams};
 use rayon::prelude::*;
 use rstar::primitives::Rectangle;
@@ -188,7 +189,7 @@ pub fn lloyd_region(region: &Polygon, count: usize, iterations: usize, streams: 
                 cell_centroid(region, &edges, positions[i], scratch).unwrap_or(positions[i])
             })
             .collect();
-        let largest_move = positions.iter().zip(&next).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+        let largest_move = positions.iter().zip(&next).map(|(a, b)| vector::distance(*a, *b)).fold(0.0, f64::max);
         positions = next;
         if largest_move < 1e-3 * spacing {
             break;
@@ -334,7 +335,7 @@ mod tests {
                     .iter()
                     .enumerate()
                     .filter(|(j, _)| *j != i)
-                    .map(|(_, q)| p.distance(*q))
+                    .map(|(_, q)| vector::distance(*p, *q))
                     .fold(f64::INFINITY, f64::min)
             })
             .collect();
@@ -353,6 +354,6 @@ mod tests {
         let small = [Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(0.0, 2.0)];
         clip_to_convex(&square, &small, &mut out, &mut swap);
         assert!((signed_area(&out) - 2.0).abs() < 1e-12);
-        assert!(polygon_centroid(&out).unwrap().distance(Point::new(2.0 / 3.0, 2.0 / 3.0)) < 1e-12);
+        assert!(vector::distance(polygon_centroid(&out).unwrap(), Point::new(2.0 / 3.0, 2.0 / 3.0)) < 1e-12);
     }
 }

@@ -5,6 +5,7 @@
 use kurbo::Vec2;
 use motif_core::random::Rng;
 use motif_core::{Point, Polygon, Polyline, Progress, SeedStreams};
+use motif_core::{math, vector};
 use rayon::prelude::*;
 
 use crate::analysis::Analysis;
@@ -69,8 +70,8 @@ pub fn layout_path(
         .iter()
         .map(|&s| {
             let chord = path.point_at(s + half) - path.point_at(s - half);
-            let tangent = if chord.hypot() > 1e-12 { chord } else { path.tangent_at(s) };
-            tangent.y.atan2(tangent.x) - frame_angle
+            let tangent = if vector::length(chord) > 1e-12 { chord } else { path.tangent_at(s) };
+            math::atan2(tangent.y, tangent.x) - frame_angle
         })
         .collect();
     Layout {

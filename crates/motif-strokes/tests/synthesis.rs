@@ -1,6 +1,7 @@
 //! End-to-end properties of analysis and synthesis.
 
 use motif_core::{NoProgress, Point, Polygon, Polyline};
+use motif_core::{math, vector};
 use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Error, Input, Output, Params, Stroke, Target, region_from_outline, synthesize};
 
@@ -47,7 +48,7 @@ fn a_closed_path_gets_a_closed_chain_of_hatches_along_its_tangent() {
     let circle: Vec<Point> = (0..720)
         .map(|i| {
             let a = std::f64::consts::TAU * i as f64 / 720.0;
-            Point::new(200.0 + radius * a.cos(), 200.0 + radius * a.sin())
+            Point::new(200.0 + radius * math::cos(a), 200.0 + radius * math::sin(a))
         })
         .collect();
     let path = Polyline::new(circle, true).unwrap();
@@ -57,12 +58,12 @@ fn a_closed_path_gets_a_closed_chain_of_hatches_along_its_tangent() {
     // A closed chain: every element has two neighbours.
     assert_eq!(output.target_edges.len(), output.elements.len());
     for element in &output.elements {
-        let radial = (element.position - Point::new(200.0, 200.0)).normalize();
-        assert!(((element.position - Point::new(200.0, 200.0)).hypot() - radius).abs() < 0.1);
+        let radial = vector::normalized(element.position - Point::new(200.0, 200.0));
+        assert!((vector::length(element.position - Point::new(200.0, 200.0)) - radius).abs() < 0.1);
         // The reference hatches stand across their row, so the copies stand across the circle.
         let copy = &output.strokes[element.strokes.start];
         let points = copy.polyline.points();
-        let direction = (points[points.len() - 1] - points[0]).normalize();
+        let direction = vector::normalized(points[points.len() - 1] - points[0]);
         assert!(direction.dot(radial).abs() > 0.95, "a hatch is not across the path");
     }
 }
@@ -138,7 +139,7 @@ fn variation_zero_gives_exact_copies_and_variation_changes_parameters() {
             let original = &strokes[source];
             assert_eq!((copy.width, copy.colour, copy.fill), (original.width, original.colour, original.fill));
             for (p, q) in copy.polyline.points().iter().zip(original.polyline.points()) {
-                assert!(p.distance(*q + shift) < 1e-9);
+                assert!(vector::distance(*p, *q + shift) < 1e-9);
             }
         }
     }
