@@ -148,6 +148,18 @@ pub fn hypot(x: f64, y: f64) -> f64 {
     libm::hypot(x, y)
 }
 
+/// Sine of an `f32` (radians).
+#[inline]
+pub fn sin_f32(x: f32) -> f32 {
+    libm::sinf(x)
+}
+
+/// Cosine of an `f32` (radians).
+#[inline]
+pub fn cos_f32(x: f32) -> f32 {
+    libm::cosf(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -10,7 +10,7 @@ fn image(width: usize, height: usize, phase: f32) -> FloatImage {
         .map(|i| {
             let (p, c) = (i / 3, i % 3);
             let (x, y) = ((p % width) as f32, (p / width) as f32);
-            0.5 + 0.5 * ((x * 0.11 + phase).sin() * (y * 0.07 + c as f32).cos())
+            0.5 + 0.5 * (motif_core::math::sin_f32(x * 0.11 + phase) * motif_core::math::cos_f32(y * 0.07 + c as f32))
         })
         .collect();
     FloatImage::from_data(width, height, 3, data).expect("sizes match")

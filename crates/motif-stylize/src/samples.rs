@@ -2,7 +2,7 @@
 //! hand-drawn-looking style for it, plus smooth multi-channel guides.
 
 use motif_core::random::Rng;
-use motif_core::{FloatImage, SeedStreams};
+use motif_core::{FloatImage, SeedStreams, math};
 
 /// Colours of the map segments: water, grass, built-up, sand, road (like the paper's Fig. 1).
 pub const MAP_PALETTE: [[f32; 3]; 5] =
@@ -21,7 +21,7 @@ pub fn map_guide(width: usize, height: usize, segments: usize, seed: u64) -> Flo
     let roads: Vec<(f32, f32, f32)> = (0..2)
         .map(|_| {
             let angle = stream.random::<f32>() * std::f32::consts::PI;
-            (angle.cos(), angle.sin(), (stream.random::<f32>() - 0.5) * 0.5 * width.min(height) as f32)
+            (math::cos_f32(angle), math::sin_f32(angle), (stream.random::<f32>() - 0.5) * 0.5 * width.min(height) as f32)
         })
         .collect();
     let scale = width.max(height) as f32;
@@ -30,11 +30,11 @@ pub fn map_guide(width: usize, height: usize, segments: usize, seed: u64) -> Flo
         for x in 0..width {
             let (fx, fy) = (x as f32, y as f32);
             let wx = fx
-                + 0.04 * scale * (fy * 9.0 / scale + phase[0]).sin()
-                + 0.02 * scale * (fy * 23.0 / scale + phase[1]).sin();
+                + 0.04 * scale * math::sin_f32(fy * 9.0 / scale + phase[0])
+                + 0.02 * scale * math::sin_f32(fy * 23.0 / scale + phase[1]);
             let wy = fy
-                + 0.04 * scale * (fx * 8.0 / scale + phase[2]).sin()
-                + 0.02 * scale * (fx * 19.0 / scale + phase[3]).sin();
+                + 0.04 * scale * math::sin_f32(fx * 8.0 / scale + phase[2])
+                + 0.02 * scale * math::sin_f32(fx * 19.0 / scale + phase[3]);
             let region = sites
                 .iter()
                 .map(|&(sx, sy, r)| ((sx - wx).powi(2) + (sy - wy).powi(2), r))
@@ -66,8 +66,8 @@ pub fn crayon_style(guide: &FloatImage, seed: u64) -> FloatImage {
             let g = guide.pixel(x, y);
             let hue = g.iter().take(channels).enumerate().map(|(c, v)| v * (c + 1) as f32).sum::<f32>();
             let angle = hue * 2.1;
-            let t = x as f32 * angle.cos() + y as f32 * angle.sin();
-            let stroke = 0.5 + 0.5 * (t * 0.9 + (y as f32 * 0.21).sin() * 2.0).sin();
+            let t = x as f32 * math::cos_f32(angle) + y as f32 * math::sin_f32(angle);
+            let stroke = 0.5 + 0.5 * math::sin_f32(t * 0.9 + math::sin_f32(y as f32 * 0.21) * 2.0);
             let grain = stream.random::<f32>();
             let shade = 0.55 + 0.3 * stroke + 0.15 * grain;
             let pixel = out.pixel_mut(x, y);
@@ -93,7 +93,7 @@ pub fn smooth_field(width: usize, height: usize, channels: usize, seed: u64) -> 
             for c in 0..channels {
                 let mut v = 0.5;
                 for wave in &waves[c * 4..(c + 1) * 4] {
-                    v += 0.11 * (wave[0] * x as f32 + wave[1] * y as f32 + wave[2]).sin();
+                    v += 0.11 * math::sin_f32(wave[0] * x as f32 + wave[1] * y as f32 + wave[2]);
                 }
                 data.push((v + 0.02 * (stream.random::<f32>() - 0.5)).clamp(0.0, 1.0));
             }

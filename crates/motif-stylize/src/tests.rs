@@ -21,7 +21,7 @@ pub(crate) fn texture(width: usize, height: usize, channels: usize, seed: u64) -
             for c in 0..channels {
                 let mut v = 0.5;
                 for wave in &waves[c * 6..(c + 1) * 6] {
-                    v += 0.07 * (wave[0] * x as f32 + wave[1] * y as f32 + wave[2]).sin();
+                    v += 0.07 * motif_core::math::sin_f32(wave[0] * x as f32 + wave[1] * y as f32 + wave[2]);
                 }
                 v += 0.08 * (stream.random::<f32>() - 0.5);
                 // 8-bit values, as PNG inputs are (the engine stores 8 bits).
@@ -40,7 +40,7 @@ pub(crate) fn flat(width: usize, height: usize, colour: impl Fn(usize, usize) ->
 pub(crate) fn psnr(a: &FloatImage, b: &FloatImage) -> f64 {
     let mse: f64 =
         a.data().iter().zip(b.data()).map(|(x, y)| f64::from(x - y).powi(2)).sum::<f64>() / a.data().len() as f64;
-    10.0 * (1.0 / mse.max(1e-12)).log10()
+    10.0 * motif_core::math::log10(1.0 / mse.max(1e-12))
 }
 
 /// A level with a 3-channel style, a 1-channel and a 3-channel guide of their own weights,
