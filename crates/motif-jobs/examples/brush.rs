@@ -5,21 +5,13 @@
 
 use std::io::Write;
 
+#[path = "shared/page.rs"]
+mod shared;
+
 use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
 
 fn main() {
-    let exemplar = motif_points::samples::hex_exemplar(9, 8, 0.08, 1);
-    let discrete = vec!["shade".to_string()];
-    // The page's scale: 14 canvas pixels per exemplar spacing (from the bounding box).
-    let (mut low, mut high) = ([f64::MAX; 2], [f64::MIN; 2]);
-    for i in 0..exemplar.len() {
-        for a in 0..2 {
-            low[a] = low[a].min(exemplar.position(i)[a]);
-            high[a] = high[a].max(exemplar.position(i)[a]);
-        }
-    }
-    let spacing = ((high[0] - low[0]) * (high[1] - low[1]) / exemplar.len() as f64).sqrt();
-    let scale = 14.0 / spacing;
+    let (exemplar, discrete, spacing, scale) = shared::hex_panel();
     let strokes: Vec<Vec<(f64, f64)>> = vec![
         std::iter::once((60.0, 90.0))
             .chain((1..17).map(|k| (60.0 + 25.0 * k as f64, 90.0 + 10.0 * (-1f64).powi(k))))

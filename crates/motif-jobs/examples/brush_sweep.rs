@@ -8,6 +8,9 @@
 
 use std::io::Write;
 
+#[path = "shared/page.rs"]
+mod shared;
+
 use motif_core::random::Rng;
 use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
 
@@ -16,17 +19,7 @@ fn main() {
     let extra = std::env::args().nth(2).unwrap_or_default();
     // The margin of grown points that may move, in spacings (the page uses 2).
     let keep_margin: f64 = std::env::args().nth(3).map_or(2.0, |a| a.parse().expect("a number"));
-    let exemplar = motif_points::samples::hex_exemplar(9, 8, 0.08, 1);
-    let discrete = vec!["shade".to_string()];
-    let (mut low, mut high) = ([f64::MAX; 2], [f64::MIN; 2]);
-    for i in 0..exemplar.len() {
-        for a in 0..2 {
-            low[a] = low[a].min(exemplar.position(i)[a]);
-            high[a] = high[a].max(exemplar.position(i)[a]);
-        }
-    }
-    let spacing = ((high[0] - low[0]) * (high[1] - low[1]) / exemplar.len() as f64).sqrt();
-    let scale = 14.0 / spacing;
+    let (exemplar, discrete, spacing, scale) = shared::hex_panel();
     let (mut fresh_ms, mut crossing_ms, mut crossing_added) = (Vec::new(), Vec::new(), Vec::new());
     let (mut nearest, mut radial) = (0.0, 0.0);
     let mut crossing_stages: std::collections::BTreeMap<String, f64> = Default::default();

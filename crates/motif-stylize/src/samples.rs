@@ -21,7 +21,11 @@ pub fn map_guide(width: usize, height: usize, segments: usize, seed: u64) -> Flo
     let roads: Vec<(f32, f32, f32)> = (0..2)
         .map(|_| {
             let angle = stream.random::<f32>() * std::f32::consts::PI;
-            (math::cos_f32(angle), math::sin_f32(angle), (stream.random::<f32>() - 0.5) * 0.5 * width.min(height) as f32)
+            (
+                math::cos_f32(angle),
+                math::sin_f32(angle),
+                (stream.random::<f32>() - 0.5) * 0.5 * width.min(height) as f32,
+            )
         })
         .collect();
     let scale = width.max(height) as f32;
