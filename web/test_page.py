@@ -191,6 +191,40 @@ const [job, done] = arguments;
 """
 
 
+# Runs the stylize job of `crates/motif-jobs/examples/stylize_digest.rs` in the page's WebAssembly
+# module (the built-in map, a rectangle painted with a palette colour, band mode) and returns the
+# FNV-1a digest of the result's RGBA bytes, as the example prints it.
+STYLIZE_DIGEST_SCRIPT = """
+const [side, rectangle, colour, done] = arguments;
+(async () => {
+  const wasm = await import('./pkg/motif_web.js');
+  await wasm.default();
+  const panel = new wasm.StylizePanel(side);
+  const target = panel.guide();
+  const paint = panel.palette().slice(4 * colour, 4 * colour + 4);
+  for (let y = rectangle[2]; y < rectangle[3]; y++) for (let x = rectangle[0]; x < rectangle[1]; x++) target.set(paint, 4 * (y * side + x));
+  const result = panel.stylize(target, side, side, JSON.stringify({ band: 4 }));
+  let digest = 0xcbf29ce484222325n;
+  for (const b of result.rgba) digest = ((digest ^ BigInt(b)) * 0x100000001b3n) & 0xffffffffffffffffn;
+  done(digest.toString(16).padStart(16, '0'));
+})().catch((e) => done('error: ' + e));
+"""
+
+
+def native_stylize_run():
+    """The stylize example's map side, painted rectangle, colour and result digest, run natively."""
+    root = DIST.parent.parent
+    output = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "stylize_digest"],
+        cwd=root, check=True, capture_output=True, text=True,
+    ).stdout.strip().splitlines()
+    words = output[0].replace("[", "").replace("]", "").replace(",", "").split()
+    return {
+        "side": int(words[1]), "rectangle": [int(v) for v in words[3:7]], "colour": int(words[8]),
+        "digest": output[-1].split("digest ")[1],
+    }
+
+
 def native_strokes_run():
     """The strokes example's job and result digest, built and run natively."""
     root = DIST.parent.parent
@@ -360,6 +394,13 @@ def main():
         browser_digest = driver.execute_async_script(STROKES_DIGEST_SCRIPT, strokes_run["job"])
         assert browser_digest == strokes_run["digest"], f"strokes: browser {browser_digest}, native {strokes_run['digest']}"
         figures["strokes_digest"] = browser_digest
+        # And for stylize: a painted target guide re-stylized in band mode.
+        stylize_run = native_stylize_run()
+        browser_digest = driver.execute_async_script(
+            STYLIZE_DIGEST_SCRIPT, stylize_run["side"], stylize_run["rectangle"], stylize_run["colour"]
+        )
+        assert browser_digest == stylize_run["digest"], f"stylize: browser {browser_digest}, native {stylize_run['digest']}"
+        figures["stylize_digest"] = browser_digest
 
         errors = [entry for entry in driver.get_log("browser") if entry["level"] == "SEVERE"]
         assert not errors, f"browser console errors: {errors}"
