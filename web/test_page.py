@@ -211,13 +211,15 @@ const [side, rectangle, colour, done] = arguments;
 """
 
 
+def native_example(name, *arguments):
+    """The lines a motif-jobs example prints, built and run natively (release)."""
+    command = ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", name, "--", *arguments]
+    return subprocess.run(command, cwd=DIST.parent.parent, check=True, capture_output=True, text=True).stdout.strip().splitlines()
+
+
 def native_stylize_run():
     """The stylize example's map side, painted rectangle, colour and result digest, run natively."""
-    root = DIST.parent.parent
-    output = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "stylize_digest"],
-        cwd=root, check=True, capture_output=True, text=True,
-    ).stdout.strip().splitlines()
+    output = native_example("stylize_digest")
     words = output[0].replace("[", "").replace("]", "").replace(",", "").split()
     return {
         "side": int(words[1]), "rectangle": [int(v) for v in words[3:7]], "colour": int(words[8]),
@@ -227,38 +229,25 @@ def native_stylize_run():
 
 def native_strokes_run():
     """The strokes example's job and result digest, built and run natively."""
-    root = DIST.parent.parent
-    output = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "strokes_digest"],
-        cwd=root, check=True, capture_output=True, text=True,
-    ).stdout.strip().splitlines()
+    output = native_example("strokes_digest")
     return {"job": output[0].split(" ", 1)[1], "digest": output[-1].split("digest ")[1]}
 
 
 def native_curve_run():
     """The curve example's exemplar, polyline, job and result digest, built and run natively."""
-    root = DIST.parent.parent
-    output = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "curve_digest"],
-        cwd=root, check=True, capture_output=True, text=True,
-    ).stdout
-    lines = dict(line.split(" ", 1) for line in output.strip().splitlines()[:3])
+    output = native_example("curve_digest")
+    lines = dict(line.split(" ", 1) for line in output[:3])
     width, height, hex_bytes = lines["exemplar"].split(" ")
     return {
         "hex": hex_bytes, "width": int(width), "height": int(height),
         "points": json.loads(lines["points"]), "job": lines["job"],
-        "digest": output.strip().splitlines()[-1].split("digest ")[1],
+        "digest": output[-1].split("digest ")[1],
     }
 
 
 def native_brush_digest():
     """The digest the brush example prints for the same strokes, built and run natively."""
-    root = DIST.parent.parent
-    output = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "-p", "motif-jobs", "--example", "brush", "--", "2", '"merge-iterations": 6, "window-cutoff": 1.5'],
-        cwd=root, check=True, capture_output=True, text=True,
-    ).stdout
-    return output.strip().splitlines()[-1].split("digest ")[1]
+    return native_example("brush", "2", '"merge-iterations": 6, "window-cutoff": 1.5')[-1].split("digest ")[1]
 
 
 def main():
