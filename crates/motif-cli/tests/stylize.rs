@@ -71,17 +71,12 @@ fn stylize_writes_output_report_and_debug_files() {
     let field = motif_io::read_image(&d.join("debug/nnf.png")).unwrap();
     assert_eq!((field.width(), field.height()), (80, 56));
     assert!(d.join("debug/error.png").is_file());
-    // The saved field re-applied to the style gives an image close to the output.
+    // The saved field carries the final vote's weights: re-applied to the style, it gives back
+    // the output byte for byte (a plain mean was off by 3.4 on average, 57 at most).
     let output = motif(d, &["stylize", "--style", "A1.png", "--apply-nnf", "debug/nnf.png", "--out", "again.png"]);
     assert!(output.status.success(), "{}", stderr(&output));
     let again = motif_io::read_image(&d.join("again.png")).unwrap();
-    let close = again
-        .pixels()
-        .iter()
-        .zip(image.pixels())
-        .filter(|(a, b)| a[..3].iter().zip(&b[..3]).all(|(x, y)| x.abs_diff(*y) < 40))
-        .count();
-    assert!(close * 10 > image.pixels().len() * 8, "{close}");
+    assert_eq!(again, image, "re-applying the saved field to the same style must give B' again");
 }
 
 #[test]

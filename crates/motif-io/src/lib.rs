@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 
 pub use json::{read_json, write_json};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
-pub use raster::{decode_image, read_image, write_png};
+pub use raster::{Rgba16, decode_image, read_image, read_png16, write_png, write_png16};
 pub(crate) use staging::write_with;
 pub use staging::{begin_outputs, commit_outputs, discard_outputs, remove_temporaries};
 pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};

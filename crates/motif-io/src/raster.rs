@@ -22,6 +22,52 @@ pub fn read_image(path: &Path) -> Result<RgbaImage> {
 
 /// Decodes PNG or JPEG bytes as [`read_image`] does; `path` is the file (or label) errors name.
 pub fn decode_image(bytes: Vec<u8>, path: &Path) -> Result<RgbaImage> {
+    let (width, height, decoded) = decode(bytes, path)?;
+    let rgba = decoded.to_rgba8();
+    let pixels = rgba.pixels().map(|pixel| pixel.0).collect();
+    RgbaImage::from_pixels(width as usize, height as usize, pixels)
+        .map_err(|error| IoError::format(path, error.to_string()))
+}
+
+/// A 16-bit RGBA raster, row by row.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rgba16 {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// Row-major pixels.
+    pub pixels: Vec<[u16; 4]>,
+}
+
+/// Reads a 16-bit PNG as 16-bit RGBA; `None` when the file holds 8-bit samples (or is a JPEG).
+pub fn read_png16(path: &Path) -> Result<Option<Rgba16>> {
+    let (width, height, decoded) = decode(crate::read_bytes(path)?, path)?;
+    if decoded.color().bytes_per_pixel() / decoded.color().channel_count() < 2 {
+        return Ok(None);
+    }
+    let pixels = decoded.to_rgba16().pixels().map(|pixel| pixel.0).collect();
+    Ok(Some(Rgba16 { width: width as usize, height: height as usize, pixels }))
+}
+
+/// Writes a 16-bit RGBA PNG atomically.
+pub fn write_png16(path: &Path, image: &Rgba16) -> Result<()> {
+    if image.width == 0 || image.height == 0 || image.pixels.len() != image.width * image.height {
+        return Err(IoError::format(path, "refusing to write an empty or inconsistent image"));
+    }
+    let width = u32::try_from(image.width).map_err(|_| IoError::format(path, "image too wide"))?;
+    let height = u32::try_from(image.height).map_err(|_| IoError::format(path, "image too tall"))?;
+    // The encoder takes 16-bit samples in native byte order (it writes them big-endian).
+    let bytes: Vec<u8> = image.pixels.iter().flatten().flat_map(|v| v.to_ne_bytes()).collect();
+    write_with(path, |file| {
+        let encoder = image::codecs::png::PngEncoder::new(BufWriter::new(file));
+        image::ImageEncoder::write_image(encoder, &bytes, width, height, image::ExtendedColorType::Rgba16)
+            .map_err(std::io::Error::other)
+    })
+}
+
+/// Decodes PNG or JPEG bytes within the size limits.
+fn decode(bytes: Vec<u8>, path: &Path) -> Result<(u32, u32, image::DynamicImage)> {
     let reader = ImageReader::new(std::io::Cursor::new(bytes))
         .with_guessed_format()
         .map_err(|source| IoError::Io { path: path.to_path_buf(), source })?;
@@ -45,10 +91,7 @@ pub fn decode_image(bytes: Vec<u8>, path: &Path) -> Result<RgbaImage> {
     if width == 0 || height == 0 {
         return Err(IoError::format(path, "image is empty (0 pixels)"));
     }
-    let rgba = decoded.to_rgba8();
-    let pixels = rgba.pixels().map(|pixel| pixel.0).collect();
-    RgbaImage::from_pixels(width as usize, height as usize, pixels)
-        .map_err(|error| IoError::format(path, error.to_string()))
+    Ok((width, height, decoded))
 }
 
 /// Writes an 8-bit RGBA PNG atomically.
@@ -68,6 +111,20 @@ pub fn write_png(path: &Path, image: &RgbaImage) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn png16_round_trip_is_exact_and_8_bit_files_are_told_apart() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("a16.png");
+        let pixels =
+            (0..13 * 7).map(|i| [i as u16 * 701, 65535 - i as u16, 300 + i as u16, (i % 2) as u16 * 65535]).collect();
+        let image = Rgba16 { width: 13, height: 7, pixels };
+        write_png16(&path, &image).unwrap();
+        assert_eq!(read_png16(&path).unwrap(), Some(image));
+        let eight = dir.path().join("a8.png");
+        write_png(&eight, &RgbaImage::from_fn(3, 2, |x, y| [x as u8, y as u8, 0, 255])).unwrap();
+        assert_eq!(read_png16(&eight).unwrap(), None);
+    }
 
     #[test]
     fn png_round_trip_is_exact() {

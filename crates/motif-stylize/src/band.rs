@@ -170,6 +170,7 @@ mod tests {
             source_height: 10,
             patch_size: 3,
             matches: vec![Some([offset + 1, 1]), Some([offset + 2, 1]), None, Some([offset + 2, 2])],
+            weights: None,
         };
         let (first, second) = (field(0), field(5));
         let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];

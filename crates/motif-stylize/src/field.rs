@@ -1,12 +1,14 @@
 //! The public nearest-neighbour field: which source patch each output pixel came from.
 //!
-//! It can be saved as a PNG ([`NearestNeighbourField::to_rgba`]) and re-applied to another
-//! style image of the same size ([`apply_field`]), e.g. to stylize a second layer of a map with
-//! exactly the same patch layout.
+//! It can be saved as a PNG ([`NearestNeighbourField::to_rgba16`], with the final vote's weights;
+//! [`NearestNeighbourField::to_rgba`] without) and re-applied to another style image of the same
+//! size ([`apply_field`]), e.g. to stylize a second layer of a map with exactly the same patch
+//! layout; applied to the style it was made with, it gives back the output.
 
 use motif_core::{FloatImage, RgbaImage};
 
 use crate::Error;
+use crate::vote::weight_of_code;
 
 /// For each target pixel, the centre `[x, y]` of the source patch it was matched to (`None`
 /// for pixels that were not searched, e.g. copied from pre-synthesized textures).
@@ -24,6 +26,9 @@ pub struct NearestNeighbourField {
     pub patch_size: usize,
     /// Row-major matches.
     pub matches: Vec<Option<[u32; 2]>>,
+    /// Each target pixel's weight in the final vote as a 16-bit code (weight = code / 65535);
+    /// `None` when unknown (fields read from 8-bit files): re-applied as a plain mean.
+    pub weights: Option<Vec<u16>>,
 }
 
 /// Largest source side the PNG encoding holds (12 bits per coordinate).
@@ -60,36 +65,82 @@ impl NearestNeighbourField {
         source_height: usize,
         patch_size: usize,
     ) -> Result<Self, Error> {
-        let radius = patch_size / 2;
-        let mut matches = Vec::with_capacity(image.pixels().len());
+        let mut field = Self::empty(image.width(), image.height(), source_width, source_height, patch_size);
         for (index, p) in image.pixels().iter().enumerate() {
-            if p[3] == 0 {
-                matches.push(None);
-                continue;
-            }
-            let x = u32::from(p[0]) | (u32::from(p[2] & 15) << 8);
-            let y = u32::from(p[1]) | (u32::from(p[2] >> 4) << 8);
+            let source = (p[3] != 0).then(|| {
+                [u32::from(p[0]) | (u32::from(p[2] & 15) << 8), u32::from(p[1]) | (u32::from(p[2] >> 4) << 8)]
+            });
+            field.push(index, source)?;
+        }
+        Ok(field)
+    }
+
+    /// Encodes the field with the final vote's weights as 16-bit RGBA pixels, row by row:
+    /// red = source x, green = source y, blue = the weight's code (65535 when the field has no
+    /// weights), alpha 65535 for searched pixels and 0 for the others.
+    pub fn to_rgba16(&self) -> Vec<[u16; 4]> {
+        self.matches
+            .iter()
+            .enumerate()
+            .map(|(t, m)| match m {
+                Some([x, y]) => [*x as u16, *y as u16, self.weights.as_ref().map_or(65535, |w| w[t]), 65535],
+                None => [0, 0, 0, 0],
+            })
+            .collect()
+    }
+
+    /// Decodes [`to_rgba16`](Self::to_rgba16)'s encoding (`width × height` pixels) for a source of
+    /// the given size and patch side, checking every match lies where a whole patch fits.
+    pub fn from_rgba16(
+        width: usize,
+        height: usize,
+        pixels: &[[u16; 4]],
+        source_width: usize,
+        source_height: usize,
+        patch_size: usize,
+    ) -> Result<Self, Error> {
+        let mut field = Self::empty(width, height, source_width, source_height, patch_size);
+        let mut weights = Vec::with_capacity(pixels.len());
+        for (index, p) in pixels.iter().enumerate() {
+            field.push(index, (p[3] != 0).then_some([u32::from(p[0]), u32::from(p[1])]))?;
+            weights.push(p[2]);
+        }
+        field.weights = Some(weights);
+        Ok(field)
+    }
+
+    fn empty(width: usize, height: usize, source_width: usize, source_height: usize, patch_size: usize) -> Self {
+        let matches = Vec::with_capacity(width * height);
+        Self { width, height, source_width, source_height, patch_size, matches, weights: None }
+    }
+
+    /// Appends target pixel `index`'s match, checking that a whole patch fits around it.
+    fn push(&mut self, index: usize, source: Option<[u32; 2]>) -> Result<(), Error> {
+        let radius = self.patch_size / 2;
+        if let Some([x, y]) = source {
             let fits = |v: u32, side: usize| (radius..side.saturating_sub(radius)).contains(&(v as usize));
-            if !fits(x, source_width) || !fits(y, source_height) {
+            if !fits(x, self.source_width) || !fits(y, self.source_height) {
                 return Err(Error::FieldOutside {
-                    x: index % image.width(),
-                    y: index / image.width(),
+                    x: index % self.width.max(1),
+                    y: index / self.width.max(1),
                     source_x: x,
                     source_y: y,
-                    source_width,
-                    source_height,
-                    patch: patch_size,
+                    source_width: self.source_width,
+                    source_height: self.source_height,
+                    patch: self.patch_size,
                 });
             }
-            matches.push(Some([x, y]));
         }
-        Ok(Self { width: image.width(), height: image.height(), source_width, source_height, patch_size, matches })
+        self.matches.push(source);
+        Ok(())
     }
 }
 
 /// Re-applies a field to `style` (same size as the field's source): every pixel becomes the
-/// plain average of what the overlapping matched patches say; unsearched pixels stay
-/// transparent (zero).
+/// average of what the overlapping matched patches say, weighted by the field's vote weights as
+/// the synthesis weighed them (plain when the field has none), summed in the synthesis's order,
+/// so that the style the field was made with gives back the output bit for bit; unsearched pixels
+/// stay transparent (zero).
 pub fn apply_field(field: &NearestNeighbourField, style: &FloatImage) -> Result<FloatImage, Error> {
     if style.width() != field.source_width || style.height() != field.source_height {
         return Err(Error::SizeMismatch {
@@ -104,28 +155,31 @@ pub fn apply_field(field: &NearestNeighbourField, style: &FloatImage) -> Result<
     let channels = style.channels();
     let mut out = FloatImage::new(field.width, field.height, channels);
     let mut sum = vec![0.0_f32; channels];
+    let weight = |t: usize| field.weights.as_ref().map_or(1.0, |w| weight_of_code(w[t]));
     for y in 0..h {
         for x in 0..w {
             sum.fill(0.0);
-            let mut count = 0.0;
+            let mut total_weight = 0.0;
             for oy in -r..=r {
                 for ox in -r..=r {
                     let (px, py) = (x + ox, y + oy);
                     if px < 0 || py < 0 || px >= w || py >= h {
                         continue;
                     }
-                    if let Some([sx, sy]) = field.matches[(py * w + px) as usize] {
+                    let t = (py * w + px) as usize;
+                    if let Some([sx, sy]) = field.matches[t] {
                         let value = style.pixel((sx as isize - ox) as usize, (sy as isize - oy) as usize);
+                        let weight = weight(t);
                         for (acc, v) in sum.iter_mut().zip(value) {
-                            *acc += v;
+                            *acc += weight * v;
                         }
-                        count += 1.0;
+                        total_weight += weight;
                     }
                 }
             }
-            if count > 0.0 {
+            if total_weight > 0.0 {
                 for (out, acc) in out.pixel_mut(x as usize, y as usize).iter_mut().zip(&sum) {
-                    *out = acc / count;
+                    *out = acc / total_weight;
                 }
             }
         }
@@ -146,6 +200,7 @@ mod tests {
             source_height: 700,
             patch_size: 5,
             matches: vec![Some([2, 2]), None, Some([2997, 697])],
+            weights: None,
         };
         let image = field.to_rgba().unwrap();
         assert_eq!(NearestNeighbourField::from_rgba(&image, 3000, 700, 5).unwrap(), field);
@@ -153,12 +208,59 @@ mod tests {
     }
 
     #[test]
+    fn sixteen_bit_encoding_keeps_matches_and_weights() {
+        let field = NearestNeighbourField {
+            width: 3,
+            height: 1,
+            source_width: 9000,
+            source_height: 700,
+            patch_size: 5,
+            matches: vec![Some([2, 2]), None, Some([8997, 697])],
+            weights: Some(vec![65535, 0, 17]),
+        };
+        let pixels = field.to_rgba16();
+        assert_eq!(NearestNeighbourField::from_rgba16(3, 1, &pixels, 9000, 700, 5).unwrap(), field);
+        assert!(NearestNeighbourField::from_rgba16(3, 1, &pixels, 8000, 700, 5).is_err());
+    }
+
+    #[test]
+    fn weights_shift_the_vote_towards_heavier_patches() {
+        // Two patches cover pixel (1, 1): the one left of it puts a bright source pixel there, the
+        // one right of it a dark one; weighing the left one three times as much gives 3/4.
+        let style = FloatImage::from_data(4, 3, 1, [0.0, 0.0, 1.0, 1.0].repeat(3)).unwrap();
+        let mut matches = vec![None; 9];
+        matches[3] = Some([1, 1]);
+        matches[5] = Some([2, 1]);
+        let field = |weights| NearestNeighbourField {
+            width: 3,
+            height: 3,
+            source_width: 4,
+            source_height: 3,
+            patch_size: 3,
+            matches: matches.clone(),
+            weights,
+        };
+        let plain = apply_field(&field(None), &style).unwrap().pixel(1, 1)[0];
+        let weighted =
+            apply_field(&field(Some(vec![0, 0, 0, 65535, 0, 21845, 0, 0, 0])), &style).unwrap().pixel(1, 1)[0];
+        assert!((plain - 0.5).abs() < 1e-6, "{plain}");
+        assert!((weighted - 0.75).abs() < 1e-4, "{weighted}");
+    }
+
+    #[test]
     fn identity_field_reproduces_the_style_inside() {
         let style = FloatImage::from_data(6, 6, 1, (0..36).map(|i| i as f32).collect()).unwrap();
         let matches =
             (0..36).map(|i| Some([(i % 6).clamp(1, 4) as u32, (i / 6).clamp(1, 4) as u32])).collect::<Vec<_>>();
-        let field =
-            NearestNeighbourField { width: 6, height: 6, source_width: 6, source_height: 6, patch_size: 3, matches };
+        let field = NearestNeighbourField {
+            width: 6,
+            height: 6,
+            source_width: 6,
+            source_height: 6,
+            patch_size: 3,
+            matches,
+            weights: None,
+        };
         let out = apply_field(&field, &style).unwrap();
         assert_eq!(out.pixel(2, 3), style.pixel(2, 3));
         assert!(apply_field(&field, &FloatImage::new(5, 6, 1)).is_err());

@@ -8,7 +8,7 @@ use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
 use crate::occurrence::Occurrence;
 use crate::search::{Field, exact_search, patchmatch_iteration};
-use crate::vote::vote;
+use crate::vote::{vote, weight_code};
 use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, segments};
 
 /// A validated problem in the engine's terms (built by the public entry points).
@@ -219,6 +219,9 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         level = fine;
     }
 
+    // The weights the final vote gave each patch, before the costs are recomputed for the figures.
+    let area = (level.patch * level.patch) as f32;
+    let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
     // Figures of the output itself: its final patch distances and the penalty of its field.
     field.recompute_costs(&level);
     let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
@@ -250,6 +253,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
                 })
             })
             .collect(),
+        weights: Some(vote_weights),
     };
     Ok(Output {
         image,
@@ -293,6 +297,7 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
             source_height: source_size.1,
             patch_size: patch,
             matches: vec![None; width * height],
+            weights: None,
         },
         error_map: FloatImage::new(width, height, 1),
         report: Report {

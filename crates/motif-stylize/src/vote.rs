@@ -4,13 +4,25 @@
 //! Written as a gather (each output pixel reads the patches that cover it), so rows are
 //! independent, run in parallel, and sum in a fixed order: the result never depends on threads.
 //! A patch's vote weighs `1 / (1 + D / patch²)`: well-matched patches dominate, which keeps
-//! edges sharper than a plain mean (Kwatra's robust weighting in spirit).
+//! edges sharper than a plain mean (Kwatra's robust weighting in spirit). The weight is rounded to
+//! 16 bits ([`weight_code`]), so that a saved field carries the exact weights of the final vote and
+//! re-applying it reproduces the output (`crate::apply_field`).
 
 use motif_core::FloatImage;
 use rayon::prelude::*;
 
 use crate::level::Level;
 use crate::search::Field;
+
+/// A patch's vote weight `1 / (1 + cost / area)` in 16 bits (at least 1: every patch votes).
+pub(crate) fn weight_code(cost: f32, area: f32) -> u16 {
+    ((1.0 / (1.0 + cost / area)) * 65535.0).round().clamp(1.0, 65535.0) as u16
+}
+
+/// The weight a [`weight_code`] stands for.
+pub(crate) fn weight_of_code(code: u16) -> f32 {
+    f32::from(code) / 65535.0
+}
 
 /// Votes the level's style through `field` into `output` (target size, style channels). Pixels
 /// outside the level's domain keep their value.
@@ -19,7 +31,7 @@ pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weight
     let channels = level.style_channels;
     let area = (level.patch * level.patch) as f32;
     let weights: Vec<f32> = if weighted {
-        field.costs.par_iter().map(|&cost| 1.0 / (1.0 + cost / area)).collect()
+        field.costs.par_iter().map(|&cost| weight_of_code(weight_code(cost, area))).collect()
     } else {
         vec![1.0; field.costs.len()]
     };

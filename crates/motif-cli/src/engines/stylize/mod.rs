@@ -135,14 +135,16 @@ pub struct StylizeArgs {
     /// PatchMatch iterations per search for such a band, 1–100 (else --patchmatch-iters).
     #[arg(long = "band-patchmatch-iters", value_name = "K", default_value_t = 2)]
     pub band_patchmatch_iterations: usize,
-    /// Also write nnf.png (the final nearest-neighbour field: red/green = source x/y mod 256,
-    /// blue = their high bits; alpha 0 where not searched) and error.png (per-pixel energy,
-    /// white = highest) into this directory.
+    /// Also write nnf.png (the final nearest-neighbour field as a 16-bit PNG: red/green = source
+    /// x/y, blue = the pixel's weight in the final vote × 65535; alpha 0 where not searched) and
+    /// error.png (per-pixel energy, white = highest) into this directory.
     #[arg(long, value_name = "DIR")]
     pub debug_dir: Option<PathBuf>,
     /// Skip synthesis: re-apply a field saved by --debug-dir (nnf.png) to --style (which must
-    /// have the size of the style the field was made with). The patch size is --patch-size (or 3
-    /// if the field came from --extra-pass-3x3).
+    /// have the size of the style the field was made with), with the final vote's weights: the
+    /// style the field was made with gives back B' exactly (outside band mode). The patch size is
+    /// --patch-size (or 3 if the field came from --extra-pass-3x3). 8-bit fields of earlier
+    /// versions are re-applied as a plain mean.
     #[arg(long, value_name = "NNF.png", conflicts_with_all = ["guide", "presynth"])]
     pub apply_nnf: Option<PathBuf>,
     /// The stylized output B' (PNG).
@@ -216,7 +218,9 @@ fn load(path: &Path) -> anyhow::Result<RgbaImage> {
 
 fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    motif_io::write_png(&dir.join("nnf.png"), &output.field.to_rgba()?)?;
+    let field = &output.field;
+    let nnf = motif_io::Rgba16 { width: field.width, height: field.height, pixels: field.to_rgba16() };
+    motif_io::write_png16(&dir.join("nnf.png"), &nnf)?;
     let max = output.error_map.data().iter().copied().fold(0.0_f32, f32::max).max(f32::MIN_POSITIVE);
     let mut error = output.error_map.clone();
     error.data_mut().iter_mut().for_each(|v| *v /= max);
@@ -247,8 +251,11 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     // The options are checked before the guides are read.
     let params = job.params(args.presynth.is_some())?;
     if let Some(field_path) = &args.apply_nnf {
-        let field_image = load(field_path)?;
-        let field = NearestNeighbourField::from_rgba(&field_image, style.width(), style.height(), params.patch_size)?;
+        let (width, height, patch) = (style.width(), style.height(), params.patch_size);
+        let field = match motif_io::read_png16(field_path)? {
+            Some(nnf) => NearestNeighbourField::from_rgba16(nnf.width, nnf.height, &nnf.pixels, width, height, patch)?,
+            None => NearestNeighbourField::from_rgba(&load(field_path)?, width, height, patch)?,
+        };
         let image = apply_field(&field, &style)?;
         motif_io::write_png(out, &RgbaImage::from_float(&image))?;
         context.figure("output_size", [image.width(), image.height()]);
