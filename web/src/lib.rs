@@ -249,7 +249,13 @@ impl StrokesPanel {
         let reference = match reference {
             "hatching" => {
                 let row = HatchRow { count: 14, ..HatchRow::default() };
-                hatch_row(&row, Point::new(20.0, 40.0), |i| 0.25 * motif_core::math::sin(i as f64 * 0.7), |_| [30, 30, 30, 255], 1)
+                hatch_row(
+                    &row,
+                    Point::new(20.0, 40.0),
+                    |i| 0.25 * motif_core::math::sin(i as f64 * 0.7),
+                    |_| [30, 30, 30, 255],
+                    1,
+                )
             }
             "figures" => {
                 figure_field(&FigureField { columns: 5, rows: 4, ..FigureField::default() }, Point::new(20.0, 20.0), 1)
