@@ -15,6 +15,9 @@
 //!   value and what is allowed), and the checks that build it.
 //! - [`builders!`]: the `with_*` builder methods of every engine's `Params`.
 //! - [`timing`]: [`StageTimer`], wall-clock milliseconds per named stage (works on wasm too).
+//! - [`math`] and [`vector`]: transcendental functions and vector lengths, directions, angles and
+//!   rotations with the same bits natively and in WebAssembly (the platforms' math libraries round
+//!   differently; engines use these instead of the `f64` methods and kurbo's).
 //!
 //! Conventions (see `ARCHITECTURE.md`): y points down; pixel `(i, j)` covers `[i, i+1) × [j, j+1)`
 //! so its centre is at `(i + 0.5, j + 0.5)`; colours are 8-bit sRGB with straight (not premultiplied)

@@ -15,13 +15,14 @@
 //!   per segment (Eq. 6).
 //! - `search`: nearest-neighbour fields (Eq. 2): deterministic parallel PatchMatch and the
 //!   exact brute-force search of §4.2.
-//! - `vote`: voting, the E-step of §3.3.
+//! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
 //!   upsampling (§3.5), the optional 3×3 pass, the report.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
-//! - `field`: the public nearest-neighbour field, its PNG encoding and re-application.
+//! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
+//!   re-application (the same style gives back the output).
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
