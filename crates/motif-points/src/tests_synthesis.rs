@@ -382,8 +382,30 @@ fn bad_input_gives_clear_errors() {
     );
     let wrong_dimension = Domain::Box { min: vec![0.0; 3], max: vec![1.0; 3] };
     assert!(run(grid.clone(), quick_params(), wrong_dimension).is_err());
-    let error = run(grid, Params { attributes: Some(vec!["colour".into()]), ..quick_params() }, domain).unwrap_err();
+    let error = run(grid.clone(), Params { attributes: Some(vec!["colour".into()]), ..quick_params() }, domain.clone())
+        .unwrap_err();
     assert!(error.to_string().contains("colour"), "{error}");
+    for (cutoff, balance) in [(1.0, 0.5), (4.5, 0.5), (2.0, -0.1), (2.0, 11.0)] {
+        let params = Params { window_cutoff: cutoff, patch_balance: balance, ..quick_params() };
+        let error = run(grid.clone(), params, domain.clone()).unwrap_err();
+        let named = if cutoff == 2.0 { "patch-balance" } else { "window-cutoff" };
+        assert!(error.to_string().contains(named), "{error}");
+    }
+}
+
+/// The window's truncation is the engine's to set: the default is 2δ, and a narrower window is a
+/// different (cheaper) energy, so it gives other points.
+#[test]
+fn the_window_cutoff_takes_effect() {
+    let exemplar = jittered_grid(10, 0.1, 3);
+    let run = |params: Params| {
+        let input = Input { exemplar: exemplar.clone(), domain: box_domain(8.0, 8.0), existing: None };
+        positions_of(&synthesize(&input, &params, &mut NoProgress).unwrap().points)
+    };
+    assert_eq!(Params::default().window_cutoff, 2.0);
+    let default = run(quick_params());
+    assert_eq!(run(Params { window_cutoff: 2.0, ..quick_params() }), default);
+    assert_ne!(run(Params { window_cutoff: 1.5, ..quick_params() }), default);
 }
 
 #[test]
