@@ -52,6 +52,10 @@ pub struct StrokesJob {
     /// Reintroduce the reference's irregular spacing.
     #[serde(default)]
     pub position_variation: bool,
+    /// Let elements overlap (by default an element whose ink meets a placed one is changed, moved
+    /// or removed, unless the reference's own elements overlap).
+    #[serde(default)]
+    pub allow_overlaps: bool,
     /// Matching thresholds to override by name: `shape`, `par`, `ov`, `sup`, `col`.
     #[serde(default)]
     pub thresholds: BTreeMap<String, f64>,
@@ -84,6 +88,7 @@ impl StrokesJob {
             rings: None,
             variation: None,
             position_variation: false,
+            allow_overlaps: false,
             thresholds: BTreeMap::new(),
             lloyd_iterations: None,
             max_memory: None,
@@ -120,6 +125,7 @@ impl StrokesJob {
             .with_thresholds(thresholds)
             .with_variation(self.variation.unwrap_or(defaults.variation))
             .with_position_variation(self.position_variation)
+            .with_avoid_overlaps(!self.allow_overlaps)
             .with_lloyd_iterations(self.lloyd_iterations.unwrap_or(defaults.lloyd_iterations))
             .with_max_memory(self.max_memory.unwrap_or(defaults.max_memory))
             .with_seed(self.seed);
@@ -178,6 +184,8 @@ pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
         "estimated_memory_bytes": report.estimated_memory_bytes,
         "reference_strokes": report.reference_strokes,
         "reference_elements": report.reference_elements,
+        "border_elements": report.border_elements,
+        "fragment_elements": report.fragment_elements,
         "output_elements": report.output_elements,
         "output_strokes": report.output_strokes,
         "expected_elements": report.expected_elements,
@@ -188,6 +196,7 @@ pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
         "rings": report.rings,
         "lloyd_iterations": report.lloyd_iterations,
         "skewed_triangles_removed": report.skewed_triangles_removed,
+        "overlap": report.overlap,
         "stages_ms": crate::stages(&report.stages_ms),
     });
     crate::object(value)

@@ -6,9 +6,11 @@ use motif_core::Point;
 use motif_core::{math, vector};
 
 use crate::Error;
+use crate::border::flag_border;
 use crate::cluster::{Element, cluster};
 use crate::distribution::{Graph, neighbourhood_size, shift_from_offsets, unskewed_delaunay};
 use crate::element::{FitSet, OrientedBox};
+use crate::matching::Limits;
 use crate::params::Params;
 use crate::stroke::Stroke;
 
@@ -39,6 +41,11 @@ pub struct Analysis {
     pub mean_length: f64,
     /// Delaunay triangles dropped by the unskewed filter (2D).
     pub skewed_triangles: usize,
+    /// Elements whose ink touches the reference's bounding box.
+    pub border: Vec<bool>,
+    /// Border elements unlike every element away from the border: pieces cut by the reference's
+    /// frame, kept as neighbours but never copied.
+    pub fragments: Vec<bool>,
 }
 
 impl Analysis {
@@ -63,6 +70,11 @@ impl Analysis {
         self.area_per_element * self.elements.len() as f64
     }
 
+    /// True when element `i` may be copied to the output (it is not a fragment).
+    pub fn is_usable(&self, i: usize) -> bool {
+        !self.fragments[i]
+    }
+
     /// Minimum neighbour count for position variation: k = 2 in 1D, 4 in 2D (§3.3).
     pub fn shift_neighbours(along_path: bool) -> usize {
         if along_path { 2 } else { 4 }
@@ -82,11 +94,21 @@ pub fn analyse(strokes: &[Stroke], params: &Params, along_path: bool) -> Result<
     }
     let sets = fit_sets(strokes, params);
     let elements = cluster(strokes, &sets, params.scale);
-    Ok(relate(elements, params.scale, along_path))
+    Ok(relate(elements, strokes, params, along_path))
+}
+
+/// The distribution step (§2.3) on elements clustered from `strokes`, and the border flags.
+pub fn relate(elements: Vec<Element>, strokes: &[Stroke], params: &Params, along_path: bool) -> Analysis {
+    let mut analysis = distribute(elements, params.scale, along_path);
+    let limits = Limits::new(&params.thresholds, analysis.mean_length);
+    let flags = flag_border(&analysis, strokes, &limits);
+    analysis.border = flags.border;
+    analysis.fragments = flags.fragment;
+    analysis
 }
 
 /// The distribution step (§2.3) on clustered elements.
-pub fn relate(mut elements: Vec<Element>, scale: f64, along_path: bool) -> Analysis {
+fn distribute(mut elements: Vec<Element>, scale: f64, along_path: bool) -> Analysis {
     let count = elements.len();
     let mean_length = elements.iter().map(|e| e.frame.length).sum::<f64>() / count.max(1) as f64;
     let mut frame_angle = 0.0;
@@ -146,6 +168,8 @@ pub fn relate(mut elements: Vec<Element>, scale: f64, along_path: bool) -> Analy
         },
         mean_length,
         skewed_triangles,
+        border: vec![false; count],
+        fragments: vec![false; count],
     };
     let minimum = Analysis::shift_neighbours(along_path);
     let mut offsets = Vec::new();

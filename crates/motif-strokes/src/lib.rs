@@ -40,22 +40,25 @@
 //! ```
 
 mod analysis;
+mod border;
 mod cluster;
 mod distribution;
 mod element;
 mod error;
 mod matching;
+mod overlap;
 mod params;
+mod placement;
 pub mod samples;
 mod seeds;
 mod stroke;
 mod synthesis;
 mod variation;
 
-use motif_core::{math, vector};
+use motif_core::vector;
 use std::ops::Range;
 
-use kurbo::{Affine, Vec2};
+use kurbo::Vec2;
 use motif_core::{Point, Polygon, Polyline, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
@@ -64,10 +67,12 @@ pub use cluster::{ClusteringComparison, Element, compare_clustering};
 pub use element::OrientedBox;
 pub use error::Error;
 pub use params::{FitPoints, Params, Thresholds};
+pub use placement::OverlapFigures;
 pub use stroke::Stroke;
 pub use variation::Exchange;
 
 use matching::{Limits, MeasureTable};
+use placement::{Placement, Scene, placed_strokes, resolve_overlaps};
 use synthesis::{Layout, ReferenceRings, grow, layout_path, layout_region};
 
 /// Where to synthesize.
@@ -116,6 +121,10 @@ pub struct Report {
 
     /// Elements found in the reference.
     pub reference_elements: usize,
+    /// Reference elements whose ink touches the reference's bounding box.
+    pub border_elements: usize,
+    /// Border elements unlike every interior one (pieces cut by the frame): never copied.
+    pub fragment_elements: usize,
     /// Elements synthesized (N_tar).
     pub output_elements: usize,
     /// Strokes written.
@@ -136,6 +145,8 @@ pub struct Report {
     pub lloyd_iterations: usize,
     /// Reference Delaunay triangles dropped by the unskewed filter (2D).
     pub skewed_triangles_removed: usize,
+    /// Overlaps between elements: the reference's rate, the output's, and how they were resolved.
+    pub overlap: OverlapFigures,
     /// Milliseconds per stage, in order.
     pub stages_ms: Vec<(String, f64)>,
 }
@@ -239,7 +250,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     timer.start("cluster");
     let elements = cluster::cluster(&input.strokes, &sets, params.scale);
     timer.start("distribution");
-    let analysis = analysis::relate(elements, params.scale, along_path);
+    let analysis = analysis::relate(elements, &input.strokes, params, along_path);
     progress.report("analysis", 1.0);
 
     timer.start("seeds");
@@ -270,7 +281,8 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let limits = Limits::new(&params.thresholds, analysis.mean_length);
     let table = MeasureTable::new(&frames, &colours, &limits);
     let reference_rings = ReferenceRings::new(&analysis, rings);
-    let growth = grow(&layout, rings, &reference_rings, &table, &streams, progress);
+    let usable: Vec<bool> = (0..analysis.elements.len()).map(|i| analysis.is_usable(i)).collect();
+    let mut growth = grow(&layout, rings, &reference_rings, &table, &usable, &streams, progress);
 
     timer.start("variation");
     let exchanges = variation::exchange(&growth.assigned, &analysis, &limits, params.variation, &streams);
@@ -279,40 +291,74 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     } else {
         layout.positions.clone()
     };
+    let mut placements: Vec<Placement> = (0..layout.len())
+        .map(|seed| Placement {
+            reference: growth.assigned[seed],
+            position: positions[seed],
+            rotation: layout.rotations[seed] + exchanges[seed].rotation,
+            exchange: exchanges[seed],
+        })
+        .collect();
+
+    timer.start("overlaps");
+    let (kept, overlap) = if params.avoid_overlaps {
+        let scene = Scene {
+            analysis: &analysis,
+            strokes: &input.strokes,
+            target: &input.target,
+            layout: &layout,
+            rings,
+            reference: &reference_rings,
+            table: &table,
+            streams: &streams,
+        };
+        resolve_overlaps(&scene, &mut placements, &mut growth.assigned, &growth.order)
+    } else {
+        (vec![true; layout.len()], OverlapFigures::default())
+    };
 
     timer.start("output");
     let mut strokes = Vec::new();
     let mut synthesized = Vec::with_capacity(layout.len());
-    for seed in 0..layout.len() {
-        let reference = growth.assigned[seed] as usize;
-        let element = &analysis.elements[reference];
-        let exchange = exchanges[seed];
-        let rotation = layout.rotations[seed] + exchange.rotation;
-        let transform = placement_transform(&element.frame, positions[seed], rotation, &exchange);
+    let mut output_index = vec![usize::MAX; layout.len()];
+    for (seed, placement) in placements.iter().enumerate() {
+        if !kept[seed] {
+            continue;
+        }
         let start = strokes.len();
-        strokes.extend(element.strokes.iter().map(|&s| {
-            let mut stroke = input.strokes[s].transformed(transform);
-            if exchange.colour_shift != [0.0; 3] {
-                stroke.colour = shift_colour(stroke.colour, exchange.colour_shift);
-                stroke.fill = stroke.fill.map(|fill| shift_colour(fill, exchange.colour_shift));
-            }
-            stroke
-        }));
+        strokes.extend(placed_strokes(&analysis, &input.strokes, placement));
+        output_index[seed] = synthesized.len();
         synthesized.push(SynthesizedElement {
-            reference,
-            position: positions[seed],
-            rotation,
+            reference: placement.reference as usize,
+            position: placement.position,
+            rotation: placement.rotation,
             matched: growth.matched[seed],
-            exchange,
+            exchange: placement.exchange,
             strokes: start..strokes.len(),
         });
     }
+    let mut overlap = overlap;
+    if !params.avoid_overlaps {
+        overlap.reference_rate = placement::reference_overlap_rate(&analysis, &input.strokes);
+        let footprints: Vec<overlap::Footprint> = synthesized
+            .iter()
+            .map(|element| overlap::Footprint::of_strokes(&strokes[element.strokes.clone()]))
+            .collect();
+        overlap.output_rate = overlap::overlap_rate(&footprints);
+    }
+    let target_edges = layout
+        .graph
+        .edges()
+        .filter_map(|(a, b)| (kept[a] && kept[b]).then(|| (output_index[a], output_index[b])))
+        .collect();
     let stages_ms = timer.finish();
-    let matched_elements = growth.matched.iter().filter(|&&m| m).count();
+    let matched_elements = synthesized.iter().filter(|element| element.matched).count();
     let report = Report {
         estimated_memory_bytes,
         reference_strokes: input.strokes.len(),
         reference_elements: analysis.elements.len(),
+        border_elements: analysis.border.iter().filter(|&&b| b).count(),
+        fragment_elements: analysis.fragments.iter().filter(|&&f| f).count(),
         output_elements: synthesized.len(),
         output_strokes: strokes.len(),
         expected_elements: expected,
@@ -323,32 +369,10 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         rings,
         lloyd_iterations: layout.lloyd_iterations,
         skewed_triangles_removed: analysis.skewed_triangles,
+        overlap,
         stages_ms,
     };
-    Ok(Output { strokes, elements: synthesized, target_edges: layout.graph.edges().collect(), analysis, report })
-}
-
-/// The map taking a reference element's strokes to a seed: scale in the element's own frame
-/// (exchanged length and thickness), rotate about its centre, move the centre to `position`.
-fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, exchange: &Exchange) -> Affine {
-    let to_origin = Affine::translate(-frame.centre.to_vec2());
-    let axis_angle = math::atan2(frame.axis.y, frame.axis.x);
-    let scale = if exchange.length_scale != 1.0 || exchange.thickness_scale != 1.0 {
-        vector::rotation(axis_angle)
-            * Affine::scale_non_uniform(exchange.length_scale, exchange.thickness_scale)
-            * vector::rotation(-axis_angle)
-    } else {
-        Affine::IDENTITY
-    };
-    Affine::translate(position.to_vec2()) * vector::rotation(rotation) * scale * to_origin
-}
-
-fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
-    let mut out = colour;
-    for c in 0..3 {
-        out[c] = (f64::from(colour[c]) + 255.0 * shift[c]).round().clamp(0.0, 255.0) as u8;
-    }
-    out
+    Ok(Output { strokes, elements: synthesized, target_edges, analysis, report })
 }
 
 /// Position variation mapped back to the document; positions that would leave a region stay.

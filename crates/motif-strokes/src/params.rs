@@ -66,6 +66,10 @@ pub struct Params {
     /// 4 in a region) to its neighbours' barycentre plus its reference element's shift vector,
     /// scaled by the ratio of neighbourhood areas. Default false.
     pub position_variation: bool,
+    /// Keep elements from overlapping (beyond the reference's own rate): an element whose ink meets
+    /// an already placed one is moved back to its seed, left unchanged by variation, swapped for
+    /// another matching element, moved slightly, or removed. Default true.
+    pub avoid_overlaps: bool,
     /// Lloyd relaxation iterations for the target seeds (§3.2), 1..=1000; stops earlier once no
     /// seed moves more than 0.1 % of the element spacing. Default 20: from the stratified start,
     /// the spread of nearest-neighbour distances (coefficient of variation on 2 450 seeds in a
@@ -93,6 +97,7 @@ impl Default for Params {
             thresholds: Thresholds::default(),
             variation: 0.0,
             position_variation: false,
+            avoid_overlaps: true,
             lloyd_iterations: 20,
             max_elements: 200_000,
             max_memory: motif_core::DEFAULT_MAX_MEMORY,
@@ -137,6 +142,7 @@ motif_core::builders! { Params {
     with_thresholds => thresholds: Thresholds,
     with_variation => variation: f64,
     with_position_variation => position_variation: bool,
+    with_avoid_overlaps => avoid_overlaps: bool,
     with_lloyd_iterations => lloyd_iterations: usize,
     with_max_elements => max_elements: usize,
     with_max_memory => max_memory: u64,

@@ -155,6 +155,8 @@ pub struct Growth {
     pub mean_candidates: f64,
     /// The seed synthesis started from.
     pub centre: usize,
+    /// Seeds in the order they were grown (by distance from the centre).
+    pub order: Vec<usize>,
 }
 
 /// The seed nearest to the middle of the target: the middle of an open path, the first seed of a
@@ -171,14 +173,69 @@ fn centre_seed(layout: &Layout) -> usize {
         .unwrap_or(0)
 }
 
+/// Reusable buffers for scoring one seed against every reference neighbourhood.
+#[derive(Default)]
+pub struct SeedScratch {
+    ring: RingScratch,
+    members: Vec<u32>,
+    known: Vec<Member>,
+    compare: CompareScratch,
+    /// Per reference element: how far its neighbourhood is from passing the test (below 1 passes).
+    pub violations: Vec<f64>,
+}
+
+/// Scores every reference neighbourhood against the elements already assigned around `seed`
+/// (those not `u32::MAX`), into `scratch.violations`. Returns false when no neighbour is known yet.
+pub fn score_seed(
+    layout: &Layout,
+    seed: usize,
+    rings: usize,
+    assigned: &[u32],
+    reference: &ReferenceRings,
+    table: &MeasureTable,
+    scratch: &mut SeedScratch,
+) -> bool {
+    layout.graph.ring(seed, rings, &mut scratch.ring, &mut scratch.members);
+    scratch.known.clear();
+    scratch.known.extend(
+        scratch
+            .members
+            .iter()
+            .filter(|&&j| assigned[j as usize] != u32::MAX)
+            .map(|&j| Member { element: assigned[j as usize], offset: layout.offset(seed, j as usize) }),
+    );
+    if scratch.known.is_empty() {
+        return false;
+    }
+    let known = &scratch.known;
+    let score = |compare_scratch: &mut CompareScratch, r: usize| {
+        compare(reference.get(r), known, table, compare_scratch).map_or(f64::INFINITY, |m| violation(&m))
+    };
+    // Fanning out costs a few microseconds per task: worth it only for large neighbourhoods.
+    if reference.member_count() * known.len() >= PARALLEL_WORK {
+        (0..reference.len())
+            .into_par_iter()
+            .with_min_len(8)
+            .map_init(CompareScratch::default, score)
+            .collect_into_vec(&mut scratch.violations);
+    } else {
+        scratch.violations.clear();
+        let compare_scratch = &mut scratch.compare;
+        scratch.violations.extend((0..reference.len()).map(|r| score(compare_scratch, r)));
+    }
+    true
+}
+
 /// Grows the pattern outward from the centre seed (seeds in order of distance from it), picking
 /// for each seed a random reference element among those whose k-ring matches the seed's known
-/// neighbours, or the best match when none does (§3.1, §3.2).
+/// neighbours, or the best match when none does (§3.1, §3.2). Only `usable` reference elements
+/// are copied (fragments cut by the reference's frame are not).
 pub fn grow(
     layout: &Layout,
     rings: usize,
     reference: &ReferenceRings,
     table: &MeasureTable,
+    usable: &[bool],
     streams: &SeedStreams,
     progress: &mut dyn Progress,
 ) -> Growth {
@@ -189,49 +246,29 @@ pub fn grow(
     order.sort_by(|&a, &b| distance[a].total_cmp(&distance[b]).then(a.cmp(&b)));
     let mut assigned = vec![u32::MAX; count];
     let mut matched = vec![false; count];
-    let mut scratch = RingScratch::default();
-    let (mut ring, mut known) = (Vec::new(), Vec::new());
-    let mut violations: Vec<f64> = Vec::with_capacity(reference.len());
+    let mut scratch = SeedScratch::default();
     let mut candidates: Vec<u32> = Vec::with_capacity(reference.len());
     let mut total_candidates = 0usize;
-    let mut compare_scratch = CompareScratch::default();
     let report_every = (count / 64).max(1);
+    let usable_elements = || (0..reference.len() as u32).filter(|&r| usable[r as usize]);
     for (step, &seed) in order.iter().enumerate() {
         if step % report_every == 0 {
             progress.report("match", step as f64 / count as f64);
         }
-        layout.graph.ring(seed, rings, &mut scratch, &mut ring);
-        known.clear();
-        known.extend(
-            ring.iter()
-                .filter(|&&j| assigned[j as usize] != u32::MAX)
-                .map(|&j| Member { element: assigned[j as usize], offset: layout.offset(seed, j as usize) }),
-        );
         let mut stream = streams.stream("pick", seed as u64);
         candidates.clear();
-        if known.is_empty() {
-            // Nothing to match yet (the centre element): every reference element is a candidate.
-            candidates.extend(0..reference.len() as u32);
+        let scored = score_seed(layout, seed, rings, &assigned, reference, table, &mut scratch);
+        if !scored {
+            // Nothing to match yet (the centre element): every usable reference element is a candidate.
+            candidates.extend(usable_elements());
         } else {
-            let score = |scratch: &mut CompareScratch, r: usize| {
-                compare(reference.get(r), &known, table, scratch).map_or(f64::INFINITY, |m| violation(&m))
-            };
-            // Fanning out costs a few microseconds per task: worth it only for large neighbourhoods.
-            if reference.member_count() * known.len() >= PARALLEL_WORK {
-                (0..reference.len())
-                    .into_par_iter()
-                    .with_min_len(8)
-                    .map_init(CompareScratch::default, score)
-                    .collect_into_vec(&mut violations);
-            } else {
-                violations.clear();
-                violations.extend((0..reference.len()).map(|r| score(&mut compare_scratch, r)));
-            }
-            candidates.extend((0..reference.len() as u32).filter(|&r| violations[r as usize] < 1.0));
+            candidates.extend(usable_elements().filter(|&r| scratch.violations[r as usize] < 1.0));
         }
         total_candidates += candidates.len();
         let choice = if candidates.is_empty() {
-            (0..reference.len()).min_by(|&a, &b| violations[a].total_cmp(&violations[b])).unwrap_or(0) as u32
+            usable_elements()
+                .min_by(|&a, &b| scratch.violations[a as usize].total_cmp(&scratch.violations[b as usize]))
+                .unwrap_or(0)
         } else {
             matched[seed] = true;
             candidates[stream.random_range(0..candidates.len())]
@@ -239,5 +276,5 @@ pub fn grow(
         assigned[seed] = choice;
     }
     progress.report("match", 1.0);
-    Growth { assigned, matched, mean_candidates: total_candidates as f64 / count.max(1) as f64, centre }
+    Growth { assigned, matched, mean_candidates: total_candidates as f64 / count.max(1) as f64, centre, order }
 }

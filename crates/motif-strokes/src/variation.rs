@@ -70,7 +70,7 @@ pub fn exchange(
             let mut stream = streams.stream("exchange", index as u64);
             let mut pick = |pool: &mut Vec<usize>, similar: &dyn Fn(usize) -> bool| -> usize {
                 pool.clear();
-                pool.extend((0..frames.len()).filter(|&j| similar(j)));
+                pool.extend((0..frames.len()).filter(|&j| analysis.is_usable(j) && similar(j)));
                 if pool.is_empty() { reference as usize } else { pool[stream.random_range(0..pool.len())] }
             };
             let angle = own.angle();

@@ -30,6 +30,8 @@ fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
         "output_elements": r.output_elements,
         "candidate_fraction": r.candidate_fraction,
         "fallback_elements": r.fallback_elements,
+        "fragment_elements": r.fragment_elements,
+        "overlap": r.overlap,
         "rings": r.rings,
         "lloyd_iterations": r.lloyd_iterations,
         "total_ms_median": total_ms,

@@ -53,6 +53,12 @@ pub struct StrokesArgs {
     /// Reintroduce the reference's irregular spacing from its shift vectors.
     #[arg(long)]
     pub position_variation: bool,
+    /// Let elements overlap. By default an element whose ink meets an already placed one goes back
+    /// to its seed, drops its variation, is swapped for another matching element, moves slightly,
+    /// or is removed (the report's `overlap` says how many of each), unless the reference's own
+    /// elements overlap.
+    #[arg(long)]
+    pub allow_overlaps: bool,
     /// Override matching thresholds: shape and sup in units of the mean element length L
     /// (defaults 0.1), par in radians (π/20), ov a length ratio > 1 (1.5), col an RGB distance in
     /// the unit cube (0.15). Example: shape=0.2,col=0.3.
@@ -132,6 +138,7 @@ fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
         rings: args.rings,
         variation: Some(args.variation),
         position_variation: args.position_variation,
+        allow_overlaps: args.allow_overlaps,
         thresholds,
         lloyd_iterations: Some(args.lloyd_iterations),
         ..StrokesJob::new(args.scale, target)
@@ -311,12 +318,14 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     context.job_figures(run.figures);
     let report = &output.report;
     context.summary(&format!(
-        "motif strokes: {} reference strokes → {} elements; {} output elements ({} matched within thresholds, {} fell back) → {}",
+        "motif strokes: {} reference strokes → {} elements ({} cut by the frame, not copied); {} output elements ({} matched within thresholds, {} fell back, {} removed to avoid overlaps) → {}",
         report.reference_strokes,
         report.reference_elements,
+        report.fragment_elements,
         report.output_elements,
         report.matched_elements,
         report.fallback_elements,
+        report.overlap.removed,
         args.out.display()
     ));
     Ok(())
