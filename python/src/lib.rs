@@ -265,7 +265,7 @@ fn strokes(
     let mut reference = Vec::new();
     for path in &document.paths {
         let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
-        let pieces = motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill)
+        let pieces = motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
             .map_err(|error| value_error(format!("reference_svg: path `{}`: {error}", path.id)))?;
         reference.extend(pieces.into_iter().filter(motif_strokes::Stroke::is_visible));
     }
@@ -277,7 +277,13 @@ fn strokes(
     writer.begin_group("strokes");
     for stroke in &run.output.strokes {
         let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
-        writer.polyline(stroke.polyline.points(), stroke.polyline.is_closed(), line, stroke.fill);
+        writer.dashed_polyline(
+        stroke.polyline.points(),
+        stroke.polyline.is_closed(),
+        line,
+        stroke.fill,
+        stroke.dash.as_deref().unwrap_or_default(),
+    );
     }
     writer.end_group();
     Ok((writer.finish(), report_json(&run.figures)))

@@ -233,6 +233,7 @@ fn strokes_json(strokes: &[motif_strokes::Stroke]) -> serde_json::Value {
                     "width": stroke.width,
                     "colour": stroke.colour,
                     "fill": stroke.fill,
+                    "dash": stroke.dash,
                 })
             })
             .collect(),
@@ -298,6 +299,7 @@ impl StrokesPanel {
                 width,
                 colour: colour(&item["colour"]).unwrap_or([0, 0, 0, 255]),
                 fill: colour(&item["fill"]),
+                dash: item["dash"].as_array().map(|lengths| lengths.iter().filter_map(|l| l.as_f64()).collect()),
             };
             if stroke.is_visible() {
                 reference.push(stroke);

@@ -29,6 +29,8 @@ pub struct SvgPath {
     pub stroke: Option<Stroke>,
     /// The fill colour, when the path is filled with a plain colour.
     pub fill: Option<[u8; 4]>,
+    /// The stroke's dash pattern (lengths of dashes and gaps in document units), when dashed.
+    pub dash: Option<Vec<f64>>,
 }
 
 /// The paths of an SVG document, in drawing order.
@@ -105,7 +107,11 @@ fn convert_path(path: &usvg::Path) -> SvgPath {
             .map(|colour| Stroke { width: f64::from(stroke.width().get()) * scale, colour })
     });
     let fill = path.fill().and_then(|fill| colour(fill.paint(), fill.opacity().get()));
-    SvgPath { id: path.id().to_string(), path: bez, stroke, fill }
+    let dash = path.stroke().and_then(|stroke| {
+        let scale = transform.determinant().abs().sqrt();
+        stroke.dasharray().map(|lengths| lengths.iter().map(|&l| f64::from(l) * scale).collect())
+    });
+    SvgPath { id: path.id().to_string(), path: bez, stroke, fill, dash }
 }
 
 /// Rasterizes SVG text with `resvg` at `scale` pixels per user unit, on a transparent background.
@@ -203,6 +209,17 @@ impl SvgWriter {
 
     /// Adds a path with optional stroke and fill.
     pub fn path(&mut self, path: &BezPath, stroke: Option<Stroke>, fill: Option<[u8; 4]>) -> &mut Self {
+        self.dashed_path(path, stroke, fill, &[])
+    }
+
+    /// Adds a path with optional stroke, fill and dash pattern (none when `dash` is empty).
+    pub fn dashed_path(
+        &mut self,
+        path: &BezPath,
+        stroke: Option<Stroke>,
+        fill: Option<[u8; 4]>,
+        dash: &[f64],
+    ) -> &mut Self {
         let mut data = String::new();
         for element in path.elements() {
             let p = |point: &Point| format!("{} {}", number(point.x), number(point.y));
@@ -214,7 +231,12 @@ impl SvgWriter {
                 kurbo::PathEl::ClosePath => data.push_str("Z "),
             }
         }
-        let line = format!("<path d=\"{}\"{}/>", data.trim_end(), Self::paint(stroke, fill));
+        let mut paint = Self::paint(stroke, fill);
+        if stroke.is_some() && !dash.is_empty() {
+            let lengths: Vec<String> = dash.iter().map(|&l| number(l)).collect();
+            let _ = write!(paint, " stroke-dasharray=\"{}\"", lengths.join(" "));
+        }
+        let line = format!("<path d=\"{}\"{}/>", data.trim_end(), paint);
         self.line(&line);
         self
     }
@@ -227,6 +249,18 @@ impl SvgWriter {
         stroke: Option<Stroke>,
         fill: Option<[u8; 4]>,
     ) -> &mut Self {
+        self.dashed_polyline(points, closed, stroke, fill, &[])
+    }
+
+    /// Adds a polyline with a dash pattern (none when `dash` is empty).
+    pub fn dashed_polyline(
+        &mut self,
+        points: &[Point],
+        closed: bool,
+        stroke: Option<Stroke>,
+        fill: Option<[u8; 4]>,
+        dash: &[f64],
+    ) -> &mut Self {
         let mut path = BezPath::new();
         if let Some((first, rest)) = points.split_first() {
             path.move_to(*first);
@@ -237,7 +271,7 @@ impl SvgWriter {
                 path.close_path();
             }
         }
-        self.path(&path, stroke, fill)
+        self.dashed_path(&path, stroke, fill, dash)
     }
 
     /// Adds a circle.

@@ -56,7 +56,7 @@ pub struct StrokesJob {
     /// or removed, unless the reference's own elements overlap).
     #[serde(default)]
     pub allow_overlaps: bool,
-    /// Matching thresholds to override by name: `shape`, `par`, `ov`, `sup`, `col`.
+    /// Matching thresholds to override by name: `shape`, `par`, `ov`, `sup`, `col`, `attr`.
     #[serde(default)]
     pub thresholds: BTreeMap<String, f64>,
     /// Lloyd relaxation iterations for the seeds.
@@ -106,11 +106,12 @@ impl StrokesJob {
                 "ov" => &mut thresholds.overlap,
                 "sup" => &mut thresholds.superimposition,
                 "col" => &mut thresholds.colour,
+                "attr" => &mut thresholds.attributes,
                 other => {
                     return Err(InvalidParameter::new(
                         "thresholds",
                         format!("{other}={}", number(value)),
-                        "a threshold named shape, par, ov, sup or col",
+                        "a threshold named shape, par, ov, sup, col or attr",
                     )
                     .into());
                 }

@@ -12,6 +12,7 @@
 use motif_core::Point;
 
 use crate::analysis::Analysis;
+use crate::attributes::Appearance;
 use crate::matching::{Limits, Measures};
 use crate::stroke::Stroke;
 
@@ -59,8 +60,9 @@ pub fn flag_border(analysis: &Analysis, strokes: &[Stroke], limits: &Limits) -> 
             border[i]
                 && !interior.is_empty()
                 && interior.iter().all(|&j| {
-                    let [shape, _, overlap, superimposition, _] =
-                        Measures::of_pair(&frames[j], &frames[i], [0.0; 3], [0.0; 3]).normalized(limits);
+                    let plain = Appearance::default();
+                    let [shape, _, overlap, superimposition, _, _] =
+                        Measures::of_pair(&frames[j], &frames[i], &plain, &plain).normalized(limits);
                     shape >= 1.0 && overlap.max(superimposition) >= 1.0
                 })
         })

@@ -6,6 +6,7 @@
 //! visits them in queue order, so it takes the same decisions as the paper's full scan of the
 //! queue, which [`cluster_plain`] keeps as the reference implementation.
 
+use crate::attributes::{Appearance, Attributes};
 use std::collections::{BTreeSet, VecDeque};
 
 use motif_core::StageTimer;
@@ -26,6 +27,15 @@ pub struct Element {
     pub frame: OrientedBox,
     /// Mean colour in the RGB unit cube, weighted by stroke length.
     pub colour: [f64; 3],
+    /// Width, opacity, fill and dash, weighted by stroke length.
+    pub attributes: Attributes,
+}
+
+impl Element {
+    /// What the colour and attribute measures compare.
+    pub fn appearance(&self) -> Appearance {
+        Appearance { colour: self.colour, attributes: self.attributes }
+    }
 }
 
 /// How far beyond E*'s bounds a merge partner can lie, in units of ε. Proximity needs a box
@@ -116,7 +126,8 @@ fn finish(clusters: &mut [Option<Cluster>], order: Vec<usize>, strokes: &[Stroke
             if weight > 0.0 {
                 colour.iter_mut().for_each(|c| *c /= weight);
             }
-            Element { strokes: cluster.strokes, frame: cluster.frame, colour }
+            let attributes = Attributes::of_strokes(strokes, &cluster.strokes);
+            Element { strokes: cluster.strokes, frame: cluster.frame, colour, attributes }
         })
         .collect()
 }
@@ -260,6 +271,7 @@ mod tests {
             width: 1.0,
             colour: [0, 0, 0, 255],
             fill: None,
+            dash: None,
         }
     }
 

@@ -246,6 +246,7 @@ mod tests {
             width,
             colour: [0, 0, 0, 255],
             fill: None,
+            dash: None,
         }
     }
 

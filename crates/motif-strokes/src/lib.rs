@@ -40,6 +40,7 @@
 //! ```
 
 mod analysis;
+mod attributes;
 mod border;
 mod cluster;
 mod distribution;
@@ -63,6 +64,7 @@ use motif_core::{Point, Polygon, Polyline, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
 pub use analysis::{Analysis, analyse};
+pub use attributes::{Appearance, Attributes};
 pub use cluster::{ClusteringComparison, Element, compare_clustering};
 pub use element::OrientedBox;
 pub use error::Error;
@@ -228,7 +230,7 @@ fn memory_estimate(analysis: &Analysis, strokes: &[Stroke], count: usize) -> mot
     let count = count as f64;
     let mut estimate = motif_core::MemoryEstimate::new();
     estimate
-        .add("pair table", tabled * tabled, std::mem::size_of::<[f64; 5]>() as f64)
+        .add("pair table", tabled * tabled, std::mem::size_of::<matching::Normalized>() as f64)
         .add("output strokes", count * points as f64 / elements, 16.0)
         .add("output stroke records", count * strokes.len() as f64 / elements, 96.0)
         .add("layout and growth", count, 256.0);
@@ -277,9 +279,9 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
 
     timer.start("match");
     let frames: Vec<OrientedBox> = (0..analysis.elements.len()).map(|i| analysis.pattern_frame(i)).collect();
-    let colours: Vec<[f64; 3]> = analysis.elements.iter().map(|e| e.colour).collect();
+    let appearances: Vec<Appearance> = analysis.elements.iter().map(|e| e.appearance()).collect();
     let limits = Limits::new(&params.thresholds, analysis.mean_length);
-    let table = MeasureTable::new(&frames, &colours, &limits);
+    let table = MeasureTable::new(&frames, &appearances, &limits);
     let reference_rings = ReferenceRings::new(&analysis, rings);
     let usable: Vec<bool> = (0..analysis.elements.len()).map(|i| analysis.is_usable(i)).collect();
     let mut growth = grow(&layout, rings, &reference_rings, &table, &usable, &streams, progress);

@@ -10,6 +10,7 @@
 use kurbo::Vec2;
 use motif_core::math;
 
+use crate::attributes::Appearance;
 use crate::element::OrientedBox;
 use crate::params::Thresholds;
 
@@ -26,6 +27,8 @@ pub struct Measures {
     pub superimposition: f64,
     /// Distance between the mean colours in the RGB unit cube.
     pub colour: f64,
+    /// The largest difference of stroke width, opacity, fill or dash ([`crate::Attributes::difference`]).
+    pub attributes: f64,
 }
 
 impl Measures {
@@ -33,9 +36,10 @@ impl Measures {
     pub fn of_pair(
         reference: &OrientedBox,
         target: &OrientedBox,
-        reference_colour: [f64; 3],
-        target_colour: [f64; 3],
+        reference_appearance: &Appearance,
+        target_appearance: &Appearance,
     ) -> Measures {
+        let (reference_colour, target_colour) = (reference_appearance.colour, target_appearance.colour);
         let aligned = target.moved_to(reference.centre);
         let shape = reference.directed_hausdorff(&aligned).max(aligned.directed_hausdorff(reference));
         let cosine = reference.axis.dot(target.axis).abs().min(1.0);
@@ -54,19 +58,21 @@ impl Measures {
         };
         let superimposition = (reference.thickness - target.thickness).abs();
         let colour = reference_colour.iter().zip(&target_colour).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt();
-        Measures { shape, parallelism, overlap, superimposition, colour }
+        let attributes = reference_appearance.attributes.difference(&target_appearance.attributes);
+        Measures { shape, parallelism, overlap, superimposition, colour, attributes }
     }
 
     /// The measures divided by their thresholds, overlap as `(ov - 1) / (σ_ov - 1)`: each is below
     /// 1 exactly when its measure is below its threshold, and each is linear in its measure, so
     /// averaging normalized values equals normalizing averages.
-    pub fn normalized(&self, limits: &Limits) -> [f64; 5] {
+    pub fn normalized(&self, limits: &Limits) -> Normalized {
         [
             self.shape / limits.shape,
             self.parallelism / limits.parallelism,
             (self.overlap - 1.0) / (limits.overlap - 1.0),
             self.superimposition / limits.superimposition,
             self.colour / limits.colour,
+            self.attributes / limits.attributes,
         ]
     }
 }
@@ -84,6 +90,8 @@ pub struct Limits {
     pub superimposition: f64,
     /// σ_col in the RGB unit cube.
     pub colour: f64,
+    /// σ_attr, on the unit scales of [`crate::Attributes::difference`].
+    pub attributes: f64,
 }
 
 impl Limits {
@@ -96,16 +104,22 @@ impl Limits {
             overlap: thresholds.overlap,
             superimposition: thresholds.superimposition * length,
             colour: thresholds.colour,
+            attributes: thresholds.attributes,
         }
     }
 }
 
-/// How far averaged normalized measures are from passing the paper's test
-/// `col and (shape or (par and ov and sup))`: `max(col, min(shape, max(par, ov, sup)))`. The test
-/// passes exactly when this is below 1; the fallback takes the smallest.
-pub fn violation(normalized: &[f64; 5]) -> f64 {
-    let [shape, parallelism, overlap, superimposition, colour] = *normalized;
-    colour.max(shape.min(parallelism.max(overlap).max(superimposition)))
+/// The six measures divided by their thresholds, in the order shape, parallelism, overlap,
+/// superimposition, colour, attributes.
+pub type Normalized = [f64; 6];
+
+/// How far averaged normalized measures are from passing the paper's test, with the attribute
+/// measure beside colour: `col and attr and (shape or (par and ov and sup))`, that is
+/// `max(col, attr, min(shape, max(par, ov, sup)))`. The test passes exactly when this is below 1;
+/// the fallback takes the smallest.
+pub fn violation(normalized: &Normalized) -> f64 {
+    let [shape, parallelism, overlap, superimposition, colour, attributes] = *normalized;
+    colour.max(attributes).max(shape.min(parallelism.max(overlap).max(superimposition)))
 }
 
 /// A neighbour in a neighbourhood: which reference element it is (or is a copy of) and its offset
@@ -127,33 +141,35 @@ pub const MAX_TABLE_ELEMENTS: usize = 2048;
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasureTable {
     count: usize,
-    values: Vec<[f64; 5]>,
+    values: Vec<Normalized>,
     frames: Vec<OrientedBox>,
-    colours: Vec<[f64; 3]>,
+    appearances: Vec<Appearance>,
     limits: Limits,
 }
 
 impl MeasureTable {
-    /// The table for reference elements with boxes `frames` (pattern frame) and `colours`.
-    pub fn new(frames: &[OrientedBox], colours: &[[f64; 3]], limits: &Limits) -> MeasureTable {
+    /// The table for reference elements with boxes `frames` (pattern frame) and `appearances`.
+    pub fn new(frames: &[OrientedBox], appearances: &[Appearance], limits: &Limits) -> MeasureTable {
         let count = frames.len();
         let mut values = Vec::new();
         if count <= MAX_TABLE_ELEMENTS {
             values.reserve(count * count);
             for i in 0..count {
                 for j in 0..count {
-                    values.push(Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(limits));
+                    values.push(
+                        Measures::of_pair(&frames[i], &frames[j], &appearances[i], &appearances[j]).normalized(limits),
+                    );
                 }
             }
         }
-        MeasureTable { count, values, frames: frames.to_vec(), colours: colours.to_vec(), limits: *limits }
+        MeasureTable { count, values, frames: frames.to_vec(), appearances: appearances.to_vec(), limits: *limits }
     }
 
     /// Normalized measures of reference element `reference` against (a copy of) `target`.
-    pub fn get(&self, reference: u32, target: u32) -> [f64; 5] {
+    pub fn get(&self, reference: u32, target: u32) -> Normalized {
         let (i, j) = (reference as usize, target as usize);
         if self.values.is_empty() {
-            Measures::of_pair(&self.frames[i], &self.frames[j], self.colours[i], self.colours[j])
+            Measures::of_pair(&self.frames[i], &self.frames[j], &self.appearances[i], &self.appearances[j])
                 .normalized(&self.limits)
         } else {
             self.values[i * self.count + j]
@@ -214,8 +230,8 @@ pub fn compare(
     target: &[Member],
     table: &MeasureTable,
     scratch: &mut CompareScratch,
-) -> Option<[f64; 5]> {
-    let mut sum = [0.0; 5];
+) -> Option<Normalized> {
+    let mut sum = [0.0; 6];
     let mut pairs = 0usize;
     mutual_nearest(reference, target, scratch, |a, b| {
         let values = table.get(reference[a].element, target[b].element);
@@ -234,10 +250,10 @@ pub fn compare_plain(
     reference: &[Member],
     target: &[Member],
     frames: &[OrientedBox],
-    colours: &[[f64; 3]],
+    appearances: &[Appearance],
     limits: &Limits,
-) -> Option<[f64; 5]> {
-    let mut sum = [0.0; 5];
+) -> Option<Normalized> {
+    let mut sum = [0.0; 6];
     let mut pairs = 0usize;
     for (a, r) in reference.iter().enumerate() {
         let nearest_target = (0..target.len())
@@ -252,7 +268,7 @@ pub fn compare_plain(
             continue;
         }
         let (i, j) = (r.element as usize, target[b].element as usize);
-        let values = Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(limits);
+        let values = Measures::of_pair(&frames[i], &frames[j], &appearances[i], &appearances[j]).normalized(limits);
         for (s, v) in sum.iter_mut().zip(values) {
             *s += v;
         }
@@ -275,15 +291,19 @@ mod tests {
     fn pair_measures_follow_their_definitions() {
         let a = frame(0.0, 10.0, 2.0);
         let b = frame(std::f64::consts::FRAC_PI_2 + 0.1, 5.0, 1.0).moved_to(Point::new(50.0, 50.0));
-        let m = Measures::of_pair(&a, &b, [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]);
+        let m = Measures::of_pair(&a, &b, &Appearance::coloured([1.0, 0.0, 0.0]), &Appearance::coloured([0.0; 3]));
         assert!((m.parallelism - (std::f64::consts::FRAC_PI_2 - 0.1)).abs() < 1e-12);
         assert_eq!(m.overlap, 2.0);
         assert_eq!(m.superimposition, 1.0);
         assert_eq!(m.colour, 1.0);
         // Centres are aligned first: the far-away position of b does not matter.
         assert!(m.shape < 10.0);
-        let same = Measures::of_pair(&a, &a.moved_to(Point::new(9.0, 9.0)), [0.5; 3], [0.5; 3]);
-        assert_eq!(same, Measures { shape: 0.0, parallelism: 0.0, overlap: 1.0, superimposition: 0.0, colour: 0.0 });
+        let grey = Appearance::coloured([0.5; 3]);
+        let same = Measures::of_pair(&a, &a.moved_to(Point::new(9.0, 9.0)), &grey, &grey);
+        assert_eq!(
+            same,
+            Measures { shape: 0.0, parallelism: 0.0, overlap: 1.0, superimposition: 0.0, colour: 0.0, attributes: 0.0 }
+        );
     }
 
     #[test]
@@ -291,10 +311,10 @@ mod tests {
         let streams = SeedStreams::new(11);
         let mut random = streams.stream("violation", 0);
         for _ in 0..2000 {
-            let v: [f64; 5] = std::array::from_fn(|_| random.random_range(0.0..2.0));
+            let v: Normalized = std::array::from_fn(|_| random.random_range(0.0..2.0));
             let pass = |x: f64| x < 1.0;
-            let [shape, par, ov, sup, col] = v;
-            let paper = pass(col) && (pass(shape) || (pass(par) && pass(ov) && pass(sup)));
+            let [shape, par, ov, sup, col, attr] = v;
+            let paper = pass(col) && pass(attr) && (pass(shape) || (pass(par) && pass(ov) && pass(sup)));
             assert_eq!(violation(&v) < 1.0, paper, "{v:?}");
         }
     }
@@ -303,12 +323,14 @@ mod tests {
     fn large_references_compute_measures_on_demand() {
         let frames: Vec<OrientedBox> =
             (0..=MAX_TABLE_ELEMENTS).map(|i| frame(i as f64 * 0.001, 5.0 + (i % 7) as f64, (i % 3) as f64)).collect();
-        let colours: Vec<[f64; 3]> = (0..frames.len()).map(|i| [(i % 5) as f64 / 5.0, 0.2, 0.4]).collect();
+        let appearances: Vec<Appearance> =
+            (0..frames.len()).map(|i| Appearance::coloured([(i % 5) as f64 / 5.0, 0.2, 0.4])).collect();
         let limits = Limits::new(&Thresholds::default(), 8.0);
-        let table = MeasureTable::new(&frames, &colours, &limits);
+        let table = MeasureTable::new(&frames, &appearances, &limits);
         assert!(table.values.is_empty());
         for (i, j) in [(0, 1), (17, 2048), (2048, 5)] {
-            let direct = Measures::of_pair(&frames[i], &frames[j], colours[i], colours[j]).normalized(&limits);
+            let direct =
+                Measures::of_pair(&frames[i], &frames[j], &appearances[i], &appearances[j]).normalized(&limits);
             assert_eq!(table.get(i as u32, j as u32), direct);
         }
     }
@@ -322,9 +344,15 @@ mod tests {
                 frame(random.random_range(0.0..3.0), random.random_range(2.0..20.0), random.random_range(0.0..4.0))
             })
             .collect();
-        let colours: Vec<[f64; 3]> = (0..12).map(|_| std::array::from_fn(|_| random.random_range(0.0..1.0))).collect();
+        let appearances: Vec<Appearance> = (0..12)
+            .map(|i| {
+                let mut appearance = Appearance::coloured(std::array::from_fn(|_| random.random_range(0.0..1.0)));
+                appearance.attributes.width = 1.0 + (i % 3) as f64 * 0.1;
+                appearance
+            })
+            .collect();
         let limits = Limits::new(&Thresholds::default(), 10.0);
-        let table = MeasureTable::new(&frames, &colours, &limits);
+        let table = MeasureTable::new(&frames, &appearances, &limits);
         let mut scratch = CompareScratch::default();
         for _ in 0..200 {
             let members = |count: usize, random: &mut motif_core::random::Stream| -> Vec<Member> {
@@ -339,7 +367,7 @@ mod tests {
             let reference = members(m, &mut random);
             let target = members(n, &mut random);
             let fast = compare(&reference, &target, &table, &mut scratch);
-            let plain = compare_plain(&reference, &target, &frames, &colours, &limits);
+            let plain = compare_plain(&reference, &target, &frames, &appearances, &limits);
             match (fast, plain) {
                 (Some(f), Some(p)) => assert!(f.iter().zip(&p).all(|(a, b)| (a - b).abs() < 1e-12)),
                 (None, None) => assert!(m == 0 || n == 0),

@@ -167,7 +167,7 @@ mod tests {
 
     fn stroke(points: &[(f64, f64)], closed: bool, width: f64) -> Stroke {
         let points = points.iter().map(|&(x, y)| Point::new(x, y)).collect();
-        Stroke { polyline: Polyline::new(points, closed).unwrap(), width, colour: [0, 0, 0, 255], fill: None }
+        Stroke::new(Polyline::new(points, closed).unwrap(), width, [0, 0, 0, 255], None)
     }
 
     #[test]

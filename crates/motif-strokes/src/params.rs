@@ -35,11 +35,23 @@ pub struct Thresholds {
     pub superimposition: f64,
     /// σ_col: the Euclidean distance between mean colours in the RGB unit cube. Default 0.15.
     pub colour: f64,
+    /// σ_attr: the largest difference of the other stroke attributes (not in the paper, which
+    /// compares colour only): relative stroke width and dash period, opacity, filled and inked
+    /// (dashed) share of the length, fill colour distance. Default 0.2 (20 % thicker strokes,
+    /// 0.2 more opacity).
+    pub attributes: f64,
 }
 
 impl Default for Thresholds {
     fn default() -> Self {
-        Self { shape: 0.1, parallelism: std::f64::consts::PI / 20.0, overlap: 1.5, superimposition: 0.1, colour: 0.15 }
+        Self {
+            shape: 0.1,
+            parallelism: std::f64::consts::PI / 20.0,
+            overlap: 1.5,
+            superimposition: 0.1,
+            colour: 0.15,
+            attributes: 0.2,
+        }
     }
 }
 
@@ -121,6 +133,7 @@ impl Params {
         }
         check_positive("thresholds.sup", t.superimposition)?;
         check_positive("thresholds.col", t.colour)?;
+        check_positive("thresholds.attr", t.attributes)?;
         check_range("variation", self.variation, 0.0, 1.0)?;
         check_count("lloyd-iterations", self.lloyd_iterations, 1, 1000)?;
         check_count("max-elements", self.max_elements, 1, usize::MAX)?;

@@ -62,7 +62,7 @@ pub fn hatch_row(
             let b = centre + direction * (start + piece) + normal * wobble(&mut random);
             // A zero hatch length gives no stroke rather than a panic.
             if let Ok(polyline) = Polyline::new(vec![a, a.midpoint(b) + normal * wobble(&mut random), b], false) {
-                strokes.push(Stroke { polyline, width: row.width, colour: colour(i), fill: None });
+                strokes.push(Stroke::new(polyline, row.width, colour(i), None));
             }
         }
     }
@@ -116,7 +116,7 @@ pub fn figure_field(field: &FigureField, origin: Point, seed: u64) -> Vec<Stroke
                 let points = if star { vec![centre, corner(k)] } else { vec![corner(k), corner(k + 1)] };
                 let colour = if star { [30, 50, 140, 255] } else { [200, 40, 40, 255] };
                 if let Ok(polyline) = Polyline::new(points, false) {
-                    strokes.push(Stroke { polyline, width: field.width, colour, fill: None });
+                    strokes.push(Stroke::new(polyline, field.width, colour, None));
                 }
             }
         }

@@ -15,26 +15,68 @@ pub struct Stroke {
     pub colour: [u8; 4],
     /// Fill colour, when the path is filled (stipples and drops often are).
     pub fill: Option<[u8; 4]>,
+    /// Dash pattern (lengths of dashes and gaps, drawing units), when the stroke is dashed.
+    pub dash: Option<Vec<f64>>,
 }
 
 impl Stroke {
+    /// A solid stroke along `polyline`.
+    pub fn new(polyline: Polyline, width: f64, colour: [u8; 4], fill: Option<[u8; 4]>) -> Stroke {
+        Stroke { polyline, width, colour, fill, dash: None }
+    }
+
     /// Strokes of one drawn path: every subpath, flattened within `tolerance` drawing units,
-    /// becomes a stroke carrying the path's width and colours. Subpaths that collapse to a point
-    /// are skipped.
+    /// becomes a stroke carrying the path's width, colours and dash pattern. Subpaths that
+    /// collapse to a point are skipped; a dash pattern without a positive length counts as solid.
     pub fn from_path(
         path: &BezPath,
         tolerance: f64,
         width: f64,
         colour: [u8; 4],
         fill: Option<[u8; 4]>,
+        dash: Option<&[f64]>,
     ) -> Result<Vec<Stroke>, InvalidParameter> {
         if !(width.is_finite() && width >= 0.0) {
             return Err(InvalidParameter::new("stroke width", width, "must be a finite number >= 0"));
         }
+        let dash = match dash {
+            Some(lengths) if lengths.iter().any(|l| !(l.is_finite() && *l >= 0.0)) => {
+                return Err(InvalidParameter::new(
+                    "stroke dash pattern",
+                    format!("{lengths:?}"),
+                    "lengths must be finite numbers >= 0",
+                ));
+            }
+            Some(lengths) if lengths.iter().any(|&l| l > 0.0) => Some(lengths.to_vec()),
+            _ => None,
+        };
         Ok(Polyline::from_bez_path(path, tolerance)?
             .into_iter()
-            .map(|polyline| Stroke { polyline, width, colour, fill })
+            .map(|polyline| Stroke { polyline, width, colour, fill, dash: dash.clone() })
             .collect())
+    }
+
+    /// The share of the stroke's length that is inked: the dashes' share of the dash period, 1
+    /// for a solid stroke.
+    pub fn inked_share(&self) -> f64 {
+        match &self.dash {
+            None => 1.0,
+            Some(lengths) => {
+                // An odd-length pattern repeats twice, so dashes and gaps swap on the repeat.
+                let doubled: Vec<f64> = if lengths.len() % 2 == 1 {
+                    lengths.iter().chain(lengths).copied().collect()
+                } else {
+                    lengths.clone()
+                };
+                let period: f64 = doubled.iter().sum();
+                if period > 0.0 { doubled.iter().step_by(2).sum::<f64>() / period } else { 1.0 }
+            }
+        }
+    }
+
+    /// The dash period (dash and gap lengths summed), 0 for a solid stroke.
+    pub fn dash_period(&self) -> f64 {
+        self.dash.as_ref().map_or(0.0, |lengths| lengths.iter().sum())
     }
 
     /// True when the stroke leaves a mark: a visible stroke or a fill.

@@ -266,7 +266,7 @@ fn arbitrary_drawings_never_panic() {
                 let polyline = Polyline::new(points, random.random_bool(0.3)).ok()?;
                 let width = random.random_range(0.0..4.0);
                 let fill = random.random_bool(0.3).then_some([10, 200, 30, 255]);
-                Some(Stroke { polyline, width, colour: [random.random(), random.random(), random.random(), 255], fill })
+                Some(Stroke::new(polyline, width, [random.random(), random.random(), random.random(), 255], fill))
             })
             .collect();
         if strokes.is_empty() {

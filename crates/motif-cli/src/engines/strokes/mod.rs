@@ -61,7 +61,8 @@ pub struct StrokesArgs {
     pub allow_overlaps: bool,
     /// Override matching thresholds: shape and sup in units of the mean element length L
     /// (defaults 0.1), par in radians (π/20), ov a length ratio > 1 (1.5), col an RGB distance in
-    /// the unit cube (0.15). Example: shape=0.2,col=0.3.
+    /// the unit cube (0.15), attr the largest difference of relative stroke width and dash period,
+    /// opacity, filled or dashed share and fill colour (0.2). Example: shape=0.2,col=0.3.
     #[arg(long, value_name = "NAME=VALUE,...", value_parser = parse_thresholds)]
     pub thresholds: Option<ThresholdOverrides>,
     /// Curve flattening tolerance in drawing units (maximum distance between a curve and its
@@ -94,6 +95,7 @@ pub struct ThresholdOverrides {
     ov: Option<f64>,
     sup: Option<f64>,
     col: Option<f64>,
+    attr: Option<f64>,
 }
 
 fn parse_rect(text: &str) -> Result<(f64, f64), String> {
@@ -114,7 +116,8 @@ fn parse_thresholds(text: &str) -> Result<ThresholdOverrides, String> {
             "ov" => &mut overrides.ov,
             "sup" => &mut overrides.sup,
             "col" => &mut overrides.col,
-            other => return Err(format!("unknown threshold `{other}` (expected shape, par, ov, sup or col)")),
+            "attr" => &mut overrides.attr,
+            other => return Err(format!("unknown threshold `{other}` (expected shape, par, ov, sup, col or attr)")),
         };
         *slot = Some(value);
     }
@@ -126,7 +129,9 @@ fn parse_thresholds(text: &str) -> Result<ThresholdOverrides, String> {
 fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
     let mut thresholds = BTreeMap::new();
     if let Some(o) = args.thresholds {
-        for (name, value) in [("shape", o.shape), ("par", o.par), ("ov", o.ov), ("sup", o.sup), ("col", o.col)] {
+        for (name, value) in
+            [("shape", o.shape), ("par", o.par), ("ov", o.ov), ("sup", o.sup), ("col", o.col), ("attr", o.attr)]
+        {
             if let Some(value) = value {
                 thresholds.insert(name.to_string(), value);
             }
@@ -150,7 +155,7 @@ pub fn strokes_of(document: &SvgDocument, tolerance: f64) -> anyhow::Result<Vec<
     let mut strokes = Vec::new();
     for path in &document.paths {
         let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
-        let pieces = Stroke::from_path(&path.path, tolerance, width, colour, path.fill)
+        let pieces = Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
             .with_context(|| format!("cannot read path `{}` of the reference", path.id))?;
         strokes.extend(pieces.into_iter().filter(Stroke::is_visible));
     }
@@ -205,7 +210,13 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
 
 fn draw_stroke(writer: &mut SvgWriter, stroke: &Stroke) {
     let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
-    writer.polyline(stroke.polyline.points(), stroke.polyline.is_closed(), line, stroke.fill);
+    writer.dashed_polyline(
+        stroke.polyline.points(),
+        stroke.polyline.is_closed(),
+        line,
+        stroke.fill,
+        stroke.dash.as_deref().unwrap_or_default(),
+    );
 }
 
 /// The synthesized pattern as SVG text.
