@@ -171,7 +171,7 @@ impl StrokesJob {
     /// Runs the job on the decoded reference strokes.
     pub fn run(&self, strokes: Vec<Stroke>, progress: &mut dyn Progress) -> Result<StrokesRun, JobError> {
         let params = self.params()?;
-        let input = Input { strokes, target: self.engine_target()? };
+        let input = Input::new(strokes, self.engine_target()?);
         let output = motif_strokes::synthesize(&input, &params, progress)?;
         let figures = figures(&output.report);
         Ok(StrokesRun { output, figures })

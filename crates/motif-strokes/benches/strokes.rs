@@ -20,7 +20,7 @@ fn one_d() -> (Input, Params) {
         .collect();
     let mut params = Params::default();
     params.scale = 4.0;
-    (Input { strokes, target: Target::Path(Polyline::new(points, false).unwrap()) }, params)
+    (Input::new(strokes, Target::Path(Polyline::new(points, false).unwrap())), params)
 }
 
 fn two_d() -> (Input, Params) {
@@ -32,7 +32,7 @@ fn two_d() -> (Input, Params) {
             .unwrap();
     let mut params = Params::default();
     params.scale = 8.0;
-    (Input { strokes, target: Target::Region(region) }, params)
+    (Input::new(strokes, Target::Region(region)), params)
 }
 
 fn pipeline(c: &mut Criterion) {

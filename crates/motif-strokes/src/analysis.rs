@@ -10,7 +10,6 @@ use crate::border::flag_border;
 use crate::cluster::{Element, cluster};
 use crate::distribution::{Graph, neighbourhood_size, shift_from_offsets, unskewed_delaunay};
 use crate::element::{FitSet, OrientedBox};
-use crate::matching::Limits;
 use crate::params::Params;
 use crate::stroke::Stroke;
 
@@ -43,8 +42,8 @@ pub struct Analysis {
     pub skewed_triangles: usize,
     /// Elements whose ink touches the reference's bounding box.
     pub border: Vec<bool>,
-    /// Border elements unlike every element away from the border: pieces cut by the reference's
-    /// frame, kept as neighbours but never copied.
+    /// Border elements that are not copied (they may be pieces cut by the reference's frame):
+    /// kept as neighbours only. See the `border` module.
     pub fragments: Vec<bool>,
 }
 
@@ -100,8 +99,7 @@ pub fn analyse(strokes: &[Stroke], params: &Params, along_path: bool) -> Result<
 /// The distribution step (§2.3) on elements clustered from `strokes`, and the border flags.
 pub fn relate(elements: Vec<Element>, strokes: &[Stroke], params: &Params, along_path: bool) -> Analysis {
     let mut analysis = distribute(elements, params.scale, along_path);
-    let limits = Limits::new(&params.thresholds, analysis.mean_length);
-    let flags = flag_border(&analysis, strokes, &limits);
+    let flags = flag_border(&analysis, strokes);
     analysis.border = flags.border;
     analysis.fragments = flags.fragment;
     analysis

@@ -3,34 +3,37 @@
 //! A reference cropped out of a larger drawing holds pieces of the elements its frame cut through:
 //! half a star, the stub of a hatch. Copied as whole elements they would scatter small fragments
 //! over the output. An element is at the border when its ink comes within a hair of the bounding
-//! box of the whole reference (every pattern has some: the outermost elements define that box);
-//! a border element is a fragment when no element away from the border resembles it in size (the
-//! shape test, or the length ratio and thickness tests of §3.1). Fragments stay in the analysis as
-//! neighbours, so the neighbourhoods around them keep their geometry, but are never copied, never
-//! taken as the best match, and never lend their parameters to an exchange.
+//! box of the whole reference (the outermost elements of an uncropped drawing do too: they define
+//! that box). Border elements are not copied as long as enough elements lie away from the border
+//! (a quarter of them, and at least three): a cut piece can resemble a whole element by its box
+//! (a star missing a spoke still has a star's box), so resemblance cannot tell them apart, and the
+//! whole elements at the border have their like inside. They stay in the analysis as neighbours,
+//! so the neighbourhoods around them keep their geometry, but are never copied, never taken as
+//! the best match, and never lend their parameters to an exchange.
 
 use motif_core::Point;
 
 use crate::analysis::Analysis;
-use crate::attributes::Appearance;
-use crate::matching::{Limits, Measures};
 use crate::stroke::Stroke;
 
-/// The border elements' share of the frame's larger side within which an element touches it.
+/// The share of the frame's larger side within which an element touches it.
 const TOUCH_TOLERANCE: f64 = 0.005;
+
+/// Border elements are copied when fewer than this share of the elements (or 3) lie inside.
+const INTERIOR_SHARE: f64 = 0.25;
 
 /// Border and fragment flags of the analysed elements.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct BorderFlags {
     /// Elements whose ink touches the reference's bounding box.
     pub border: Vec<bool>,
-    /// Border elements unlike every element away from the border: pieces cut by the frame.
+    /// Border elements left out of copying because enough elements lie inside.
     pub fragment: Vec<bool>,
 }
 
 /// Flags the elements of `analysis` (clustered from `strokes`) that touch the reference's frame
-/// and those that are fragments.
-pub fn flag_border(analysis: &Analysis, strokes: &[Stroke], limits: &Limits) -> BorderFlags {
+/// and those that are not copied.
+pub fn flag_border(analysis: &Analysis, strokes: &[Stroke]) -> BorderFlags {
     let count = analysis.elements.len();
     let mut low = Point::new(f64::INFINITY, f64::INFINITY);
     let mut high = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -53,19 +56,8 @@ pub fn flag_border(analysis: &Analysis, strokes: &[Stroke], limits: &Limits) -> 
             })
         })
         .collect();
-    let frames: Vec<_> = (0..count).map(|i| analysis.pattern_frame(i)).collect();
-    let interior: Vec<usize> = (0..count).filter(|&i| !border[i]).collect();
-    let fragment = (0..count)
-        .map(|i| {
-            border[i]
-                && !interior.is_empty()
-                && interior.iter().all(|&j| {
-                    let plain = Appearance::default();
-                    let [shape, _, overlap, superimposition, _, _] =
-                        Measures::of_pair(&frames[j], &frames[i], &plain, &plain).normalized(limits);
-                    shape >= 1.0 && overlap.max(superimposition) >= 1.0
-                })
-        })
-        .collect();
+    let interior = border.iter().filter(|&&b| !b).count();
+    let enough = interior >= 3 && interior as f64 >= INTERIOR_SHARE * count as f64;
+    let fragment = border.iter().map(|&b| b && enough).collect();
     BorderFlags { border, fragment }
 }

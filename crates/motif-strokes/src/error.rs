@@ -29,6 +29,12 @@ pub enum Error {
         /// The limit ([`crate::Params::max_elements`]).
         limit: usize,
     },
+    /// The density map leaves the whole target blank.
+    #[error(
+        "the density map is white (or nearly) over the whole target, so no element would be drawn: \
+         darker pixels draw denser elements (black: the reference's density)"
+    )]
+    BlankDensityMap,
     /// The run's estimated memory passes [`crate::Params::max_memory`].
     #[error(transparent)]
     TooMuchMemory(#[from] motif_core::TooMuchMemory),

@@ -32,7 +32,7 @@
 //! let path = Polyline::new(vec![Point::new(0.0, 0.0), Point::new(400.0, 0.0)], false).unwrap();
 //! let params = Params::default().with_scale(6.0).with_seed(3);
 //! params.validate().unwrap();
-//! let output = synthesize(&Input { strokes, target: Target::Path(path) }, &params, &mut NoProgress).unwrap();
+//! let output = synthesize(&Input::new(strokes, Target::Path(path)), &params, &mut NoProgress).unwrap();
 //! // Clustering finds the 12 hatches; the line holds about 400 / 8 of them.
 //! assert_eq!(output.report.reference_elements, 12);
 //! assert!((output.report.output_elements as f64 - 50.0).abs() <= 3.0);
@@ -46,6 +46,7 @@ mod cluster;
 mod distribution;
 mod element;
 mod error;
+mod maps;
 mod matching;
 mod overlap;
 mod params;
@@ -68,13 +69,16 @@ pub use attributes::{Appearance, Attributes};
 pub use cluster::{ClusteringComparison, Element, compare_clustering};
 pub use element::OrientedBox;
 pub use error::Error;
+pub use maps::ToneMap;
 pub use params::{FitPoints, Params, Thresholds};
 pub use placement::OverlapFigures;
 pub use stroke::Stroke;
 pub use variation::Exchange;
 
+use maps::Maps;
 use matching::{Limits, MeasureTable};
 use placement::{Placement, Scene, placed_strokes, resolve_overlaps};
+use seeds::Density;
 use synthesis::{Layout, ReferenceRings, grow, layout_path, layout_region};
 
 /// Where to synthesize.
@@ -93,6 +97,19 @@ pub struct Input {
     pub strokes: Vec<Stroke>,
     /// The target path or region, in the same units as the strokes.
     pub target: Target,
+    /// Element density relative to the reference's, stretched over a region target's bounding
+    /// box: darkness `1 − grey` (black: the reference's density, white: none). See [`ToneMap`].
+    pub density_map: Option<ToneMap>,
+    /// Element scale `2^(2·grey − 1)` (black 0.5, mid-grey 1, white 2) over a region target's
+    /// bounding box; larger elements are spaced further apart.
+    pub scale_map: Option<ToneMap>,
+}
+
+impl Input {
+    /// Uniform synthesis of `strokes` on `target` (no maps).
+    pub fn new(strokes: Vec<Stroke>, target: Target) -> Input {
+        Input { strokes, target, density_map: None, scale_map: None }
+    }
 }
 
 /// One synthesized element.
@@ -105,6 +122,8 @@ pub struct SynthesizedElement {
     /// Rotation applied to the reference strokes about their element centre, radians (the path
     /// tangent in 1D, plus the exchanged orientation).
     pub rotation: f64,
+    /// Uniform scale from the scale map (1 without one), widths and dashes included.
+    pub scale: f64,
     /// False when no reference neighbourhood passed the thresholds and the best match was taken.
     pub matched: bool,
     /// The parameter exchange applied (identity without variation).
@@ -125,13 +144,13 @@ pub struct Report {
     pub reference_elements: usize,
     /// Reference elements whose ink touches the reference's bounding box.
     pub border_elements: usize,
-    /// Border elements unlike every interior one (pieces cut by the frame): never copied.
+    /// Border elements not copied (they may be pieces cut by the frame; enough lie inside).
     pub fragment_elements: usize,
     /// Elements synthesized (N_tar).
     pub output_elements: usize,
     /// Strokes written.
     pub output_strokes: usize,
-    /// N_ref · A_tar / A_ref before rounding.
+    /// N_ref · A_tar / A_ref before rounding, times the mean relative density of the maps.
     pub expected_elements: f64,
     /// Output elements that found at least one candidate within the thresholds.
     pub matched_elements: usize,
@@ -178,6 +197,20 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
         && !region.is_simple()
     {
         return Err(Error::SelfIntersectingRegion);
+    }
+    for (name, map) in [("density-map", &input.density_map), ("scale-map", &input.scale_map)] {
+        let Some(map) = map else { continue };
+        match &input.target {
+            Target::Path(_) => {
+                return Err(motif_core::InvalidParameter::new(
+                    name,
+                    "given with a path target",
+                    "a region target: maps are stretched over the region's bounding box",
+                )
+                .into());
+            }
+            Target::Region(region) => map.check_fits(&region.bounds(), name)?,
+        }
     }
     Ok(())
 }
@@ -260,7 +293,23 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         Target::Path(path) => path.length(),
         Target::Region(region) => region.area(),
     };
-    let expected = analysis.elements.len() as f64 * target_area / analysis.reference_area();
+    let maps = Maps {
+        density: input.density_map.as_ref(),
+        scale: input.scale_map.as_ref(),
+        bounds: match &input.target {
+            Target::Region(region) => region.bounds(),
+            Target::Path(_) => kurbo::Rect::ZERO,
+        },
+    };
+    let uniform = Maps { density: None, scale: None, bounds: maps.bounds };
+    let density = match &input.target {
+        Target::Region(region) => Density::over(region, &maps),
+        Target::Path(_) => Density::over_path(&uniform),
+    };
+    let expected = analysis.elements.len() as f64 * target_area / analysis.reference_area() * density.mean;
+    if !maps.is_uniform() && expected < 0.5 {
+        return Err(Error::BlankDensityMap);
+    }
     if !expected.is_finite() || expected > params.max_elements as f64 {
         return Err(Error::TooManyElements {
             count: expected.min(usize::MAX as f64) as usize,
@@ -273,7 +322,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     progress.report("seeds", 0.0);
     let layout = match &input.target {
         Target::Path(path) => layout_path(path, count, analysis.frame_angle, params.lloyd_iterations, &streams),
-        Target::Region(region) => layout_region(region, count, params.lloyd_iterations, &streams),
+        Target::Region(region) => layout_region(region, count, params.lloyd_iterations, &density, &streams),
     };
     progress.report("seeds", 1.0);
 
@@ -299,6 +348,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
             position: positions[seed],
             rotation: layout.rotations[seed] + exchanges[seed].rotation,
             exchange: exchanges[seed],
+            scale: maps.scale_at(positions[seed]),
         })
         .collect();
 
@@ -334,6 +384,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
             reference: placement.reference as usize,
             position: placement.position,
             rotation: placement.rotation,
+            scale: placement.scale,
             matched: growth.matched[seed],
             exchange: placement.exchange,
             strokes: start..strokes.len(),

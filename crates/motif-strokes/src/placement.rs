@@ -36,6 +36,8 @@ pub struct Placement {
     pub rotation: f64,
     /// The parameter exchange applied.
     pub exchange: Exchange,
+    /// Uniform scale about its centre, stroke widths and dashes included (the scale map's).
+    pub scale: f64,
 }
 
 /// How overlaps between placed elements were resolved.
@@ -76,6 +78,15 @@ pub fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, 
     Affine::translate(position.to_vec2()) * vector::rotation(rotation) * scale * to_origin
 }
 
+/// Scaling by `scale` about `centre` (the identity at 1).
+fn uniform_scale_about(centre: Point, scale: f64) -> Affine {
+    if scale == 1.0 {
+        Affine::IDENTITY
+    } else {
+        Affine::translate(centre.to_vec2()) * Affine::scale(scale) * Affine::translate(-centre.to_vec2())
+    }
+}
+
 fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
     let mut out = colour;
     for c in 0..3 {
@@ -88,12 +99,19 @@ fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
 pub fn placed_strokes(analysis: &Analysis, strokes: &[Stroke], placement: &Placement) -> Vec<Stroke> {
     let element = &analysis.elements[placement.reference as usize];
     let exchange = &placement.exchange;
-    let transform = placement_transform(&element.frame, placement.position, placement.rotation, exchange);
+    let transform = placement_transform(&element.frame, placement.position, placement.rotation, exchange)
+        * uniform_scale_about(element.frame.centre, placement.scale);
     element
         .strokes
         .iter()
         .map(|&s| {
             let mut stroke = strokes[s].transformed(transform);
+            if placement.scale != 1.0 {
+                stroke.width *= placement.scale;
+                if let Some(dash) = &mut stroke.dash {
+                    dash.iter_mut().for_each(|length| *length *= placement.scale);
+                }
+            }
             if exchange.colour_shift != [0.0; 3] {
                 stroke.colour = shift_colour(stroke.colour, exchange.colour_shift);
                 stroke.fill = stroke.fill.map(|fill| shift_colour(fill, exchange.colour_shift));

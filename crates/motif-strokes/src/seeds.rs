@@ -16,6 +16,7 @@ use rstar::{AABB, RTree};
 use spade::{DelaunayTriangulation, Point2, Triangulation};
 
 use crate::distribution::Site;
+use crate::maps::Maps;
 
 /// Seeds along a path of arc length `length`: `count` stratified random positions relaxed by
 /// Lloyd's method, where each seed's Voronoi cell is the arc between the midpoints to its
@@ -79,16 +80,24 @@ struct CellScratch {
 /// cells hold one point on average; cells outside the region give none, and the shortfall or
 /// excess is made up with uniform random points or by dropping random ones. A stratified start
 /// leaves Lloyd's method only local work, so it converges in a few iterations.
-fn stratified_points(region: &Polygon, count: usize, streams: &SeedStreams) -> Vec<Point> {
+///
+/// With a density map, the grid is finer by the ratio of the largest density to the mean and each
+/// point is kept with probability density / largest density (rejection sampling), so the start
+/// already follows the map.
+fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, streams: &SeedStreams) -> Vec<Point> {
     let bounds = region.bounds();
     let fallback = if region.contains(region.centroid()) { region.centroid() } else { interior_point(region) };
-    let cell = (region.area() / count.max(1) as f64).sqrt().max(1e-12);
+    let oversampling = if density.maps.is_uniform() { 1.0 } else { density.largest / density.mean };
+    let cell = (region.area() / (count.max(1) as f64 * oversampling)).sqrt().max(1e-12);
+    let keep = |p: Point, stream: &mut motif_core::random::Stream| {
+        density.maps.is_uniform() || stream.random::<f64>() * density.largest < density.maps.density_at(p)
+    };
     let columns = ((bounds.width() / cell).ceil() as usize).max(1);
     let rows = ((bounds.height() / cell).ceil() as usize).max(1);
     let mut points = Vec::with_capacity(count + count / 4);
     // Guard against a region whose bounds dwarf its area (a thin diagonal sliver): past this many
     // cells, fall back to plain uniform sampling.
-    if columns.saturating_mul(rows) <= 16 * count.max(1) + 16 {
+    if columns.saturating_mul(rows) as f64 <= 16.0 * oversampling * count.max(1) as f64 + 16.0 {
         for row in 0..rows {
             for column in 0..columns {
                 let mut stream = streams.stream("seed grid", (row * columns + column) as u64);
@@ -96,7 +105,7 @@ fn stratified_points(region: &Polygon, count: usize, streams: &SeedStreams) -> V
                     bounds.x0 + (column as f64 + stream.random::<f64>()) * cell,
                     bounds.y0 + (row as f64 + stream.random::<f64>()) * cell,
                 );
-                if region.contains(p) {
+                if region.contains(p) && keep(p, &mut stream) {
                     points.push(p);
                 }
             }
@@ -111,15 +120,18 @@ fn stratified_points(region: &Polygon, count: usize, streams: &SeedStreams) -> V
     while points.len() < count {
         let mut stream = streams.stream("seed extra", extra);
         extra += 1;
-        let p = (0..10_000)
-            .map(|_| {
-                Point::new(
-                    bounds.x0 + stream.random::<f64>() * bounds.width(),
-                    bounds.y0 + stream.random::<f64>() * bounds.height(),
-                )
-            })
-            .find(|&p| region.contains(p))
-            .unwrap_or(fallback);
+        let mut found = None;
+        for _ in 0..10_000 {
+            let p = Point::new(
+                bounds.x0 + stream.random::<f64>() * bounds.width(),
+                bounds.y0 + stream.random::<f64>() * bounds.height(),
+            );
+            if region.contains(p) && keep(p, &mut stream) {
+                found = Some(p);
+                break;
+            }
+        }
+        let p = found.unwrap_or(fallback);
         points.push(p);
     }
     points
@@ -129,14 +141,24 @@ fn stratified_points(region: &Polygon, count: usize, streams: &SeedStreams) -> V
 /// centroidal Voronoi tessellation clipped to the region. Returns the points and the iterations
 /// run. Every point stays inside the region: a centroid that falls outside a non-convex region
 /// (possible for a cell split by the boundary) is not taken.
-pub fn lloyd_region(region: &Polygon, count: usize, iterations: usize, streams: &SeedStreams) -> (Vec<Point>, usize) {
+///
+/// With a density map the tessellation is weighted: each cell's centroid is weighted by the
+/// squared density (see [`crate::maps`]), integrated over the cell with 9 sub-triangles per
+/// triangle of a fan.
+pub fn lloyd_region(
+    region: &Polygon,
+    count: usize,
+    iterations: usize,
+    density: &Density<'_>,
+    streams: &SeedStreams,
+) -> (Vec<Point>, usize) {
     let bounds = region.bounds();
     if count == 1 {
         // Lloyd's fixed point for one seed: the region's centroid (when it lies inside).
         let centroid = region.centroid();
         return (vec![if region.contains(centroid) { centroid } else { interior_point(region) }], 0);
     }
-    let mut positions = stratified_points(region, count, streams);
+    let mut positions = stratified_points(region, count, density, streams);
     let spacing = (region.area() / count.max(1) as f64).sqrt();
     let vertices = region.vertices();
     let edges: RTree<Rectangle<[f64; 2]>> = RTree::bulk_load(
@@ -186,7 +208,7 @@ pub fn lloyd_region(region: &Polygon, count: usize, iterations: usize, streams: 
                     }
                     scratch.cell.push(circumcentres[face.fix().index()]);
                 }
-                cell_centroid(region, &edges, positions[i], scratch).unwrap_or(positions[i])
+                cell_centroid(region, &edges, positions[i], density, scratch).unwrap_or(positions[i])
             })
             .collect();
         let largest_move = positions.iter().zip(&next).map(|(a, b)| vector::distance(*a, *b)).fold(0.0, f64::max);
@@ -204,6 +226,7 @@ fn cell_centroid(
     region: &Polygon,
     edges: &RTree<Rectangle<[f64; 2]>>,
     seed: Point,
+    density: &Density<'_>,
     scratch: &mut CellScratch,
 ) -> Option<Point> {
     if signed_area(&scratch.cell) < 0.0 {
@@ -212,11 +235,19 @@ fn cell_centroid(
     let bounds = motif_core::geometry::bounds_of(&scratch.cell);
     let envelope = AABB::from_corners([bounds.x0, bounds.y0], [bounds.x1, bounds.y1]);
     let crosses_boundary = edges.locate_in_envelope_intersecting(&envelope).next().is_some();
-    let centroid = if !crosses_boundary && region.contains(seed) {
-        polygon_centroid(&scratch.cell)?
+    let cell = if !crosses_boundary && region.contains(seed) {
+        &scratch.cell
     } else {
         clip_to_convex(region.vertices(), &scratch.cell, &mut scratch.clipped, &mut scratch.swap);
-        polygon_centroid(&scratch.clipped)?
+        &scratch.clipped
+    };
+    let centroid = if density.maps.is_uniform() {
+        polygon_centroid(cell)?
+    } else {
+        weighted_centroid(cell, |p| {
+            let d = density.maps.density_at(p);
+            d * d
+        })?
     };
     region.contains(centroid).then_some(centroid)
 }
@@ -273,6 +304,85 @@ fn polygon_centroid(points: &[Point]) -> Option<Point> {
     (twice_area.abs() > 1e-12).then(|| origin + sum / (3.0 * twice_area))
 }
 
+/// Centroid of a polygon weighted by `weight`: the polygon as a fan of triangles from its first
+/// vertex (signed, so a non-convex polygon integrates right), each split into 9 equal
+/// sub-triangles weighted at their centroids. None when the weight vanishes on the polygon.
+fn weighted_centroid(points: &[Point], weight: impl Fn(Point) -> f64) -> Option<Point> {
+    const SPLITS: usize = 3;
+    let n = points.len();
+    if n < 3 {
+        return None;
+    }
+    let origin = points[0];
+    let (mut mass, mut moment) = (0.0, kurbo::Vec2::ZERO);
+    for i in 1..n - 1 {
+        let (a, b) = (points[i] - origin, points[i + 1] - origin);
+        let area = 0.5 * a.cross(b);
+        let at = |u: f64, v: f64| a * (u / SPLITS as f64) + b * (v / SPLITS as f64);
+        let mut add = |p: kurbo::Vec2, q: kurbo::Vec2, r: kurbo::Vec2| {
+            let centre = (p + q + r) / 3.0;
+            let w = weight(origin + centre) * area;
+            mass += w;
+            moment += centre * w;
+        };
+        for u in 0..SPLITS {
+            for v in 0..SPLITS - u {
+                let (uf, vf) = (u as f64, v as f64);
+                add(at(uf, vf), at(uf + 1.0, vf), at(uf, vf + 1.0));
+                if u + v + 2 <= SPLITS {
+                    add(at(uf + 1.0, vf), at(uf + 1.0, vf + 1.0), at(uf, vf + 1.0));
+                }
+            }
+        }
+    }
+    (mass.abs() > 1e-300).then(|| origin + moment / mass)
+}
+
+/// The density a region's seeds follow, with its mean and largest value over the region.
+pub struct Density<'a> {
+    /// The maps (uniform without any).
+    pub maps: &'a Maps<'a>,
+    /// Mean relative density over the region.
+    pub mean: f64,
+    /// Largest relative density over the region.
+    pub largest: f64,
+}
+
+impl<'a> Density<'a> {
+    /// Samples per side of the grid the statistics are taken on.
+    const SAMPLES: usize = 256;
+
+    /// The uniform density of a path target (maps need a region).
+    pub fn over_path(maps: &'a Maps<'a>) -> Density<'a> {
+        Density { maps, mean: 1.0, largest: 1.0 }
+    }
+
+    /// The density of `maps` over `region`, its mean and largest value sampled on a grid.
+    pub fn over(region: &Polygon, maps: &'a Maps<'a>) -> Density<'a> {
+        if maps.is_uniform() {
+            return Density { maps, mean: 1.0, largest: 1.0 };
+        }
+        let bounds = region.bounds();
+        let (mut sum, mut inside, mut largest) = (0.0, 0usize, 0.0f64);
+        for row in 0..Self::SAMPLES {
+            for column in 0..Self::SAMPLES {
+                let p = Point::new(
+                    bounds.x0 + (column as f64 + 0.5) / Self::SAMPLES as f64 * bounds.width(),
+                    bounds.y0 + (row as f64 + 0.5) / Self::SAMPLES as f64 * bounds.height(),
+                );
+                if region.contains(p) {
+                    let d = maps.density_at(p);
+                    sum += d;
+                    inside += 1;
+                    largest = largest.max(d);
+                }
+            }
+        }
+        let mean = if inside > 0 { sum / inside as f64 } else { maps.density_at(region.centroid()) };
+        Density { maps, mean, largest: largest.max(mean) }
+    }
+}
+
 /// A point inside a simple polygon: the midpoint of the widest inside stretch of the horizontal
 /// line through the middle of its bounds.
 pub fn interior_point(region: &Polygon) -> Point {
@@ -322,7 +432,8 @@ mod tests {
         ])
         .unwrap();
         let streams = SeedStreams::new(2);
-        let (seeds, run) = lloyd_region(&region, 200, 60, &streams);
+        let maps = Maps { density: None, scale: None, bounds: region.bounds() };
+        let (seeds, run) = lloyd_region(&region, 200, 60, &Density::over(&region, &maps), &streams);
         assert_eq!(seeds.len(), 200);
         assert!(run > 5);
         assert!(seeds.iter().all(|&p| region.contains(p)));

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::analysis::Analysis;
 use crate::distribution::{Graph, RingScratch, unskewed_delaunay};
 use crate::matching::{CompareScratch, MeasureTable, Member, compare, violation};
-use crate::seeds::{lloyd_path, lloyd_region};
+use crate::seeds::{Density, lloyd_path, lloyd_region};
 
 /// Seed positions on the target and their neighbour graph.
 #[derive(Debug, Clone)]
@@ -85,8 +85,14 @@ pub fn layout_path(
 }
 
 /// Seeds inside `region` (2D): clipped centroidal Voronoi by Lloyd, unskewed Delaunay graph.
-pub fn layout_region(region: &Polygon, count: usize, iterations: usize, streams: &SeedStreams) -> Layout {
-    let (positions, run) = lloyd_region(region, count, iterations, streams);
+pub fn layout_region(
+    region: &Polygon,
+    count: usize,
+    iterations: usize,
+    density: &Density<'_>,
+    streams: &SeedStreams,
+) -> Layout {
+    let (positions, run) = lloyd_region(region, count, iterations, density, streams);
     let graph = unskewed_delaunay(&positions).graph;
     Layout {
         rotations: vec![0.0; positions.len()],

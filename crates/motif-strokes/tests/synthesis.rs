@@ -19,7 +19,7 @@ fn params(scale: f64) -> Params {
 }
 
 fn run(strokes: Vec<Stroke>, target: Target, params: &Params) -> Output {
-    synthesize(&Input { strokes, target }, params, &mut NoProgress).unwrap()
+    synthesize(&Input::new(strokes, target), params, &mut NoProgress).unwrap()
 }
 
 /// Output elements along a path in path order (seeds come sorted by arc length).
@@ -188,7 +188,7 @@ fn run_in_pool(threads: usize, input: &Input, params: &Params) -> Output {
 #[test]
 fn same_seed_same_output_for_any_thread_count() {
     let strokes = figure_field(&FigureField { columns: 8, rows: 6, ..FigureField::default() }, Point::ORIGIN, 6);
-    let input = Input { strokes, target: Target::Region(l_shape(500.0)) };
+    let input = Input::new(strokes, Target::Region(l_shape(500.0)));
     let mut p = params(8.0);
     p.variation = 0.5;
     p.position_variation = true;
@@ -209,14 +209,12 @@ fn same_seed_same_output_for_any_thread_count() {
 fn bad_input_gives_clear_errors() {
     let strokes = figure_field(&FigureField { columns: 3, rows: 3, ..FigureField::default() }, Point::ORIGIN, 7);
     let region = Target::Region(l_shape(200.0));
-    let error =
-        synthesize(&Input { strokes: vec![], target: region.clone() }, &params(4.0), &mut NoProgress).unwrap_err();
+    let error = synthesize(&Input::new(vec![], region.clone()), &params(4.0), &mut NoProgress).unwrap_err();
     assert_eq!(error, Error::NoStrokes);
     assert!(error.to_string().contains("no strokes"));
     for scale in [0.0, -1.0, f64::NAN] {
         let error =
-            synthesize(&Input { strokes: strokes.clone(), target: region.clone() }, &params(scale), &mut NoProgress)
-                .unwrap_err();
+            synthesize(&Input::new(strokes.clone(), region.clone()), &params(scale), &mut NoProgress).unwrap_err();
         assert!(error.to_string().starts_with("invalid scale"), "{error}");
     }
     let bowtie = Polygon::new(vec![
@@ -227,8 +225,7 @@ fn bad_input_gives_clear_errors() {
     ])
     .unwrap();
     let error =
-        synthesize(&Input { strokes: strokes.clone(), target: Target::Region(bowtie) }, &params(4.0), &mut NoProgress)
-            .unwrap_err();
+        synthesize(&Input::new(strokes.clone(), Target::Region(bowtie)), &params(4.0), &mut NoProgress).unwrap_err();
     assert_eq!(error, Error::SelfIntersectingRegion);
     let symmetric_bowtie =
         vec![Point::new(0.0, 0.0), Point::new(100.0, 100.0), Point::new(100.0, 0.0), Point::new(0.0, 100.0)];
@@ -238,12 +235,11 @@ fn bad_input_gives_clear_errors() {
     assert!(error.to_string().contains("area > 0"), "{error}");
     let huge =
         Target::Region(Polygon::new(vec![Point::new(0.0, 0.0), Point::new(1e6, 0.0), Point::new(1e6, 1e6)]).unwrap());
-    let error =
-        synthesize(&Input { strokes: strokes.clone(), target: huge }, &params(4.0), &mut NoProgress).unwrap_err();
+    let error = synthesize(&Input::new(strokes.clone(), huge), &params(4.0), &mut NoProgress).unwrap_err();
     assert!(matches!(error, Error::TooManyElements { .. }), "{error}");
     let mut bad = params(4.0);
     bad.thresholds.overlap = 1.0;
-    let error = synthesize(&Input { strokes, target: region }, &bad, &mut NoProgress).unwrap_err();
+    let error = synthesize(&Input::new(strokes, region), &bad, &mut NoProgress).unwrap_err();
     assert!(error.to_string().contains("thresholds.ov"), "{error}");
 }
 
@@ -286,7 +282,7 @@ fn arbitrary_drawings_never_panic() {
         } else {
             Target::Region(l_shape(random.random_range(20.0..400.0)))
         };
-        let output = synthesize(&Input { strokes, target: target.clone() }, &p, &mut NoProgress).unwrap();
+        let output = synthesize(&Input::new(strokes, target.clone()), &p, &mut NoProgress).unwrap();
         assert!(!output.elements.is_empty());
         assert_eq!(output.report.matched_elements + output.report.fallback_elements, output.elements.len());
         if let Target::Region(region) = &target {
@@ -315,7 +311,7 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
     ])
     .unwrap();
     let error = synthesize(
-        &Input { strokes, target: Target::Region(square) },
+        &Input::new(strokes, Target::Region(square)),
         &params(6.0).with_max_memory(1 << 20),
         &mut NoProgress,
     )

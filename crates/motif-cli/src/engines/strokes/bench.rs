@@ -55,7 +55,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let length = 10.0 * row.count as f64 * row.spacing;
     let path = Polyline::from_bez_path(&wave(0.0, length, 0.0, 0.05 * length, 5), 0.05)?.remove(0);
     params.scale = 4.0;
-    let input = Input { strokes: hatches, target: Target::Path(path) };
+    let input = Input::new(hatches, Target::Path(path));
     let (output, one_d_ms, _) = time_case(&input, &params, repeats)?;
     let one_d = case_figures(&output, one_d_ms, 20.0);
 
@@ -70,7 +70,7 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let region =
         Polygon::new(vec![Point::new(0.0, 0.0), Point::new(side, 0.0), Point::new(side, side), Point::new(0.0, side)])?;
     params.scale = 8.0;
-    let input = Input { strokes: figures, target: Target::Region(region) };
+    let input = Input::new(figures, Target::Region(region));
     let (output, two_d_ms, _) = time_case(&input, &params, repeats)?;
     let two_d = case_figures(&output, two_d_ms, 200.0);
 
