@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Point, Polygon, Polyline, Progress};
-use motif_strokes::{FitPoints, Input, Output, Params, Stroke, Target, Thresholds};
+use motif_strokes::{FitPoints, Input, Output, Params, Stroke, Target, Thresholds, ToneMap};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
@@ -170,8 +170,20 @@ impl StrokesJob {
 
     /// Runs the job on the decoded reference strokes.
     pub fn run(&self, strokes: Vec<Stroke>, progress: &mut dyn Progress) -> Result<StrokesRun, JobError> {
+        self.run_with_maps(strokes, None, None, progress)
+    }
+
+    /// Runs the job with a density map and a scale map (decoded images, see
+    /// [`motif_strokes::ToneMap`]) over the target region.
+    pub fn run_with_maps(
+        &self,
+        strokes: Vec<Stroke>,
+        density_map: Option<ToneMap>,
+        scale_map: Option<ToneMap>,
+        progress: &mut dyn Progress,
+    ) -> Result<StrokesRun, JobError> {
         let params = self.params()?;
-        let input = Input::new(strokes, self.engine_target()?);
+        let input = Input { density_map, scale_map, ..Input::new(strokes, self.engine_target()?) };
         let output = motif_strokes::synthesize(&input, &params, progress)?;
         let figures = figures(&output.report);
         Ok(StrokesRun { output, figures })

@@ -46,6 +46,7 @@ mod cluster;
 mod distribution;
 mod element;
 mod error;
+pub mod fidelity;
 mod maps;
 mod matching;
 mod overlap;

@@ -41,10 +41,24 @@ fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
     })
 }
 
-/// `motif bench` figures: a 60-element 1D hatching reference along a path 10× its length, a
-/// 120-element 2D reference of three-stroke figures in a region 10× its area (all stages, median of
-/// several runs), and the clustering speed-up of the R-tree queue over the paper's full scan.
+/// `motif bench` figures: the real-data corpus (`--case corpus` or case names; see
+/// [`super::corpus`]), and the generated cases (`--case generated`): a 60-element 1D hatching
+/// reference along a path 10× its length, a 120-element 2D reference of three-stroke figures in a
+/// region 10× its area (all stages, median of several runs), and the clustering speed-up of the
+/// R-tree queue over the paper's full scan.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+    let mut all = serde_json::Map::new();
+    if !bench.quick {
+        let corpus = super::corpus::bench(bench.seed, &|name| bench.selects(name, "corpus"))?;
+        all.insert("corpus".into(), corpus);
+    }
+    if bench.selects("generated", "generated") {
+        all.extend(generated(bench)?.as_object().cloned().unwrap_or_default());
+    }
+    Ok(Value::Object(all))
+}
+
+fn generated(bench: &Bench) -> anyhow::Result<Value> {
     let repeats = if bench.quick { 1 } else { 7 };
     let mut params = Params::default();
     params.seed = bench.seed;

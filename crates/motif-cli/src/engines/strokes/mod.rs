@@ -2,6 +2,7 @@
 //! (Barla et al. 2006), wired to SVG files.
 
 mod bench;
+mod corpus;
 mod demo;
 
 use std::collections::BTreeMap;
@@ -13,7 +14,7 @@ use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
 use motif_jobs::strokes::{StrokesJob, TargetSpec};
-use motif_strokes::{Analysis, FitPoints, Output, Stroke};
+use motif_strokes::{Analysis, FitPoints, Output, Stroke, Target, ToneMap};
 
 use crate::context::Context;
 use crate::gallery::Demo;
@@ -65,6 +66,17 @@ pub struct StrokesArgs {
     /// opacity, filled or dashed share and fill colour (0.2). Example: shape=0.2,col=0.3.
     #[arg(long, value_name = "NAME=VALUE,...", value_parser = parse_thresholds)]
     pub thresholds: Option<ThresholdOverrides>,
+    /// Density map (an image stretched over the target region's bounding box, with its aspect
+    /// ratio): darkness sets the element density relative to the reference's (black: the
+    /// reference's density, mid-grey: half, white: none), so a hatching or stippling can shade a
+    /// photo. Grey is the pixel's luma over white.
+    #[arg(long, value_name = "MAP.png")]
+    pub density_map: Option<PathBuf>,
+    /// Scale map (an image over the target region's bounding box): element scale 2^(2·grey − 1),
+    /// black 0.5, mid-grey 1, white 2, stroke widths included; larger elements are spaced further
+    /// apart.
+    #[arg(long, value_name = "MAP.png")]
+    pub scale_map: Option<PathBuf>,
     /// Curve flattening tolerance in drawing units (maximum distance between a curve and its
     /// polyline), > 0.
     #[arg(long, value_name = "T", default_value_t = 0.1)]
@@ -208,6 +220,21 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
     Ok((TargetSpec::Rect([width, height]), width, height))
 }
 
+/// A density or scale map read from `file`, checked against the job's target.
+fn read_map(file: Option<&Path>, flag: &str, job: &StrokesJob) -> anyhow::Result<Option<ToneMap>> {
+    let Some(file) = file else { return Ok(None) };
+    let map = ToneMap::from_image(&motif_io::read_image(file)?);
+    match job.engine_target()? {
+        Target::Region(region) => {
+            map.check_fits(&region.bounds(), &format!("{flag} {}", file.display())).map_err(anyhow::Error::from)?
+        }
+        Target::Path(_) => {
+            bail!("{flag} {}: maps need a region target (--region or --rect), not --along", file.display())
+        }
+    }
+    Ok(Some(map))
+}
+
 fn draw_stroke(writer: &mut SvgWriter, stroke: &Stroke) {
     let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
     writer.dashed_polyline(
@@ -289,6 +316,8 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs: Vec<&Path> = vec![&args.reference];
     inputs.extend(args.along.as_deref());
     inputs.extend(args.region.as_deref());
+    inputs.extend(args.density_map.as_deref());
+    inputs.extend(args.scale_map.as_deref());
     context.check_output(&args.out, &inputs)?;
     for extra in args.png.iter().chain(&args.analysis) {
         context.check_output(extra, &inputs)?;
@@ -311,9 +340,11 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     let (target, width, height) = read_target(args)?;
     let job = StrokesJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed, target) };
+    let density_map = read_map(args.density_map.as_deref(), "--density-map", &job)?;
+    let scale_map = read_map(args.scale_map.as_deref(), "--scale-map", &job)?;
     let shown_strokes = args.analysis.as_ref().map(|_| strokes.clone());
     let run = job
-        .run(strokes, context.progress())
+        .run_with_maps(strokes, density_map, scale_map, context.progress())
         .with_context(|| format!("cannot synthesize from {}", args.reference.display()))?;
     let output = run.output;
     let svg = output_svg(&output, width, height);
