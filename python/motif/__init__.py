@@ -276,6 +276,8 @@ def strokes(
     region: Optional[ArrayLike] = None,
     size: Optional[Tuple[float, float]] = None,
     tolerance: float = 0.1,
+    density_map: Optional[ArrayLike] = None,
+    scale_map: Optional[ArrayLike] = None,
     seed: int = 1,
     threads: Optional[int] = None,
     report: bool = False,
@@ -283,6 +285,10 @@ def strokes(
 ) -> Any:
     """Grows the stroke pattern of ``reference_svg`` (SVG text) at scale ε = ``scale`` inside
     ``rect=(W, H)``, along a polyline ``along`` or inside a polygon ``region`` (``motif strokes``).
+
+    ``density_map`` and ``scale_map`` are uint8 images (H×W grey or H×W×C) stretched over a
+    region target's bounding box, as ``--density-map`` and ``--scale-map``: darkness is the
+    density relative to the reference's; the scale is 2^(2·grey − 1).
 
     ``size`` is the output document's (width, height) (default: the rectangle, or the target's
     extent). Options: ``fit``, ``rings``, ``variation``, ``position_variation``, ``thresholds``
@@ -303,7 +309,8 @@ def strokes(
         extent = (float(outline[:, 0].max()), float(outline[:, 1].max()))
     document = tuple(float(v) for v in (size if size is not None else extent))
     job = _job("strokes", {"scale": float(scale), "target": target, "seed": _seed(seed)}, options)
-    svg, report_text = _motif.strokes(reference_svg, job, document, float(tolerance), threads)
+    maps = [None if m is None else _image(m, name) for m, name in ((density_map, "density_map"), (scale_map, "scale_map"))]
+    svg, report_text = _motif.strokes(reference_svg, job, document, float(tolerance), threads, *maps)
     return _finish(svg, report_text, report)
 
 

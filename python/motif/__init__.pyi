@@ -58,14 +58,16 @@ def points(
 def strokes(
     reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
-    size: Optional[Tuple[float, float]] = ..., tolerance: float = ..., seed: int = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
+    density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
 ) -> str: ...
 @overload
 def strokes(
     reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
-    size: Optional[Tuple[float, float]] = ..., tolerance: float = ..., seed: int = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
+    density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[True], **options: Any
 ) -> Tuple[str, Dict[str, Any]]: ...
 def read_image(path: str) -> ImageArray: ...

@@ -246,9 +246,10 @@ fn points<'py>(
 }
 
 /// `motif strokes`: (SVG text, report JSON). The reference is SVG text; the output document is
-/// `size` (width, height) user units.
+/// `size` (width, height) user units; the maps are images over the target region's bounds.
 #[pyfunction]
-#[pyo3(signature = (reference_svg, job, size, tolerance=0.1, threads=None))]
+#[pyo3(signature = (reference_svg, job, size, tolerance=0.1, threads=None, density_map=None, scale_map=None))]
+#[allow(clippy::too_many_arguments)]
 fn strokes(
     py: Python<'_>,
     reference_svg: &str,
@@ -256,7 +257,14 @@ fn strokes(
     size: (f64, f64),
     tolerance: f64,
     threads: Option<usize>,
+    density_map: Option<PyReadonlyArrayDyn<'_, u8>>,
+    scale_map: Option<PyReadonlyArrayDyn<'_, u8>>,
 ) -> PyResult<(String, String)> {
+    let tone_map = |array: Option<PyReadonlyArrayDyn<'_, u8>>, what: &str| -> PyResult<Option<motif_strokes::ToneMap>> {
+        array.map(|array| image_of(&array, what).map(|image| motif_strokes::ToneMap::from_image(&image))).transpose()
+    };
+    let density_map = tone_map(density_map, "density_map")?;
+    let scale_map = tone_map(scale_map, "scale_map")?;
     let job: motif_jobs::strokes::StrokesJob = description(job)?;
     if !(tolerance.is_finite() && tolerance > 0.0) {
         return Err(value_error(format!("invalid tolerance = {tolerance}: must be a finite number > 0")));
@@ -272,7 +280,8 @@ fn strokes(
     if reference.is_empty() {
         return Err(value_error("reference_svg: no stroked or filled path with a length > 0"));
     }
-    let run = detached(py, threads, || job.run(reference, &mut NoProgress))?.map_err(job_error)?;
+    let run = detached(py, threads, || job.run_with_maps(reference, density_map, scale_map, &mut NoProgress))?
+        .map_err(job_error)?;
     let mut writer = motif_io::SvgWriter::new(size.0, size.1);
     writer.begin_group("strokes");
     for stroke in &run.output.strokes {

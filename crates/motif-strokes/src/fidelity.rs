@@ -168,10 +168,13 @@ pub fn strokes_bounds(strokes: &[Stroke]) -> Rect {
 }
 
 /// The reference's usable elements (not the border elements left out of copying), measured in
-/// the reference's bounding box.
+/// the reference's bounding box; their overlap rate counts overlaps with any element, as the
+/// synthesis does.
 pub fn reference_pattern(analysis: &Analysis, strokes: &[Stroke]) -> MeasuredPattern {
     let (kept, groups) = element_groups(analysis, strokes, |i| analysis.is_usable(i));
-    MeasuredPattern::new(&kept, &groups, strokes_bounds(strokes))
+    let mut pattern = MeasuredPattern::new(&kept, &groups, strokes_bounds(strokes));
+    pattern.overlap_rate = crate::placement::reference_overlap_rate(analysis, strokes);
+    pattern
 }
 
 /// The strokes of the elements `keep` selects, with each element's range.

@@ -181,7 +181,9 @@ pub fn resolve_overlaps(
     let mut kept = vec![false; placements.len()];
     let mut index = FootprintIndex::empty();
     let mut settled = 0usize;
-    let mut meeting_settled = 0usize;
+    // Settled elements whose ink meets another settled element's (both sides of each overlap).
+    let mut overlapping = vec![false; placements.len()];
+    let mut overlapping_count = 0usize;
     let spacing = if analysis.along_path { analysis.area_per_element } else { analysis.area_per_element.sqrt() };
     let mut scratch = SeedScratch::default();
     let meets = |footprint: &Footprint, index: &FootprintIndex, footprints: &[Footprint]| -> Vec<usize> {
@@ -189,9 +191,15 @@ pub fn resolve_overlaps(
     };
     for &seed in order {
         let met = meets(&footprints[seed], &index, &footprints);
-        let tolerated = reference_rate > 0.0 && (meeting_settled as f64) < reference_rate * (settled + 1) as f64;
+        let newly = 1 + met.iter().filter(|&&j| !overlapping[j]).count();
+        let tolerated =
+            reference_rate > 0.0 && ((overlapping_count + newly) as f64) <= reference_rate * (settled + 1) as f64;
         if met.is_empty() || tolerated {
-            meeting_settled += usize::from(!met.is_empty());
+            if !met.is_empty() {
+                overlapping_count += newly;
+                overlapping[seed] = true;
+                met.iter().for_each(|&j| overlapping[j] = true);
+            }
             settled += 1;
             kept[seed] = true;
             index.insert(seed, &footprints[seed]);
@@ -290,7 +298,7 @@ pub fn resolve_overlaps(
     }
     // Without tolerated overlaps every kept element was checked against every element kept
     // before it, and later ones against it: no pair meets.
-    if meeting_settled > 0 {
+    if overlapping_count > 0 {
         let kept_footprints: Vec<Footprint> =
             footprints.into_iter().zip(&kept).filter(|(_, k)| **k).map(|(f, _)| f).collect();
         figures.output_rate = crate::overlap::overlap_rate(&kept_footprints);

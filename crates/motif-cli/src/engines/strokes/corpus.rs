@@ -2,7 +2,7 @@
 //! the time, the element count against the expected one, and the fidelity figures (size, spacing
 //! and orientation distances, overlap rate; `motif_strokes::fidelity`) of the output next to
 //! those of a tiled copy of the reference and of reference elements placed at random, and the
-//! same run with overlaps allowed.
+//! same run with overlaps allowed and with position variation.
 
 use std::path::Path;
 
@@ -55,11 +55,14 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     let output = motif_strokes::synthesize(&input, &params, &mut NoProgress)?;
     let seconds = start.elapsed().as_secs_f64();
     let loose = motif_strokes::synthesize(&input, &params.clone().with_avoid_overlaps(false), &mut NoProgress)?;
+    let shifted =
+        motif_strokes::synthesize(&input, &params.clone().with_position_variation(true), &mut NoProgress)?;
 
     let reference = fidelity::reference_pattern(&output.analysis, &strokes);
     let measure = |pattern: &MeasuredPattern| fidelity::fidelity(&reference, pattern);
     let synthesized = measure(&fidelity::output_pattern(&output, frame));
     let overlapping = measure(&fidelity::output_pattern(&loose, frame));
+    let with_shifts = measure(&fidelity::output_pattern(&shifted, frame));
     let tiled = measure(&fidelity::tiled_copy(&output.analysis, &strokes, frame));
     let count = output.report.expected_elements.round() as usize;
     let random = measure(&fidelity::random_placement(&output.analysis, &strokes, count, frame, seed));
@@ -79,6 +82,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
         "fidelity": {
             "output": figures(&synthesized),
             "output_with_overlaps_allowed": figures(&overlapping),
+            "output_with_position_variation": figures(&with_shifts),
             "tiled": figures(&tiled),
             "random": figures(&random),
             "reference": figures(&itself),
