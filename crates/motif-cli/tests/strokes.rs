@@ -202,3 +202,56 @@ fn bad_input_is_refused_with_a_clear_message() {
     );
     assert_eq!(output.status.code(), Some(1));
 }
+
+#[test]
+fn density_maps_shade_and_bad_maps_are_refused() {
+    let dir = setup();
+    // Left half black, right half white: every cross lands on the left.
+    let half =
+        motif_core::RgbaImage::from_fn(100, 80, |x, _| if x < 50 { [0, 0, 0, 255] } else { [255, 255, 255, 255] });
+    motif_io::write_png(&dir.path().join("half.png"), &half).unwrap();
+    let square = motif_core::RgbaImage::from_fn(50, 50, |_, _| [0, 0, 0, 255]);
+    motif_io::write_png(&dir.path().join("square.png"), &square).unwrap();
+    let white = motif_core::RgbaImage::from_fn(100, 80, |_, _| [255, 255, 255, 255]);
+    motif_io::write_png(&dir.path().join("white.png"), &white).unwrap();
+    std::fs::write(dir.path().join("text.png"), "not an image").unwrap();
+    let base = ["--report", "r.json", "strokes", "--reference", "cross.svg", "--scale", "3", "--rect", "200,160"];
+    let mut args = base.to_vec();
+    args.extend_from_slice(&["--density-map", "half.png", "--scale-map", "square.png"]);
+    let output = motif(dir.path(), &[&args[..], &["--out", "never.svg"]].concat());
+    assert_eq!(output.status.code(), Some(1));
+    assert!(
+        stderr(&output).contains("--scale-map square.png") && stderr(&output).contains("aspect"),
+        "{}",
+        stderr(&output)
+    );
+    for (map, message) in [("text.png", "text.png"), ("white.png", "white"), ("missing.png", "missing.png")] {
+        let mut args = base.to_vec();
+        args.extend_from_slice(&["--density-map", map, "--out", "never.svg"]);
+        let output = motif(dir.path(), &args);
+        assert_eq!(output.status.code(), Some(1), "{map}");
+        assert!(stderr(&output).contains(message), "{map}: {}", stderr(&output));
+    }
+    let along =
+        ["strokes", "--reference", "hatch.svg", "--scale", "3", "--along", "curve.svg", "--density-map", "half.png"];
+    let output = motif(dir.path(), &[&along[..], &["--out", "never.svg"]].concat());
+    assert!(stderr(&output).contains("region target"), "{}", stderr(&output));
+    assert!(!dir.path().join("never.svg").exists());
+
+    let mut args = base.to_vec();
+    args.extend_from_slice(&["--density-map", "half.png", "--out", "o.svg"]);
+    let output = motif(dir.path(), &args);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("r.json")).unwrap()).unwrap();
+    // Half the rectangle at the reference's density: about 40 crosses, none overlapping.
+    let elements = report["output_elements"].as_f64().unwrap();
+    assert!((elements - 40.0).abs() <= 5.0, "{elements}");
+    assert_eq!(report["overlap"]["output_rate"], 0.0);
+    let text = std::fs::read_to_string(dir.path().join("o.svg")).unwrap();
+    let starts: Vec<f64> =
+        text.split("<path d=\"M").skip(1).map(|rest| rest.split(' ').next().unwrap().parse::<f64>().unwrap()).collect();
+    assert!(starts.len() >= 60);
+    // Lloyd's cells straddle the tone edge by a fraction of a spacing (20).
+    assert!(starts.iter().all(|&x| x < 115.0), "{starts:?}");
+}

@@ -5,18 +5,29 @@
 //! elements and their distribution, then a similar pattern is synthesized along a target path (1D)
 //! or inside a target region (2D). Modules, by section of the paper:
 //!
-//! - `stroke`: strokes as polylines with width and colour (§1).
+//! - `stroke`: strokes as polylines with width, colours and dash pattern (§1).
+//! - `attributes`: stroke width, opacity, fill and dash of an element, compared beside colour
+//!   (beyond the paper, which compares colour only).
 //! - `element`: oriented bounding boxes from the covariance of skeleton or contour points, and
 //!   box Hausdorff distances (§2.1).
 //! - `cluster`: the greedy clustering queue with the proximity and continuation tests (§2.2).
 //! - `distribution`: chain and unskewed-Delaunay neighbour graphs, k-rings, shift vectors (§2.3).
 //! - `analysis`: the whole analysis of a reference (§2).
-//! - `matching`: relevant pairs, the five perceptual measures and the threshold test (§3.1).
-//! - `seeds`: Lloyd relaxation along a path and clipped centroidal Voronoi in a polygon (§3.2).
+//! - `border`: elements touching the reference's frame, not copied when enough lie inside (pieces
+//!   a crop cut through).
+//! - `matching`: relevant pairs, the five perceptual measures (parallelism weighted by how
+//!   elongated the boxes are) and the attribute measure, and the threshold test (§3.1).
+//! - `seeds`: Lloyd relaxation along a path and clipped centroidal Voronoi in a polygon (§3.2),
+//!   weighted by a density map (the paper's future work, §5).
+//! - `maps`: density and scale maps from grey images.
 //! - `synthesis`: seed layout and outward growth with partial neighbourhoods (§3.2, Algorithm 1).
 //! - `variation`: parameter exchange and position variation (§3.3).
-//! - [`samples`]: generated reference drawings for demos, benchmarks and tests (the one public
-//!   module; everything else is re-exported flat below).
+//! - `overlap` and `placement`: element footprints (through `geo`) and the settling of placed
+//!   elements so that their ink does not meet beyond the reference's overlap rate.
+//! - [`fidelity`]: size, spacing, orientation and overlap figures of a pattern against its
+//!   reference, with tiled and random baselines (public: benches and tests use it).
+//! - [`samples`]: generated reference drawings for demos, benchmarks and tests (public, like
+//!   `fidelity`; everything else is re-exported flat below).
 //!
 //! The entry point is [`synthesize`]; [`analyse`] runs the analysis alone (for interactive tuning
 //! of ε). The crate does no I/O and builds for `wasm32`.

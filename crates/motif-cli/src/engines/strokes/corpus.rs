@@ -55,8 +55,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
     let output = motif_strokes::synthesize(&input, &params, &mut NoProgress)?;
     let seconds = start.elapsed().as_secs_f64();
     let loose = motif_strokes::synthesize(&input, &params.clone().with_avoid_overlaps(false), &mut NoProgress)?;
-    let shifted =
-        motif_strokes::synthesize(&input, &params.clone().with_position_variation(true), &mut NoProgress)?;
+    let shifted = motif_strokes::synthesize(&input, &params.clone().with_position_variation(true), &mut NoProgress)?;
 
     let reference = fidelity::reference_pattern(&output.analysis, &strokes);
     let measure = |pattern: &MeasuredPattern| fidelity::fidelity(&reference, pattern);
