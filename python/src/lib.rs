@@ -260,7 +260,9 @@ fn strokes(
     density_map: Option<PyReadonlyArrayDyn<'_, u8>>,
     scale_map: Option<PyReadonlyArrayDyn<'_, u8>>,
 ) -> PyResult<(String, String)> {
-    let tone_map = |array: Option<PyReadonlyArrayDyn<'_, u8>>, what: &str| -> PyResult<Option<motif_strokes::ToneMap>> {
+    let tone_map = |array: Option<PyReadonlyArrayDyn<'_, u8>>,
+                    what: &str|
+     -> PyResult<Option<motif_strokes::ToneMap>> {
         array.map(|array| image_of(&array, what).map(|image| motif_strokes::ToneMap::from_image(&image))).transpose()
     };
     let density_map = tone_map(density_map, "density_map")?;
@@ -273,8 +275,9 @@ fn strokes(
     let mut reference = Vec::new();
     for path in &document.paths {
         let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
-        let pieces = motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
-            .map_err(|error| value_error(format!("reference_svg: path `{}`: {error}", path.id)))?;
+        let pieces =
+            motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
+                .map_err(|error| value_error(format!("reference_svg: path `{}`: {error}", path.id)))?;
         reference.extend(pieces.into_iter().filter(motif_strokes::Stroke::is_visible));
     }
     if reference.is_empty() {
@@ -287,12 +290,12 @@ fn strokes(
     for stroke in &run.output.strokes {
         let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
         writer.dashed_polyline(
-        stroke.polyline.points(),
-        stroke.polyline.is_closed(),
-        line,
-        stroke.fill,
-        stroke.dash.as_deref().unwrap_or_default(),
-    );
+            stroke.polyline.points(),
+            stroke.polyline.is_closed(),
+            line,
+            stroke.fill,
+            stroke.dash.as_deref().unwrap_or_default(),
+        );
     }
     writer.end_group();
     Ok((writer.finish(), report_json(&run.figures)))

@@ -137,3 +137,21 @@ def test_options_list_the_cli_flags():
     assert "patch_size" in motif.options("texture")
     assert "exemplar_window" in motif.options("points")
     assert "pieces_shape" in motif.options("curve")
+
+
+def test_strokes_maps_equal_the_cli(cli, tmp_path):
+    strokes_dir = ROOT / "data" / "real" / "strokes"
+    reference = (strokes_dir / "arkansas_stars.svg").read_text()
+    (tmp_path / "reference.svg").write_text(reference)
+    photo = str(strokes_dir / "photo_astronaut.png")
+    cli(["strokes", "--reference", "reference.svg", "--scale", "5", "--rect", "900,900",
+         "--density-map", photo, "--out", "out.svg"], tmp_path)
+    face = motif.read_image(photo)
+    svg, report = motif.strokes(reference, 5, rect=(900, 900), density_map=face, report=True)
+    assert svg == (tmp_path / "out.svg").read_text()
+    uniform = motif.strokes(reference, 5, rect=(900, 900), report=True)[1]
+    assert report["output_elements"] < uniform["output_elements"]
+    with pytest.raises(ValueError, match="density-map"):
+        motif.strokes(reference, 5, rect=(900, 450), density_map=face)
+    with pytest.raises(ValueError, match="uint8"):
+        motif.strokes(reference, 5, rect=(900, 900), density_map=face.astype(np.float32))

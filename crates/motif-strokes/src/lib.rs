@@ -414,7 +414,8 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let target_edges = layout
         .graph
         .edges()
-        .filter_map(|(a, b)| (kept[a] && kept[b]).then(|| (output_index[a], output_index[b])))
+        .filter(|&(a, b)| kept[a] && kept[b])
+        .map(|(a, b)| (output_index[a], output_index[b]))
         .collect();
     let stages_ms = timer.finish();
     let matched_elements = synthesized.iter().filter(|element| element.matched).count();

@@ -7,7 +7,7 @@
 //! lines with their half widths. Two footprints overlap when their shapes intersect or their inked
 //! lines come closer than the sum of their half widths.
 
-use geo::{Coord, Distance, Euclidean, Intersects, LineString, Polygon as GeoPolygon};
+use geo::{Coord, Intersects, LineString, Polygon as GeoPolygon};
 use motif_core::Point;
 use rstar::{AABB, RTree, RTreeObject};
 
@@ -76,11 +76,52 @@ impl Footprint {
             return true;
         }
         self.lines.iter().any(|(a, half_a)| {
-            other.lines.iter().any(|(b, half_b)| {
-                a.intersects(b) || (half_a + half_b > 0.0 && Euclidean.distance(a, b) < half_a + half_b)
-            })
+            other
+                .lines
+                .iter()
+                .any(|(b, half_b)| a.intersects(b) || (half_a + half_b > 0.0 && lines_within(a, b, half_a + half_b)))
         })
     }
+}
+
+/// Squared distance from `p` to the segment `a`–`b`.
+fn point_segment_squared(p: Coord<f64>, a: Coord<f64>, b: Coord<f64>) -> f64 {
+    let (dx, dy) = (b.x - a.x, b.y - a.y);
+    let length_squared = dx * dx + dy * dy;
+    let t = if length_squared > 0.0 {
+        (((p.x - a.x) * dx + (p.y - a.y) * dy) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (ex, ey) = (a.x + t * dx - p.x, a.y + t * dy - p.y);
+    ex * ex + ey * ey
+}
+
+/// True when two lines that do not cross come closer than `reach`. Squared distances with plain
+/// arithmetic (no square roots or `hypot`), so the decision has the same bits natively and in
+/// WebAssembly; `geo`'s distances go through the platform's `hypot`.
+fn lines_within(a: &LineString<f64>, b: &LineString<f64>, reach: f64) -> bool {
+    let reach_squared = reach * reach;
+    let segments = |line: &LineString<f64>| -> Vec<(Coord<f64>, Coord<f64>)> {
+        if line.0.len() == 1 { vec![(line.0[0], line.0[0])] } else { line.0.windows(2).map(|w| (w[0], w[1])).collect() }
+    };
+    let (first, second) = (segments(a), segments(b));
+    first.iter().any(|&(p, q)| {
+        second.iter().any(|&(r, s)| {
+            // Bounds apart by more than the reach cannot come within it.
+            if p.x.min(q.x) - r.x.max(s.x) > reach
+                || r.x.min(s.x) - p.x.max(q.x) > reach
+                || p.y.min(q.y) - r.y.max(s.y) > reach
+                || r.y.min(s.y) - p.y.max(q.y) > reach
+            {
+                return false;
+            }
+            point_segment_squared(p, r, s) < reach_squared
+                || point_segment_squared(q, r, s) < reach_squared
+                || point_segment_squared(r, p, q) < reach_squared
+                || point_segment_squared(s, p, q) < reach_squared
+        })
+    })
 }
 
 /// A footprint's bounds in an R-tree, with its index.

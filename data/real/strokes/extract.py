@@ -5,24 +5,26 @@ greyscale photograph out of scikit-image's astronaut picture.
     python3 extract.py --list                  # prints "NAME PACKAGE PATH" for every source
     python3 extract.py NAME SOURCE OUT_DIR     # writes OUT_DIR/<NAME>.svg (or the photo's PNG)
 
-Every SVG case below (a) flattens the source drawing with svgflat.py (transforms applied, arcs
-and quadratics as cubics, paint resolved and inherited, gradients replaced by their middle stop,
-clip paths, masks, filters and text dropped), (b) splits compound paths into one path per outer
-subpath (holes stay with their outline), (c) keeps the paths that pass the case's selection and
-lie inside its window (or, for the one `clip` case, cuts them at the window's edge), and
-(d) writes them in drawing order, translated so that the window's corner is the origin, with
-coordinates rounded to 0.01. Nothing is drawn, moved or recoloured.
+Every SVG case below (a) reads the source drawing with the `svgelements` package (styles resolved
+and inherited, transforms applied, shapes turned into paths; `drawing()` below turns arcs and
+quadratics into cubics and resolves group opacity; clip paths, masks, filters and text are
+dropped), (b) splits compound paths into one path per outer subpath (holes stay with their
+outline), (c) keeps the paths that pass the case's selection and lie inside its window (or, for
+the one `clip` case, cuts them at the window's edge), and (d) writes them in drawing order,
+translated so that the window's corner is the origin, with coordinates rounded to 0.01. Nothing
+is drawn, moved or recoloured.
 
-SVG cases need only the Python 3 standard library; the photo needs Pillow.
+SVG cases need the `svgelements` package; the photo needs Pillow.
 """
 
 import math
 import os
+import re
 import sys
+import xml.etree.ElementTree as ET
 
 sys.dont_write_bytecode = True  # no __pycache__ in the corpus folder
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import svgflat  # noqa: E402
+import svgelements as se  # noqa: E402
 
 OC = "usr/share/openclipart/svg/"
 
@@ -137,6 +139,257 @@ PHOTOS = {
         box=(130, 10, 330, 210),
         note="Eileen Collins' face and hair, 200 × 200 px at the original resolution"),
 }
+
+
+# ---------------------------------------------------------------------------------------------
+# Reading a drawing with svgelements. A mark is one rendered shape (or, after split_compound, one
+# outer subpath of it with its holes): absolute subpaths {"start": p, "segs": [("L", p) or
+# ("C", c1, c2, p), ...], "closed": bool} in the root's user units, and its resolved paint.
+
+class Mark:
+    def __init__(self, subs, style):
+        self.subs = subs
+        self.style = style
+
+    def points(self, steps=8):
+        """A polyline approximation of every subpath (for boxes and clipping)."""
+        out = []
+        for s in self.subs:
+            pts = [s["start"]]
+            p = s["start"]
+            for seg in s["segs"]:
+                if seg[0] == "L":
+                    pts.append(seg[1])
+                else:
+                    c1, c2, q = seg[1], seg[2], seg[3]
+                    for i in range(1, steps + 1):
+                        t = i / steps
+                        u = 1 - t
+                        pts.append((u ** 3 * p[0] + 3 * u * u * t * c1[0] + 3 * u * t * t * c2[0] + t ** 3 * q[0],
+                                    u ** 3 * p[1] + 3 * u * u * t * c1[1] + 3 * u * t * t * c2[1] + t ** 3 * q[1]))
+                p = seg[-1]
+            out.append(pts)
+        return out
+
+    def bbox(self):
+        pts = [p for sub in self.points() for p in sub]
+        if not pts:
+            return None
+        xs = [p[0] for p in pts]
+        ys = [p[1] for p in pts]
+        return (min(xs), min(ys), max(xs), max(ys))
+
+
+def xy(p):
+    return (float(p[0]), float(p[1]))
+
+
+def subpaths(path):
+    """svgelements' segments (transform applied) → subpaths of lines and cubics. Arcs become one
+    cubic per quarter turn (or part of one), quadratics their exact cubics."""
+    subs = []
+    cur = None
+    for seg in path:
+        if isinstance(seg, se.Move):
+            cur = {"start": xy(seg.end), "segs": [], "closed": False}
+            subs.append(cur)
+            continue
+        if isinstance(seg, se.Close):
+            if cur is not None:
+                cur["closed"] = True
+            continue
+        if cur is None or cur["closed"]:  # drawing on after a close starts a new subpath
+            cur = {"start": xy(seg.start), "segs": [], "closed": False}
+            subs.append(cur)
+        if isinstance(seg, se.Line):
+            cur["segs"].append(("L", xy(seg.end)))
+        elif isinstance(seg, se.CubicBezier):
+            cur["segs"].append(("C", xy(seg.control1), xy(seg.control2), xy(seg.end)))
+        elif isinstance(seg, se.QuadraticBezier):
+            p0, q, p = xy(seg.start), xy(seg.control), xy(seg.end)
+            cur["segs"].append(("C", (p0[0] + 2 / 3 * (q[0] - p0[0]), p0[1] + 2 / 3 * (q[1] - p0[1])),
+                                (p[0] + 2 / 3 * (q[0] - p[0]), p[1] + 2 / 3 * (q[1] - p[1])), p))
+        elif isinstance(seg, se.Arc):
+            if seg.start == seg.end:
+                continue
+            n = max(1, math.ceil(abs(seg.sweep) / (math.pi / 2) - 1e-9))
+            for c in seg.as_cubic_curves(n):
+                cur["segs"].append(("C", xy(c.control1), xy(c.control2), xy(c.end)))
+        else:
+            raise ValueError("unexpected path segment %r" % seg)
+    return [s for s in subs if s["segs"] or s["closed"]]
+
+
+def number(value):
+    return se.Length(value).value() if value not in (None, "", "none") else 0.0
+
+
+def paint(shape, opacity):
+    """The shape's paint: colours as '#rrggbb' or 'none', opacities (group opacity included),
+    widths and dashes scaled by the shape's transform."""
+    v = shape.values
+    scale = math.sqrt(abs(se.Matrix(v.get("transform", "")).determinant))
+    st = {}
+    for key, colour in (("fill", shape.fill), ("stroke", shape.stroke)):
+        raw = str(v.get(key, "")).strip()
+        if raw.startswith("url("):
+            st[key] = raw  # a gradient or pattern: no plain colour (fails every colour test)
+        else:
+            st[key] = colour.hexrgb if colour is not None and colour.value is not None else "none"
+        st[key + "-opacity"] = float(v.get(key + "-opacity", 1)) * opacity
+    st["stroke-width"] = shape.stroke_width if shape.stroke_width is not None else 0.0
+    # Paint that draws nothing is no paint.
+    if st["stroke-width"] <= 0 or st["stroke-opacity"] <= 0:
+        st["stroke"] = "none"
+    if st["fill-opacity"] <= 0:
+        st["fill"] = "none"
+    dash = str(v.get("stroke-dasharray", "none")).strip()
+    dashes = [number(x) * scale for x in re.split(r"[\s,]+", dash) if x] if dash != "none" else []
+    st["stroke-dasharray"] = dashes if any(dashes) else None
+    st["stroke-dashoffset"] = number(v.get("stroke-dashoffset")) * scale
+    for key, default in (("fill-rule", "nonzero"), ("stroke-linecap", "butt"),
+                         ("stroke-linejoin", "miter")):
+        st[key] = str(v.get(key, default)).strip()
+    return st
+
+
+def drawing(source):
+    """The rendered shapes of an SVG file in drawing order, as marks."""
+    marks = []
+
+    def walk(node, opacity):
+        for child in node:
+            if not isinstance(child, (se.Group, se.Use, se.Shape)):
+                continue  # text, images, unknown elements
+            own = child.values.get(se.SVG_STRUCT_ATTRIB, {}).get("opacity", 1)
+            op = opacity * float(own)
+            if isinstance(child, se.Shape):
+                if child.values.get("visibility") in ("hidden", "collapse"):
+                    continue
+                subs = subpaths(abs(se.Path(child)))
+                if subs:
+                    marks.append(Mark(subs, paint(child, op)))
+            else:
+                walk(child, op)
+
+    svg = se.SVG.parse(source, reify=True)
+    walk(svg, float(svg.values.get(se.SVG_STRUCT_ATTRIB, {}).get("opacity", 1)))
+    return marks
+
+
+def metadata(source):
+    """Title and creator of the drawing's RDF metadata (cc:Work)."""
+    md = {}
+    for work in ET.parse(source).getroot().iter():
+        if work.tag.split("}")[-1] != "Work":
+            continue
+        for ch in work:
+            n = ch.tag.split("}")[-1]
+            if n == "title" and (ch.text or "").strip():
+                md["title"] = ch.text.strip()
+            if n in ("creator", "publisher"):
+                for t in ch.iter():
+                    if t.tag.split("}")[-1] == "title" and (t.text or "").strip():
+                        md.setdefault(n, t.text.strip())
+    return md
+
+
+def split_compound(shape):
+    """Splits a path of several subpaths into one mark per outer subpath, each keeping the
+    subpaths that lie inside its box (the holes of a filled shape, the inner lines of a glyph)."""
+    if len(shape.subs) < 2:
+        return [shape]
+    boxes = []
+    for pts in shape.points():
+        xs = [p[0] for p in pts]
+        ys = [p[1] for p in pts]
+        boxes.append((min(xs), min(ys), max(xs), max(ys)))
+    parent = list(range(len(shape.subs)))
+    area = [(b[2] - b[0]) * (b[3] - b[1]) for b in boxes]
+    for i, b in enumerate(boxes):
+        best = None
+        for j, c in enumerate(boxes):
+            if j != i and area[j] > area[i] and c[0] <= b[0] and c[1] <= b[1] and c[2] >= b[2] and c[3] >= b[3]:
+                if best is None or area[j] < area[best]:
+                    best = j
+        if best is not None:
+            parent[i] = best
+
+    def root(i):
+        seen = 0
+        while parent[i] != i and seen < len(parent):
+            i = parent[i]
+            seen += 1
+        return i
+    groups = {}
+    for i in range(len(shape.subs)):
+        groups.setdefault(root(i), []).append(i)
+    return [Mark([shape.subs[i] for i in sorted(g)], shape.style) for _, g in sorted(groups.items())]
+
+
+# ---------------------------------------------------------------------------------------------
+# Writing: plain <path> elements with explicit paint.
+
+def fmt(x, digits=2):
+    s = "%.*f" % (digits, x)
+    if "." in s:
+        s = s.rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def path_data(subs, dx=0.0, dy=0.0):
+    parts = []
+    for s in subs:
+        p = lambda q: fmt(q[0] - dx) + "," + fmt(q[1] - dy)
+        parts.append("M" + p(s["start"]))
+        last = None
+        for seg in s["segs"]:
+            if seg[0] == "L":
+                parts.append(("" if last == "L" else "L") + p(seg[1]))
+            else:
+                parts.append(("" if last == "C" else "C") + " ".join(p(q) for q in seg[1:]))
+            last = seg[0]
+        if s["closed"]:
+            parts.append("Z")
+    return " ".join(parts)
+
+
+def path_element(shape, dx, dy, subs):
+    st = shape.style
+    for key in ("fill", "stroke"):
+        if st[key].startswith("url("):
+            raise ValueError("a kept path is painted with %s, not a plain colour" % st[key])
+    attrs = ['d="%s"' % path_data(subs, dx, dy), 'fill="%s"' % st["fill"]]
+    if st["fill"] != "none":
+        if st["fill-opacity"] < 0.999:
+            attrs.append('fill-opacity="%s"' % fmt(st["fill-opacity"]))
+        if st["fill-rule"] == "evenodd":
+            attrs.append('fill-rule="evenodd"')
+    attrs.append('stroke="%s"' % st["stroke"])
+    if st["stroke"] != "none":
+        attrs.append('stroke-width="%s"' % fmt(st["stroke-width"]))
+        if st["stroke-opacity"] < 0.999:
+            attrs.append('stroke-opacity="%s"' % fmt(st["stroke-opacity"]))
+        if st["stroke-dasharray"]:
+            attrs.append('stroke-dasharray="%s"' % ",".join(fmt(v) for v in st["stroke-dasharray"]))
+            if st["stroke-dashoffset"]:
+                attrs.append('stroke-dashoffset="%s"' % fmt(st["stroke-dashoffset"]))
+        if st["stroke-linecap"] != "butt":
+            attrs.append('stroke-linecap="%s"' % st["stroke-linecap"])
+        if st["stroke-linejoin"] != "miter":
+            attrs.append('stroke-linejoin="%s"' % st["stroke-linejoin"])
+    return "<path " + " ".join(attrs) + "/>"
+
+
+def write_svg(path, width, height, elements, comment):
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             '<svg xmlns="http://www.w3.org/2000/svg" width="%s" height="%s" viewBox="0 0 %s %s">'
+             % (fmt(width), fmt(height), fmt(width), fmt(height)),
+             "<!-- %s -->" % comment.replace("--", "-")]
+    lines += elements
+    lines.append("</svg>")
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -287,13 +540,12 @@ def containment_groups(boxes):
 
 def extract_svg(name, source, out_dir):
     case = CASES[name]
-    drawing = svgflat.Drawing(source)
     w = case["window"]
     parts = []
-    for shape in drawing.shapes:
+    for shape in drawing(source):
         if shape.style["fill"] == "none" and shape.style["stroke"] == "none":
             continue
-        for part in svgflat.split_compound(shape):
+        for part in split_compound(shape):
             b = part.bbox()
             if b is not None and all(t(part, b) for t in case["tests"]):
                 parts.append((part, b))
@@ -313,14 +565,14 @@ def extract_svg(name, source, out_dir):
             subs = clip_shape(part, w)
             if not subs:
                 continue
-        elements.append(svgflat.path_element(part, w[0], w[1], subs=subs))
+        elements.append(path_element(part, w[0], w[1], subs))
     count = len(elements)
-    md = drawing.metadata
+    md = metadata(source)
     comment = "%s: from openclipart-svg %s (%s%s), public domain; %s" % (
         name, case["source"][len(OC):], md.get("title", "untitled"),
         ", " + md["creator"] if md.get("creator") else "", case["note"])
     out = os.path.join(out_dir, name + ".svg")
-    svgflat.write_svg(out, w[2] - w[0], w[3] - w[1], elements, comment)
+    write_svg(out, w[2] - w[0], w[3] - w[1], elements, comment)
     print("%s: %d paths, %d bytes" % (out, count, os.path.getsize(out)))
 
 
