@@ -62,10 +62,11 @@ pub(crate) fn forbidden_samples(
                     continue;
                 }
                 for p in sample_points(x, y, samples_per_axis) {
-                    if let Some(c) = crate::repeat::interpolate(triangle, p) {
-                        if c.x >= quad.start && c.x <= quad.end {
-                            points.push(Vec2::new(along_scale * (c.x - quad.start), scale * (half - c.y)));
-                        }
+                    if let Some(c) = crate::repeat::interpolate(triangle, p)
+                        && c.x >= quad.start
+                        && c.x <= quad.end
+                    {
+                        points.push(Vec2::new(along_scale * (c.x - quad.start), scale * (half - c.y)));
                     }
                 }
             }

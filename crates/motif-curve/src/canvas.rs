@@ -37,15 +37,15 @@ pub(crate) fn canvas_geometry(
     let bounds = motif_core::geometry::bounds_of(&[top, bottom].concat());
     let (width, height, shift) = match (avoidance, params.canvas) {
         (Some(map), canvas) => {
-            if let Canvas::Size { width, height } = canvas {
-                if (width, height) != (map.width(), map.height()) {
-                    return Err(InvalidParameter::new(
-                        "avoid",
-                        format!("{}×{}", map.width(), map.height()),
-                        format!("the avoidance map must have the canvas size {width}×{height}"),
-                    )
-                    .into());
-                }
+            if let Canvas::Size { width, height } = canvas
+                && (width, height) != (map.width(), map.height())
+            {
+                return Err(InvalidParameter::new(
+                    "avoid",
+                    format!("{}×{}", map.width(), map.height()),
+                    format!("the avoidance map must have the canvas size {width}×{height}"),
+                )
+                .into());
             }
             (map.width(), map.height(), Vec2::ZERO)
         }

@@ -163,11 +163,11 @@ pub(crate) fn solve_closed(
                 break;
             }
             starts_tried += 1;
-            if let Some((cost, path)) = pinned_cycle(&context, rows, start, backward.as_deref(), best_cost, &mut work) {
-                if cost < best_cost {
-                    best_cost = cost;
-                    best_path = path;
-                }
+            if let Some((cost, path)) = pinned_cycle(&context, rows, start, backward.as_deref(), best_cost, &mut work)
+                && cost < best_cost
+            {
+                best_cost = cost;
+                best_path = path;
             }
         }
         certified = Some(proven);

@@ -325,7 +325,7 @@ mod tests {
         assert!(copy.exemplar_coverage > 0.9, "{copy:?}");
         let noise = RgbaImage::from_fn(96, 32, |x, y| {
             let v = ((x * 7919 + y * 104_729) % 251) as u8;
-            [v, v / 3, 255 - v, if v % 2 == 0 { 255 } else { 0 }]
+            [v, v / 3, 255 - v, if v.is_multiple_of(2) { 255 } else { 0 }]
         });
         let garbage = patch_fidelity(&exemplar, &noise, &top, &bottom, 1.0);
         assert!(garbage.mean_distance > 0.1, "{garbage:?}");

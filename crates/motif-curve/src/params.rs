@@ -336,14 +336,14 @@ impl Params {
                 "piece-length × scale must be at least 1 exemplar pixel (a piece copies whole columns)",
             ));
         }
-        if let Canvas::Size { width, height } = params.canvas {
-            if width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE {
-                return Err(InvalidParameter::new(
-                    "canvas",
-                    format!("{width}×{height}"),
-                    format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
-                ));
-            }
+        if let Canvas::Size { width, height } = params.canvas
+            && (width == 0 || height == 0 || width > MAX_CANVAS_SIDE || height > MAX_CANVAS_SIDE)
+        {
+            return Err(InvalidParameter::new(
+                "canvas",
+                format!("{width}×{height}"),
+                format!("each side must be between 1 and {MAX_CANVAS_SIDE}"),
+            ));
         }
         if let Canvas::Fit { margin } = params.canvas {
             check_range("margin", margin, 0.0, 4096.0)?;

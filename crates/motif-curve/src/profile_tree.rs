@@ -278,10 +278,10 @@ pub(crate) fn exact_row(
                 }
                 // The predecessor of the previous position (similar u, low P) and the cheapest
                 // predecessor overall.
-                if let Some(&(_, previous_best)) = out.last() {
-                    if previous_best != u32::MAX {
-                        consider(position_of[previous_best as usize] as usize, &mut best, &mut counters);
-                    }
+                if let Some(&(_, previous_best)) = out.last()
+                    && previous_best != u32::MAX
+                {
+                    consider(position_of[previous_best as usize] as usize, &mut best, &mut counters);
                 }
                 consider(position_of[cheapest] as usize, &mut best, &mut counters);
                 // Branch and bound; the stack holds (alpha bound of the box distance, node).

@@ -85,10 +85,11 @@ impl Rule {
         let mut pairs = 0;
         for i in 0..count {
             for j in i + 1..count {
-                if let (Some(a), Some(b)) = (positions[i], positions[j]) {
-                    if within(i, j, count, self.radius, self.closed) && same_window(a, b, self.reach) {
-                        pairs += 1;
-                    }
+                if let (Some(a), Some(b)) = (positions[i], positions[j])
+                    && within(i, j, count, self.radius, self.closed)
+                    && same_window(a, b, self.reach)
+                {
+                    pairs += 1;
                 }
             }
         }

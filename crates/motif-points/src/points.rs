@@ -53,7 +53,7 @@ impl PointSet {
         if self.dimension != 2 && self.dimension != 3 {
             return Err(problem(PointSetProblem::Dimension(self.dimension)));
         }
-        if self.positions.len() % self.dimension != 0 {
+        if !self.positions.len().is_multiple_of(self.dimension) {
             return Err(problem(PointSetProblem::RaggedCoordinates));
         }
         let n = self.len();

@@ -130,7 +130,7 @@ impl Params {
         check_count("max-pixels", self.max_pixels, 1, usize::MAX)?;
         motif_core::memory::check_max_memory(self.max_memory)?;
         check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
-        if self.patch_size < 3 || self.patch_size % 2 == 0 || self.patch_size > 31 {
+        if self.patch_size < 3 || self.patch_size.is_multiple_of(2) || self.patch_size > 31 {
             return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd and between 3 and 31").into());
         }
         check_range("stop-threshold", f64::from(self.stop_threshold), 0.0, 1020.0)?;

@@ -375,7 +375,7 @@ fn patchmatch_tiles_with<const ROW: usize, const SMALL: bool>(
     converged: Option<&[bool]>,
 ) {
     let width = level.target_width;
-    let forward = iteration % 2 == 0;
+    let forward = iteration.is_multiple_of(2);
     let (x0, x1) = level.valid_x();
     let (y0, y1) = level.valid_y();
     field

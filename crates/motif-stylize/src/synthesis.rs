@@ -94,11 +94,11 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let fit = fitting_levels(&[source_size, problem.target_size], 2 * patch + 1);
         if params.pyramid_levels == 0 { fit } else { params.pyramid_levels.min(fit) }
     };
-    if let Some((composed, domain)) = &problem.composition {
-        if !domain.iter().any(|&inside| inside) {
-            // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
-            return Ok(composition_only(composed, source_size, patch, start));
-        }
+    if let Some((composed, domain)) = &problem.composition
+        && !domain.iter().any(|&inside| inside)
+    {
+        // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
+        return Ok(composition_only(composed, source_size, patch, start));
     }
     let style_pyramid = problem.style.gaussian_pyramid(levels, 1);
     let source_guide_pyramid = problem.source_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));

@@ -73,7 +73,7 @@ fn hex(colour: &[f32]) -> String {
 
 fn parse_hex(text: &str) -> anyhow::Result<Vec<f32>> {
     let digits = text.trim_start_matches('#');
-    if digits.is_empty() || digits.len() % 2 != 0 || digits.len() > 8 {
+    if digits.is_empty() || !digits.len().is_multiple_of(2) || digits.len() > 8 {
         bail!("`{text}` is not a #rrggbb colour");
     }
     (0..digits.len() / 2)
