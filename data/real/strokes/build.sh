@@ -5,11 +5,13 @@
 #   Debian packages openclipart-svg (the drawings) and python3-skimage (the photograph); they
 #   need not be installed: if they are not, this script fetches them with `apt-get download`
 #   into a temporary folder and unpacks them there.
-#   Python 3: the SVG files need only its standard library; the photograph needs Pillow, e.g.
-#     python3 -m venv /tmp/venv && /tmp/venv/bin/pip install Pillow
+#   Python 3 with the pip packages svgelements (reads the SVG drawings) and Pillow (the
+#   photograph), e.g.
+#     python3 -m venv /tmp/venv && /tmp/venv/bin/pip install svgelements==1.9.6 Pillow==13.0.0
 #     PYTHON=/tmp/venv/bin/python bash data/real/strokes/build.sh
-# Made with openclipart-svg 1:0.18+dfsg-19, python3-skimage 0.19.3-8, Python 3.11 and
-# Pillow 13.0.0. Other Pillow (zlib) versions may change the PNG's bytes, not its pixels.
+# Made with openclipart-svg 1:0.18+dfsg-19, python3-skimage 0.19.3-8, Python 3.11.7,
+# svgelements 1.9.6 and Pillow 13.0.0. Other Pillow (zlib) versions may change the PNG's bytes,
+# not its pixels.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

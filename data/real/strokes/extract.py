@@ -5,18 +5,20 @@ greyscale photograph out of scikit-image's astronaut picture.
     python3 extract.py --list                  # prints "NAME PACKAGE PATH" for every source
     python3 extract.py NAME SOURCE OUT_DIR     # writes OUT_DIR/<NAME>.svg (or the photo's PNG)
 
-Every SVG case below (a) reads the source drawing with the `svgelements` package (styles resolved
-and inherited, transforms applied, shapes turned into paths; `drawing()` below turns arcs and
-quadratics into cubics and resolves group opacity; clip paths, masks, filters and text are
-dropped), (b) splits compound paths into one path per outer subpath (holes stay with their
-outline), (c) keeps the paths that pass the case's selection and lie inside its window (or, for
-the one `clip` case, cuts them at the window's edge), and (d) writes them in drawing order,
-translated so that the window's corner is the origin, with coordinates rounded to 0.01. Nothing
-is drawn, moved or recoloured.
+Every SVG case below (a) reads the source drawing with the `svgelements` package (styles
+resolved and inherited, transforms applied, every shape as path segments; `drawing()` turns arcs
+and quadratics into cubics and multiplies group opacities; clip paths, masks, filters and text
+are dropped; gradient paint is no plain colour, so it fails every colour test, and a kept path
+may not have one), (b) splits compound paths into one path per outer subpath (holes stay with
+their outline), (c) keeps the paths that pass the case's selection and lie inside its window
+(or, for the one `clip` case, cuts them at the window's edge), and (d) writes them in drawing
+order, translated so that the window's corner is the origin, with coordinates rounded to 0.01.
+Nothing is drawn, moved or recoloured.
 
 SVG cases need the `svgelements` package; the photo needs Pillow.
 """
 
+import io
 import math
 import os
 import re
@@ -184,12 +186,29 @@ def xy(p):
     return (float(p[0]), float(p[1]))
 
 
-def subpaths(path):
-    """svgelements' segments (transform applied) → subpaths of lines and cubics. Arcs become one
-    cubic per quarter turn (or part of one), quadratics their exact cubics."""
+def segments(shape):
+    """The shape's segments in the root's user units. Arcs become cubics (one per quarter turn or
+    part of one) before the transform is applied, so that a skewed or stretched ellipse becomes
+    the exact image of its circle's cubics."""
+    m = shape.transform
+    for seg in shape.segments(transformed=False):
+        if isinstance(seg, se.Arc):
+            if seg.start == seg.end:
+                continue
+            n = max(1, math.ceil(abs(seg.sweep) / (math.pi / 2) - 1e-9))
+            pieces = list(seg.as_cubic_curves(n))
+        else:
+            pieces = [seg]
+        for piece in pieces:
+            yield piece * m
+
+
+def subpaths(shape):
+    """The shape's outline as subpaths of lines and cubics (quadratics become their exact
+    cubics)."""
     subs = []
     cur = None
-    for seg in path:
+    for seg in segments(shape):
         if isinstance(seg, se.Move):
             cur = {"start": xy(seg.end), "segs": [], "closed": False}
             subs.append(cur)
@@ -209,12 +228,6 @@ def subpaths(path):
             p0, q, p = xy(seg.start), xy(seg.control), xy(seg.end)
             cur["segs"].append(("C", (p0[0] + 2 / 3 * (q[0] - p0[0]), p0[1] + 2 / 3 * (q[1] - p0[1])),
                                 (p[0] + 2 / 3 * (q[0] - p[0]), p[1] + 2 / 3 * (q[1] - p[1])), p))
-        elif isinstance(seg, se.Arc):
-            if seg.start == seg.end:
-                continue
-            n = max(1, math.ceil(abs(seg.sweep) / (math.pi / 2) - 1e-9))
-            for c in seg.as_cubic_curves(n):
-                cur["segs"].append(("C", xy(c.control1), xy(c.control2), xy(c.end)))
         else:
             raise ValueError("unexpected path segment %r" % seg)
     return [s for s in subs if s["segs"] or s["closed"]]
@@ -228,7 +241,7 @@ def paint(shape, opacity):
     """The shape's paint: colours as '#rrggbb' or 'none', opacities (group opacity included),
     widths and dashes scaled by the shape's transform."""
     v = shape.values
-    scale = math.sqrt(abs(se.Matrix(v.get("transform", "")).determinant))
+    scale = math.sqrt(abs(shape.transform.determinant))
     st = {}
     for key, colour in (("fill", shape.fill), ("stroke", shape.stroke)):
         raw = str(v.get(key, "")).strip()
@@ -237,7 +250,7 @@ def paint(shape, opacity):
         else:
             st[key] = colour.hexrgb if colour is not None and colour.value is not None else "none"
         st[key + "-opacity"] = float(v.get(key + "-opacity", 1)) * opacity
-    st["stroke-width"] = shape.stroke_width if shape.stroke_width is not None else 0.0
+    st["stroke-width"] = shape.implicit_stroke_width or 0.0
     # Paint that draws nothing is no paint.
     if st["stroke-width"] <= 0 or st["stroke-opacity"] <= 0:
         st["stroke"] = "none"
@@ -253,8 +266,8 @@ def paint(shape, opacity):
     return st
 
 
-def drawing(source):
-    """The rendered shapes of an SVG file in drawing order, as marks."""
+def drawing(tree):
+    """The rendered shapes of an SVG document (an ElementTree) in drawing order, as marks."""
     marks = []
 
     def walk(node, opacity):
@@ -266,21 +279,28 @@ def drawing(source):
             if isinstance(child, se.Shape):
                 if child.values.get("visibility") in ("hidden", "collapse"):
                     continue
-                subs = subpaths(abs(se.Path(child)))
+                subs = subpaths(child)
                 if subs:
                     marks.append(Mark(subs, paint(child, op)))
             else:
                 walk(child, op)
 
-    svg = se.SVG.parse(source, reify=True)
+    # svgelements keeps the document's namespace declarations among the attributes it inherits,
+    # so Adobe Illustrator's xmlns:x="http://ns.adobe.com/Extensibility/1.0/" reads as x="1" on
+    # the root and shifts the whole drawing by one unit; ElementTree's rewrite names every
+    # prefix ns0, ns1, … (or rdf, dc, …), which no SVG attribute is called.
+    buf = io.BytesIO()
+    tree.write(buf, encoding="utf-8")
+    buf.seek(0)
+    svg = se.SVG.parse(buf, reify=False)
     walk(svg, float(svg.values.get(se.SVG_STRUCT_ATTRIB, {}).get("opacity", 1)))
     return marks
 
 
-def metadata(source):
+def metadata(tree):
     """Title and creator of the drawing's RDF metadata (cc:Work)."""
     md = {}
-    for work in ET.parse(source).getroot().iter():
+    for work in tree.getroot().iter():
         if work.tag.split("}")[-1] != "Work":
             continue
         for ch in work:
@@ -541,8 +561,9 @@ def containment_groups(boxes):
 def extract_svg(name, source, out_dir):
     case = CASES[name]
     w = case["window"]
+    tree = ET.parse(source)
     parts = []
-    for shape in drawing(source):
+    for shape in drawing(tree):
         if shape.style["fill"] == "none" and shape.style["stroke"] == "none":
             continue
         for part in split_compound(shape):
@@ -567,7 +588,7 @@ def extract_svg(name, source, out_dir):
                 continue
         elements.append(path_element(part, w[0], w[1], subs))
     count = len(elements)
-    md = metadata(source)
+    md = metadata(tree)
     comment = "%s: from openclipart-svg %s (%s%s), public domain; %s" % (
         name, case["source"][len(OC):], md.get("title", "untitled"),
         ", " + md["creator"] if md.get("creator") else "", case["note"])
