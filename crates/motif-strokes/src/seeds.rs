@@ -76,6 +76,12 @@ struct CellScratch {
     swap: Vec<Point>,
 }
 
+/// The largest oversampling of the stratified start for a density map (largest over mean density).
+const MAX_OVERSAMPLING: f64 = 256.0;
+
+/// The most cells the stratified start's grid may have; past it, random points are drawn instead.
+const MAX_GRID_CELLS: f64 = 16_000_000.0;
+
 /// `count` random points inside `region`, stratified: one jittered point per cell of a grid whose
 /// cells hold one point on average; cells outside the region give none, and the shortfall or
 /// excess is made up with uniform random points or by dropping random ones. A stratified start
@@ -87,7 +93,9 @@ struct CellScratch {
 fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, streams: &SeedStreams) -> Vec<Point> {
     let bounds = region.bounds();
     let fallback = if region.contains(region.centroid()) { region.centroid() } else { interior_point(region) };
-    let oversampling = if density.maps.is_uniform() { 1.0 } else { density.largest / density.mean };
+    // Capped, so that a map dark in one pixel only does not ask for a grid of billions of cells.
+    let oversampling =
+        if density.maps.is_uniform() { 1.0 } else { (density.largest / density.mean).min(MAX_OVERSAMPLING) };
     let cell = (region.area() / (count.max(1) as f64 * oversampling)).sqrt().max(1e-12);
     let keep = |p: Point, stream: &mut motif_core::random::Stream| {
         density.maps.is_uniform() || stream.random::<f64>() * density.largest < density.maps.density_at(p)
@@ -97,7 +105,8 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
     let mut points = Vec::with_capacity(count + count / 4);
     // Guard against a region whose bounds dwarf its area (a thin diagonal sliver): past this many
     // cells, fall back to plain uniform sampling.
-    if columns.saturating_mul(rows) as f64 <= 16.0 * oversampling * count.max(1) as f64 + 16.0 {
+    let cells = columns.saturating_mul(rows) as f64;
+    if cells <= 16.0 * oversampling * count.max(1) as f64 + 16.0 && cells <= MAX_GRID_CELLS {
         for row in 0..rows {
             for column in 0..columns {
                 let mut stream = streams.stream("seed grid", (row * columns + column) as u64);
@@ -117,6 +126,9 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
         points.swap_remove(index);
     }
     let mut extra = 0u64;
+    // Tries left for the whole shortfall; once spent, points follow the region only (Lloyd still
+    // weights them by the density).
+    let mut budget = 64 * count + 100_000;
     while points.len() < count {
         let mut stream = streams.stream("seed extra", extra);
         extra += 1;
@@ -126,7 +138,8 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
                 bounds.x0 + stream.random::<f64>() * bounds.width(),
                 bounds.y0 + stream.random::<f64>() * bounds.height(),
             );
-            if region.contains(p) && keep(p, &mut stream) {
+            budget = budget.saturating_sub(1);
+            if region.contains(p) && (budget == 0 || keep(p, &mut stream)) {
                 found = Some(p);
                 break;
             }
