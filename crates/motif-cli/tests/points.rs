@@ -310,3 +310,94 @@ fn windows_out_of_scale_and_huge_domains_are_refused_before_any_work() {
     ));
     assert!(stderr.contains("element ids are whole numbers"), "{stderr}");
 }
+
+#[test]
+fn painted_rotation_and_scale_maps_guide_a_2d_synthesis() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let ramp = motif_core::RgbaImage::from_fn(60, 50, |x, _| {
+        let v = (x * 255 / 59) as u8;
+        [v, v, v, 255]
+    });
+    motif_io::write_png(&dir.path().join("ramp.png"), &ramp).unwrap();
+    let square = motif_core::RgbaImage::from_fn(10, 10, |_, _| [128, 128, 128, 255]);
+    motif_io::write_png(&dir.path().join("square.png"), &square).unwrap();
+    std::fs::write(dir.path().join("text.png"), "not an image").unwrap();
+    let base = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.2", "--domain", "box:6,5"];
+    let run = |extra: &[&str]| motif(dir.path(), &[&base[..], extra].concat());
+    ok(&run(&["--rotation-map", "ramp.png", "--scale-map", "ramp.png", "--out", "out.csv"]));
+    assert!(dir.path().join("out.csv").exists());
+    let error = error_of(&run(&["--scale-map", "square.png", "--out", "never.csv"]));
+    assert!(error.contains("--scale-map square.png") && error.contains("aspect"), "{error}");
+    let error = error_of(&run(&["--rotation-map", "text.png", "--out", "never.csv"]));
+    assert!(error.contains("text.png"), "{error}");
+    let error = error_of(&run(&["--rotation-map", "missing.png", "--out", "never.csv"]));
+    assert!(error.contains("missing.png"), "{error}");
+    assert!(!dir.path().join("never.csv").exists());
+}
+
+#[test]
+fn a_rotation_map_turns_the_pattern_where_it_is_grey() {
+    // Rows of points 1 apart along x, 3 apart along y: nearest neighbours lie along x.
+    let mut rows = String::from("x,y\n");
+    for y in 0..6 {
+        for x in 0..24 {
+            let jitter = ((x * 7 + y * 13) % 10) as f64 * 0.01;
+            let _ = writeln!(rows, "{},{}", x as f64 + jitter, 3.0 * y as f64 + jitter);
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("rows.csv"), rows).unwrap();
+    // Left half black (0°), right half grey 64 (about 90°).
+    let map = motif_core::RgbaImage::from_fn(40, 20, |x, _| if x < 20 { [0, 0, 0, 255] } else { [64, 64, 64, 255] });
+    motif_io::write_png(&dir.path().join("turn.png"), &map).unwrap();
+    ok(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "rows.csv",
+            "--neighbourhood",
+            "4",
+            "--domain",
+            "box:40,20",
+            "--rotation-map",
+            "turn.png",
+            "--out",
+            "out.csv",
+        ],
+    ));
+    let text = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
+    let points: Vec<(f64, f64)> = text
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let mut values = line.split(',').map(|v| v.parse::<f64>().unwrap());
+            (values.next().unwrap(), values.next().unwrap())
+        })
+        .collect();
+    // Share of points whose nearest neighbour lies more along x than along y, per half (away
+    // from the middle and the borders).
+    let along_x = |x0: f64, x1: f64| {
+        let chosen: Vec<&(f64, f64)> =
+            points.iter().filter(|p| p.0 > x0 && p.0 < x1 && p.1 > 3.0 && p.1 < 17.0).collect();
+        let horizontal = chosen
+            .iter()
+            .filter(|p| {
+                let nearest = points
+                    .iter()
+                    .filter(|q| *q != **p)
+                    .min_by(|a, b| {
+                        let da = (a.0 - p.0).powi(2) + (a.1 - p.1).powi(2);
+                        let db = (b.0 - p.0).powi(2) + (b.1 - p.1).powi(2);
+                        da.total_cmp(&db)
+                    })
+                    .unwrap();
+                (nearest.0 - p.0).abs() > (nearest.1 - p.1).abs()
+            })
+            .count();
+        horizontal as f64 / chosen.len().max(1) as f64
+    };
+    let (left, right) = (along_x(3.0, 16.0), along_x(24.0, 37.0));
+    assert!(left > 0.8 && right < 0.2, "left {left}, right {right}");
+}

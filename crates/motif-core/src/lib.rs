@@ -32,6 +32,7 @@ pub mod memory;
 pub mod progress;
 pub mod random;
 pub mod timing;
+mod tone;
 pub mod vector;
 
 pub use error::InvalidParameter;
@@ -43,3 +44,4 @@ pub use memory::{DEFAULT_MAX_MEMORY, MemoryEstimate, TooMuchMemory};
 pub use progress::{NoProgress, Progress};
 pub use random::SeedStreams;
 pub use timing::StageTimer;
+pub use tone::ToneMap;

@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use motif_core::error::number;
-use motif_core::{InvalidParameter, Progress};
+use motif_core::{InvalidParameter, Progress, ToneMap};
 use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, Window};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
@@ -276,8 +276,22 @@ impl PointsJob {
         integer_columns: &[String],
         progress: &mut dyn Progress,
     ) -> Result<PointsRun, JobError> {
-        let params = self.params(exemplar.dimension, integer_columns)?;
-        let input = Input { exemplar, domain: self.engine_domain()?, existing };
+        self.run_with_maps(exemplar, existing, integer_columns, &FieldMaps::default(), progress)
+    }
+
+    /// [`PointsJob::run`] with rotation and scale maps painted as images (2D), see [`FieldMaps`].
+    pub fn run_with_maps(
+        &self,
+        exemplar: PointSet,
+        existing: Option<PointSet>,
+        integer_columns: &[String],
+        maps: &FieldMaps,
+        progress: &mut dyn Progress,
+    ) -> Result<PointsRun, JobError> {
+        let mut params = self.params(exemplar.dimension, integer_columns)?;
+        let domain = self.engine_domain()?;
+        maps.apply(&domain, exemplar.dimension, &mut params)?;
+        let input = Input { exemplar, domain, existing };
         let output = motif_points::synthesize(&input, &params, progress)?;
         let figures = figures(&output.report);
         Ok(PointsRun { output, figures })
@@ -315,6 +329,28 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn painted_maps_become_rotation_and_scale_fields() {
+        // Left half black, right half white (rotation), left black right mid-grey (scale).
+        let rotation = ToneMap::from_grey(4, 2, vec![0.0, 0.0, 0.25, 0.25, 0.0, 0.0, 0.25, 0.25]).unwrap();
+        let scale = ToneMap::from_grey(4, 2, vec![0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.5, 0.5]).unwrap();
+        let job = PointsJob { rotation: Some(10.0), ..PointsJob::new(2.0, DomainSpec::Box(vec![40.0, 20.0])) };
+        let mut params = job.params(2, &[]).unwrap();
+        let maps = FieldMaps { rotation: Some(rotation), scale: Some(scale) };
+        maps.apply(&job.engine_domain().unwrap(), 2, &mut params).unwrap();
+        assert!((params.rotation.value(&[2.0, 5.0], 0.0) - 10.0).abs() < 1e-9);
+        assert!((params.rotation.value(&[38.0, 5.0], 0.0) - 100.0).abs() < 1e-9);
+        assert!((params.scale.value(&[2.0, 5.0], 1.0) - 0.5).abs() < 1e-9);
+        assert!((params.scale.value(&[38.0, 5.0], 1.0) - 1.0).abs() < 1e-9);
+        // Maps need a 2D domain of their aspect ratio.
+        let square = FieldMaps { scale: Some(ToneMap::from_grey(3, 3, vec![0.5; 9]).unwrap()), rotation: None };
+        let error = square.apply(&job.engine_domain().unwrap(), 2, &mut params).unwrap_err().to_string();
+        assert!(error.contains("scale-map") && error.contains("aspect"), "{error}");
+        let job3 = PointsJob::new(2.0, DomainSpec::Box(vec![4.0, 4.0, 4.0]));
+        let error = maps.apply(&job3.engine_domain().unwrap(), 3, &mut params).unwrap_err().to_string();
+        assert!(error.contains("2D"), "{error}");
+    }
 
     #[test]
     fn descriptions_use_the_flag_names_and_the_engine_defaults() {
@@ -374,5 +410,68 @@ mod tests {
         assert!(job.params(2, &[]).unwrap_err().to_string().contains("exemplar-window"));
         let job = PointsJob { patch_size: Some(0.0), ..PointsJob::new(1.0, DomainSpec::Box(vec![4.0, 4.0])) };
         assert!(job.params(2, &[]).unwrap_err().to_string().contains("patch-size"));
+    }
+}
+
+/// Rotation and scale fields painted as grey images (2D domains), stretched over the domain's
+/// bounding box (same aspect ratio within 2 %). Encoding: rotation `360° × grey` (black and white
+/// 0°, mid-grey 180°; counter-clockwise, added to the uniform `rotation`), scale `2^(2·grey − 1)`
+/// (black 0.5, mid-grey 1, white 2; times the uniform `scale`).
+#[derive(Debug, Clone, Default)]
+pub struct FieldMaps {
+    /// The rotation map (`--rotation-map`).
+    pub rotation: Option<ToneMap>,
+    /// The scale map (`--scale-map`).
+    pub scale: Option<ToneMap>,
+}
+
+impl FieldMaps {
+    /// Turns the maps into the parameters' rotation and scale fields over `domain`.
+    pub fn apply(&self, domain: &Domain, dimension: usize, params: &mut Params) -> Result<(), JobError> {
+        if self.rotation.is_none() && self.scale.is_none() {
+            return Ok(());
+        }
+        let name = if self.rotation.is_some() { "rotation-map" } else { "scale-map" };
+        if dimension != 2 {
+            return Err(InvalidParameter::new(
+                name,
+                format!("with a {dimension}D exemplar"),
+                "a 2D exemplar and domain",
+            )
+            .into());
+        }
+        let bounds = domain_bounds(domain);
+        let uniform = |field: &Field, default: f64| field.value(&[0.0, 0.0], default);
+        if let Some(map) = &self.rotation {
+            map.check_fits(&bounds, "rotation-map")?;
+            let (map, base) = (map.clone(), uniform(&params.rotation, 0.0));
+            params.rotation = Field::Custom(std::sync::Arc::new(move |p: &[f64]| {
+                base + 360.0 * map.grey_at(&bounds, motif_core::Point::new(p[0], p[1]))
+            }));
+        }
+        if let Some(map) = &self.scale {
+            map.check_fits(&bounds, "scale-map")?;
+            let (map, base) = (map.clone(), uniform(&params.scale, 1.0));
+            params.scale = Field::Custom(std::sync::Arc::new(move |p: &[f64]| {
+                let grey = map.grey_at(&bounds, motif_core::Point::new(p[0], p[1]));
+                base * motif_core::math::powf(2.0, 2.0 * grey - 1.0)
+            }));
+        }
+        Ok(())
+    }
+}
+
+/// The bounding box of a 2D domain (a stroke's polyline widened by half its width).
+fn domain_bounds(domain: &Domain) -> motif_core::kurbo::Rect {
+    use motif_core::kurbo::Rect;
+    match domain {
+        Domain::Box { min, max } => Rect::new(min[0], min[1], max[0], max[1]),
+        Domain::Polygon(polygon) => polygon.bounds(),
+        Domain::Stroke(stroke) => {
+            let half = 0.5 * stroke.width;
+            let points: Vec<motif_core::Point> =
+                stroke.points.iter().map(|p| motif_core::Point::new(p[0], p[1])).collect();
+            motif_core::geometry::bounds_of(&points).inflate(half, half)
+        }
     }
 }

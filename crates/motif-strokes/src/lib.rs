@@ -81,7 +81,7 @@ pub use attributes::{Appearance, Attributes};
 pub use cluster::{ClusteringComparison, Element, compare_clustering};
 pub use element::OrientedBox;
 pub use error::Error;
-pub use maps::ToneMap;
+pub use motif_core::ToneMap;
 pub use params::{FitPoints, Params, Thresholds};
 pub use placement::OverlapFigures;
 pub use stroke::Stroke;

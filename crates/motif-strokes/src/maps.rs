@@ -15,94 +15,8 @@
 //! result, as in Secord's weighted Voronoi stippling), so cells are weighted by the squared target
 //! density to make the element density proportional to the map's darkness.
 
-use motif_core::{InvalidParameter, Point, RgbaImage};
-
 use kurbo::Rect;
-
-/// The aspect ratio mismatch accepted between a map and the target's bounding box, besides one
-/// pixel of rounding.
-const ASPECT_TOLERANCE: f64 = 0.02;
-
-/// A grey image stretched over a rectangle of the drawing.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ToneMap {
-    width: usize,
-    height: usize,
-    grey: Vec<f32>,
-}
-
-impl ToneMap {
-    /// The map of an image: each pixel's luma in [0, 1] over white.
-    pub fn from_image(image: &RgbaImage) -> ToneMap {
-        let grey = image
-            .pixels()
-            .iter()
-            .map(|p| {
-                let luma = (0.2126 * f32::from(p[0]) + 0.7152 * f32::from(p[1]) + 0.0722 * f32::from(p[2])) / 255.0;
-                let alpha = f32::from(p[3]) / 255.0;
-                alpha * luma + (1.0 - alpha)
-            })
-            .collect();
-        ToneMap { width: image.width(), height: image.height(), grey }
-    }
-
-    /// A map from grey values in [0, 1], row by row from the top.
-    pub fn from_grey(width: usize, height: usize, grey: Vec<f32>) -> Result<ToneMap, InvalidParameter> {
-        if width == 0 || height == 0 || grey.len() != width * height {
-            return Err(InvalidParameter::new(
-                "tone map",
-                format!("{width}×{height} with {} values", grey.len()),
-                "needs width × height grey values and a size of at least 1×1",
-            ));
-        }
-        if grey.iter().any(|g| !(0.0..=1.0).contains(g)) {
-            return Err(InvalidParameter::new("tone map", "a value outside [0, 1]", "grey values in [0, 1]"));
-        }
-        Ok(ToneMap { width, height, grey })
-    }
-
-    /// Width and height in pixels.
-    pub fn size(&self) -> (usize, usize) {
-        (self.width, self.height)
-    }
-
-    /// Checks that the map can be stretched over `bounds` without distorting it: the aspect ratios
-    /// agree within 2 % (and a pixel of rounding). `name` is the flag or field named in the error.
-    pub fn check_fits(&self, bounds: &Rect, name: &str) -> Result<(), InvalidParameter> {
-        let map = self.width as f64 / self.height as f64;
-        let target = bounds.width() / bounds.height();
-        let rounding = 1.0 / self.width.min(self.height) as f64;
-        if !target.is_finite() || (map / target - 1.0).abs() > ASPECT_TOLERANCE + rounding {
-            return Err(InvalidParameter::new(
-                name,
-                format!("a {}×{} px image (aspect {:.3})", self.width, self.height, map),
-                format!(
-                    "an image with the target's aspect ratio {:.3} ({} × {} drawing units); it is stretched over the target's bounding box",
-                    target,
-                    motif_core::error::number(bounds.width()),
-                    motif_core::error::number(bounds.height())
-                ),
-            ));
-        }
-        Ok(())
-    }
-
-    /// The grey value at `point` of a drawing whose bounding box `bounds` the map covers
-    /// (bilinear, clamped at the edges).
-    pub fn grey_at(&self, bounds: &Rect, point: Point) -> f64 {
-        let u = (point.x - bounds.x0) / bounds.width().max(1e-300) * self.width as f64 - 0.5;
-        let v = (point.y - bounds.y0) / bounds.height().max(1e-300) * self.height as f64 - 0.5;
-        let clamp = |t: f64, size: usize| t.clamp(0.0, (size - 1) as f64);
-        let (u, v) = (clamp(u, self.width), clamp(v, self.height));
-        let (x0, y0) = (u.floor() as usize, v.floor() as usize);
-        let (x1, y1) = ((x0 + 1).min(self.width - 1), (y0 + 1).min(self.height - 1));
-        let (fx, fy) = (u - x0 as f64, v - y0 as f64);
-        let at = |x: usize, y: usize| f64::from(self.grey[y * self.width + x]);
-        let top = at(x0, y0) * (1.0 - fx) + at(x1, y0) * fx;
-        let bottom = at(x0, y1) * (1.0 - fx) + at(x1, y1) * fx;
-        top * (1.0 - fy) + bottom * fy
-    }
-}
+use motif_core::{Point, ToneMap};
 
 /// The density and scale maps of a synthesis, placed over the target's bounding box.
 #[derive(Debug, Clone, PartialEq)]
@@ -156,14 +70,5 @@ mod tests {
         assert!((scales.scale_at(Point::new(1.0, 1.0)) - 0.5).abs() < 1e-12);
         assert!((scales.scale_at(Point::new(19.0, 1.0)) - 2.0).abs() < 1e-12);
         assert!((scales.density_at(Point::new(1.0, 1.0)) - 4.0).abs() < 1e-12);
-    }
-
-    #[test]
-    fn maps_must_have_the_target_aspect() {
-        let map = ToneMap::from_grey(200, 100, vec![0.5; 20_000]).unwrap();
-        assert!(map.check_fits(&Rect::new(0.0, 0.0, 400.0, 200.0), "density-map").is_ok());
-        let error = map.check_fits(&Rect::new(0.0, 0.0, 400.0, 400.0), "density-map").unwrap_err();
-        assert!(error.to_string().contains("density-map") && error.to_string().contains("200×100"), "{error}");
-        assert!(ToneMap::from_grey(2, 2, vec![0.5; 3]).is_err());
     }
 }

@@ -12,7 +12,7 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
-use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
+use motif_jobs::points::{DomainSpec, FieldMaps, PointsJob, StrokeSpec};
 use motif_points::{Initialization, PointSet, Refinement, Window};
 use serde_json::Value;
 
@@ -117,6 +117,14 @@ pub struct PointsArgs {
     /// Uniform scale field (> 0), multiplied with --scale-along.
     #[arg(long, value_name = "S", default_value_t = 1.0)]
     pub scale: f64,
+    /// Rotation field painted as an image (2D), stretched over the domain's bounding box (same
+    /// aspect ratio): 360° × grey (black and white 0°, mid-grey 180°), added to --rotation.
+    #[arg(long, value_name = "MAP.png")]
+    pub rotation_map: Option<PathBuf>,
+    /// Scale field painted as an image (2D), over the domain's bounding box: 2^(2·grey − 1)
+    /// (black 0.5, mid-grey 1, white 2), times --scale.
+    #[arg(long, value_name = "MAP.png")]
+    pub scale_map: Option<PathBuf>,
     /// Quadrature grid spacing in units of σ (0.25–4; 2 = the exemplar's point spacing). Default:
     /// 2, or an eighth of the neighbourhood when that is coarser (wide windows)
     #[arg(long, value_name = "H")]
@@ -318,6 +326,8 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     // A domain that is not a box is a region SVG, an input too.
     let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(Path::new);
     inputs.extend(region);
+    inputs.extend(args.rotation_map.as_deref());
+    inputs.extend(args.scale_map.as_deref());
     context.check_output(&args.out, &inputs)?;
     if let Some(preview) = &args.preview {
         context.check_output(preview, &inputs)?;
@@ -329,7 +339,20 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     let job = PointsJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed)? };
     let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
-    let run = job.run(exemplar, existing, &integer, context.progress())?;
+    let read_map = |file: &Option<PathBuf>| -> anyhow::Result<Option<motif_core::ToneMap>> {
+        file.as_deref().map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image(file)?))).transpose()
+    };
+    let maps = FieldMaps { rotation: read_map(&args.rotation_map)?, scale: read_map(&args.scale_map)? };
+    // Checked here so that the error names the files.
+    let mut checked = job.params(exemplar.dimension, &integer)?;
+    maps.apply(&job.engine_domain()?, exemplar.dimension, &mut checked).with_context(|| {
+        let files: Vec<String> = [("--rotation-map", &args.rotation_map), ("--scale-map", &args.scale_map)]
+            .iter()
+            .filter_map(|(flag, file)| file.as_ref().map(|f| format!("{flag} {}", f.display())))
+            .collect();
+        files.join(", ")
+    })?;
+    let run = job.run_with_maps(exemplar, existing, &integer, &maps, context.progress())?;
     let output = run.output;
     let format = match PointFormat::from_path(&args.out) {
         PointFormat::PlyBinary if args.ascii => PointFormat::PlyAscii,
