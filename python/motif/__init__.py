@@ -234,6 +234,8 @@ def points(
     brush_width: Optional[float] = None,
     scale_along: Optional[Tuple[float, float]] = None,
     existing: Optional[PointData] = None,
+    rotation_map: Optional[ArrayLike] = None,
+    scale_map: Optional[ArrayLike] = None,
     seed: int = 1,
     threads: Optional[int] = None,
     report: bool = False,
@@ -246,7 +248,9 @@ def points(
     ``domain=(W, H)`` or ``(W, H, D)`` (a box from the origin), ``domain=polygon`` (an (M, 2)
     outline), or ``along=polyline, brush_width=w`` (a brush stroke). ``neighbourhood`` is δ.
     Options: ``sigma``, ``init``, ``refine``, ``patch_size``, ``exemplar_window``,
-    ``attribute_weight``, ``max_points``, ``max_memory``, ... Returns a dict of 1-D arrays.
+    ``attribute_weight``, ``max_points``, ``max_memory``, ... ``rotation_map`` and ``scale_map``
+    (2D) are uint8 images over the domain's bounding box, as ``--rotation-map`` (360° × grey) and
+    ``--scale-map`` (2^(2·grey − 1)). Returns a dict of 1-D arrays.
     """
     if along is not None:
         if brush_width is None:
@@ -262,7 +266,8 @@ def points(
         spec = {"box": shape.tolist()} if shape.ndim == 1 else {"region": shape.tolist()}
     job = _job("points", {"neighbourhood": float(neighbourhood), "domain": spec, "seed": _seed(seed)}, options)
     existing_columns = None if existing is None else _columns(existing, "existing")
-    columns, report_text = _motif.points(_columns(exemplar, "exemplar"), job, existing_columns, threads)
+    maps = [None if m is None else _image(m, name) for m, name in ((rotation_map, "rotation_map"), (scale_map, "scale_map"))]
+    columns, report_text = _motif.points(_columns(exemplar, "exemplar"), job, existing_columns, threads, *maps)
     result = {name: (values.astype(np.int64) if integer else values) for name, integer, values in columns}
     return _finish(result, report_text, report)
 

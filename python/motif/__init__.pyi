@@ -44,14 +44,16 @@ def curve(
 def points(
     exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
-    existing: Optional[PointData] = ..., seed: int = ..., threads: Optional[int] = ...,
+    existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
+    scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
     report: Literal[False] = ..., **options: Any
 ) -> Dict[str, np.ndarray]: ...
 @overload
 def points(
     exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
-    existing: Optional[PointData] = ..., seed: int = ..., threads: Optional[int] = ...,
+    existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
+    scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
     report: Literal[True], **options: Any
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 @overload

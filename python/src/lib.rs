@@ -219,16 +219,27 @@ fn columns_of(columns: &PyColumns<'_>) -> Vec<Column> {
         .collect()
 }
 
+/// An optional uint8 image array as a grey map (`what` names it in errors).
+fn tone_map(array: Option<PyReadonlyArrayDyn<'_, u8>>, what: &str) -> PyResult<Option<motif_core::ToneMap>> {
+    array.map(|array| image_of(&array, what).map(|image| motif_core::ToneMap::from_image(&image))).transpose()
+}
+
 /// `motif points`: (columns `[(name, integer, values)]`, report JSON).
 #[pyfunction]
-#[pyo3(signature = (exemplar, job, existing=None, threads=None))]
+#[pyo3(signature = (exemplar, job, existing=None, threads=None, rotation_map=None, scale_map=None))]
 fn points<'py>(
     py: Python<'py>,
     exemplar: PyColumns<'py>,
     job: &str,
     existing: Option<PyColumns<'py>>,
     threads: Option<usize>,
+    rotation_map: Option<PyReadonlyArrayDyn<'_, u8>>,
+    scale_map: Option<PyReadonlyArrayDyn<'_, u8>>,
 ) -> PyResult<(OutColumns<'py>, String)> {
+    let maps = motif_jobs::points::FieldMaps {
+        rotation: tone_map(rotation_map, "rotation_map")?,
+        scale: tone_map(scale_map, "scale_map")?,
+    };
     let job: motif_jobs::points::PointsJob = description(job)?;
     let (exemplar, integer) = motif_jobs::columns::point_set(&columns_of(&exemplar), "exemplar").map_err(job_error)?;
     let existing = match &existing {
@@ -237,7 +248,8 @@ fn points<'py>(
         }
         None => None,
     };
-    let run = detached(py, threads, || job.run(exemplar, existing, &integer, &mut NoProgress))?.map_err(job_error)?;
+    let run = detached(py, threads, || job.run_with_maps(exemplar, existing, &integer, &maps, &mut NoProgress))?
+        .map_err(job_error)?;
     let columns = motif_jobs::columns::columns(&run.output.points, &integer)
         .into_iter()
         .map(|column| (column.name, column.integer, PyArray1::from_vec(py, column.values)))
@@ -260,11 +272,6 @@ fn strokes(
     density_map: Option<PyReadonlyArrayDyn<'_, u8>>,
     scale_map: Option<PyReadonlyArrayDyn<'_, u8>>,
 ) -> PyResult<(String, String)> {
-    let tone_map = |array: Option<PyReadonlyArrayDyn<'_, u8>>,
-                    what: &str|
-     -> PyResult<Option<motif_strokes::ToneMap>> {
-        array.map(|array| image_of(&array, what).map(|image| motif_strokes::ToneMap::from_image(&image))).transpose()
-    };
     let density_map = tone_map(density_map, "density_map")?;
     let scale_map = tone_map(scale_map, "scale_map")?;
     let job: motif_jobs::strokes::StrokesJob = description(job)?;

@@ -155,3 +155,16 @@ def test_strokes_maps_equal_the_cli(cli, tmp_path):
         motif.strokes(reference, 5, rect=(900, 450), density_map=face)
     with pytest.raises(ValueError, match="uint8"):
         motif.strokes(reference, 5, rect=(900, 900), density_map=face.astype(np.float32))
+
+
+def test_points_maps_equal_the_cli(cli, tmp_path):
+    ramp = np.tile(np.linspace(0, 255, 96).astype(np.uint8), (100, 1))
+    motif.write_png(str(tmp_path / "ramp.png"), ramp)
+    cli(["points", "--exemplar", str(POINTS / "swedishpines.csv"), "--neighbourhood", "32", "--domain", "box:192,200",
+         "--exemplar-window", "96,100", "--rotation-map", "ramp.png", "--out", "out.csv"], tmp_path)
+    pines = motif.read_points(str(POINTS / "swedishpines.csv"))
+    result = motif.points(pines, 32, domain=(192, 200), exemplar_window=[96, 100], rotation_map=ramp)
+    expected = motif.read_points(str(tmp_path / "out.csv"))
+    assert np.array_equal(result["x"], expected["x"]) and np.array_equal(result["y"], expected["y"])
+    with pytest.raises(ValueError, match="rotation-map"):
+        motif.points(pines, 32, domain=(400, 200), exemplar_window=[96, 100], rotation_map=ramp)
