@@ -165,6 +165,7 @@ def test_points_maps_equal_the_cli(cli, tmp_path):
     pines = motif.read_points(str(POINTS / "swedishpines.csv"))
     result = motif.points(pines, 32, domain=(192, 200), exemplar_window=[96, 100], rotation_map=ramp)
     expected = motif.read_points(str(tmp_path / "out.csv"))
-    assert np.array_equal(result["x"], expected["x"]) and np.array_equal(result["y"], expected["y"])
+    assert np.allclose(result["x"], expected["x"], rtol=0, atol=1e-9)
+    assert np.allclose(result["y"], expected["y"], rtol=0, atol=1e-9)
     with pytest.raises(ValueError, match="rotation-map"):
         motif.points(pines, 32, domain=(400, 200), exemplar_window=[96, 100], rotation_map=ramp)
