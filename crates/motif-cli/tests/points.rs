@@ -401,3 +401,51 @@ fn a_rotation_map_turns_the_pattern_where_it_is_grey() {
     let (left, right) = (along_x(3.0, 16.0), along_x(24.0, 37.0));
     assert!(left > 0.8 && right < 0.2, "left {left}, right {right}");
 }
+
+/// An octahedron |x − 4| + |y − 4| + |z − 4| ≤ 4 as OBJ, without its last face when `open`.
+fn octahedron_obj(open: bool) -> String {
+    let mut text = String::from("v 8 4 4\nv 0 4 4\nv 4 8 4\nv 4 0 4\nv 4 4 8\nv 4 4 0\n");
+    let faces = [(1, 3, 5), (3, 2, 5), (2, 4, 5), (4, 1, 5), (3, 1, 6), (2, 3, 6), (4, 2, 6), (1, 4, 6)];
+    for (a, b, c) in &faces[..if open { 7 } else { 8 }] {
+        let _ = writeln!(text, "f {a} {b} {c}");
+    }
+    text
+}
+
+#[test]
+fn a_volume_domain_fills_a_closed_mesh_and_refuses_open_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cloud = String::from("x,y,z\n");
+    for z in 0..6 {
+        for y in 0..6 {
+            for x in 0..6 {
+                let jitter = ((x * 7 + y * 13 + z * 5) % 10) as f64 * 0.01;
+                let _ = writeln!(cloud, "{},{},{}", x as f64 + jitter, y as f64 - jitter, z as f64 + jitter);
+            }
+        }
+    }
+    std::fs::write(dir.path().join("cloud.csv"), cloud).unwrap();
+    std::fs::write(dir.path().join("solid.obj"), octahedron_obj(false)).unwrap();
+    std::fs::write(dir.path().join("open.obj"), octahedron_obj(true)).unwrap();
+    let base = ["points", "--exemplar", "cloud.csv", "--neighbourhood", "1.2"];
+    let run = |extra: &[&str]| motif(dir.path(), &[&base[..], extra].concat());
+    ok(&run(&["--domain", "volume:solid.obj", "--out", "out.csv", "--report", "report.json"]));
+    let text = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
+    let points: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').take(3).map(|v| v.parse().unwrap()).collect()).collect();
+    // One point per unit volume: the octahedron holds 4/3 × 4³ ≈ 85.
+    assert!((points.len() as f64 - 85.3).abs() < 13.0, "{} points", points.len());
+    for p in &points {
+        let l1: f64 = p.iter().map(|v| (v - 4.0).abs()).sum();
+        assert!(l1 <= 4.0 + 1e-9, "{p:?} outside");
+    }
+    let error = error_of(&run(&["--domain", "volume:open.obj", "--out", "never.csv"]));
+    assert!(error.contains("open") && error.contains("closed surface"), "{error}");
+    let error = error_of(&run(&["--domain", "volume:missing.obj", "--out", "never.csv"]));
+    assert!(error.contains("missing.obj"), "{error}");
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let flat = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.2", "--domain", "volume:solid.obj"];
+    let error = error_of(&motif(dir.path(), &[&flat[..], &["--out", "never.csv"]].concat()));
+    assert!(error.contains("3D exemplar"), "{error}");
+    assert!(!dir.path().join("never.csv").exists());
+}

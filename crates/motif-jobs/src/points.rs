@@ -23,6 +23,9 @@ pub enum DomainSpec {
     Region(Vec<[f64; 2]>),
     /// A brush stroke: a polyline (2D or 3D) filled over `width`.
     Stroke(StrokeSpec),
+    /// The inside of a closed triangle mesh (3D): `{"vertices": [[x, y, z], ...], "triangles":
+    /// [[i, j, k], ...]}`.
+    Volume(motif_core::TriangleMesh),
 }
 
 /// A brush stroke of [`DomainSpec::Stroke`].
@@ -206,6 +209,7 @@ impl PointsJob {
                     scale_end,
                 })
             }
+            DomainSpec::Volume(mesh) => Domain::Volume(mesh.clone()),
         })
     }
 
@@ -473,5 +477,7 @@ fn domain_bounds(domain: &Domain) -> motif_core::kurbo::Rect {
                 stroke.points.iter().map(|p| motif_core::Point::new(p[0], p[1])).collect();
             motif_core::geometry::bounds_of(&points).inflate(half, half)
         }
+        // 3D: refused before the bounds are asked for.
+        Domain::Volume(_) => Rect::ZERO,
     }
 }

@@ -6,6 +6,7 @@ use motif_core::Point;
 use crate::error::{DomainProblem, Error};
 use crate::linear::{self, Matrix, Vector};
 use crate::params::{Domain, Field};
+use crate::volume::MeshVolume;
 
 /// A domain prepared for dimension `D`.
 #[derive(Debug, Clone)]
@@ -16,6 +17,8 @@ pub enum Region<const D: usize> {
     Polygon(motif_core::Polygon),
     /// Tube of radius `radius` around a polyline, with cumulative arc lengths.
     Stroke { vertices: Vec<Vector<D>>, cumulative: Vec<f64>, radius: f64, scale_start: f64, scale_end: f64 },
+    /// The inside of a closed mesh (3D).
+    Volume(Box<MeshVolume>),
 }
 
 /// Where along a stroke a position projects.
@@ -88,7 +91,18 @@ impl<const D: usize> Region<D> {
                     scale_end: stroke.scale_end,
                 })
             }
+            Domain::Volume(mesh) => {
+                if D != 3 {
+                    return Err(DomainProblem::VolumeIn2d);
+                }
+                Ok(Region::Volume(Box::new(MeshVolume::new(mesh)?)))
+            }
         }
+    }
+
+    /// A position of this (3D) region as a 3-vector.
+    fn point3(p: &Vector<D>) -> [f64; 3] {
+        std::array::from_fn(|i| if i < D { p[i] } else { 0.0 })
     }
 
     /// The bounding box.
@@ -109,6 +123,10 @@ impl<const D: usize> Region<D> {
                     high[a] += radius;
                 }
                 (low, high)
+            }
+            Region::Volume(volume) => {
+                let (low, high) = volume.bounds();
+                (std::array::from_fn(|i| low[i]), std::array::from_fn(|i| high[i]))
             }
         }
     }
@@ -142,6 +160,7 @@ impl<const D: usize> Region<D> {
             Region::Box { min, max } => Some((0..D).map(|a| (max[a] - min[a]).max(0.0)).product()),
             Region::Polygon(polygon) => Some(polygon.area()),
             Region::Stroke { .. } => None,
+            Region::Volume(volume) => Some(volume.volume()),
         }
     }
 
@@ -163,6 +182,10 @@ impl<const D: usize> Region<D> {
             Region::Stroke { vertices, cumulative, radius, .. } => {
                 (Self::project(vertices, cumulative, p).distance - radius).max(0.0)
             }
+            Region::Volume(volume) => {
+                let p = Self::point3(p);
+                if volume.contains(&p) { 0.0 } else { volume.distance_to_surface(&p) }
+            }
         }
     }
 
@@ -177,6 +200,10 @@ impl<const D: usize> Region<D> {
             Region::Stroke { vertices, cumulative, radius, .. } => {
                 (radius - Self::project(vertices, cumulative, p).distance).max(0.0)
             }
+            Region::Volume(volume) => {
+                let p = Self::point3(p);
+                if volume.contains(&p) { volume.distance_to_surface(&p) } else { 0.0 }
+            }
         }
     }
 
@@ -186,6 +213,7 @@ impl<const D: usize> Region<D> {
             Region::Box { min, max } => (0..D).all(|a| p[a] >= min[a] && p[a] <= max[a]),
             Region::Polygon(polygon) => polygon.contains(Point::new(p[0], p[1])),
             Region::Stroke { .. } => self.distance(p) <= 0.0,
+            Region::Volume(volume) => volume.contains(&Self::point3(p)),
         }
     }
 

@@ -182,6 +182,29 @@ pub enum DomainProblem {
     /// A stroke vertex that is NaN or infinite.
     #[error("a stroke vertex is not finite")]
     NonFiniteStrokeVertex,
+    /// A volume domain's mesh without triangles.
+    #[error("the mesh has no triangles")]
+    EmptyMesh,
+    /// A mesh vertex that is NaN or infinite.
+    #[error("mesh vertex {0} is not finite")]
+    NonFiniteMeshVertex(usize),
+    /// A triangle index past the vertices.
+    #[error("mesh triangle {triangle} refers to a vertex past the {vertices} vertices")]
+    MeshIndex {
+        /// The triangle.
+        triangle: usize,
+        /// Vertices in the mesh.
+        vertices: usize,
+    },
+    /// A triangle without area.
+    #[error("mesh triangle {0} is degenerate (no area): remove it or weld the mesh")]
+    DegenerateTriangle(usize),
+    /// A volume mesh with boundary edges.
+    #[error("the mesh is open ({0} edges belong to an odd number of triangles): a volume needs a closed surface")]
+    OpenMesh(usize),
+    /// A volume domain with a 2D exemplar.
+    #[error("a volume domain needs a 3D exemplar")]
+    VolumeIn2d,
     /// A stroke of fewer than two distinct vertices.
     #[error("the stroke needs at least two distinct vertices")]
     ShortStroke,

@@ -93,6 +93,7 @@ mod tests;
 mod tests_attributes;
 #[cfg(test)]
 mod tests_synthesis;
+mod volume;
 
 pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};

@@ -133,6 +133,8 @@ pub enum Domain {
     Polygon(motif_core::Polygon),
     /// A brush stroke; the exemplar's x axis follows the stroke tangent.
     Stroke(Stroke),
+    /// The inside of a closed triangle mesh (3D only).
+    Volume(motif_core::TriangleMesh),
 }
 
 /// Parameters of [`crate::synthesize`]. Defaults follow §7.1 of the paper.

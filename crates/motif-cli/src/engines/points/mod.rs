@@ -31,9 +31,15 @@ pub struct PointsArgs {
     /// the synthesis.
     #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
     pub neighbourhood: f64,
-    /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, or an SVG file whose first
-    /// path's outline is the region (2D).
-    #[arg(long, value_name = "box:W,H[,D]|REGION.svg", required_unless_present = "along", conflicts_with = "along")]
+    /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, an SVG file whose first
+    /// path's outline is the region (2D), or `volume:MESH.obj|ply`, the inside of a closed
+    /// triangle mesh (3D; non-manifold meshes are fine, open ones are refused).
+    #[arg(
+        long,
+        value_name = "box:W,H[,D]|REGION.svg|volume:MESH.obj",
+        required_unless_present = "along",
+        conflicts_with = "along"
+    )]
     pub domain: Option<String>,
     /// Brush stroke: an SVG path (2D; its first subpath) or a JSON polyline `[[x,y(,z)],...]`
     /// (2D or 3D). The exemplar's x axis follows the stroke's tangent.
@@ -272,8 +278,12 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
     } else {
         match args.domain.as_deref() {
             Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
+            Some(spec) if spec.starts_with("volume:") => {
+                let file = Path::new(&spec["volume:".len()..]);
+                DomainSpec::Volume(motif_io::read_mesh(file)?)
+            }
             Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
-            None => bail!("give --domain box:W,H[,D] | REGION.svg, or --along PATH with --brush-width"),
+            None => bail!("give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj, or --along PATH with --brush-width"),
         }
     };
     let attribute_weight = args
@@ -324,7 +334,11 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     inputs.extend(args.along.as_deref());
     // A domain that is not a box is a region SVG, an input too.
-    let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(Path::new);
+    let region = args
+        .domain
+        .as_deref()
+        .filter(|domain| !domain.starts_with("box:"))
+        .map(|domain| Path::new(domain.strip_prefix("volume:").unwrap_or(domain)));
     inputs.extend(region);
     inputs.extend(args.rotation_map.as_deref());
     inputs.extend(args.scale_map.as_deref());

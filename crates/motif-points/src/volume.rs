@@ -1,0 +1,314 @@
+//! Volume domains: the inside of a closed triangle mesh (§6.2, the chair of Figure 1).
+//!
+//! Membership casts a ray along +x and counts the surface crossings (even-odd), which needs no
+//! consistent orientation and holds for closed non-manifold surfaces (every edge shared by an even
+//! number of triangles). A ray through an edge or a vertex is counted once: the crossing test
+//! projects each triangle on the yz-plane and decides with exact orientation signs
+//! (`robust::orient2d`) and a top-left rule, so the triangles around an edge or a vertex never
+//! both, nor neither, claim it. Distances to the surface come from an `rstar` tree of triangles.
+
+use motif_core::TriangleMesh;
+use robust::{Coord, orient2d};
+use rstar::{AABB, PointDistance, RTree, RTreeObject};
+
+use crate::error::DomainProblem;
+
+type Vec3 = [f64; 3];
+
+fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// One triangle in the tree.
+#[derive(Debug, Clone)]
+struct Triangle {
+    corners: [Vec3; 3],
+}
+
+impl RTreeObject for Triangle {
+    type Envelope = AABB<Vec3>;
+    fn envelope(&self) -> Self::Envelope {
+        let [a, b, c] = self.corners;
+        AABB::from_corners(
+            std::array::from_fn(|i| a[i].min(b[i]).min(c[i])),
+            std::array::from_fn(|i| a[i].max(b[i]).max(c[i])),
+        )
+    }
+}
+
+impl PointDistance for Triangle {
+    fn distance_2(&self, point: &Vec3) -> f64 {
+        let closest = closest_point(*point, self.corners);
+        let d = sub(*point, closest);
+        dot(d, d)
+    }
+}
+
+/// The point of triangle `[a, b, c]` closest to `p` (Ericson, Real-Time Collision Detection §5.1.5).
+fn closest_point(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let along =
+        |origin: Vec3, direction: Vec3, t: f64| -> Vec3 { std::array::from_fn(|i| origin[i] + t * direction[i]) };
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = sub(p, b);
+    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return along(a, ab, d1 / (d1 - d3));
+    }
+    let cp = sub(p, c);
+    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return along(a, ac, d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        return along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denominator = 1.0 / (va + vb + vc);
+    let (v, w) = (vb * denominator, vc * denominator);
+    std::array::from_fn(|i| a[i] + ab[i] * v + ac[i] * w)
+}
+
+/// True when the edge `from → to` of a counter-clockwise 2D triangle owns the points on it: a
+/// top edge (horizontal, pointing left) or a left edge (pointing down).
+fn owns_edge(from: Coord<f64>, to: Coord<f64>) -> bool {
+    (from.y == to.y && to.x < from.x) || to.y < from.y
+}
+
+/// Where the ray from `p` along +x meets triangle `corners`, as its x coordinate, when it does
+/// (each point of the yz-plane belongs to exactly one of the triangles sharing an edge or vertex).
+fn ray_crossing(p: Vec3, corners: [Vec3; 3]) -> Option<f64> {
+    let project = |v: Vec3| Coord { x: v[1], y: v[2] };
+    let mut t = corners.map(project);
+    let q = Coord { x: p[1], y: p[2] };
+    let area = orient2d(t[0], t[1], t[2]);
+    if area == 0.0 {
+        // Edge-on to the ray: no transversal crossing.
+        return None;
+    }
+    if area < 0.0 {
+        t.swap(1, 2);
+    }
+    for i in 0..3 {
+        let (from, to) = (t[i], t[(i + 1) % 3]);
+        let side = orient2d(from, to, q);
+        if side < 0.0 || (side == 0.0 && !owns_edge(from, to)) {
+            return None;
+        }
+    }
+    // The plane through the triangle at (y, z) = (p.y, p.z).
+    let [a, b, c] = corners;
+    let normal = cross(sub(b, a), sub(c, a));
+    let x = a[0] - (normal[1] * (p[1] - a[1]) + normal[2] * (p[2] - a[2])) / normal[0];
+    Some(x)
+}
+
+/// The inside of a closed triangle mesh, ready for membership and distance queries.
+#[derive(Debug, Clone)]
+pub struct MeshVolume {
+    tree: RTree<Triangle>,
+    low: Vec3,
+    high: Vec3,
+    volume: f64,
+}
+
+impl MeshVolume {
+    /// Checks the mesh (triangles, finite vertices, no degenerate triangle, closed) and indexes it.
+    pub fn new(mesh: &TriangleMesh) -> Result<MeshVolume, DomainProblem> {
+        if mesh.triangles.is_empty() {
+            return Err(DomainProblem::EmptyMesh);
+        }
+        if let Some(index) = mesh.vertices.iter().position(|v| v.iter().any(|c| !c.is_finite())) {
+            return Err(DomainProblem::NonFiniteMeshVertex(index));
+        }
+        let count = mesh.vertices.len();
+        if let Some(t) = mesh.triangles.iter().position(|t| t.iter().any(|&v| v as usize >= count)) {
+            return Err(DomainProblem::MeshIndex { triangle: t, vertices: count });
+        }
+        let (low, high) = mesh.bounds().ok_or(DomainProblem::EmptyMesh)?;
+        let size = (0..3).map(|a| high[a] - low[a]).fold(0.0, f64::max);
+        if let Some(t) = (0..mesh.triangles.len()).position(|t| {
+            let [a, b, c] = mesh.corners(t);
+            let n = cross(sub(b, a), sub(c, a));
+            // Twice the area, against the mesh's size: a sliver of relative area 1e-12 is a point.
+            dot(n, n).sqrt() <= 1e-12 * size * size
+        }) {
+            return Err(DomainProblem::DegenerateTriangle(t));
+        }
+        let mut edges: Vec<(u32, u32)> = mesh
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |i| (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]))))
+            .collect();
+        edges.sort_unstable();
+        let open = edges.chunk_by(|a, b| a == b).filter(|run| run.len() % 2 == 1).count();
+        if open > 0 {
+            return Err(DomainProblem::OpenMesh(open));
+        }
+        let triangles: Vec<Triangle> =
+            (0..mesh.triangles.len()).map(|t| Triangle { corners: mesh.corners(t) }).collect();
+        // Signed tetrahedra from the origin: the enclosed volume for a consistently oriented mesh.
+        let volume =
+            triangles.iter().map(|t| dot(t.corners[0], cross(t.corners[1], t.corners[2]))).sum::<f64>().abs() / 6.0;
+        Ok(MeshVolume { tree: RTree::bulk_load(triangles), low, high, volume })
+    }
+
+    /// The bounding box.
+    pub fn bounds(&self) -> (Vec3, Vec3) {
+        (self.low, self.high)
+    }
+
+    /// The enclosed volume (from the signed tetrahedra; exact for a consistently oriented mesh).
+    pub fn volume(&self) -> f64 {
+        self.volume
+    }
+
+    /// Whether `p` lies inside (or on) the surface: the number of crossings of the ray from `p`
+    /// along +x is odd.
+    pub fn contains(&self, p: &Vec3) -> bool {
+        if (0..3).any(|a| p[a] < self.low[a] || p[a] > self.high[a]) {
+            return false;
+        }
+        let ray = AABB::from_corners(*p, [self.high[0], p[1], p[2]]);
+        let mut crossings = 0usize;
+        for triangle in self.tree.locate_in_envelope_intersecting(&ray) {
+            match ray_crossing(*p, triangle.corners) {
+                Some(x) if x == p[0] => return true,
+                Some(x) if x > p[0] => crossings += 1,
+                _ => {}
+            }
+        }
+        crossings % 2 == 1
+    }
+
+    /// Distance from `p` to the surface.
+    pub fn distance_to_surface(&self, p: &Vec3) -> f64 {
+        self.tree.nearest_neighbor(p).map_or(f64::INFINITY, |t| t.distance_2(p).sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An axis-aligned cube `[low, low + side]³` as 12 triangles (outward, counter-clockwise).
+    pub fn cube(low: Vec3, side: f64) -> TriangleMesh {
+        let vertices = (0..8).map(|i| std::array::from_fn(|a| low[a] + side * f64::from((i >> a) & 1))).collect();
+        let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+        let triangles = quads.iter().flat_map(|q: &[u32; 4]| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
+        TriangleMesh { vertices, triangles }
+    }
+
+    #[test]
+    fn a_cube_contains_its_inside_whatever_edges_the_ray_grazes() {
+        let volume = MeshVolume::new(&cube([0.0; 3], 2.0)).unwrap();
+        assert!((volume.volume() - 8.0).abs() < 1e-12);
+        // Rays through the middle of faces and along face diagonals (the shared edges of the two
+        // triangles of a face); points on the surface may fall either way.
+        for p in [[1.0, 1.0, 1.0], [0.5, 0.5, 0.5], [1.0, 1.5, 1.5], [0.3, 0.7, 0.7], [1.9, 0.1, 0.1]] {
+            assert!(volume.contains(&p), "{p:?}");
+        }
+        // Outside, with rays grazing the cube's edges and through its vertices.
+        for p in
+            [[-0.5, 1.0, 1.0], [3.0, 1.0, 1.0], [1.0, 2.5, 1.0], [-1.0, 1.0, 1.0], [-1.0, 2.0, 2.0], [-1.0, 0.0, 2.0]]
+        {
+            assert!(!volume.contains(&p), "{p:?}");
+        }
+        assert!((volume.distance_to_surface(&[1.0, 1.0, 0.5]) - 0.5).abs() < 1e-12);
+        assert!((volume.distance_to_surface(&[3.0, 3.0, 1.0]) - 2f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn two_cubes_sharing_an_edge_are_closed_and_non_manifold() {
+        let mut mesh = cube([0.0; 3], 1.0);
+        let other = cube([1.0, 1.0, 0.0], 1.0);
+        let offset = mesh.vertices.len() as u32;
+        mesh.vertices.extend(other.vertices);
+        mesh.triangles.extend(other.triangles.iter().map(|t| t.map(|v| v + offset)));
+        // Weld the shared edge (x = 1, y = 1, z in [0, 1]) so that four faces meet on it.
+        let volume = MeshVolume::new(&mesh).unwrap();
+        assert!((volume.volume() - 2.0).abs() < 1e-12);
+        for p in [[0.5, 0.5, 0.5], [1.5, 1.5, 0.5], [0.5, 0.5, 0.999]] {
+            assert!(volume.contains(&p), "{p:?}");
+        }
+        // Outside, the first two rays along the edge that four faces share.
+        for p in [[-1.0, 1.0, 0.5], [-1.0, 1.0, 0.25], [1.5, 0.5, 0.5], [0.5, 1.5, 0.5], [-1.0, 0.5, 0.5]] {
+            assert!(!volume.contains(&p), "{p:?}");
+        }
+    }
+
+    /// The octahedron |x − c| + |y − c| + |z − c| ≤ r.
+    fn octahedron(c: f64, r: f64) -> TriangleMesh {
+        let vertices = vec![[c + r, c, c], [c - r, c, c], [c, c + r, c], [c, c - r, c], [c, c, c + r], [c, c, c - r]];
+        let mut triangles = Vec::new();
+        for (x, y, z) in [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)] {
+            triangles.push([x, y, z]);
+        }
+        TriangleMesh { vertices, triangles }
+    }
+
+    #[test]
+    fn a_synthesis_fills_a_mesh_volume_and_stays_inside() {
+        use crate::{Domain, Input, Params, PointSet, synthesize};
+        use motif_core::random::Rng;
+        let mut stream = motif_core::SeedStreams::new(3).stream("cloud", 0);
+        let mut positions = Vec::new();
+        for z in 0..6 {
+            for y in 0..6 {
+                for x in 0..6 {
+                    for v in [x, y, z] {
+                        positions.push(v as f64 + 0.1 * (stream.random::<f64>() - 0.5));
+                    }
+                }
+            }
+        }
+        let mesh = octahedron(4.0, 4.0);
+        let region = MeshVolume::new(&mesh).unwrap();
+        assert!((region.volume() - 4.0 / 3.0 * 64.0).abs() < 1e-9);
+        let params = Params { neighbourhood: Some(1.2), shrink: Some(0.7), merge_iterations: 10, ..Params::default() };
+        let input = Input { exemplar: PointSet::new(3, positions), domain: Domain::Volume(mesh), existing: None };
+        let output = synthesize(&input, &params, &mut motif_core::NoProgress).unwrap();
+        let n = output.points.len();
+        assert!((n as f64 - region.volume()).abs() < 0.15 * region.volume(), "{n} points in {}", region.volume());
+        for i in 0..n {
+            let p = output.points.position(i);
+            assert!(region.contains(&[p[0], p[1], p[2]]), "{p:?} outside");
+        }
+    }
+
+    #[test]
+    fn bad_meshes_are_refused() {
+        assert_eq!(MeshVolume::new(&TriangleMesh::default()).unwrap_err(), DomainProblem::EmptyMesh);
+        let mut open = cube([0.0; 3], 1.0);
+        open.triangles.pop();
+        assert_eq!(MeshVolume::new(&open).unwrap_err(), DomainProblem::OpenMesh(3));
+        let mut nan = cube([0.0; 3], 1.0);
+        nan.vertices[3][1] = f64::NAN;
+        assert_eq!(MeshVolume::new(&nan).unwrap_err(), DomainProblem::NonFiniteMeshVertex(3));
+        let mut flat = cube([0.0; 3], 1.0);
+        flat.triangles[4] = [0, 1, 1];
+        assert_eq!(MeshVolume::new(&flat).unwrap_err(), DomainProblem::DegenerateTriangle(4));
+        let mut index = cube([0.0; 3], 1.0);
+        index.triangles[2][0] = 99;
+        assert_eq!(MeshVolume::new(&index).unwrap_err(), DomainProblem::MeshIndex { triangle: 2, vertices: 8 });
+    }
+}
