@@ -265,8 +265,8 @@ fn bad_input_gives_clear_errors() {
     assert!(run("noxy.csv", "1", "box:5,5").contains("x and y columns"));
     assert!(run("grid.csv", "0", "box:5,5").contains("invalid neighbourhood"));
     assert!(run("grid.csv", "-1", "box:5,5").contains("invalid neighbourhood"));
-    assert!(run("grid.csv", "1", "box:0,5").contains("empty domain"));
-    assert!(run("grid.csv", "1", "box:0.1,0.1").contains("empty domain"));
+    assert!(run("grid.csv", "1", "box:0,5").contains("unusable domain"));
+    assert!(run("grid.csv", "1", "box:0.1,0.1").contains("unusable domain"));
     assert!(run("grid.csv", "1", "box:a,5").contains("not a number"));
     assert!(run("missing.csv", "1", "box:5,5").contains("missing.csv"));
     let error = error_of(&motif(
@@ -440,7 +440,7 @@ fn a_volume_domain_fills_a_closed_mesh_and_refuses_open_ones() {
         assert!(l1 <= 4.0 + 1e-9, "{p:?} outside");
     }
     let error = error_of(&run(&["--domain", "volume:open.obj", "--out", "never.csv"]));
-    assert!(error.contains("open") && error.contains("closed surface"), "{error}");
+    assert!(error.contains("open.obj") && error.contains("closed surface"), "{error}");
     let error = error_of(&run(&["--domain", "volume:missing.obj", "--out", "never.csv"]));
     assert!(error.contains("missing.obj"), "{error}");
     std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();

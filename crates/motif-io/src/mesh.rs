@@ -28,7 +28,14 @@ pub fn read_mesh(path: &Path) -> Result<TriangleMesh> {
 }
 
 fn parse_obj(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
-    let options = tobj::LoadOptions { triangulate: true, single_index: false, ..Default::default() };
+    // Point and line records are not faces: left out rather than turned into flat triangles.
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
     // Materials are not needed: a missing .mtl is not an error.
     let (models, _) =
         tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| Err(tobj::LoadError::OpenFileFailed))
@@ -40,15 +47,38 @@ fn parse_obj(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
         if offset + positions.len() / 3 > MAX_ELEMENTS {
             return Err(IoError::format(path, format!("has more than {MAX_ELEMENTS} vertices")));
         }
-        mesh.vertices.extend(positions.chunks_exact(3).map(|p| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]));
+        mesh.vertices.extend(positions.chunks_exact(3).map(|p| [p[0], p[1], p[2]]));
         for face in model.mesh.indices.chunks_exact(3) {
             let index = |i: u32| -> Result<u32> {
                 u32::try_from(offset + i as usize).map_err(|_| IoError::format(path, "has too many vertices"))
             };
             mesh.triangles.push([index(face[0])?, index(face[1])?, index(face[2])?]);
         }
+        if mesh.triangles.len() > MAX_ELEMENTS {
+            return Err(IoError::format(path, format!("has more than {MAX_ELEMENTS} triangles")));
+        }
     }
-    Ok(mesh)
+    Ok(weld(mesh))
+}
+
+/// Merges vertices at bit-identical positions: `tobj` gives every object, group and material
+/// section of an OBJ file its own copy of the vertices it uses, so a closed surface split into
+/// sections would otherwise look open along the section borders.
+fn weld(mesh: TriangleMesh) -> TriangleMesh {
+    let mut first: std::collections::BTreeMap<[u64; 3], u32> = std::collections::BTreeMap::new();
+    let mut vertices = Vec::new();
+    let remap: Vec<u32> = mesh
+        .vertices
+        .iter()
+        .map(|v| {
+            *first.entry(v.map(f64::to_bits)).or_insert_with(|| {
+                vertices.push(*v);
+                (vertices.len() - 1) as u32
+            })
+        })
+        .collect();
+    let triangles = mesh.triangles.iter().map(|t| t.map(|i| remap[i as usize])).collect();
+    TriangleMesh { vertices, triangles }
 }
 
 fn parse_ply_mesh(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
@@ -104,7 +134,7 @@ fn parse_ply_mesh(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
             return Err(IoError::format(path, format!("has more than {MAX_ELEMENTS} triangles")));
         }
     }
-    Ok(mesh)
+    Ok(weld(mesh))
 }
 
 #[cfg(test)]
@@ -127,6 +157,19 @@ mod tests {
         assert_eq!(a.vertices, b.vertices);
         assert_eq!(a.triangles.len(), 2);
         assert_eq!(b.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn sections_of_an_obj_share_their_vertices_and_lines_are_not_faces() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = dir.path().join("two.obj");
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\no first\nf 1 2 3\no second\nusemtl red\nf 1 3 4\nl 1 2\np 3\n";
+        std::fs::write(&obj, text).unwrap();
+        let mesh = read_mesh(&obj).unwrap();
+        assert_eq!(mesh.vertices.len(), 4);
+        assert_eq!(mesh.triangles.len(), 2);
+        let shared: Vec<u32> = mesh.triangles[0].iter().filter(|v| mesh.triangles[1].contains(v)).copied().collect();
+        assert_eq!(shared.len(), 2, "{mesh:?}");
     }
 
     #[test]

@@ -153,14 +153,14 @@ impl<const D: usize> Region<D> {
         best
     }
 
-    /// The exact volume (area in 2D) of a box or polygon; `None` for a stroke, whose tube the
-    /// quadrature grid measures instead.
+    /// The exact volume (area in 2D) of a box, polygon or consistently oriented mesh; `None` for a
+    /// stroke or an inconsistently oriented mesh, which the quadrature grid measures instead.
     pub fn volume(&self) -> Option<f64> {
         match self {
             Region::Box { min, max } => Some((0..D).map(|a| (max[a] - min[a]).max(0.0)).product()),
             Region::Polygon(polygon) => Some(polygon.area()),
             Region::Stroke { .. } => None,
-            Region::Volume(volume) => Some(volume.volume()),
+            Region::Volume(volume) => volume.volume(),
         }
     }
 

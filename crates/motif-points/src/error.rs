@@ -68,7 +68,7 @@ pub enum Error {
         rotation: f64,
     },
     /// The domain is unusable: malformed, or holding less than one point at the exemplar's density.
-    #[error("empty domain: {0}")]
+    #[error("unusable domain: {0}")]
     EmptyDomain(DomainProblem),
     /// The domain needs more quadrature points than the memory cap allows.
     #[error(

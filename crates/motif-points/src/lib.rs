@@ -14,8 +14,9 @@
 //!   `reference`: the plain per-quadrature-point version used by tests and the speed-up figure.
 //! - `quadratic` (§4.4, Eq. 5): T as the quadratic form in the attributes that it is at fixed
 //!   positions, minimized by conjugate gradients in the attribute half of the merging step.
-//! - `domain` (§6.2): boxes, polygon regions, brush strokes; the regular quadrature grid; rotation
-//!   and scale fields stored at the quadrature points (Eq. 8).
+//! - `domain` (§6.2): boxes, polygon regions, brush strokes, mesh volumes (`volume`: the inside
+//!   of a closed triangle mesh, Figure 1's chair); the regular quadrature grid; rotation and scale
+//!   fields stored at the quadrature points (Eq. 8).
 //! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts and
 //!   from the grid neighbours' last matches (propagation, as in PatchMatch).
 //! - `merging` (§5.1, global step): descent on positions (quasi-Newton for free points, the
@@ -100,3 +101,9 @@ pub use fidelity::{Distances, Fidelity, Statistics};
 pub use params::{Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};
+
+/// Checks a mesh for a volume domain (triangles, finite vertices, valid indices, no degenerate
+/// triangle, closed), so that a front end can name the file before any work.
+pub fn check_volume_mesh(mesh: &motif_core::TriangleMesh) -> Result<(), Error> {
+    volume::MeshVolume::new(mesh).map(|_| ()).map_err(Error::EmptyDomain)
+}

@@ -371,7 +371,7 @@ fn bad_input_gives_clear_errors() {
     assert!(matches!(error, Error::EmptyDomain(_)), "{error}");
     let tiny = Domain::Box { min: vec![0.0, 0.0], max: vec![0.1, 0.1] };
     let error = run(grid.clone(), quick_params(), tiny).unwrap_err();
-    assert!(error.to_string().contains("empty domain"), "{error}");
+    assert!(error.to_string().contains("unusable domain"), "{error}");
     // A huge domain is refused before anything is allocated, and says so.
     let huge = Domain::Box { min: vec![0.0, 0.0], max: vec![1e6, 1e6] };
     let error = run(grid.clone(), quick_params(), huge).unwrap_err();

@@ -108,18 +108,21 @@ fn ray_crossing(p: Vec3, corners: [Vec3; 3]) -> Option<f64> {
     if area < 0.0 {
         t.swap(1, 2);
     }
+    let mut sides = [0.0; 3];
     for i in 0..3 {
         let (from, to) = (t[i], t[(i + 1) % 3]);
         let side = orient2d(from, to, q);
         if side < 0.0 || (side == 0.0 && !owns_edge(from, to)) {
             return None;
         }
+        sides[i] = side;
     }
-    // The plane through the triangle at (y, z) = (p.y, p.z).
-    let [a, b, c] = corners;
-    let normal = cross(sub(b, a), sub(c, a));
-    let x = a[0] - (normal[1] * (p[1] - a[1]) + normal[2] * (p[2] - a[2])) / normal[0];
-    Some(x)
+    // Barycentric weights from the edge tests: the side of edge i weighs the corner opposite it.
+    // All are ≥ 0 with a positive sum, so x stays within the triangle's x range even for a
+    // triangle nearly edge-on to the ray, where dividing by the normal's x would not.
+    let xs = if area < 0.0 { [corners[0][0], corners[2][0], corners[1][0]] } else { corners.map(|c| c[0]) };
+    let total = sides[0] + sides[1] + sides[2];
+    Some((sides[0] * xs[2] + sides[1] * xs[0] + sides[2] * xs[1]) / total)
 }
 
 /// The inside of a closed triangle mesh, ready for membership and distance queries.
@@ -128,7 +131,7 @@ pub struct MeshVolume {
     tree: RTree<Triangle>,
     low: Vec3,
     high: Vec3,
-    volume: f64,
+    volume: Option<f64>,
 }
 
 impl MeshVolume {
@@ -166,9 +169,22 @@ impl MeshVolume {
         }
         let triangles: Vec<Triangle> =
             (0..mesh.triangles.len()).map(|t| Triangle { corners: mesh.corners(t) }).collect();
-        // Signed tetrahedra from the origin: the enclosed volume for a consistently oriented mesh.
-        let volume =
-            triangles.iter().map(|t| dot(t.corners[0], cross(t.corners[1], t.corners[2]))).sum::<f64>().abs() / 6.0;
+        // Signed tetrahedra from a corner of the bounds (not the origin, against cancellation far
+        // from it): the enclosed volume, when the faces are consistently oriented (each edge
+        // used as often in one direction as in the other); otherwise the grid measures it.
+        let mut directed: Vec<(u32, u32)> =
+            mesh.triangles.iter().flat_map(|t| (0..3).map(move |i| (t[i], t[(i + 1) % 3]))).collect();
+        directed.sort_unstable();
+        let count =
+            |edge: (u32, u32)| directed.partition_point(|&e| e <= edge) - directed.partition_point(|&e| e < edge);
+        let consistent = directed.iter().all(|&(a, b)| count((a, b)) == count((b, a)));
+        let volume = consistent.then(|| {
+            let signed: f64 = triangles
+                .iter()
+                .map(|t| dot(sub(t.corners[0], low), cross(sub(t.corners[1], low), sub(t.corners[2], low))))
+                .sum();
+            signed.abs() / 6.0
+        });
         Ok(MeshVolume { tree: RTree::bulk_load(triangles), low, high, volume })
     }
 
@@ -177,13 +193,14 @@ impl MeshVolume {
         (self.low, self.high)
     }
 
-    /// The enclosed volume (from the signed tetrahedra; exact for a consistently oriented mesh).
-    pub fn volume(&self) -> f64 {
+    /// The enclosed volume from signed tetrahedra, `None` when the faces are not consistently
+    /// oriented (then the quadrature grid measures it).
+    pub fn volume(&self) -> Option<f64> {
         self.volume
     }
 
-    /// Whether `p` lies inside (or on) the surface: the number of crossings of the ray from `p`
-    /// along +x is odd.
+    /// Whether `p` lies inside the surface: the number of crossings of the ray from `p` along +x
+    /// is odd (points on the surface may fall either way).
     pub fn contains(&self, p: &Vec3) -> bool {
         if (0..3).any(|a| p[a] < self.low[a] || p[a] > self.high[a]) {
             return false;
@@ -221,7 +238,7 @@ mod tests {
     #[test]
     fn a_cube_contains_its_inside_whatever_edges_the_ray_grazes() {
         let volume = MeshVolume::new(&cube([0.0; 3], 2.0)).unwrap();
-        assert!((volume.volume() - 8.0).abs() < 1e-12);
+        assert!((volume.volume().unwrap() - 8.0).abs() < 1e-12);
         // Rays through the middle of faces and along face diagonals (the shared edges of the two
         // triangles of a face); points on the surface may fall either way.
         for p in [[1.0, 1.0, 1.0], [0.5, 0.5, 0.5], [1.0, 1.5, 1.5], [0.3, 0.7, 0.7], [1.9, 0.1, 0.1]] {
@@ -246,7 +263,7 @@ mod tests {
         mesh.triangles.extend(other.triangles.iter().map(|t| t.map(|v| v + offset)));
         // Weld the shared edge (x = 1, y = 1, z in [0, 1]) so that four faces meet on it.
         let volume = MeshVolume::new(&mesh).unwrap();
-        assert!((volume.volume() - 2.0).abs() < 1e-12);
+        assert!((volume.volume().unwrap() - 2.0).abs() < 1e-12);
         for p in [[0.5, 0.5, 0.5], [1.5, 1.5, 0.5], [0.5, 0.5, 0.999]] {
             assert!(volume.contains(&p), "{p:?}");
         }
@@ -283,12 +300,17 @@ mod tests {
         }
         let mesh = octahedron(4.0, 4.0);
         let region = MeshVolume::new(&mesh).unwrap();
-        assert!((region.volume() - 4.0 / 3.0 * 64.0).abs() < 1e-9);
+        let enclosed = region.volume().unwrap();
+        assert!((enclosed - 4.0 / 3.0 * 64.0).abs() < 1e-9);
         let params = Params { neighbourhood: Some(1.2), shrink: Some(0.7), merge_iterations: 10, ..Params::default() };
         let input = Input { exemplar: PointSet::new(3, positions), domain: Domain::Volume(mesh), existing: None };
         let output = synthesize(&input, &params, &mut motif_core::NoProgress).unwrap();
         let n = output.points.len();
-        assert!((n as f64 - region.volume()).abs() < 0.15 * region.volume(), "{n} points in {}", region.volume());
+        assert!((n as f64 - enclosed).abs() < 0.15 * enclosed, "{n} points in {enclosed}");
+        // One face turned the wrong way: the tetrahedra no longer give the volume, the grid does.
+        let mut flipped = octahedron(4.0, 4.0);
+        flipped.triangles[0].swap(1, 2);
+        assert_eq!(MeshVolume::new(&flipped).unwrap().volume(), None);
         for i in 0..n {
             let p = output.points.position(i);
             assert!(region.contains(&[p[0], p[1], p[2]]), "{p:?} outside");

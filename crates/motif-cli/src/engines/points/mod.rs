@@ -280,10 +280,15 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
             Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
             Some(spec) if spec.starts_with("volume:") => {
                 let file = Path::new(&spec["volume:".len()..]);
-                DomainSpec::Volume(motif_io::read_mesh(file)?)
+                let mesh = motif_io::read_mesh(file)?;
+                motif_points::check_volume_mesh(&mesh)
+                    .with_context(|| format!("--domain volume:{}", file.display()))?;
+                DomainSpec::Volume(mesh)
             }
             Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
-            None => bail!("give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj, or --along PATH with --brush-width"),
+            None => {
+                bail!("give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj, or --along PATH with --brush-width")
+            }
         }
     };
     let attribute_weight = args
