@@ -126,20 +126,22 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
         points.swap_remove(index);
     }
     let mut extra = 0u64;
-    // Tries left for the whole shortfall; once spent, points follow the region only (Lloyd still
-    // weights them by the density).
-    let mut budget = 64 * count + 100_000;
     while points.len() < count {
         let mut stream = streams.stream("seed extra", extra);
         extra += 1;
+        if !density.maps.is_uniform()
+            && let Some(p) = density.draw(region, &mut stream)
+        {
+            points.push(p);
+            continue;
+        }
         let mut found = None;
         for _ in 0..10_000 {
             let p = Point::new(
                 bounds.x0 + stream.random::<f64>() * bounds.width(),
                 bounds.y0 + stream.random::<f64>() * bounds.height(),
             );
-            budget = budget.saturating_sub(1);
-            if region.contains(p) && (budget == 0 || keep(p, &mut stream)) {
+            if region.contains(p) && keep(p, &mut stream) {
                 found = Some(p);
                 break;
             }
@@ -166,7 +168,7 @@ pub fn lloyd_region(
     streams: &SeedStreams,
 ) -> (Vec<Point>, usize) {
     let bounds = region.bounds();
-    if count == 1 {
+    if count == 1 && density.maps.is_uniform() {
         // Lloyd's fixed point for one seed: the region's centroid (when it lies inside).
         let centroid = region.centroid();
         return (vec![if region.contains(centroid) { centroid } else { interior_point(region) }], 0);
@@ -359,40 +361,68 @@ pub struct Density<'a> {
     pub mean: f64,
     /// Largest relative density over the region.
     pub largest: f64,
+    /// The sample grid's points inside the region with a positive density, and the running sum
+    /// of their densities: draws follow the density without rejection.
+    samples: Vec<Point>,
+    cumulative: Vec<f64>,
+    /// Size of a sample cell.
+    cell: (f64, f64),
 }
 
 impl<'a> Density<'a> {
-    /// Samples per side of the grid the statistics are taken on.
-    const SAMPLES: usize = 256;
+    /// Samples per side of the grid the statistics are taken on: at least the maps' resolution,
+    /// so that a feature of one pixel is seen, within these bounds.
+    const SAMPLES: (usize, usize) = (256, 512);
 
     /// The uniform density of a path target (maps need a region).
     pub fn over_path(maps: &'a Maps<'a>) -> Density<'a> {
-        Density { maps, mean: 1.0, largest: 1.0 }
+        Density { maps, mean: 1.0, largest: 1.0, samples: Vec::new(), cumulative: Vec::new(), cell: (0.0, 0.0) }
     }
 
     /// The density of `maps` over `region`, its mean and largest value sampled on a grid.
     pub fn over(region: &Polygon, maps: &'a Maps<'a>) -> Density<'a> {
         if maps.is_uniform() {
-            return Density { maps, mean: 1.0, largest: 1.0 };
+            return Self::over_path(maps);
         }
+        let resolution = [maps.density, maps.scale].iter().flatten().map(|m| m.size().0.max(m.size().1)).max();
+        let side = resolution.unwrap_or(0).clamp(Self::SAMPLES.0, Self::SAMPLES.1);
         let bounds = region.bounds();
+        let cell = (bounds.width() / side as f64, bounds.height() / side as f64);
         let (mut sum, mut inside, mut largest) = (0.0, 0usize, 0.0f64);
-        for row in 0..Self::SAMPLES {
-            for column in 0..Self::SAMPLES {
-                let p = Point::new(
-                    bounds.x0 + (column as f64 + 0.5) / Self::SAMPLES as f64 * bounds.width(),
-                    bounds.y0 + (row as f64 + 0.5) / Self::SAMPLES as f64 * bounds.height(),
-                );
+        let (mut samples, mut cumulative) = (Vec::new(), Vec::new());
+        for row in 0..side {
+            for column in 0..side {
+                let p = Point::new(bounds.x0 + (column as f64 + 0.5) * cell.0, bounds.y0 + (row as f64 + 0.5) * cell.1);
                 if region.contains(p) {
                     let d = maps.density_at(p);
                     sum += d;
                     inside += 1;
                     largest = largest.max(d);
+                    if d > 0.0 {
+                        samples.push(p);
+                        cumulative.push(sum);
+                    }
                 }
             }
         }
         let mean = if inside > 0 { sum / inside as f64 } else { maps.density_at(region.centroid()) };
-        Density { maps, mean, largest: largest.max(mean) }
+        Density { maps, mean, largest: largest.max(mean), samples, cumulative, cell }
+    }
+
+    /// A random point drawn with probability proportional to the density (a sample cell by its
+    /// density, then a place in it, kept only if inside the region with a positive density);
+    /// `None` without dark samples.
+    fn draw(&self, region: &Polygon, stream: &mut motif_core::random::Stream) -> Option<Point> {
+        let total = *self.cumulative.last()?;
+        let target = stream.random::<f64>() * total;
+        let index = self.cumulative.partition_point(|&c| c <= target).min(self.samples.len() - 1);
+        let centre = self.samples[index];
+        let p = centre
+            + kurbo::Vec2::new(
+                (stream.random::<f64>() - 0.5) * self.cell.0,
+                (stream.random::<f64>() - 0.5) * self.cell.1,
+            );
+        Some(if region.contains(p) && self.maps.density_at(p) > 0.0 { p } else { centre })
     }
 }
 

@@ -253,3 +253,20 @@ fn round_elements_match_whatever_their_drawn_axis() {
         assert!(report.fallback_elements * 10 <= report.output_elements, "seed {seed}: {report:?}");
     }
 }
+
+#[test]
+fn a_small_dark_spot_on_white_gets_every_element() {
+    // A 4 × 4 pixel black square in a white 100 × 50 map over 600 × 300: 24 × 24 units of dark.
+    let (width, height) = (100usize, 50usize);
+    let grey = (0..width * height)
+        .map(|i| if (48..52).contains(&(i % width)) && (23..27).contains(&(i / width)) { 0.0 } else { 1.0 })
+        .collect();
+    let map = ToneMap::from_grey(width, height, grey).unwrap();
+    let input = Input { density_map: Some(map), ..Input::new(stipple(12, 12, 5), rect(600.0, 300.0)) };
+    let output = synthesize(&input, &params(4.0, 5), &mut NoProgress).unwrap();
+    assert!(output.report.output_elements >= 2, "{:?}", output.report);
+    // The dark square spans (288, 138)–(312, 162); bilinear sampling softens it by half a pixel.
+    for p in centres(&output) {
+        assert!(p.x > 280.0 && p.x < 320.0 && p.y > 130.0 && p.y < 170.0, "{p:?}");
+    }
+}
