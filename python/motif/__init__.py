@@ -296,8 +296,9 @@ def strokes(
     density relative to the reference's; the scale is 2^(2·grey − 1).
 
     ``size`` is the output document's (width, height) (default: the rectangle, or the target's
-    extent). Options: ``fit``, ``rings``, ``variation``, ``position_variation``, ``thresholds``
-    (a dict of shape, par, ov, sup, col), ``lloyd_iterations``, ``max_memory``. Returns SVG text.
+    extent). Options: ``fit``, ``rings``, ``variation``, ``position_variation``,
+    ``allow_overlaps``, ``thresholds`` (a dict of shape, par, ov, sup, col, attr),
+    ``lloyd_iterations``, ``max_memory``. Returns SVG text.
     """
     given = [name for name, value in (("rect", rect), ("along", along), ("region", region)) if value is not None]
     if len(given) != 1:

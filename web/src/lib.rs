@@ -299,7 +299,13 @@ impl StrokesPanel {
                 width,
                 colour: colour(&item["colour"]).unwrap_or([0, 0, 0, 255]),
                 fill: colour(&item["fill"]),
-                dash: item["dash"].as_array().map(|lengths| lengths.iter().filter_map(|l| l.as_f64()).collect()),
+                // Like an SVG dash array: finite lengths ≥ 0, solid when none is positive.
+                dash: item["dash"]
+                    .as_array()
+                    .map(|lengths| lengths.iter().filter_map(|l| l.as_f64()).collect::<Vec<f64>>())
+                    .filter(|lengths| {
+                        lengths.iter().all(|l| l.is_finite() && *l >= 0.0) && lengths.iter().any(|&l| l > 0.0)
+                    }),
             };
             if stroke.is_visible() {
                 reference.push(stroke);

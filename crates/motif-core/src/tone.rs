@@ -55,9 +55,37 @@ impl ToneMap {
         (self.width, self.height)
     }
 
+    /// The grey at `point` read as a fraction of a full turn (black and white both 0): the four
+    /// nearest pixels' turns are averaged as unit vectors, so that a black pixel next to a white
+    /// one, the same direction, does not average to half a turn. In [0, 1).
+    pub fn turn_at(&self, bounds: &Rect, point: Point) -> f64 {
+        if self.grey.is_empty() {
+            return 0.0;
+        }
+        let u = (point.x - bounds.x0) / bounds.width().max(1e-300) * self.width as f64 - 0.5;
+        let v = (point.y - bounds.y0) / bounds.height().max(1e-300) * self.height as f64 - 0.5;
+        let (u, v) = (u.clamp(0.0, (self.width - 1) as f64), v.clamp(0.0, (self.height - 1) as f64));
+        let (x0, y0) = (u.floor() as usize, v.floor() as usize);
+        let (x1, y1) = ((x0 + 1).min(self.width - 1), (y0 + 1).min(self.height - 1));
+        let (fx, fy) = (u - x0 as f64, v - y0 as f64);
+        let tau = std::f64::consts::TAU;
+        let (mut cosine, mut sine) = (0.0, 0.0);
+        for (x, y, w) in
+            [(x0, y0, (1.0 - fx) * (1.0 - fy)), (x1, y0, fx * (1.0 - fy)), (x0, y1, (1.0 - fx) * fy), (x1, y1, fx * fy)]
+        {
+            let angle = tau * f64::from(self.grey[y * self.width + x]);
+            cosine += w * crate::math::cos(angle);
+            sine += w * crate::math::sin(angle);
+        }
+        (crate::math::atan2(sine, cosine) / tau).rem_euclid(1.0)
+    }
+
     /// Checks that the map can be stretched over `bounds` without distorting it: the aspect ratios
     /// agree within 2 % (and a pixel of rounding). `name` is the flag or field named in the error.
     pub fn check_fits(&self, bounds: &Rect, name: &str) -> Result<(), InvalidParameter> {
+        if self.width == 0 || self.height == 0 {
+            return Err(InvalidParameter::new(name, "an empty image", "an image of at least 1×1 pixel"));
+        }
         let map = self.width as f64 / self.height as f64;
         let target = bounds.width() / bounds.height();
         let rounding = 1.0 / self.width.min(self.height) as f64;
@@ -79,6 +107,9 @@ impl ToneMap {
     /// The grey value at `point` of a drawing whose bounding box `bounds` the map covers
     /// (bilinear, clamped at the edges).
     pub fn grey_at(&self, bounds: &Rect, point: Point) -> f64 {
+        if self.grey.is_empty() {
+            return 1.0;
+        }
         let u = (point.x - bounds.x0) / bounds.width().max(1e-300) * self.width as f64 - 0.5;
         let v = (point.y - bounds.y0) / bounds.height().max(1e-300) * self.height as f64 - 0.5;
         let clamp = |t: f64, size: usize| t.clamp(0.0, (size - 1) as f64);
@@ -105,6 +136,14 @@ mod tests {
         assert_eq!(map.grey_at(&bounds, Point::new(-5.0, 5.0)), 0.0);
         assert_eq!(map.grey_at(&bounds, Point::new(15.0, 5.0)), 1.0);
         assert!((map.grey_at(&bounds, Point::new(10.0, 5.0)) - 0.5).abs() < 1e-12);
+        // Black and white are the same direction: their blend stays 0, not half a turn.
+        let turns = ToneMap::from_grey(2, 1, vec![0.0, 1.0]).unwrap();
+        assert!(
+            turns.turn_at(&bounds, Point::new(10.0, 5.0)).min(1.0 - turns.turn_at(&bounds, Point::new(10.0, 5.0)))
+                < 1e-9
+        );
+        let quarter = ToneMap::from_grey(2, 1, vec![0.25, 0.25]).unwrap();
+        assert!((quarter.turn_at(&bounds, Point::new(10.0, 5.0)) - 0.25).abs() < 1e-12);
         let image = RgbaImage::from_fn(1, 1, |_, _| [0, 0, 0, 0]);
         assert_eq!(ToneMap::from_image(&image).grey_at(&bounds, Point::new(1.0, 1.0)), 1.0);
     }

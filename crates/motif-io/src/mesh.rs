@@ -34,7 +34,6 @@ fn parse_obj(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
         single_index: false,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     // Materials are not needed: a missing .mtl is not an error.
     let (models, _) =

@@ -419,7 +419,8 @@ mod tests {
 
 /// Rotation and scale fields painted as grey images (2D domains), stretched over the domain's
 /// bounding box (same aspect ratio within 2 %). Encoding: rotation `360° × grey` (black and white
-/// 0°, mid-grey 180°; counter-clockwise, added to the uniform `rotation`), scale `2^(2·grey − 1)`
+/// 0°, mid-grey 180°; counter-clockwise, added to the uniform `rotation`; pixels are blended as
+/// directions, so black next to white stays 0°), scale `2^(2·grey − 1)`
 /// (black 0.5, mid-grey 1, white 2; times the uniform `scale`).
 #[derive(Debug, Clone, Default)]
 pub struct FieldMaps {
@@ -450,7 +451,7 @@ impl FieldMaps {
             map.check_fits(&bounds, "rotation-map")?;
             let (map, base) = (map.clone(), uniform(&params.rotation, 0.0));
             params.rotation = Field::Custom(std::sync::Arc::new(move |p: &[f64]| {
-                base + 360.0 * map.grey_at(&bounds, motif_core::Point::new(p[0], p[1]))
+                base + 360.0 * map.turn_at(&bounds, motif_core::Point::new(p[0], p[1]))
             }));
         }
         if let Some(map) = &self.scale {

@@ -4,9 +4,10 @@
 //! weight, transparency, filling or dashing (a map's dashed paths next to solid ones, bold and
 //! light hatching) needs those compared too, or a neighbourhood of thin strokes accepts a thick
 //! one. Each attribute is averaged over the element's strokes, weighted by length; the attribute
-//! measure of a pair is the largest of their differences, each on a scale where 1 is "entirely
-//! different" (relative width and dash period, opacity and inked share in [0, 1], fill colour as a
-//! distance in the RGB unit cube), and it must stay under its threshold like the colour measure.
+//! measure of a pair is the largest of their differences: relative width and dash period,
+//! opacity, filled and inked shares, each in [0, 1], and the fill colours' distance in the RGB unit
+//! cube (up to √3, as for the colour measure); it must stay under its threshold like the colour
+//! measure.
 
 use crate::stroke::Stroke;
 

@@ -35,24 +35,29 @@ pub struct BorderFlags {
 /// and those that are not copied.
 pub fn flag_border(analysis: &Analysis, strokes: &[Stroke]) -> BorderFlags {
     let count = analysis.elements.len();
+    // In the pattern frame, where a 1D pattern runs along x: its frame cuts it at its two ends
+    // only (the tallest elements of a row touch its top and bottom without being cut).
+    let to_pattern = analysis.to_pattern();
     let mut low = Point::new(f64::INFINITY, f64::INFINITY);
     let mut high = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
     for stroke in strokes {
-        for p in stroke.polyline.points() {
+        for &p in stroke.polyline.points() {
+            let p = to_pattern * p;
             low = Point::new(low.x.min(p.x), low.y.min(p.y));
             high = Point::new(high.x.max(p.x), high.y.max(p.y));
         }
     }
     let tolerance = TOUCH_TOLERANCE * (high.x - low.x).max(high.y - low.y);
+    let along_path = analysis.along_path;
     let border: Vec<bool> = analysis
         .elements
         .iter()
         .map(|element| {
-            element.strokes.iter().flat_map(|&s| strokes[s].polyline.points()).any(|p| {
+            element.strokes.iter().flat_map(|&s| strokes[s].polyline.points()).any(|&p| {
+                let p = to_pattern * p;
                 p.x - low.x <= tolerance
                     || high.x - p.x <= tolerance
-                    || p.y - low.y <= tolerance
-                    || high.y - p.y <= tolerance
+                    || (!along_path && (p.y - low.y <= tolerance || high.y - p.y <= tolerance))
             })
         })
         .collect();

@@ -376,7 +376,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
             table: &table,
             streams: &streams,
         };
-        resolve_overlaps(&scene, &mut placements, &mut growth.assigned, &growth.order)
+        resolve_overlaps(&scene, &mut placements, &mut growth.assigned, &mut growth.matched, &growth.order)
     } else {
         (vec![true; layout.len()], OverlapFigures::default())
     };

@@ -37,8 +37,8 @@ pub struct Thresholds {
     pub colour: f64,
     /// σ_attr: the largest difference of the other stroke attributes (not in the paper, which
     /// compares colour only): relative stroke width and dash period, opacity, filled and inked
-    /// (dashed) share of the length, fill colour distance. Default 0.2 (20 % thicker strokes,
-    /// 0.2 more opacity).
+    /// (dashed) share of the length, fill colour distance. Default 0.2 (widths within a ratio of
+    /// 1.25, opacities within 0.2).
     pub attributes: f64,
 }
 

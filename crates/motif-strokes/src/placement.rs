@@ -49,7 +49,8 @@ pub struct OverlapFigures {
     pub reference_rate: f64,
     /// Share of the output elements whose ink meets another's, after resolution.
     pub output_rate: f64,
-    /// Elements that met a settled neighbour when first placed.
+    /// Elements that met a settled neighbour when first placed and were not tolerated (the
+    /// reference's own rate lets some overlaps stand).
     pub met_when_placed: usize,
     /// Cleared by going back to the seed's own position (undoing position variation).
     pub cleared_by_seed_position: usize,
@@ -170,6 +171,7 @@ pub fn resolve_overlaps(
     scene: &Scene<'_>,
     placements: &mut [Placement],
     assigned: &mut [u32],
+    matched: &mut [bool],
     order: &[usize],
 ) -> (Vec<bool>, OverlapFigures) {
     let analysis = scene.analysis;
@@ -280,7 +282,11 @@ pub fn resolve_overlaps(
                 match way {
                     0 => figures.cleared_by_seed_position += 1,
                     1 => figures.cleared_by_unchanged_element += 1,
-                    2 => figures.cleared_by_other_element += 1,
+                    2 => {
+                        // The replacement passed the neighbourhood test.
+                        figures.cleared_by_other_element += 1;
+                        matched[seed] = true;
+                    }
                     _ => figures.cleared_by_move += 1,
                 }
                 placements[seed] = placement;

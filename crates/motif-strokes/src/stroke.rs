@@ -74,9 +74,13 @@ impl Stroke {
         }
     }
 
-    /// The dash period (dash and gap lengths summed), 0 for a solid stroke.
+    /// The dash period (dash and gap lengths summed; an odd-length pattern repeats twice before
+    /// it starts over, as SVG draws it), 0 for a solid stroke.
     pub fn dash_period(&self) -> f64 {
-        self.dash.as_ref().map_or(0.0, |lengths| lengths.iter().sum())
+        self.dash.as_ref().map_or(0.0, |lengths| {
+            let once: f64 = lengths.iter().sum();
+            if lengths.len() % 2 == 1 { 2.0 * once } else { once }
+        })
     }
 
     /// True when the stroke leaves a mark: a visible stroke or a fill.
