@@ -29,12 +29,7 @@ pub fn read_mesh(path: &Path) -> Result<TriangleMesh> {
 
 fn parse_obj(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
     // Point and line records are not faces: left out rather than turned into flat triangles.
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: false,
-        ignore_points: true,
-        ignore_lines: true,
-    };
+    let options = tobj::LoadOptions { triangulate: true, single_index: false, ignore_points: true, ignore_lines: true };
     // Materials are not needed: a missing .mtl is not an error.
     let (models, _) =
         tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &options, |_| Err(tobj::LoadError::OpenFileFailed))

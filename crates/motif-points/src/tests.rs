@@ -28,6 +28,22 @@ pub(crate) fn jittered_grid(side: usize, jitter: f64, seed: u64) -> PointSet {
     PointSet { dimension: 2, positions, attribute_names: vec!["shade".into()], attributes: shade, elements: None }
 }
 
+/// A 6 × 6 × 6 lattice of spacing 1 with jitter 0.1 (3D).
+pub(crate) fn jittered_cloud(seed: u64) -> PointSet {
+    let mut stream = SeedStreams::new(seed).stream("cloud", 0);
+    let mut positions = Vec::new();
+    for z in 0..6 {
+        for y in 0..6 {
+            for x in 0..6 {
+                for v in [x, y, z] {
+                    positions.push(v as f64 + 0.1 * (stream.random::<f64>() - 0.5));
+                }
+            }
+        }
+    }
+    PointSet::new(3, positions)
+}
+
 /// Rows of points: spacing 0.5 along x, 1.5 along y (an anisotropic structure).
 pub(crate) fn rows(width: usize, height: usize) -> PointSet {
     let mut positions = Vec::new();

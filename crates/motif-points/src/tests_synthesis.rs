@@ -318,18 +318,7 @@ fn strokes_and_polygons_confine_the_output() {
 
 #[test]
 fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
-    let mut stream = SeedStreams::new(2).stream("cloud", 0);
-    let mut positions = Vec::new();
-    for z in 0..6 {
-        for y in 0..6 {
-            for x in 0..6 {
-                for v in [x, y, z] {
-                    positions.push(v as f64 + 0.1 * (stream.random::<f64>() - 0.5));
-                }
-            }
-        }
-    }
-    let exemplar = PointSet::new(3, positions);
+    let exemplar = crate::tests::jittered_cloud(2);
     let params = Params { neighbourhood: Some(1.2), shrink: Some(0.7), merge_iterations: 10, ..Params::default() };
     let output = synthesize(
         &Input { exemplar, domain: Domain::Box { min: vec![0.0; 3], max: vec![4.0, 4.0, 4.0] }, existing: None },

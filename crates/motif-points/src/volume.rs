@@ -285,25 +285,13 @@ mod tests {
 
     #[test]
     fn a_synthesis_fills_a_mesh_volume_and_stays_inside() {
-        use crate::{Domain, Input, Params, PointSet, synthesize};
-        use motif_core::random::Rng;
-        let mut stream = motif_core::SeedStreams::new(3).stream("cloud", 0);
-        let mut positions = Vec::new();
-        for z in 0..6 {
-            for y in 0..6 {
-                for x in 0..6 {
-                    for v in [x, y, z] {
-                        positions.push(v as f64 + 0.1 * (stream.random::<f64>() - 0.5));
-                    }
-                }
-            }
-        }
+        use crate::{Domain, Input, Params, synthesize};
         let mesh = octahedron(4.0, 4.0);
         let region = MeshVolume::new(&mesh).unwrap();
         let enclosed = region.volume().unwrap();
         assert!((enclosed - 4.0 / 3.0 * 64.0).abs() < 1e-9);
         let params = Params { neighbourhood: Some(1.2), shrink: Some(0.7), merge_iterations: 10, ..Params::default() };
-        let input = Input { exemplar: PointSet::new(3, positions), domain: Domain::Volume(mesh), existing: None };
+        let input = Input { exemplar: crate::tests::jittered_cloud(3), domain: Domain::Volume(mesh), existing: None };
         let output = synthesize(&input, &params, &mut motif_core::NoProgress).unwrap();
         let n = output.points.len();
         assert!((n as f64 - enclosed).abs() < 0.15 * enclosed, "{n} points in {enclosed}");
