@@ -239,6 +239,12 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     let exemplar =
         Exemplar { positions, features, channels, element_of, elements, low, high, spacing, window_low, window_high };
     // Domain and quadrature.
+    if let crate::params::Domain::Volume(mesh) = &input.domain {
+        // The triangle tree (corners and node bounds) and the sorted edge lists of the checks.
+        let mut estimate = motif_core::MemoryEstimate::new();
+        estimate.add("mesh triangles", mesh.triangles.len() as f64, 72.0 + 64.0 + 6.0 * 16.0);
+        estimate.check(params.max_memory, MEMORY_ADVICE)?;
+    }
     let region = Region::<D>::new(&input.domain).map_err(Error::EmptyDomain)?;
     let existing: Vec<Vector<D>> = match &input.existing {
         Some(set) => (0..set.len()).map(|i| vector(set.position(i))).collect(),

@@ -278,7 +278,11 @@ fn memory_estimate(analysis: &Analysis, strokes: &[Stroke], count: usize) -> mot
         .add("pair table", tabled * tabled, std::mem::size_of::<matching::Normalized>() as f64)
         .add("output strokes", count * points as f64 / elements, 16.0)
         .add("output stroke records", count * strokes.len() as f64 / elements, 96.0)
-        .add("layout and growth", count, 256.0);
+        .add("layout and growth", count, 256.0)
+        // Overlap footprints: every output point again as a line, twice for closed strokes, and
+        // each element's placed strokes while it is tried.
+        .add("overlap footprints", count * points as f64 / elements, 2.0 * 16.0 + 16.0)
+        .add("footprint records", count * strokes.len() as f64 / elements, 2.0 * 64.0);
     estimate
 }
 

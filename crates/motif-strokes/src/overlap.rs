@@ -102,12 +102,13 @@ fn point_segment_squared(p: Coord<f64>, a: Coord<f64>, b: Coord<f64>) -> f64 {
 /// WebAssembly; `geo`'s distances go through the platform's `hypot`.
 fn lines_within(a: &LineString<f64>, b: &LineString<f64>, reach: f64) -> bool {
     let reach_squared = reach * reach;
-    let segments = |line: &LineString<f64>| -> Vec<(Coord<f64>, Coord<f64>)> {
-        if line.0.len() == 1 { vec![(line.0[0], line.0[0])] } else { line.0.windows(2).map(|w| (w[0], w[1])).collect() }
-    };
-    let (first, second) = (segments(a), segments(b));
-    first.iter().any(|&(p, q)| {
-        second.iter().any(|&(r, s)| {
+    // A single point is a segment of length 0.
+    fn segments(line: &LineString<f64>) -> impl Iterator<Item = (Coord<f64>, Coord<f64>)> + '_ {
+        let single = (line.0.len() == 1).then(|| (line.0[0], line.0[0]));
+        single.into_iter().chain(line.0.windows(2).map(|w| (w[0], w[1])))
+    }
+    segments(a).any(|(p, q)| {
+        segments(b).any(|(r, s)| {
             // Bounds apart by more than the reach cannot come within it.
             if p.x.min(q.x) - r.x.max(s.x) > reach
                 || r.x.min(s.x) - p.x.max(q.x) > reach

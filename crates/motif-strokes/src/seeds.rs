@@ -80,7 +80,7 @@ struct CellScratch {
 const MAX_OVERSAMPLING: f64 = 256.0;
 
 /// The most cells the stratified start's grid may have; past it, random points are drawn instead.
-const MAX_GRID_CELLS: f64 = 16_000_000.0;
+const MAX_GRID_CELLS: f64 = 4_000_000.0;
 
 /// `count` random points inside `region`, stratified: one jittered point per cell of a grid whose
 /// cells hold one point on average; cells outside the region give none, and the shortfall or
@@ -114,7 +114,7 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
                     bounds.x0 + (column as f64 + stream.random::<f64>()) * cell,
                     bounds.y0 + (row as f64 + stream.random::<f64>()) * cell,
                 );
-                if region.contains(p) && keep(p, &mut stream) {
+                if keep(p, &mut stream) && region.contains(p) {
                     points.push(p);
                 }
             }
