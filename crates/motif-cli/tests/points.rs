@@ -449,3 +449,61 @@ fn a_volume_domain_fills_a_closed_mesh_and_refuses_open_ones() {
     assert!(error.contains("3D exemplar"), "{error}");
     assert!(!dir.path().join("never.csv").exists());
 }
+
+#[test]
+fn surface_out_reconstructs_points_with_normals_and_refuses_points_without() {
+    let dir = tempfile::tempdir().unwrap();
+    // A wavy sheet of points around z = 2 with its normals, in a 6 × 6 × 4 exemplar.
+    let mut sheet = String::from("x,y,z,nx,ny,nz\n");
+    for y in 0..12 {
+        for x in 0..12 {
+            let (u, v) = (0.5 * x as f64, 0.5 * y as f64);
+            let z = 2.0 + 0.3 * u.sin() + 0.3 * v.sin();
+            let n = [-0.3 * u.cos(), -0.3 * v.cos(), 1.0];
+            let length = (n[0] * n[0] + n[1] * n[1] + 1.0f64).sqrt();
+            let _ = writeln!(sheet, "{u},{v},{z},{},{},{}", n[0] / length, n[1] / length, n[2] / length);
+        }
+    }
+    std::fs::write(dir.path().join("sheet.csv"), sheet).unwrap();
+    ok(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "sheet.csv",
+            "--neighbourhood",
+            "1.0",
+            "--domain",
+            "box:6,6,4",
+            "--out",
+            "out.csv",
+            "--surface-out",
+            "sheet.obj",
+        ],
+    ));
+    let text = std::fs::read_to_string(dir.path().join("sheet.obj")).unwrap();
+    let vertices: Vec<f64> =
+        text.lines().filter(|l| l.starts_with("v ")).map(|l| l.split(' ').nth(3).unwrap().parse().unwrap()).collect();
+    assert!(vertices.len() > 20 && text.lines().any(|l| l.starts_with("f ")), "{text}");
+    let (low, high) = vertices.iter().fold((f64::MAX, f64::MIN), |(a, b), &z| (a.min(z), b.max(z)));
+    assert!(low > -1.0 && high < 5.0, "z from {low} to {high}");
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    let error = error_of(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "grid.csv",
+            "--neighbourhood",
+            "1.2",
+            "--domain",
+            "box:6,5",
+            "--out",
+            "never.csv",
+            "--surface-out",
+            "never.obj",
+        ],
+    ));
+    assert!(error.contains("--surface-out") && error.contains("nx, ny, nz"), "{error}");
+    assert!(!dir.path().join("never.csv").exists() && !dir.path().join("never.obj").exists());
+}

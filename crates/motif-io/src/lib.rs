@@ -25,7 +25,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 pub use json::{read_json, write_json};
-pub use mesh::read_mesh;
+pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
 pub use raster::{Rgba16, decode_image, read_image, read_png16, write_png, write_png16};
 pub(crate) use staging::write_with;

@@ -55,6 +55,22 @@ fn parse_obj(bytes: &[u8], path: &Path) -> Result<TriangleMesh> {
     Ok(weld(mesh))
 }
 
+/// Writes a mesh as OBJ text (`v` and `f` records, 1-based indices), atomically.
+pub fn write_obj(path: &Path, mesh: &TriangleMesh, comment: &str) -> Result<()> {
+    use std::fmt::Write as _;
+    let mut text = String::with_capacity(32 * (mesh.vertices.len() + mesh.triangles.len()) + 64);
+    for line in comment.lines() {
+        let _ = writeln!(text, "# {line}");
+    }
+    for v in &mesh.vertices {
+        let _ = writeln!(text, "v {} {} {}", v[0], v[1], v[2]);
+    }
+    for t in &mesh.triangles {
+        let _ = writeln!(text, "f {} {} {}", t[0] + 1, t[1] + 1, t[2] + 1);
+    }
+    crate::write_text(path, &text)
+}
+
 /// Merges vertices at bit-identical positions: `tobj` gives every object, group and material
 /// section of an OBJ file its own copy of the vertices it uses, so a closed surface split into
 /// sections would otherwise look open along the section borders.
@@ -164,6 +180,18 @@ mod tests {
         assert_eq!(mesh.triangles.len(), 2);
         let shared: Vec<u32> = mesh.triangles[0].iter().filter(|v| mesh.triangles[1].contains(v)).copied().collect();
         assert_eq!(shared.len(), 2, "{mesh:?}");
+    }
+
+    #[test]
+    fn written_obj_reads_back() {
+        let dir = tempfile::tempdir().unwrap();
+        let mesh = TriangleMesh {
+            vertices: vec![[0.0, 0.0, 0.0], [1.5, 0.0, 0.0], [0.0, 2.25, -1.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let path = dir.path().join("out.obj");
+        write_obj(&path, &mesh, "a test").unwrap();
+        assert_eq!(read_mesh(&path).unwrap(), mesh);
     }
 
     #[test]

@@ -88,6 +88,7 @@ pub mod samples;
 mod sampling;
 mod setup;
 mod solver;
+mod surface;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
@@ -101,6 +102,7 @@ pub use fidelity::{Distances, Fidelity, Statistics};
 pub use params::{Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};
+pub use surface::reconstruct_surface;
 
 /// Checks a mesh for a volume domain (triangles, finite vertices, valid indices, no degenerate
 /// triangle, closed), so that a front end can name the file before any work.

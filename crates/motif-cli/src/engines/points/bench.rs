@@ -64,6 +64,36 @@ fn bench_case(
     }))
 }
 
+/// Surface reconstruction of `count` points with normals on a sphere of radius 100 (run with
+/// `--case reconstruction`): seconds, triangles and the largest radius error.
+fn reconstruction(count: usize) -> anyhow::Result<Value> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    let normals: Vec<[f64; 3]> = (0..count)
+        .map(|i| {
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / count as f64;
+            let r = (1.0 - z * z).sqrt();
+            let angle = golden * i as f64;
+            [r * motif_core::math::cos(angle), r * motif_core::math::sin(angle), z]
+        })
+        .collect();
+    let positions: Vec<[f64; 3]> = normals.iter().map(|n| n.map(|v| 100.0 * v)).collect();
+    let start = std::time::Instant::now();
+    let mesh = motif_points::reconstruct_surface(&positions, &normals)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let error = mesh
+        .vertices
+        .iter()
+        .map(|v| ((v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt() - 100.0).abs())
+        .fold(0.0, f64::max);
+    Ok(json!({
+        "points": count,
+        "seconds": seconds,
+        "target_seconds": 10.0,
+        "triangles": mesh.triangles.len(),
+        "largest_radius_error_percent": error,
+    }))
+}
+
 /// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars, and every
 /// case of the real-data corpus with its fidelity against the random and tiled baselines.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
@@ -102,6 +132,9 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         let chair = lattice_exemplar(1100, bench.seed);
         let domain = Domain::Box { min: vec![0.0; 3], max: vec![31.0, 31.0, 27.2] };
         figures.insert("chair_1100_to_23000".into(), bench_case(&chair, domain, 0.75, 2.0, bench.seed, false)?);
+    }
+    if bench.names("reconstruction") {
+        figures.insert("reconstruction_50000".into(), reconstruction(50_000)?);
     }
     figures.insert("paper_seconds".into(), json!({ "helix": 4.0, "sand": 120.0, "chair": 360.0 }));
     figures.insert("target_seconds".into(), json!({ "helix": 0.3, "sand": 10.0, "chair": 60.0 }));

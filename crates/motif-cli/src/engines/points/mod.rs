@@ -123,6 +123,10 @@ pub struct PointsArgs {
     /// Uniform scale field (> 0), multiplied with --scale-along.
     #[arg(long, value_name = "S", default_value_t = 1.0)]
     pub scale: f64,
+    /// Also reconstruct the output as a surface (3D points with normals `nx`, `ny`, `nz`): an
+    /// implicit MLS surface polygonized with surface nets, written as OBJ.
+    #[arg(long, value_name = "OUT.obj")]
+    pub surface_out: Option<PathBuf>,
     /// Rotation field painted as an image (2D), stretched over the domain's bounding box (same
     /// aspect ratio): 360° × grey (black and white 0°, mid-grey 180°), added to --rotation.
     #[arg(long, value_name = "MAP.png")]
@@ -348,10 +352,22 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     inputs.extend(args.rotation_map.as_deref());
     inputs.extend(args.scale_map.as_deref());
     context.check_output(&args.out, &inputs)?;
-    if let Some(preview) = &args.preview {
-        context.check_output(preview, &inputs)?;
+    for extra in args.preview.iter().chain(&args.surface_out) {
+        context.check_output(extra, &inputs)?;
     }
     let (exemplar, integer) = read_set(&args.exemplar, "exemplar")?;
+    let normal_columns = |set: &motif_points::PointSet| -> Option<[usize; 3]> {
+        let find = |name: &str| set.attribute_names.iter().position(|n| n == name);
+        Some([find("nx")?, find("ny")?, find("nz")?])
+    };
+    if args.surface_out.is_some() && (exemplar.dimension != 3 || normal_columns(&exemplar).is_none()) {
+        bail!(
+            "--surface-out needs a 3D exemplar with normals (attributes nx, ny, nz); {} is {}D with attributes [{}]",
+            args.exemplar.display(),
+            exemplar.dimension,
+            exemplar.attribute_names.join(", ")
+        );
+    }
     let existing = match &args.existing {
         Some(path) => Some(read_set(path, "existing points")?.0),
         None => None,
@@ -378,6 +394,16 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         format => format,
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
+    if let Some(path) = &args.surface_out {
+        let columns = normal_columns(&output.points).expect("checked on the exemplar");
+        let positions: Vec<[f64; 3]> =
+            (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
+        let normals: Vec<[f64; 3]> =
+            (0..output.points.len()).map(|i| columns.map(|c| output.points.attributes_of(i)[c])).collect();
+        let mesh = motif_points::reconstruct_surface(&positions, &normals)
+            .with_context(|| format!("cannot reconstruct a surface for {}", path.display()))?;
+        motif_io::write_obj(path, &mesh, "surface reconstructed by motif points (implicit MLS, surface nets)")?;
+    }
     if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
         let image =
             preview::preview_image(exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
