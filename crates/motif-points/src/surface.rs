@@ -65,7 +65,7 @@ pub fn reconstruct_surface(positions: &[[f64; 3]], normals: &[[f64; 3]]) -> Resu
         }
     }
     let volume: f64 = (0..3).map(|a| high[a] - low[a]).product();
-    let step = spacing.max((volume / MAX_NODES).cbrt());
+    let step = spacing.max(motif_core::math::cbrt(volume / MAX_NODES));
     let dims: [u32; 3] = std::array::from_fn(|a| ((high[a] - low[a]) / step).ceil() as u32 + 1);
     let shape = RuntimeShape::<u32, 3>::new(dims);
     // Past 2.5 widths a weight is below 0.2 % of the nearest's.
