@@ -14,6 +14,8 @@
 //!   `reference`: the plain per-quadrature-point version used by tests and the speed-up figure.
 //! - `quadratic` (§4.4, Eq. 5): T as the quadratic form in the attributes that it is at fixed
 //!   positions, minimized by conjugate gradients in the attribute half of the merging step.
+//! - `surface` (§6.1, Figure 5): continuous structures with normals reconstructed as meshes for
+//!   display (implicit MLS, surface nets).
 //! - `domain` (§6.2): boxes, polygon regions, brush strokes, mesh volumes (`volume`: the inside
 //!   of a closed triangle mesh, Figure 1's chair); the regular quadrature grid; rotation and scale
 //!   fields stored at the quadrature points (Eq. 8).
