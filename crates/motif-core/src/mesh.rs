@@ -18,6 +18,18 @@ impl TriangleMesh {
         self.triangles[t].map(|v| self.vertices[v as usize])
     }
 
+    /// How many triangles use each edge, as sorted `(edge, count)` runs: an edge is `(low, high)`
+    /// vertex indices.
+    pub fn edge_uses(&self) -> Vec<((u32, u32), usize)> {
+        let mut edges: Vec<(u32, u32)> = self
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |i| (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]))))
+            .collect();
+        edges.sort_unstable();
+        edges.chunk_by(|a, b| a == b).map(|run| (run[0], run.len())).collect()
+    }
+
     /// The bounding box of the vertices used by triangles: `(min, max)`, `None` without triangles.
     pub fn bounds(&self) -> Option<([f64; 3], [f64; 3])> {
         let mut corners = self.triangles.iter().flatten().map(|&v| self.vertices[v as usize]);

@@ -194,13 +194,7 @@ mod tests {
             radii.iter().fold((f64::MAX, 0f64), |(a, b), &r| (a.min(r), b.max(r)))
         );
         // Closed: every edge is shared by two triangles.
-        let mut edges: Vec<(u32, u32)> = mesh
-            .triangles
-            .iter()
-            .flat_map(|t| (0..3).map(move |i| (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]))))
-            .collect();
-        edges.sort_unstable();
-        assert!(edges.chunk_by(|a, b| a == b).all(|run| run.len() == 2));
+        assert!(mesh.edge_uses().iter().all(|&(_, uses)| uses == 2));
     }
 
     #[test]

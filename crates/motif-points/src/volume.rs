@@ -157,13 +157,7 @@ impl MeshVolume {
         }) {
             return Err(DomainProblem::DegenerateTriangle(t));
         }
-        let mut edges: Vec<(u32, u32)> = mesh
-            .triangles
-            .iter()
-            .flat_map(|t| (0..3).map(move |i| (t[i].min(t[(i + 1) % 3]), t[i].max(t[(i + 1) % 3]))))
-            .collect();
-        edges.sort_unstable();
-        let open = edges.chunk_by(|a, b| a == b).filter(|run| run.len() % 2 == 1).count();
+        let open = mesh.edge_uses().iter().filter(|(_, uses)| uses % 2 == 1).count();
         if open > 0 {
             return Err(DomainProblem::OpenMesh(open));
         }
