@@ -92,6 +92,12 @@ impl<'a> Demo<'a> {
             .args
             .iter()
             .map(|arg| {
+                // A listed file behind a kind prefix (`volume:MESH.obj`).
+                if let Some((kind, file)) = arg.split_once(':')
+                    && listed.contains(&file)
+                {
+                    return format!("{kind}:{}", self.dir.join(file).to_string_lossy());
+                }
                 let is_file = !arg.starts_with('-')
                     && (listed.contains(&arg.as_str()) || self.dir.join(arg).exists() || looks_like_file_name(arg));
                 if is_file { self.dir.join(arg).to_string_lossy().into_owned() } else { arg.clone() }
@@ -110,6 +116,11 @@ impl<'a> Demo<'a> {
         for arg in &mut case.args {
             if let Some(relative) = arg.strip_prefix(&prefix) {
                 *arg = relative.to_string();
+            }
+            if let Some((kind, file)) = arg.split_once(':')
+                && let Some(relative) = file.strip_prefix(&prefix)
+            {
+                *arg = format!("{kind}:{relative}");
             }
         }
         self.records.push(CaseRecord { case, figures: context.into_figures(), ms });

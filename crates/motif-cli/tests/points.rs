@@ -479,8 +479,12 @@ fn surface_out_reconstructs_points_with_normals_and_refuses_points_without() {
             "out.csv",
             "--surface-out",
             "sheet.obj",
+            "--preview",
+            "sheet.png",
         ],
     ));
+    // The preview draws the surface, shaded, in place of the output's points.
+    assert!(motif_io::read_image(&dir.path().join("sheet.png")).is_ok());
     let text = std::fs::read_to_string(dir.path().join("sheet.obj")).unwrap();
     let vertices: Vec<f64> =
         text.lines().filter(|l| l.starts_with("v ")).map(|l| l.split(' ').nth(3).unwrap().parse().unwrap()).collect();

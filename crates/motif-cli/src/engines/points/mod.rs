@@ -394,6 +394,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         format => format,
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
+    let mut surface = None;
     if let Some(path) = &args.surface_out {
         let columns = normal_columns(&output.points).expect("checked on the exemplar");
         let positions: Vec<[f64; 3]> =
@@ -403,10 +404,16 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         let mesh = motif_points::reconstruct_surface(&positions, &normals)
             .with_context(|| format!("cannot reconstruct a surface for {}", path.display()))?;
         motif_io::write_obj(path, &mesh, "surface reconstructed by motif points (implicit MLS, surface nets)")?;
+        surface = Some(mesh);
     }
     if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
-        let image =
-            preview::preview_image(exemplar, &output.points, &output.report.fidelity, args.colour_by.as_deref())?;
+        let image = preview::preview_image(
+            exemplar,
+            &output.points,
+            &output.report.fidelity,
+            args.colour_by.as_deref(),
+            surface.as_ref(),
+        )?;
         motif_io::write_png(preview, &image)?;
     }
     context.job_figures(run.figures);

@@ -3,6 +3,7 @@
 
 use anyhow::Context as _;
 use motif_core::Point;
+use motif_core::TriangleMesh;
 use motif_io::{Stroke as SvgStroke, SvgWriter};
 use motif_points::Fidelity;
 use motif_points::PointSet;
@@ -77,19 +78,50 @@ fn project(set: &PointSet) -> Vec<(f64, f64, f64)> {
     (0..set.len())
         .map(|i| {
             let p = set.position(i);
-            if set.dimension == 2 {
-                (p[0], p[1], 1.0)
-            } else {
-                let (sa, ca) = 35f64.to_radians().sin_cos();
-                let (sb, cb) = 30f64.to_radians().sin_cos();
-                let x = ca * p[0] - sa * p[1];
-                let y1 = sa * p[0] + ca * p[1];
-                let depth = cb * y1 + sb * p[2];
-                let up = -sb * y1 + cb * p[2];
-                (x, -up, depth)
-            }
+            if set.dimension == 2 { (p[0], p[1], 1.0) } else { view([p[0], p[1], p[2]]) }
         })
         .collect()
+}
+
+/// The 3D view of the preview: turned 35° about z, tilted 30°; screen x, screen y (down) and depth.
+fn view(p: [f64; 3]) -> (f64, f64, f64) {
+    let (sa, ca) = 35f64.to_radians().sin_cos();
+    let (sb, cb) = 30f64.to_radians().sin_cos();
+    let x = ca * p[0] - sa * p[1];
+    let y1 = sa * p[0] + ca * p[1];
+    let depth = cb * y1 + sb * p[2];
+    let up = -sb * y1 + cb * p[2];
+    (x, -up, depth)
+}
+
+/// A reconstructed surface, shaded: triangles far to near (painter's order), each lit by the
+/// cosine between its normal and the view direction (two-sided, flat shading).
+fn draw_mesh_panel(svg: &mut SvgWriter, mesh: &TriangleMesh, left: f64, size: f64, title: &str) {
+    let screen: Vec<(f64, f64, f64)> = mesh.vertices.iter().map(|&v| view(v)).collect();
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &(x, y, _) in &screen {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    let margin = 16.0;
+    let scale = (size - 2.0 * margin) / extent;
+    let depth = |t: &[u32; 3]| t.iter().map(|&v| screen[v as usize].2).sum::<f64>();
+    let mut order: Vec<usize> = (0..mesh.triangles.len()).collect();
+    order.sort_by(|&a, &b| depth(&mesh.triangles[b]).total_cmp(&depth(&mesh.triangles[a])).then(a.cmp(&b)));
+    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
+    for t in order {
+        let [a, b, c] = mesh.triangles[t].map(|v| screen[v as usize]);
+        // In view coordinates (x right, y down, depth away) the normal's depth component is the
+        // cosine with the view direction, up to the normal's length.
+        let (u, w) = ((b.0 - a.0, b.1 - a.1, b.2 - a.2), (c.0 - a.0, c.1 - a.1, c.2 - a.2));
+        let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
+        let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
+        let light = 0.25 + 0.75 * (normal.2 / length).abs();
+        let fill = [(90.0 + 140.0 * light) as u8, (110.0 + 120.0 * light) as u8, (150.0 + 90.0 * light) as u8, 255];
+        let corner = |p: (f64, f64, f64)| Point::new(left + margin + (p.0 - x0) * scale, margin + (p.1 - y0) * scale);
+        svg.polyline(&[corner(a), corner(b), corner(c)], true, None, Some(fill));
+    }
+    svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
 }
 
 fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f64, size: f64, title: &str) {
@@ -182,13 +214,23 @@ pub fn preview_image(
     output: &PointSet,
     fidelity: &Fidelity,
     colour_by: Option<&str>,
+    surface: Option<&TriangleMesh>,
 ) -> anyhow::Result<motif_core::RgbaImage> {
     let size = 420.0;
     let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
     let (exemplar_colours, range) = colours(exemplar, colour_by, None)?;
     let (output_colours, _) = colours(output, colour_by, range)?;
     draw_panel(&mut svg, exemplar, &exemplar_colours, 0.0, size, &format!("exemplar ({} points)", exemplar.len()));
-    draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &format!("output ({} points)", output.len()));
+    match surface {
+        Some(mesh) => {
+            let title = format!("output surface ({} points, {} triangles)", output.len(), mesh.triangles.len());
+            draw_mesh_panel(&mut svg, mesh, size + 10.0, size, &title);
+        }
+        None => {
+            let title = format!("output ({} points)", output.len());
+            draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &title);
+        }
+    }
     draw_statistics(&mut svg, fidelity, 2.0 * size + 20.0, size);
     Ok(motif_io::render_svg(&svg.finish(), 1.0, Path::new("preview"))?)
 }
