@@ -18,6 +18,9 @@
 //! - [`math`] and [`vector`]: transcendental functions and vector lengths, directions, angles and
 //!   rotations with the same bits natively and in WebAssembly (the platforms' math libraries round
 //!   differently; engines use these instead of the `f64` methods and kurbo's).
+//! - `tone`: [`ToneMap`], a grey image stretched over a rectangle of a drawing (the density, scale
+//!   and rotation maps of the strokes and points engines).
+//! - `mesh`: [`TriangleMesh`], vertices and triangles (volume domains, reconstructed surfaces).
 //!
 //! Conventions (see `ARCHITECTURE.md`): y points down; pixel `(i, j)` covers `[i, i+1) × [j, j+1)`
 //! so its centre is at `(i + 0.5, j + 0.5)`; colours are 8-bit sRGB with straight (not premultiplied)

@@ -12,6 +12,8 @@
 //! - [`svg`]: SVG read through `usvg` (paths as `kurbo` paths in document coordinates, transforms
 //!   applied, with stroke and fill), SVG write ([`SvgWriter`]) and rasterization via `resvg`.
 //! - [`points`]: point tables as PLY (ascii or binary, via `ply-rs-bw`) or CSV (via `csv`).
+//! - `mesh`: triangle meshes read from OBJ (via `tobj`, sections welded) or PLY faces
+//!   ([`read_mesh`]), and written as OBJ ([`write_obj`]).
 //! - [`json`]: reports and piece lists via `serde_json`.
 
 pub mod json;
