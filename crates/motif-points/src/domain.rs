@@ -5,6 +5,7 @@ use motif_core::Point;
 
 use crate::error::{DomainProblem, Error};
 use crate::linear::{self, Matrix, Vector};
+use crate::mesh_surface::MeshSurface;
 use crate::params::{Domain, Field};
 use crate::volume::MeshVolume;
 
@@ -19,6 +20,9 @@ pub enum Region<const D: usize> {
     Stroke { vertices: Vec<Vector<D>>, cumulative: Vec<f64>, radius: f64, scale_start: f64, scale_end: f64 },
     /// The inside of a closed mesh (3D).
     Volume(Box<MeshVolume>),
+    /// The band of half-width `band` around a mesh surface (3D, for a lifted 2D exemplar): the
+    /// grid nodes in it are the quadrature points, moved onto the surface.
+    Surface { surface: Box<MeshSurface>, band: f64 },
 }
 
 /// Where along a stroke a position projects.
@@ -97,6 +101,12 @@ impl<const D: usize> Region<D> {
                 }
                 Ok(Region::Volume(Box::new(MeshVolume::new(mesh)?)))
             }
+            Domain::Surface { mesh, directions } => {
+                if D != 3 {
+                    return Err(DomainProblem::SurfaceExemplar(3));
+                }
+                Ok(Region::Surface { surface: Box::new(MeshSurface::new(mesh, directions)?), band: 0.0 })
+            }
         }
     }
 
@@ -127,6 +137,10 @@ impl<const D: usize> Region<D> {
             Region::Volume(volume) => {
                 let (low, high) = volume.bounds();
                 (std::array::from_fn(|i| low[i]), std::array::from_fn(|i| high[i]))
+            }
+            Region::Surface { surface, band } => {
+                let (low, high) = surface.bounds();
+                (std::array::from_fn(|i| low[i] - band), std::array::from_fn(|i| high[i] + band))
             }
         }
     }
@@ -161,6 +175,9 @@ impl<const D: usize> Region<D> {
             Region::Polygon(polygon) => Some(polygon.area()),
             Region::Stroke { .. } => None,
             Region::Volume(volume) => volume.volume(),
+            // The lifted exemplar's window is as thick as the band, so that points per volume of
+            // band are points per area of surface.
+            Region::Surface { surface, band } => Some(surface.area() * 2.0 * band),
         }
     }
 
@@ -186,13 +203,14 @@ impl<const D: usize> Region<D> {
                 let p = Self::point3(p);
                 if volume.contains(&p) { 0.0 } else { volume.distance_to_surface(&p) }
             }
+            Region::Surface { surface, band } => (surface.closest(&Self::point3(p)).distance - band).max(0.0),
         }
     }
 
     /// Distance from `p` to the domain's border when inside (0 outside).
     pub fn depth(&self, p: &Vector<D>) -> f64 {
         match self {
-            Region::Box { min, max } => crate::fidelity::box_depth(p, min, max).max(0.0),
+            Region::Box { min, max } => crate::fidelity::box_depth(p, min, max, D).max(0.0),
             Region::Polygon(polygon) => {
                 let point = Point::new(p[0], p[1]);
                 if polygon.contains(point) { polygon.distance_to_boundary(point) } else { 0.0 }
@@ -204,6 +222,10 @@ impl<const D: usize> Region<D> {
                 let p = Self::point3(p);
                 if volume.contains(&p) { volume.distance_to_surface(&p) } else { 0.0 }
             }
+            Region::Surface { surface, band } => {
+                let closest = surface.closest(&Self::point3(p));
+                if closest.distance <= *band { surface.border_distance(&closest.point) } else { 0.0 }
+            }
         }
     }
 
@@ -214,6 +236,18 @@ impl<const D: usize> Region<D> {
             Region::Polygon(polygon) => polygon.contains(Point::new(p[0], p[1])),
             Region::Stroke { .. } => self.distance(p) <= 0.0,
             Region::Volume(volume) => volume.contains(&Self::point3(p)),
+            Region::Surface { surface, band } => surface.closest(&Self::point3(p)).distance <= *band,
+        }
+    }
+
+    /// Where a position is kept: its closest point on a surface domain, itself elsewhere.
+    pub fn keep_on(&self, p: &Vector<D>) -> Vector<D> {
+        match self {
+            Region::Surface { surface, .. } => {
+                let point = surface.closest(&Self::point3(p)).point;
+                std::array::from_fn(|i| point[i])
+            }
+            _ => *p,
         }
     }
 
@@ -225,6 +259,10 @@ impl<const D: usize> Region<D> {
                 let total = cumulative.last().copied().unwrap_or(1.0).max(1e-300);
                 let t = (projection.arc / total).clamp(0.0, 1.0);
                 (linear::rotation_from_x(&projection.tangent), scale_start + (scale_end - scale_start) * t)
+            }
+            Region::Surface { surface, .. } => {
+                let frame = surface.frame(&Self::point3(p));
+                (std::array::from_fn(|i| std::array::from_fn(|j| frame[i][j])), 1.0)
             }
             _ => (linear::identity(), 1.0),
         }
@@ -323,6 +361,19 @@ impl<const D: usize> Quadrature<D> {
             scale: scales,
             depth,
         })
+    }
+
+    /// On a surface domain, moves the quadrature points onto the surface and measures their
+    /// depth along it (to its border; a closed surface has none), since the grid's own depth only
+    /// sees the thin band.
+    pub fn settle_on(&mut self, region: &Region<D>) {
+        if let Region::Surface { .. } = region {
+            for k in 0..self.points.len() {
+                let q = region.keep_on(&self.points[k]);
+                self.points[k] = q;
+                self.depth[k] = (region.depth(&q) * self.inverse_spacing).min(f64::from(u32::MAX / 2)) as u32;
+            }
+        }
     }
 
     /// The number of quadrature points.

@@ -205,6 +205,20 @@ pub enum DomainProblem {
     /// A volume domain with a 2D exemplar.
     #[error("a volume domain needs a 3D exemplar")]
     VolumeIn2d,
+    /// A surface domain with a 3D exemplar.
+    #[error("a surface domain needs a 2D exemplar (its plane is laid on the surface); this one is {0}D")]
+    SurfaceExemplar(usize),
+    /// A surface direction that is NaN, infinite or zero.
+    #[error("the surface direction field has a vector that is not finite, or is zero")]
+    SurfaceDirection,
+    /// A per-vertex direction field of the wrong length.
+    #[error("the surface direction field has {given} vectors but the mesh has {vertices} vertices")]
+    SurfaceDirectionCount {
+        /// Vectors given.
+        given: usize,
+        /// Vertices in the mesh.
+        vertices: usize,
+    },
     /// A stroke of fewer than two distinct vertices.
     #[error("the stroke needs at least two distinct vertices")]
     ShortStroke,

@@ -89,8 +89,10 @@ pub struct Sample<'a, const D: usize> {
     pub points: &'a [Vector<D>],
     /// Distance from a point to the border of the set's domain (≤ 0 outside).
     pub depth: &'a dyn Fn(&Vector<D>) -> f64,
-    /// Volume of the domain.
+    /// Volume of the domain (its area, for a surface).
     pub volume: f64,
+    /// The dimension the volume and rings are measured in: `D`, or 2 for points on a surface.
+    pub dimension: usize,
 }
 
 /// Statistics of `sample`, distances in units of `spacing`.
@@ -141,12 +143,13 @@ pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Stati
         usable[b] = running;
         running += centres_beyond[b];
     }
-    let density = points.len() as f64 / sample.volume.max(1e-300) * spacing.powi(D as i32);
-    let unit_ball = if D == 2 { std::f64::consts::PI } else { 4.0 / 3.0 * std::f64::consts::PI };
+    let dimension = sample.dimension as i32;
+    let density = points.len() as f64 / sample.volume.max(1e-300) * spacing.powi(dimension);
+    let unit_ball = if dimension == 2 { std::f64::consts::PI } else { 4.0 / 3.0 * std::f64::consts::PI };
     let radial_distribution = (0..bins)
         .map(|b| {
             let (r0, r1) = (b as f64 * BIN, (b + 1) as f64 * BIN);
-            let shell = unit_ball * (r1.powi(D as i32) - r0.powi(D as i32));
+            let shell = unit_ball * (r1.powi(dimension) - r0.powi(dimension));
             if usable[b] == 0 { 0.0 } else { pair_counts[b] / (usable[b] as f64 * density * shell) }
         })
         .collect();
@@ -223,8 +226,17 @@ pub struct Domain<'a, const D: usize> {
     pub low: Vector<D>,
     /// Bounding box.
     pub high: Vector<D>,
-    /// Volume.
+    /// Volume (area, for a surface).
     pub volume: f64,
+    /// The dimension the volume is measured in: `D`, or 2 for a surface (whose exemplar lies in
+    /// the plane of the first two axes).
+    pub dimension: usize,
+    /// Uniform points of a surface from three uniform numbers (rejection from the bounding box
+    /// cannot hit a surface).
+    pub sample: Option<&'a dyn Fn(f64, f64, f64) -> Vector<D>>,
+    /// Where the tiled baseline is laid when not over the domain itself: a curved surface cannot
+    /// be tiled, so its baseline tiles a square of the same area.
+    pub tiling: Option<&'a Domain<'a, D>>,
 }
 
 /// The exemplar's window: its bounding box padded by half a spacing on every side, so that each
@@ -245,31 +257,45 @@ pub fn compare<const D: usize>(
     seed: u64,
 ) -> Fidelity {
     let (low, high) = *window;
-    let window_volume: f64 = (0..D).map(|a| high[a] - low[a]).product();
-    let window_depth = |p: &Vector<D>| box_depth(p, &low, &high);
+    let dimension = domain.dimension;
+    let window_volume: f64 = (0..dimension).map(|a| high[a] - low[a]).product();
+    let window_depth = |p: &Vector<D>| box_depth(p, &low, &high, dimension);
     let exemplar_statistics =
-        statistics(&Sample { points: exemplar, depth: &window_depth, volume: window_volume }, spacing);
-    let on_domain =
-        |points: &[Vector<D>]| statistics(&Sample { points, depth: domain.depth, volume: domain.volume }, spacing);
+        statistics(&Sample { points: exemplar, depth: &window_depth, volume: window_volume, dimension }, spacing);
+    let on_domain = |points: &[Vector<D>]| {
+        statistics(&Sample { points, depth: domain.depth, volume: domain.volume, dimension }, spacing)
+    };
     let output_statistics = on_domain(output);
     let expected = exemplar.len() as f64 / window_volume * domain.volume;
     let random = random_set(domain, expected.round() as usize, seed);
-    let tiled = tiled_copy(exemplar, &low, &high, domain);
+    let tiled = match domain.tiling {
+        Some(tiling) => {
+            let tiled = tiled_copy(exemplar, &low, &high, tiling);
+            statistics(&Sample { points: &tiled, depth: tiling.depth, volume: tiling.volume, dimension }, spacing)
+        }
+        None => on_domain(&tiled_copy(exemplar, &low, &high, domain)),
+    };
     Fidelity {
         spacing,
-        halves: halves(exemplar, &low, &high, spacing),
+        halves: halves(exemplar, &low, &high, spacing, dimension),
         density_ratio: output.len() as f64 / expected.max(1e-300),
         output: distances(&exemplar_statistics, &output_statistics),
         random: distances(&exemplar_statistics, &on_domain(&random)),
-        tiled: distances(&exemplar_statistics, &on_domain(&tiled)),
+        tiled: distances(&exemplar_statistics, &tiled),
         exemplar_statistics,
         output_statistics,
     }
 }
 
 /// The distances between the two halves of the exemplar window, split across its longest side.
-fn halves<const D: usize>(exemplar: &[Vector<D>], low: &Vector<D>, high: &Vector<D>, spacing: f64) -> Distances {
-    let axis = (0..D).max_by(|&a, &b| (high[a] - low[a]).total_cmp(&(high[b] - low[b]))).unwrap_or(0);
+fn halves<const D: usize>(
+    exemplar: &[Vector<D>],
+    low: &Vector<D>,
+    high: &Vector<D>,
+    spacing: f64,
+    dimension: usize,
+) -> Distances {
+    let axis = (0..dimension).max_by(|&a, &b| (high[a] - low[a]).total_cmp(&(high[b] - low[b]))).unwrap_or(0);
     let middle = 0.5 * (low[axis] + high[axis]);
     let half_statistics = |first: bool| {
         let (mut lo, mut hi) = (*low, *high);
@@ -279,9 +305,9 @@ fn halves<const D: usize>(exemplar: &[Vector<D>], low: &Vector<D>, high: &Vector
             lo[axis] = middle;
         }
         let points: Vec<Vector<D>> = exemplar.iter().copied().filter(|p| (p[axis] < middle) == first).collect();
-        let volume: f64 = (0..D).map(|a| hi[a] - lo[a]).product();
-        let depth = |p: &Vector<D>| box_depth(p, &lo, &hi);
-        statistics(&Sample { points: &points, depth: &depth, volume }, spacing)
+        let volume: f64 = (0..dimension).map(|a| hi[a] - lo[a]).product();
+        let depth = |p: &Vector<D>| box_depth(p, &lo, &hi, dimension);
+        statistics(&Sample { points: &points, depth: &depth, volume, dimension }, spacing)
     };
     distances(&half_statistics(true), &half_statistics(false))
 }
@@ -291,6 +317,9 @@ pub fn random_set<const D: usize>(domain: &Domain<'_, D>, count: usize, seed: u6
     let mut stream = SeedStreams::new(seed).stream("fidelity random baseline", 0);
     let mut points = Vec::with_capacity(count);
     let mut tries = 0usize;
+    if let Some(sample) = domain.sample {
+        return (0..count).map(|_| sample(stream.random(), stream.random(), stream.random())).collect();
+    }
     while points.len() < count && tries < 1000 * count.max(1) {
         tries += 1;
         let p: Vector<D> =
@@ -332,10 +361,10 @@ pub fn tiled_copy<const D: usize>(
     points
 }
 
-/// Depth of `p` inside the box `[low, high]`.
-pub fn box_depth<const D: usize>(p: &Vector<D>, low: &Vector<D>, high: &Vector<D>) -> f64 {
+/// Depth of `p` inside the box `[low, high]`, over its first `dimension` axes.
+pub fn box_depth<const D: usize>(p: &Vector<D>, low: &Vector<D>, high: &Vector<D>, dimension: usize) -> f64 {
     let mut depth = f64::INFINITY;
-    for a in 0..D {
+    for a in 0..dimension {
         depth = depth.min(p[a] - low[a]).min(high[a] - p[a]);
     }
     depth
@@ -397,22 +426,22 @@ mod tests {
         let side = 60.0;
         let low = [0.0, 0.0];
         let high = [side, side];
-        let depth = |p: &Vector<2>| box_depth(p, &low, &high);
+        let depth = |p: &Vector<2>| box_depth(p, &low, &high, 2);
         let random = uniform(3600, side, 3);
         let spacing = mean_spacing(&random);
-        let s = statistics(&Sample { points: &random, depth: &depth, volume: side * side }, spacing);
+        let s = statistics(&Sample { points: &random, depth: &depth, volume: side * side, dimension: 2 }, spacing);
         let tail: Vec<f64> = s.radial_distribution[10..].to_vec();
         let mean = tail.iter().sum::<f64>() / tail.len() as f64;
         assert!((mean - 1.0).abs() < 0.05, "g of a uniform set averages {mean}");
         // A square lattice has no pair closer than its period: g is 0 below it.
         let lattice: Vec<Vector<2>> = (0..3600).map(|i| [(i % 60) as f64 + 0.5, (i / 60) as f64 + 0.5]).collect();
-        let l = statistics(&Sample { points: &lattice, depth: &depth, volume: side * side }, 1.0);
+        let l = statistics(&Sample { points: &lattice, depth: &depth, volume: side * side, dimension: 2 }, 1.0);
         assert!(l.radial_distribution[..9].iter().all(|&g| g == 0.0));
         assert!(l.radial_distribution[10] > 3.0);
         assert!((l.mean_nearest - 1.0).abs() < 1e-9);
         // The distance of a uniform set to the lattice is large, of the lattice to itself zero.
         assert_eq!(distances(&l, &l).radial_distribution, 0.0);
-        let u = statistics(&Sample { points: &random, depth: &depth, volume: side * side }, 1.0);
+        let u = statistics(&Sample { points: &random, depth: &depth, volume: side * side, dimension: 2 }, 1.0);
         assert!(distances(&l, &u).radial_distribution > 0.3);
     }
 
@@ -421,8 +450,17 @@ mod tests {
         let lattice: Vec<Vector<2>> = (0..400).map(|i| [(i % 20) as f64 + 0.5, (i / 20) as f64 + 0.5]).collect();
         let (low, high) = ([0.0, 0.0], [50.0, 50.0]);
         let contains = |p: &Vector<2>| (0..2).all(|a| p[a] >= low[a] && p[a] < high[a]);
-        let depth = |p: &Vector<2>| box_depth(p, &low, &high);
-        let domain = Domain { contains: &contains, depth: &depth, low, high, volume: 2500.0 };
+        let depth = |p: &Vector<2>| box_depth(p, &low, &high, 2);
+        let domain = Domain {
+            contains: &contains,
+            depth: &depth,
+            low,
+            high,
+            volume: 2500.0,
+            dimension: 2,
+            sample: None,
+            tiling: None,
+        };
         let fidelity = compare(&lattice, &exemplar_window(&lattice, 1.0), &lattice, &domain, 1.0, 7);
         assert!(fidelity.tiled.radial_distribution < 0.05, "{:?}", fidelity.tiled);
         assert!(fidelity.tiled.nearest_neighbour < 1e-9);

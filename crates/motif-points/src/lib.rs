@@ -67,6 +67,7 @@
 // formulas they implement.
 #![allow(clippy::needless_range_loop)]
 
+mod curvature;
 mod cut;
 mod domain;
 mod energy;
@@ -78,6 +79,7 @@ mod init;
 mod linear;
 mod matching;
 mod merging;
+mod mesh_surface;
 mod model;
 mod pairs;
 mod params;
@@ -96,12 +98,18 @@ mod tests;
 #[cfg(test)]
 mod tests_attributes;
 #[cfg(test)]
+mod tests_surface;
+#[cfg(test)]
 mod tests_synthesis;
+mod triangles;
 mod volume;
 
 pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};
-pub use params::{Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, Window};
+pub use params::{
+    Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, SurfaceDirections,
+    Window,
+};
 pub use points::PointSet;
 pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};
 pub use surface::reconstruct_surface;

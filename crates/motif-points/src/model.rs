@@ -250,6 +250,26 @@ impl<const D: usize> State<D> {
         }
     }
 
+    /// Moves every free point and element centre to `settle(position)` (a surface domain keeps
+    /// its points on the surface this way).
+    pub fn settle(&mut self, settle: impl Fn(&Vector<D>) -> Vector<D>) {
+        for unit in 0..self.units.len() {
+            if !self.units[unit].alive {
+                continue;
+            }
+            match &mut self.units[unit].rigid {
+                Some(rigid) => {
+                    rigid.centre = settle(&rigid.centre);
+                    self.place_rigid(unit);
+                }
+                None => {
+                    let p = self.units[unit].points[0] as usize;
+                    self.positions[p] = settle(&self.positions[p]);
+                }
+            }
+        }
+    }
+
     /// Per point: whether merging may move it (its unit is alive and not frozen).
     pub fn movable(&self) -> Vec<bool> {
         self.unit_of.iter().map(|&u| self.units[u as usize].alive && !self.units[u as usize].frozen).collect()

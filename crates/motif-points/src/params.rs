@@ -135,6 +135,31 @@ pub enum Domain {
     Stroke(Stroke),
     /// The inside of a closed triangle mesh (3D only).
     Volume(motif_core::TriangleMesh),
+    /// The surface of a triangle mesh (open or closed), for a 2D exemplar: the output is 3D,
+    /// every point on the mesh, the exemplar's plane laid on the tangent planes.
+    Surface {
+        /// The mesh.
+        mesh: motif_core::TriangleMesh,
+        /// Where the exemplar's x axis points on the surface.
+        directions: SurfaceDirections,
+    },
+}
+
+/// The orientation field of a surface domain: where the exemplar's x axis points in each tangent
+/// plane (its y axis is the normal's cross product with it).
+#[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
+pub enum SurfaceDirections {
+    /// The principal direction of least curvature (a cylinder's axis), as in Figure 6 of the
+    /// paper (default). Where the surface curves the same way in every direction (a plane, a
+    /// sphere) it fades into the fallback: the world x axis projected on the tangent plane (y
+    /// where the normal is near x).
+    #[default]
+    Curvature,
+    /// One direction everywhere, projected on the tangent plane.
+    Constant([f64; 3]),
+    /// One vector per mesh vertex, interpolated across each triangle and projected.
+    PerVertex(Vec<[f64; 3]>),
 }
 
 /// Parameters of [`crate::synthesize`]. Defaults follow §7.1 of the paper.

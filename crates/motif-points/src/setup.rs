@@ -92,8 +92,10 @@ fn significant(value: f64) -> String {
     if (0..=12).contains(&decimals) { format!("{value:.*}", decimals as usize) } else { number(value) }
 }
 
+/// The first `D` values; missing ones are 0 (a 2D exemplar lifted into the plane z = 0 for a
+/// surface domain).
 fn vector<const D: usize>(values: &[f64]) -> Vector<D> {
-    std::array::from_fn(|a| values[a])
+    std::array::from_fn(|a| values.get(a).copied().unwrap_or(0.0))
 }
 
 pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<Setup<D>, Error> {
@@ -236,7 +238,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         Some((l, h)) => (vector(l), vector(h)),
         None => fidelity::exemplar_window(&positions, spacing),
     };
-    let exemplar =
+    let mut exemplar =
         Exemplar { positions, features, channels, element_of, elements, low, high, spacing, window_low, window_high };
     // Domain and quadrature.
     if let crate::params::Domain::Volume(mesh) = &input.domain {
@@ -245,7 +247,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         estimate.add("mesh triangles", mesh.triangles.len() as f64, 72.0 + 64.0 + 6.0 * 16.0);
         estimate.check(params.max_memory, MEMORY_ADVICE)?;
     }
-    let region = Region::<D>::new(&input.domain).map_err(Error::EmptyDomain)?;
+    let mut region = Region::<D>::new(&input.domain).map_err(Error::EmptyDomain)?;
     let existing: Vec<Vector<D>> = match &input.existing {
         Some(set) => (0..set.len()).map(|i| vector(set.position(i))).collect(),
         None => Vec::new(),
@@ -265,12 +267,24 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         }
     }
     let h = params.quadrature_spacing.map_or((2.0 * sigma).max(delta / 8.0), |spacing| spacing * sigma);
+    if let Region::Surface { band, .. } = &mut region {
+        // Every point of the surface rounds to a grid node within the band (half a cell's
+        // diagonal), and the lifted exemplar's window is as thick as the band.
+        *band = 0.5 * 3f64.sqrt() * h * (1.0 + 1e-9);
+        exemplar.window_low[2] = -*band;
+        exemplar.window_high[2] = *band;
+        for a in 0..D {
+            low[a] = low[a].min(region.bounds().0[a]);
+            high[a] = high[a].max(region.bounds().1[a]);
+        }
+    }
     let keep = |q: &Vector<D>| {
         region.contains(q) || margin.is_some_and(|margin| region.distance(q) < margin && near_existing(q))
     };
     let grid_cells: f64 = (0..D).map(|a| ((high[a] - low[a]) / h).floor().max(0.0) + 1.0).product();
     memory_estimate::<D>(grid_cells, grid_cells, 0.0, channels, 0.0).check(params.max_memory, MEMORY_ADVICE)?;
-    let quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
+    let mut quadrature = Quadrature::new(low, high, h, keep, &region, &params.rotation, &params.scale)?;
+    quadrature.settle_on(&region);
     // The grid measures Ω with a boundary layer of half a cell on every side; where the region's
     // volume is known exactly (a fresh box or polygon) the expected count follows it instead (a
     // 9 × 9 box of a unit-density exemplar holds 81 points, not the grid's 91).
@@ -382,7 +396,14 @@ impl<const D: usize> Setup<D> {
     pub fn initialize(&mut self, params: &Params, streams: &SeedStreams) -> Vec<Vector<D>> {
         let mut state = std::mem::take(&mut self.state);
         let allowed = |p: &Vector<D>| self.allowed(p);
-        let matches = match params.initialization {
+        // Patch copies are laid in tiles of the grid's space, which a curved surface crosses at
+        // any angle; on a surface the points start at random, which the optimization is robust to
+        // (§5.2, Figure 4).
+        let initialization = match self.region {
+            Region::Surface { .. } => Initialization::Random,
+            _ => params.initialization,
+        };
+        let matches = match initialization {
             Initialization::Random => {
                 init::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed);
                 Vec::new()
@@ -458,15 +479,58 @@ pub(crate) fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vecto
     let region = &setup.region;
     let (low, high) = region.bounds();
     let volume = region.volume().unwrap_or(quadrature.len() as f64 * quadrature.spacing().powi(D as i32));
+    let window = (linear::scale(&setup.exemplar.window_low, scale), linear::scale(&setup.exemplar.window_high, scale));
+    let spacing = setup.exemplar.spacing * scale;
+    let contains = |p: &Vector<D>| region.contains(p);
+    let depth = |p: &Vector<D>| region.depth(p);
+    if let Region::Surface { surface, .. } = region {
+        // Measured along the surface (in 3D, which is the same at the scale of a few spacings):
+        // areas, rings and a uniform random set of the surface; the tiled baseline tiles a square
+        // of the same area in the exemplar's plane.
+        let side = surface.area().sqrt();
+        let (square_low, square_high): (Vector<D>, Vector<D>) = (
+            std::array::from_fn(|a| if a < 2 { 0.0 } else { -1.0 }),
+            std::array::from_fn(|a| if a < 2 { side } else { 1.0 }),
+        );
+        let square_contains = |p: &Vector<D>| (0..D).all(|a| p[a] >= square_low[a] && p[a] <= square_high[a]);
+        let square_depth = |p: &Vector<D>| fidelity::box_depth(p, &square_low, &square_high, 2);
+        let tiling = fidelity::Domain {
+            contains: &square_contains,
+            depth: &square_depth,
+            low: square_low,
+            high: square_high,
+            volume: side * side,
+            dimension: 2,
+            sample: None,
+            tiling: None,
+        };
+        let sample = |choice: f64, s: f64, t: f64| -> Vector<D> {
+            let p = surface.sample(choice, s, t);
+            std::array::from_fn(|a| p[a])
+        };
+        let domain = fidelity::Domain {
+            contains: &contains,
+            depth: &depth,
+            low,
+            high,
+            volume: surface.area(),
+            dimension: 2,
+            sample: Some(&sample),
+            tiling: Some(&tiling),
+        };
+        return fidelity::compare(&exemplar, &window, output, &domain, spacing, seed);
+    }
     let domain = fidelity::Domain {
-        contains: &|p: &Vector<D>| region.contains(p),
-        depth: &|p: &Vector<D>| region.depth(p),
+        contains: &contains,
+        depth: &depth,
         low,
         high,
         volume,
+        dimension: D,
+        sample: None,
+        tiling: None,
     };
-    let window = (linear::scale(&setup.exemplar.window_low, scale), linear::scale(&setup.exemplar.window_high, scale));
-    fidelity::compare(&exemplar, &window, output, &domain, setup.exemplar.spacing * scale, seed)
+    fidelity::compare(&exemplar, &window, output, &domain, spacing, seed)
 }
 
 pub(crate) fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -> PointSet {

@@ -7,13 +7,13 @@ use motif_core::{InvalidParameter, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
 use crate::energy::{Evaluation, Problem};
-use crate::error::Error;
+use crate::error::{DomainProblem, Error};
 use crate::fidelity::Fidelity;
 use crate::linear::Vector;
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::merging::{self, MergeSettings};
 use crate::model::State;
-use crate::params::{Evaluator, Input, Params, Refinement};
+use crate::params::{Domain, Evaluator, Input, Params, Refinement};
 use crate::setup::{Setup, count_bounds, measure_fidelity, prepare, to_point_set};
 use crate::{PointSet, reference, sampling};
 
@@ -119,10 +119,16 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     if exemplar.len() < 3 {
         return Err(Error::TooFewPoints { count: exemplar.len() });
     }
+    let surface = matches!(input.domain, Domain::Surface { .. });
+    if surface && exemplar.dimension != 2 {
+        return Err(Error::EmptyDomain(DomainProblem::SurfaceExemplar(exemplar.dimension)));
+    }
     if let Some(existing) = &input.existing {
         existing.validate("existing points")?;
-        if existing.dimension != exemplar.dimension {
-            return Err(Error::DimensionMismatch { existing: existing.dimension, exemplar: exemplar.dimension });
+        // On a surface the output, and so the existing points, are 3D.
+        let output_dimension = if surface { 3 } else { exemplar.dimension };
+        if existing.dimension != output_dimension {
+            return Err(Error::DimensionMismatch { existing: existing.dimension, exemplar: output_dimension });
         }
     }
     params.validate()?;
@@ -162,8 +168,9 @@ fn check_exemplar_window(exemplar: &PointSet, low: &[f64], high: &[f64]) -> Resu
 /// Synthesizes a structure like `input.exemplar` over `params.domain` (§5, Algorithm 1).
 pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
     validate(input, params)?;
-    match input.exemplar.dimension {
-        2 => run::<2>(input, params, progress),
+    match (input.exemplar.dimension, &input.domain) {
+        (_, Domain::Surface { .. }) => run::<3>(input, params, progress),
+        (2, _) => run::<2>(input, params, progress),
         _ => run::<3>(input, params, progress),
     }
 }
@@ -195,6 +202,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     let mut setup = prepare::<D>(input, params)?;
     timer.start("initialize");
     let mut matches = setup.initialize(params, &streams.child("initialize", 0));
+    setup.state.settle(|p| setup.region.keep_on(p));
     let initial_points = setup.state.positions.len();
     // Window sizes: δ, αδ, α²δ, ... while ≥ final_fraction·δ.
     let mut deltas = vec![setup.delta];
@@ -275,6 +283,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                         merging::merge_positions(&mut state, merge_settings, attributes, &evaluate, &allowed);
                     (steps, Some(last))
                 };
+                state.settle(|p| setup.region.keep_on(p));
                 let discrete = &setup.attributes.discrete;
                 let after = merging::merge_attributes(&mut state, merge_settings, discrete, last, &evaluate)
                     .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
@@ -304,6 +313,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                     bounds,
                     &allowed,
                 );
+                state.settle(|p| setup.region.keep_on(p));
                 if let Some(last) = energies.last_mut() {
                     last.added = outcome.added;
                     last.removed = outcome.removed;

@@ -9,84 +9,10 @@
 
 use motif_core::TriangleMesh;
 use robust::{Coord, orient2d};
-use rstar::{AABB, PointDistance, RTree, RTreeObject};
+use rstar::{AABB, PointDistance, RTree};
 
 use crate::error::DomainProblem;
-
-type Vec3 = [f64; 3];
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-/// One triangle in the tree.
-#[derive(Debug, Clone)]
-struct Triangle {
-    corners: [Vec3; 3],
-}
-
-impl RTreeObject for Triangle {
-    type Envelope = AABB<Vec3>;
-    fn envelope(&self) -> Self::Envelope {
-        let [a, b, c] = self.corners;
-        AABB::from_corners(
-            std::array::from_fn(|i| a[i].min(b[i]).min(c[i])),
-            std::array::from_fn(|i| a[i].max(b[i]).max(c[i])),
-        )
-    }
-}
-
-impl PointDistance for Triangle {
-    fn distance_2(&self, point: &Vec3) -> f64 {
-        let closest = closest_point(*point, self.corners);
-        let d = sub(*point, closest);
-        dot(d, d)
-    }
-}
-
-/// The point of triangle `[a, b, c]` closest to `p` (Ericson, Real-Time Collision Detection §5.1.5).
-fn closest_point(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
-    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
-    let along =
-        |origin: Vec3, direction: Vec3, t: f64| -> Vec3 { std::array::from_fn(|i| origin[i] + t * direction[i]) };
-    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = sub(p, b);
-    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return along(a, ab, d1 / (d1 - d3));
-    }
-    let cp = sub(p, c);
-    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return along(a, ac, d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denominator = 1.0 / (va + vb + vc);
-    let (v, w) = (vb * denominator, vc * denominator);
-    std::array::from_fn(|i| a[i] + ab[i] * v + ac[i] * w)
-}
+use crate::triangles::{Triangle, Vec3, cross, dot, sub};
 
 /// True when the edge `from → to` of a counter-clockwise 2D triangle owns the points on it: a
 /// top edge (horizontal, pointing left) or a left edge (pointing down).
@@ -137,32 +63,13 @@ pub struct MeshVolume {
 impl MeshVolume {
     /// Checks the mesh (triangles, finite vertices, no degenerate triangle, closed) and indexes it.
     pub fn new(mesh: &TriangleMesh) -> Result<MeshVolume, DomainProblem> {
-        if mesh.triangles.is_empty() {
-            return Err(DomainProblem::EmptyMesh);
-        }
-        if let Some(index) = mesh.vertices.iter().position(|v| v.iter().any(|c| !c.is_finite())) {
-            return Err(DomainProblem::NonFiniteMeshVertex(index));
-        }
-        let count = mesh.vertices.len();
-        if let Some(t) = mesh.triangles.iter().position(|t| t.iter().any(|&v| v as usize >= count)) {
-            return Err(DomainProblem::MeshIndex { triangle: t, vertices: count });
-        }
-        let (low, high) = mesh.bounds().ok_or(DomainProblem::EmptyMesh)?;
-        let size = (0..3).map(|a| high[a] - low[a]).fold(0.0, f64::max);
-        if let Some(t) = (0..mesh.triangles.len()).position(|t| {
-            let [a, b, c] = mesh.corners(t);
-            let n = cross(sub(b, a), sub(c, a));
-            // Twice the area, against the mesh's size: a sliver of relative area 1e-12 is a point.
-            dot(n, n).sqrt() <= 1e-12 * size * size
-        }) {
-            return Err(DomainProblem::DegenerateTriangle(t));
-        }
+        let (low, high) = crate::triangles::check_mesh(mesh)?;
         let open = mesh.edge_uses().iter().filter(|(_, uses)| uses % 2 == 1).count();
         if open > 0 {
             return Err(DomainProblem::OpenMesh(open));
         }
         let triangles: Vec<Triangle> =
-            (0..mesh.triangles.len()).map(|t| Triangle { corners: mesh.corners(t) }).collect();
+            (0..mesh.triangles.len()).map(|t| Triangle { corners: mesh.corners(t), index: t as u32 }).collect();
         // Signed tetrahedra from a corner of the bounds (not the origin, against cancellation far
         // from it): the enclosed volume, when the faces are consistently oriented (each edge
         // used as often in one direction as in the other); otherwise the grid measures it.
