@@ -511,3 +511,61 @@ fn surface_out_reconstructs_points_with_normals_and_refuses_points_without() {
     assert!(error.contains("--surface-out") && error.contains("nx, ny, nz"), "{error}");
     assert!(!dir.path().join("never.csv").exists() && !dir.path().join("never.obj").exists());
 }
+
+#[test]
+fn surface_domains_keep_points_on_the_mesh_and_refuse_bad_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    std::fs::write(dir.path().join("solid.obj"), octahedron_obj(false)).unwrap();
+    let base = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.5", "--domain", "surface:solid.obj"];
+    let run = |extra: &[&str]| motif(dir.path(), &[&base[..], extra].concat());
+    ok(&run(&["--out", "out.csv", "--report", "report.json"]));
+    let text = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
+    let points: Vec<Vec<f64>> =
+        text.lines().skip(1).map(|l| l.split(',').take(3).map(|v| v.parse().unwrap()).collect()).collect();
+    // Eight faces of side 4√2: area 64√3 ≈ 110.9 at one point per unit area.
+    assert!((points.len() as f64 - 110.9).abs() < 15.0, "{} points", points.len());
+    for p in &points {
+        let l1: f64 = p.iter().map(|v| (v - 4.0).abs()).sum();
+        assert!((l1 - 4.0).abs() <= 1e-6 * 8.0, "{p:?} is off the surface");
+    }
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    let area = report["surface"]["area"].as_f64().unwrap();
+    assert!((area - 64.0 * 3f64.sqrt()).abs() < 1e-9, "area {area}");
+    let error = error_of(&run(&["--surface-directions", "0,0,0", "--out", "never.csv"]));
+    assert!(error.contains("solid.obj") && error.contains("not finite, or is zero"), "{error}");
+    std::fs::write(dir.path().join("vectors.csv"), "x,y,z\n1,0,0\n0,1,0\n").unwrap();
+    let error = error_of(&run(&["--surface-directions", "vectors.csv", "--out", "never.csv"]));
+    assert!(error.contains("2 vectors but the mesh has 6 vertices"), "{error}");
+    ok(&run(&["--surface-directions", "0,0,1", "--out", "along_z.csv"]));
+    let error = error_of(&motif(
+        dir.path(),
+        &["points", "--exemplar", "grid.csv", "--neighbourhood", "1.5", "--domain", "box:6,6"]
+            .into_iter()
+            .chain(["--surface-directions", "1,0,0", "--out", "never.csv"])
+            .collect::<Vec<_>>(),
+    ));
+    assert!(error.contains("--surface-directions needs --domain surface:"), "{error}");
+    let cloud: String = std::iter::once("x,y,z".to_string())
+        .chain((0..40).map(|i| format!("{},{},{}", i % 4, (i / 4) % 5, i / 20)))
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(dir.path().join("cloud.csv"), cloud).unwrap();
+    let error = error_of(&motif(
+        dir.path(),
+        &[
+            "points",
+            "--exemplar",
+            "cloud.csv",
+            "--neighbourhood",
+            "1.5",
+            "--domain",
+            "surface:solid.obj",
+            "--out",
+            "never.csv",
+        ],
+    ));
+    assert!(error.contains("needs a 2D exemplar"), "{error}");
+    assert!(!dir.path().join("never.csv").exists());
+}

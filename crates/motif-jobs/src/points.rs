@@ -7,7 +7,9 @@ use std::collections::BTreeMap;
 
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Progress, ToneMap};
-use motif_points::{Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, Window};
+use motif_points::{
+    Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, SurfaceDirections, Window,
+};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
@@ -26,6 +28,33 @@ pub enum DomainSpec {
     /// The inside of a closed triangle mesh (3D): `{"vertices": [[x, y, z], ...], "triangles":
     /// [[i, j, k], ...]}`.
     Volume(motif_core::TriangleMesh),
+    /// The surface of a triangle mesh, for a 2D exemplar (the output is 3D): `{"mesh": {...},
+    /// "directions": "curvature" | {"constant": [x, y, z]} | {"per-vertex": [[x, y, z], ...]}}`.
+    Surface(SurfaceSpec),
+}
+
+/// A surface domain of [`DomainSpec::Surface`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub struct SurfaceSpec {
+    /// The mesh, as for a volume.
+    pub mesh: motif_core::TriangleMesh,
+    /// Where the exemplar's x axis points on the surface (default: least curvature).
+    #[serde(default)]
+    pub directions: DirectionsSpec,
+}
+
+/// The orientation field of a surface domain.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum DirectionsSpec {
+    /// The principal direction of least curvature.
+    #[default]
+    Curvature,
+    /// One direction, projected on each tangent plane.
+    Constant([f64; 3]),
+    /// One vector per mesh vertex.
+    PerVertex(Vec<[f64; 3]>),
 }
 
 /// A brush stroke of [`DomainSpec::Stroke`].
@@ -210,6 +239,14 @@ impl PointsJob {
                 })
             }
             DomainSpec::Volume(mesh) => Domain::Volume(mesh.clone()),
+            DomainSpec::Surface(surface) => Domain::Surface {
+                mesh: surface.mesh.clone(),
+                directions: match &surface.directions {
+                    DirectionsSpec::Curvature => SurfaceDirections::Curvature,
+                    DirectionsSpec::Constant(v) => SurfaceDirections::Constant(*v),
+                    DirectionsSpec::PerVertex(vectors) => SurfaceDirections::PerVertex(vectors.clone()),
+                },
+            },
         })
     }
 
@@ -327,7 +364,11 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
         "quadrature_points": report.quadrature_points,
         "fidelity": report.fidelity,
     });
-    crate::object(value)
+    let mut figures = crate::object(value);
+    if let Some(surface) = &report.surface {
+        figures.insert("surface".into(), serde_json::json!(surface));
+    }
+    figures
 }
 
 #[cfg(test)]
@@ -437,11 +478,12 @@ impl FieldMaps {
             return Ok(());
         }
         let name = if self.rotation.is_some() { "rotation-map" } else { "scale-map" };
-        if dimension != 2 {
+        if dimension != 2 || matches!(domain, Domain::Surface { .. }) {
+            let given = if dimension != 2 { format!("with a {dimension}D exemplar") } else { "on a surface".into() };
             return Err(InvalidParameter::new(
                 name,
-                format!("with a {dimension}D exemplar"),
-                "a 2D exemplar and domain",
+                given,
+                "a 2D exemplar and domain (on a surface, give the surface's directions instead)",
             )
             .into());
         }
@@ -479,6 +521,6 @@ fn domain_bounds(domain: &Domain) -> motif_core::kurbo::Rect {
             motif_core::geometry::bounds_of(&points).inflate(half, half)
         }
         // 3D: refused before the bounds are asked for.
-        Domain::Volume(_) => Rect::ZERO,
+        Domain::Volume(_) | Domain::Surface { .. } => Rect::ZERO,
     }
 }

@@ -236,7 +236,7 @@ impl<const D: usize> Region<D> {
             Region::Polygon(polygon) => polygon.contains(Point::new(p[0], p[1])),
             Region::Stroke { .. } => self.distance(p) <= 0.0,
             Region::Volume(volume) => volume.contains(&Self::point3(p)),
-            Region::Surface { surface, band } => surface.closest(&Self::point3(p)).distance <= *band,
+            Region::Surface { surface, band } => surface.within(&Self::point3(p), *band),
         }
     }
 

@@ -17,8 +17,10 @@
 //! - `surface` (§6.1, Figure 5): continuous structures with normals reconstructed as meshes for
 //!   display (implicit MLS, surface nets).
 //! - `domain` (§6.2): boxes, polygon regions, brush strokes, mesh volumes (`volume`: the inside
-//!   of a closed triangle mesh, Figure 1's chair); the regular quadrature grid; rotation and scale
-//!   fields stored at the quadrature points (Eq. 8).
+//!   of a closed triangle mesh, Figure 1's chair), mesh surfaces (`mesh_surface`: a 2D exemplar
+//!   laid on the tangent planes, its x axis along the direction of least curvature from
+//!   `curvature`, Figure 6 middle; `triangles`: closest points); the regular quadrature grid;
+//!   rotation and scale fields stored at the quadrature points (Eq. 8).
 //! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts and
 //!   from the grid neighbours' last matches (propagation, as in PatchMatch).
 //! - `merging` (§5.1, global step): descent on positions (quasi-Newton for free points, the
@@ -111,8 +113,17 @@ pub use params::{
     Window,
 };
 pub use points::PointSet;
-pub use solver::{EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, compare_evaluators, synthesize};
+pub use solver::{
+    EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, SurfaceFigures, compare_evaluators, synthesize,
+};
 pub use surface::reconstruct_surface;
+
+/// Checks a mesh and its direction field for a surface domain (triangles, finite vertices, valid
+/// indices, no degenerate triangle, one finite nonzero direction or one per vertex), so that a
+/// front end can name the file before any work. Open meshes are fine on a surface.
+pub fn check_surface_mesh(mesh: &motif_core::TriangleMesh, directions: &SurfaceDirections) -> Result<(), Error> {
+    mesh_surface::MeshSurface::new(mesh, directions).map(|_| ()).map_err(Error::EmptyDomain)
+}
 
 /// Checks a mesh for a volume domain (triangles, finite vertices, valid indices, no degenerate
 /// triangle, closed), so that a front end can name the file before any work.

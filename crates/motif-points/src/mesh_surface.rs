@@ -34,6 +34,11 @@ pub struct MeshSurface {
     /// Below this difference of principal curvature magnitudes the curvature frame fades into the
     /// fallback direction: a plane or a sphere has no preferred direction.
     flat_curvature: f64,
+    /// Cells of side `occupancy_cell` that a triangle's box grown by the band touches: a position
+    /// in no such cell is farther than the band from the surface, without a tree query (the
+    /// grid of a 20 000-point synthesis on a bull has 3.4 million nodes, of which 2 % are kept).
+    occupancy: std::collections::HashSet<[i64; 3]>,
+    occupancy_cell: f64,
 }
 
 /// The closest point of the surface to a position.
@@ -96,7 +101,48 @@ impl MeshSurface {
             low,
             high,
             flat_curvature: 1.0 / diagonal.max(1e-300),
+            occupancy: std::collections::HashSet::new(),
+            occupancy_cell: 0.0,
         })
+    }
+
+    /// Marks the cells within `band` of a triangle's box (cells of side 2·band, capped at a
+    /// million cells per triangle's box; beyond that every position is tested exactly).
+    pub fn mark_band(&mut self, band: f64) {
+        self.occupancy.clear();
+        self.occupancy_cell = 0.0;
+        let cell = 2.0 * band;
+        if !(cell > 0.0 && cell.is_finite()) {
+            return;
+        }
+        let index = |v: f64| (v / cell).floor() as i64;
+        for corners in &self.corners {
+            let low: [i64; 3] =
+                std::array::from_fn(|a| index(corners.iter().map(|c| c[a]).fold(f64::INFINITY, f64::min) - band));
+            let high: [i64; 3] =
+                std::array::from_fn(|a| index(corners.iter().map(|c| c[a]).fold(f64::NEG_INFINITY, f64::max) + band));
+            let count: i64 = (0..3).map(|a| high[a] - low[a] + 1).product();
+            if count > 1_000_000 {
+                self.occupancy.clear();
+                return;
+            }
+            for x in low[0]..=high[0] {
+                for y in low[1]..=high[1] {
+                    for z in low[2]..=high[2] {
+                        self.occupancy.insert([x, y, z]);
+                    }
+                }
+            }
+        }
+        self.occupancy_cell = cell;
+    }
+
+    /// Whether `p` lies within `band` (the one given to [`MeshSurface::mark_band`]) of the surface.
+    pub fn within(&self, p: &Vec3, band: f64) -> bool {
+        if self.occupancy_cell > 0.0 && !self.occupancy.contains(&p.map(|v| (v / self.occupancy_cell).floor() as i64)) {
+            return false;
+        }
+        self.closest(p).distance <= band
     }
 
     pub fn bounds(&self) -> (Vec3, Vec3) {
@@ -192,9 +238,11 @@ impl MeshSurface {
         std::array::from_fn(|i| [x[i], y[i], n[i]])
     }
 
-    /// The largest principal curvature magnitude over the vertices (0 for a plane).
-    pub fn largest_curvature(&self) -> f64 {
-        self.geometry
+    /// The larger principal curvature magnitude at the vertices, at the 95th percentile (0 for a
+    /// plane): the largest but for sharp tips and creases, where a quadric fit means little.
+    pub fn typical_largest_curvature(&self) -> f64 {
+        let mut values: Vec<f64> = self
+            .geometry
             .tensors
             .iter()
             .zip(&self.geometry.normals)
@@ -203,7 +251,9 @@ impl MeshSurface {
                 let (_, most, _) = curvature::principal(t, u, cross(n, u));
                 most.abs()
             })
-            .fold(0.0, f64::max)
+            .collect();
+        values.sort_by(f64::total_cmp);
+        values.get(values.len() * 95 / 100).copied().unwrap_or(0.0)
     }
 
     /// A uniform point of the surface from three uniform numbers in [0, 1).

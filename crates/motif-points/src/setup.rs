@@ -267,10 +267,11 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         }
     }
     let h = params.quadrature_spacing.map_or((2.0 * sigma).max(delta / 8.0), |spacing| spacing * sigma);
-    if let Region::Surface { band, .. } = &mut region {
+    if let Region::Surface { band, surface } = &mut region {
         // Every point of the surface rounds to a grid node within the band (half a cell's
         // diagonal), and the lifted exemplar's window is as thick as the band.
         *band = 0.5 * 3f64.sqrt() * h * (1.0 + 1e-9);
+        surface.mark_band(*band);
         exemplar.window_low[2] = -*band;
         exemplar.window_high[2] = *band;
         for a in 0..D {
@@ -488,9 +489,10 @@ pub(crate) fn measure_fidelity<const D: usize>(setup: &Setup<D>, output: &[Vecto
         // areas, rings and a uniform random set of the surface; the tiled baseline tiles a square
         // of the same area in the exemplar's plane.
         let side = surface.area().sqrt();
+        // As thick as the lifted exemplar's window, so that tiles stack once across it.
         let (square_low, square_high): (Vector<D>, Vector<D>) = (
-            std::array::from_fn(|a| if a < 2 { 0.0 } else { -1.0 }),
-            std::array::from_fn(|a| if a < 2 { side } else { 1.0 }),
+            std::array::from_fn(|a| if a < 2 { 0.0 } else { window.0[a] }),
+            std::array::from_fn(|a| if a < 2 { side } else { window.1[a] }),
         );
         let square_contains = |p: &Vector<D>| (0..D).all(|a| p[a] >= square_low[a] && p[a] <= square_high[a]);
         let square_depth = |p: &Vector<D>| fidelity::box_depth(p, &square_low, &square_high, 2);

@@ -12,7 +12,7 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
-use motif_jobs::points::{DomainSpec, FieldMaps, PointsJob, StrokeSpec};
+use motif_jobs::points::{DirectionsSpec, DomainSpec, FieldMaps, PointsJob, StrokeSpec, SurfaceSpec};
 use motif_points::{Initialization, PointSet, Refinement, Window};
 use serde_json::Value;
 
@@ -32,11 +32,13 @@ pub struct PointsArgs {
     #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
     pub neighbourhood: f64,
     /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, an SVG file whose first
-    /// path's outline is the region (2D), or `volume:MESH.obj|ply`, the inside of a closed
-    /// triangle mesh (3D; non-manifold meshes are fine, open ones are refused).
+    /// path's outline is the region (2D), `volume:MESH.obj|ply`, the inside of a closed triangle
+    /// mesh (3D; non-manifold meshes are fine, open ones are refused), or `surface:MESH.obj|ply`,
+    /// the surface of a mesh (open or closed) for a 2D exemplar: the output is 3D, every point on
+    /// the mesh, the exemplar's plane laid on the tangent planes (see --surface-directions).
     #[arg(
         long,
-        value_name = "box:W,H[,D]|REGION.svg|volume:MESH.obj",
+        value_name = "box:W,H[,D]|REGION.svg|volume:MESH.obj|surface:MESH.obj",
         required_unless_present = "along",
         conflicts_with = "along"
     )]
@@ -127,6 +129,13 @@ pub struct PointsArgs {
     /// implicit MLS surface polygonized with surface nets, written as OBJ.
     #[arg(long, value_name = "OUT.obj")]
     pub surface_out: Option<PathBuf>,
+    /// On a surface domain, where the exemplar's x axis points: `curvature` (default: the
+    /// principal direction of least curvature, a cylinder's axis; where the surface bends the same
+    /// way in every direction it fades into the world x axis, projected), `X,Y,Z` (one direction,
+    /// projected on each tangent plane), or a CSV/PLY file of vectors `x,y,z`, one per mesh vertex
+    /// in the mesh's order, interpolated across each triangle.
+    #[arg(long, value_name = "curvature|X,Y,Z|VECTORS.csv", requires = "domain")]
+    pub surface_directions: Option<String>,
     /// Rotation field painted as an image (2D), stretched over the domain's bounding box (same
     /// aspect ratio): 360° × grey (black and white 0°, mid-grey 180°), added to --rotation.
     #[arg(long, value_name = "MAP.png")]
@@ -257,6 +266,32 @@ fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> 
     table_to_points(&table, what).with_context(|| format!("{}", path.display()))
 }
 
+/// `--surface-directions`: `curvature`, `X,Y,Z` or a file of one vector per vertex.
+fn surface_directions(spec: Option<&str>) -> anyhow::Result<DirectionsSpec> {
+    let Some(spec) = spec else { return Ok(DirectionsSpec::Curvature) };
+    if spec == "curvature" {
+        return Ok(DirectionsSpec::Curvature);
+    }
+    let numbers: Option<Vec<f64>> = spec.split(',').map(|s| s.trim().parse::<f64>().ok()).collect();
+    if let Some(values) = numbers {
+        return match values[..] {
+            [x, y, z] => Ok(DirectionsSpec::Constant([x, y, z])),
+            _ => bail!("--surface-directions {spec}: give three numbers X,Y,Z, `curvature` or a file of vectors"),
+        };
+    }
+    let path = Path::new(spec);
+    let table = motif_io::read_points(path)?;
+    let (vectors, _) = table_to_points(&table, "surface directions").with_context(|| format!("{}", path.display()))?;
+    if vectors.dimension != 3 {
+        bail!(
+            "--surface-directions {}: the vectors have {} coordinates; give x,y,z for each mesh vertex",
+            path.display(),
+            vectors.dimension
+        );
+    }
+    Ok(DirectionsSpec::PerVertex((0..vectors.len()).map(|i| std::array::from_fn(|a| vectors.position(i)[a])).collect()))
+}
+
 /// The job the arguments describe, with the domain's files read (`motif_jobs::points` turns it
 /// into engine parameters, as it does for every front end).
 fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
@@ -289,9 +324,29 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
                     .with_context(|| format!("--domain volume:{}", file.display()))?;
                 DomainSpec::Volume(mesh)
             }
+            Some(spec) if spec.starts_with("surface:") => {
+                let file = Path::new(&spec["surface:".len()..]);
+                let mesh = motif_io::read_mesh(file)?;
+                let directions = surface_directions(args.surface_directions.as_deref())?;
+                let engine_directions = match &directions {
+                    DirectionsSpec::Curvature => motif_points::SurfaceDirections::Curvature,
+                    DirectionsSpec::Constant(v) => motif_points::SurfaceDirections::Constant(*v),
+                    DirectionsSpec::PerVertex(v) => motif_points::SurfaceDirections::PerVertex(v.clone()),
+                };
+                motif_points::check_surface_mesh(&mesh, &engine_directions).with_context(|| {
+                    let field = args.surface_directions.as_deref().map(|d| format!(" with --surface-directions {d}"));
+                    format!("--domain surface:{}{}", file.display(), field.unwrap_or_default())
+                })?;
+                DomainSpec::Surface(SurfaceSpec { mesh, directions })
+            }
+            Some(_) if args.surface_directions.is_some() => {
+                bail!("--surface-directions needs --domain surface:MESH.obj")
+            }
             Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
             None => {
-                bail!("give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj, or --along PATH with --brush-width")
+                bail!(
+                    "give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj | surface:MESH.obj, or --along PATH with --brush-width"
+                )
             }
         }
     };
@@ -343,12 +398,13 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     inputs.extend(args.along.as_deref());
     // A domain that is not a box is a region SVG, an input too.
-    let region = args
-        .domain
-        .as_deref()
-        .filter(|domain| !domain.starts_with("box:"))
-        .map(|domain| Path::new(domain.strip_prefix("volume:").unwrap_or(domain)));
+    let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(|domain| {
+        Path::new(domain.strip_prefix("volume:").or_else(|| domain.strip_prefix("surface:")).unwrap_or(domain))
+    });
     inputs.extend(region);
+    let directions_file =
+        args.surface_directions.as_deref().filter(|d| *d != "curvature" && !d.contains(',')).map(Path::new);
+    inputs.extend(directions_file);
     inputs.extend(args.rotation_map.as_deref());
     inputs.extend(args.scale_map.as_deref());
     context.check_output(&args.out, &inputs)?;
