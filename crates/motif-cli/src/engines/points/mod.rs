@@ -315,6 +315,10 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         };
         DomainSpec::Stroke(StrokeSpec { points: read_stroke_points(along)?, width, scale_along })
     } else {
+        let on_surface = args.domain.as_deref().is_some_and(|d| d.starts_with("surface:"));
+        if args.surface_directions.is_some() && !on_surface {
+            bail!("--surface-directions needs --domain surface:MESH.obj");
+        }
         match args.domain.as_deref() {
             Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
             Some(spec) if spec.starts_with("volume:") => {
@@ -338,9 +342,6 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
                     format!("--domain surface:{}{}", file.display(), field.unwrap_or_default())
                 })?;
                 DomainSpec::Surface(SurfaceSpec { mesh, directions })
-            }
-            Some(_) if args.surface_directions.is_some() => {
-                bail!("--surface-directions needs --domain surface:MESH.obj")
             }
             Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
             None => {
