@@ -54,6 +54,9 @@ pub(crate) struct Setup<const D: usize> {
     pub has_elements: bool,
     /// Points the exemplar's density asks for over the quadrature domain.
     pub expected_points: f64,
+    /// The share of a grid cell's volume each quadrature point stands for (see
+    /// [`init::PatchLayout::node_share`]).
+    pub node_share: f64,
     /// Points initialized in patch interiors and kept as copied (see `Refinement::Seams`).
     pub patch_interiors: usize,
     /// See [`crate::init::Copies::usage_variation`] (`None` without patch initialization).
@@ -291,8 +294,12 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     // 9 × 9 box of a unit-density exemplar holds 81 points, not the grid's 91).
     let mut expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
     let grid_volume = quadrature.len() as f64 * h.powi(D as i32);
+    let mut node_share = 1.0;
     if let (Some(volume), None) = (region.volume(), margin) {
         expected *= volume / grid_volume.max(1e-300);
+        if let Region::Surface { .. } = region {
+            node_share = volume / grid_volume.max(1e-300);
+        }
     }
     if expected > params.max_points as f64 {
         return Err(Error::TooManyPoints { expected, limit: params.max_points });
@@ -381,6 +388,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         margin,
         has_elements,
         expected_points: expected,
+        node_share,
         patch_interiors: 0,
         patch_usage_variation: None,
     })
@@ -397,16 +405,11 @@ impl<const D: usize> Setup<D> {
     pub fn initialize(&mut self, params: &Params, streams: &SeedStreams) -> Vec<Vector<D>> {
         let mut state = std::mem::take(&mut self.state);
         let allowed = |p: &Vector<D>| self.allowed(p);
-        // Patch copies are laid in tiles of the grid's space, which a curved surface crosses at
-        // any angle; on a surface the points start at random, which the optimization is robust to
-        // (§5.2, Figure 4).
-        let initialization = match self.region {
-            Region::Surface { .. } => Initialization::Random,
-            _ => params.initialization,
-        };
-        let matches = match initialization {
+        let on_surface = matches!(self.region, Region::Surface { .. });
+        let matches = match params.initialization {
             Initialization::Random => {
-                init::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed);
+                let share = self.node_share;
+                init::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed, share);
                 Vec::new()
             }
             Initialization::Patches => {
@@ -414,7 +417,10 @@ impl<const D: usize> Setup<D> {
                 // about 2δ, so with the 2δ patches of the first version every window straddled
                 // several copies, no match could explain it, and the first merging step tore the
                 // copies apart (longleaf pines: g(r) distance 0.35 against 0.15 now).
-                let extent = (0..D).map(|a| self.exemplar.high[a] - self.exemplar.low[a]).fold(f64::INFINITY, f64::min);
+                // A surface's lifted exemplar is flat along its third axis.
+                let extent = (0..if on_surface { 2 } else { D })
+                    .map(|a| self.exemplar.high[a] - self.exemplar.low[a])
+                    .fold(f64::INFINITY, f64::min);
                 let s_min = self.quadrature.scale.iter().copied().fold(f64::INFINITY, f64::min);
                 let patch = (params.patch_size * self.delta).min(0.7 * extent * s_min).max(3.0 * self.sigma);
                 // Candidates are judged on a band of δ (at most a third of the patch) around it;
@@ -427,6 +433,8 @@ impl<const D: usize> Setup<D> {
                     candidates: params.patch_candidates,
                     balance: params.patch_balance,
                     seam: (params.refinement == Refinement::Seams).then_some(0.25 * band),
+                    on_surface,
+                    node_share: self.node_share,
                 };
                 let copies =
                     init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);

@@ -65,7 +65,8 @@ fn params() -> Params {
 fn a_flat_mesh_gives_the_statistics_of_a_box() {
     let exemplar = swedish_pines();
     let side = 300.0;
-    let params = params().with_neighbourhood(Some(32.0));
+    // Patch initialization (the default), whose copies on a surface are laid in the tangent planes.
+    let params = Params::default().with_neighbourhood(Some(32.0)).with_seed(3);
     let in_box = synthesize(
         &Input::new(exemplar.clone(), Domain::Box { min: vec![0.0, 0.0], max: vec![side, side] }),
         &params,
@@ -80,14 +81,13 @@ fn a_flat_mesh_gives_the_statistics_of_a_box() {
         assert!((z - 2.5).abs() <= 1e-6 * side, "point {i} is off the plane: z = {z}");
     }
     let (a, b) = (&in_box.report.fidelity, &on_mesh.report.fidelity);
-    // Random starts on this real pattern overshoot the count a little in the box as well.
     assert!(
         (b.density_ratio - a.density_ratio).abs() < 0.05,
         "density ratio: box {}, mesh {}",
         a.density_ratio,
         b.density_ratio
     );
-    assert!((b.density_ratio - 1.0).abs() < 0.12, "density ratio on the mesh {}", b.density_ratio);
+    assert!((b.density_ratio - 1.0).abs() < 0.1, "density ratio on the mesh {}", b.density_ratio);
     for (name, box_figure, mesh_figure, random) in [
         ("nearest-neighbour", a.output.nearest_neighbour, b.output.nearest_neighbour, b.random.nearest_neighbour),
         ("g(r)", a.output.radial_distribution, b.output.radial_distribution, b.random.radial_distribution),
