@@ -251,6 +251,18 @@ impl<const D: usize> Region<D> {
         }
     }
 
+    /// The rotation `R` and scale `s` at `p` of Eq. 8: the domain's own frame composed with the
+    /// guidance fields' rotation (about the exemplar's z axis) and scale.
+    pub fn guided_frame(&self, p: &Vector<D>, rotation: &Field, scale: &Field) -> Result<(Matrix<D>, f64), Error> {
+        let (own_rotation, own_scale) = self.frame(p);
+        let angle = rotation.value(p, 0.0).to_radians();
+        let s = own_scale * scale.value(p, 1.0);
+        if !(s.is_finite() && s > 0.0 && angle.is_finite()) {
+            return Err(Error::InvalidField { scale: s, rotation: angle });
+        }
+        Ok((linear::mat_mul(&own_rotation, &linear::rotation_xy::<D>(angle)), s))
+    }
+
     /// The rotation and scale the domain itself imposes at `p` (strokes: tangent and scale along).
     pub fn frame(&self, p: &Vector<D>) -> (Matrix<D>, f64) {
         match self {
@@ -334,13 +346,7 @@ impl<const D: usize> Quadrature<D> {
         let mut inverse = Vec::with_capacity(points.len());
         let mut scales = Vec::with_capacity(points.len());
         for q in &points {
-            let (stroke_rotation, stroke_scale) = region.frame(q);
-            let angle = rotation.value(q, 0.0).to_radians();
-            let s = stroke_scale * scale.value(q, 1.0);
-            if !(s.is_finite() && s > 0.0 && angle.is_finite()) {
-                return Err(Error::InvalidField { scale: s, rotation: angle });
-            }
-            let r = linear::mat_mul(&stroke_rotation, &linear::rotation_xy::<D>(angle));
+            let (r, s) = region.guided_frame(q, rotation, scale)?;
             let sr: Matrix<D> = std::array::from_fn(|i| std::array::from_fn(|j| r[i][j] * s));
             let inv: Matrix<D> = std::array::from_fn(|i| std::array::from_fn(|j| r[j][i] / s));
             transform.push(sr);

@@ -94,6 +94,10 @@ pub struct Report {
 pub struct Output {
     /// Output points with the exemplar's (selected) attributes and, when it has elements, element ids.
     pub points: PointSet,
+    /// Per output point, where the exemplar's axes point there, scaled: the columns of `s R` (a
+    /// 2D synthesis's frames turn in the xy-plane, z stays z). An element's points share its
+    /// pose. For placing an element mesh on each output element.
+    pub frames: Vec<[[f64; 3]; 3]>,
     /// Figures.
     pub report: Report,
 }
@@ -345,11 +349,13 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     timer.start("fidelity");
     let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
     let points = to_point_set(&setup, &state);
+    let frames = output_frames(&setup, &state, params)?;
     let frozen: usize = state.units.iter().filter(|u| u.frozen).map(|u| u.points.len()).sum();
     let fixed_points = frozen - setup.patch_interiors;
     let stages_ms = timer.finish();
     Ok(Output {
         points,
+        frames,
         report: Report {
             estimated_memory_bytes: setup.estimated_memory_bytes,
             sigma: setup.sigma,
@@ -391,6 +397,41 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             },
         },
     })
+}
+
+/// The frame `s R` at every output point (see [`Output::frames`]), promoted to 3 × 3.
+fn output_frames<const D: usize>(
+    setup: &crate::setup::Setup<D>,
+    state: &crate::model::State<D>,
+    params: &Params,
+) -> Result<Vec<[[f64; 3]; 3]>, Error> {
+    let promote = |m: &crate::linear::Matrix<D>, s: f64| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| {
+                if i < D && j < D {
+                    s * m[i][j]
+                } else if i == j {
+                    s
+                } else {
+                    0.0
+                }
+            })
+        })
+    };
+    let mut frames = vec![[[0.0; 3]; 3]; state.positions.len()];
+    for unit in &state.units {
+        let (position, rigid_rotation) = match &unit.rigid {
+            Some(rigid) => (rigid.centre, Some(rigid.rotation)),
+            None => (state.positions[unit.points[0] as usize], None),
+        };
+        let (rotation, scale) = setup.region.guided_frame(&position, &params.rotation, &params.scale)?;
+        // A rigid element carries its own pose (its frame when placed, then its rotations).
+        let frame = promote(&rigid_rotation.unwrap_or(rotation), scale);
+        for &p in &unit.points {
+            frames[p as usize] = frame;
+        }
+    }
+    Ok(frames)
 }
 
 /// One prepared evaluation problem of a given dimension (see [`EnergyCase`]).

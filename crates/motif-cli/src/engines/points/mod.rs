@@ -129,6 +129,17 @@ pub struct PointsArgs {
     /// implicit MLS surface polygonized with surface nets, written as OBJ.
     #[arg(long, value_name = "OUT.obj")]
     pub surface_out: Option<PathBuf>,
+    /// Discrete elements as meshes: with --surface-out, writes one copy of this mesh (OBJ or PLY)
+    /// per output element (per point, or per `element` id) instead of a reconstruction, standing
+    /// on the point (the middle of its bounding box in x and y, its lowest z, go to the point)
+    /// with the frame there: the mesh's x, y, z axes go to the exemplar's axes at that point (on a
+    /// surface: the direction field, its cross product with the normal, the normal).
+    #[arg(long, value_name = "ELEMENT.obj", requires = "surface_out")]
+    pub element_mesh: Option<PathBuf>,
+    /// The element mesh's largest side, in exemplar units (> 0; default: the exemplar's mean
+    /// nearest-neighbour spacing); scale fields multiply it.
+    #[arg(long, value_name = "S", requires = "element_mesh")]
+    pub element_size: Option<f64>,
     /// On a surface domain, where the exemplar's x axis points: `curvature` (default: the
     /// principal direction of least curvature, a cylinder's axis; where the surface bends the same
     /// way in every direction it fades into the world x axis, projected), `X,Y,Z` (one direction,
@@ -264,6 +275,50 @@ fn read_stroke_points(path: &Path) -> anyhow::Result<Vec<Vec<f64>>> {
 fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
     let table = motif_io::read_points(path)?;
     table_to_points(&table, what).with_context(|| format!("{}", path.display()))
+}
+
+/// The element mesh placed on every output element (each free point, each `element` id at its
+/// points' centroid), scaled so that its largest side is `size` exemplar units (default: the
+/// exemplar's mean spacing), then by the frame there.
+fn place_elements(
+    output: &motif_points::Output,
+    mesh: &motif_core::TriangleMesh,
+    side: f64,
+    size: Option<f64>,
+) -> anyhow::Result<motif_core::TriangleMesh> {
+    let points = &output.points;
+    let scale_of = |frame: &[[f64; 3]; 3]| (0..3).map(|i| frame[i][0] * frame[i][0]).sum::<f64>().sqrt();
+    let mean_scale = output.frames.iter().map(scale_of).sum::<f64>() / output.frames.len().max(1) as f64;
+    let size = size.unwrap_or(output.report.fidelity.spacing / mean_scale.max(1e-300));
+    let factor = size / side;
+    let position =
+        |i: usize| -> [f64; 3] { std::array::from_fn(|a| points.position(i).get(a).copied().unwrap_or(0.0)) };
+    let mut placements = Vec::new();
+    let mut elements: std::collections::BTreeMap<i64, (usize, [f64; 3], usize)> = std::collections::BTreeMap::new();
+    for i in 0..points.len() {
+        let frame = output.frames[i].map(|row| row.map(|v| v * factor));
+        match points.elements.as_ref().map_or(-1, |ids| ids[i]) {
+            id if id < 0 => placements.push((position(i), frame)),
+            id => {
+                let entry = elements.entry(id).or_insert((i, [0.0; 3], 0));
+                let p = position(i);
+                (0..3).for_each(|a| entry.1[a] += p[a]);
+                entry.2 += 1;
+            }
+        }
+    }
+    for (first, sum, count) in elements.values() {
+        let frame = output.frames[*first].map(|row| row.map(|v| v * factor));
+        placements.push((sum.map(|v| v / *count as f64), frame));
+    }
+    const MAX_TRIANGLES: usize = 20_000_000;
+    mesh.placed_copies(&placements, MAX_TRIANGLES).ok_or_else(|| {
+        anyhow::anyhow!(
+            "{} elements × {} triangles is more than {MAX_TRIANGLES} triangles; use a simpler element mesh",
+            placements.len(),
+            mesh.triangles.len()
+        )
+    })
 }
 
 /// `--surface-directions`: `curvature`, `X,Y,Z` or a file of one vector per vertex.
@@ -408,6 +463,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     inputs.extend(directions_file);
     inputs.extend(args.rotation_map.as_deref());
     inputs.extend(args.scale_map.as_deref());
+    inputs.extend(args.element_mesh.as_deref());
     context.check_output(&args.out, &inputs)?;
     for extra in args.preview.iter().chain(&args.surface_out) {
         context.check_output(extra, &inputs)?;
@@ -417,7 +473,32 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         let find = |name: &str| set.attribute_names.iter().position(|n| n == name);
         Some([find("nx")?, find("ny")?, find("nz")?])
     };
-    if args.surface_out.is_some() && (exemplar.dimension != 3 || normal_columns(&exemplar).is_none()) {
+    let element = match &args.element_mesh {
+        Some(path) => {
+            if let Some(size) = args.element_size
+                && !(size.is_finite() && size > 0.0)
+            {
+                bail!("--element-size {size}: give a size > 0 (exemplar units)");
+            }
+            let mut mesh = motif_io::read_mesh(path)?;
+            let Some((low, high)) = mesh.bounds() else {
+                bail!("--element-mesh {}: the mesh has no triangles", path.display())
+            };
+            let side = (0..3).map(|a| high[a] - low[a]).fold(0.0, f64::max);
+            if !(side > 0.0 && side.is_finite()) {
+                bail!("--element-mesh {}: the mesh has no extent", path.display());
+            }
+            // The anchor that goes to each point: the base's middle.
+            let anchor = [0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), low[2]];
+            mesh.vertices.iter_mut().for_each(|v| *v = std::array::from_fn(|a| v[a] - anchor[a]));
+            Some((mesh, side))
+        }
+        None => None,
+    };
+    if args.surface_out.is_some()
+        && element.is_none()
+        && (exemplar.dimension != 3 || normal_columns(&exemplar).is_none())
+    {
         bail!(
             "--surface-out needs a 3D exemplar with normals (attributes nx, ny, nz); {} is {}D with attributes [{}]",
             args.exemplar.display(),
@@ -452,7 +533,12 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
     let mut surface = None;
-    if let Some(path) = &args.surface_out {
+    if let (Some(path), Some((mesh, side))) = (&args.surface_out, &element) {
+        let placed = place_elements(&output, mesh, *side, args.element_size)
+            .with_context(|| format!("--element-mesh {}", args.element_mesh.as_deref().unwrap_or(path).display()))?;
+        motif_io::write_obj(path, &placed, "element meshes placed by motif points")?;
+        surface = Some(placed);
+    } else if let Some(path) = &args.surface_out {
         let columns = normal_columns(&output.points).expect("checked on the exemplar");
         let positions: Vec<[f64; 3]> =
             (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
@@ -470,6 +556,11 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             &output.report.fidelity,
             args.colour_by.as_deref(),
             surface.as_ref(),
+            // Elements are drawn on the surface they were placed on.
+            match (&element, &job.domain) {
+                (Some(_), DomainSpec::Surface(spec)) => Some(&spec.mesh),
+                _ => None,
+            },
         )?;
         motif_io::write_png(preview, &image)?;
     }

@@ -94,9 +94,25 @@ fn view(p: [f64; 3]) -> (f64, f64, f64) {
     (x, -up, depth)
 }
 
-/// A reconstructed surface, shaded: triangles far to near (painter's order), each lit by the
+/// A reconstructed surface or placed element meshes, shaded, over an optional grey backdrop (the
+/// surface domain the elements sit on): triangles far to near (painter's order), each lit by the
 /// cosine between its normal and the view direction (two-sided, flat shading).
-fn draw_mesh_panel(svg: &mut SvgWriter, mesh: &TriangleMesh, left: f64, size: f64, title: &str) {
+fn draw_mesh_panel(
+    svg: &mut SvgWriter,
+    surface: &TriangleMesh,
+    backdrop: Option<&TriangleMesh>,
+    left: f64,
+    size: f64,
+    title: &str,
+) {
+    let mut mesh = surface.clone();
+    let backdrop_triangles = backdrop.map_or(0, |b| b.triangles.len());
+    if let Some(backdrop) = backdrop {
+        let offset = mesh.vertices.len() as u32;
+        mesh.vertices.extend_from_slice(&backdrop.vertices);
+        mesh.triangles.extend(backdrop.triangles.iter().map(|t| t.map(|v| v + offset)));
+    }
+    let first_backdrop = mesh.triangles.len() - backdrop_triangles;
     let screen: Vec<(f64, f64, f64)> = mesh.vertices.iter().map(|&v| view(v)).collect();
     let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
     for &(x, y, _) in &screen {
@@ -117,7 +133,15 @@ fn draw_mesh_panel(svg: &mut SvgWriter, mesh: &TriangleMesh, left: f64, size: f6
         let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
         let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
         let light = 0.25 + 0.75 * (normal.2 / length).abs();
-        let fill = [(90.0 + 140.0 * light) as u8, (110.0 + 120.0 * light) as u8, (150.0 + 90.0 * light) as u8, 255];
+        let fill = if t >= first_backdrop {
+            let grey = (120.0 + 110.0 * light) as u8;
+            [grey, grey, grey, 255]
+        } else if backdrop_triangles > 0 {
+            // Elements on a grey surface: a warm colour that stands out from it.
+            [(120.0 + 135.0 * light) as u8, (60.0 + 100.0 * light) as u8, (30.0 + 50.0 * light) as u8, 255]
+        } else {
+            [(90.0 + 140.0 * light) as u8, (110.0 + 120.0 * light) as u8, (150.0 + 90.0 * light) as u8, 255]
+        };
         let corner = |p: (f64, f64, f64)| Point::new(left + margin + (p.0 - x0) * scale, margin + (p.1 - y0) * scale);
         svg.polyline(&[corner(a), corner(b), corner(c)], true, None, Some(fill));
     }
@@ -215,6 +239,7 @@ pub fn preview_image(
     fidelity: &Fidelity,
     colour_by: Option<&str>,
     surface: Option<&TriangleMesh>,
+    backdrop: Option<&TriangleMesh>,
 ) -> anyhow::Result<motif_core::RgbaImage> {
     let size = 420.0;
     let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
@@ -224,7 +249,7 @@ pub fn preview_image(
     match surface {
         Some(mesh) => {
             let title = format!("output surface ({} points, {} triangles)", output.len(), mesh.triangles.len());
-            draw_mesh_panel(&mut svg, mesh, size + 10.0, size, &title);
+            draw_mesh_panel(&mut svg, mesh, backdrop, size + 10.0, size, &title);
         }
         None => {
             let title = format!("output ({} points)", output.len());
