@@ -23,3 +23,11 @@ data="$(package_file libcgal-demo usr/share/doc/libcgal-dev/data.tar.gz)"
   "without an explicit copyright notice are under Creative Commons CC0 1.0)." \
   "Converted OFF -> OBJ by data/real/meshes/off_to_obj.py: coordinates copied verbatim," \
   "faces 1-based in the original order. 6200 vertices, 12396 triangles, closed 2-manifold, genus 0."
+
+"$PYTHON" "$here/off_to_obj.py" "$data" data/meshes/tripod.off "$here/tripod.obj" \
+  "tripod: CGAL 5.5.1 data/meshes/tripod.off, from Debian libcgal-demo 5.5.1-2" \
+  "(usr/share/doc/libcgal-dev/data.tar.gz, member data/meshes/tripod.off)." \
+  "Licence: CC0 1.0 (CGAL's LICENSE, quoted in /usr/share/doc/libcgal-dev/copyright: files" \
+  "without an explicit copyright notice are under Creative Commons CC0 1.0)." \
+  "Converted OFF -> OBJ by data/real/meshes/off_to_obj.py: coordinates copied verbatim," \
+  "faces 1-based in the original order. 24 vertices, 44 triangles, closed 2-manifold, genus 0."

@@ -180,5 +180,57 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    // A real planar pattern on a real surface: the 71 Swedish pines (spatstat, GPL-2+ data; see
+    // data/real/points) on the bull scaled to 400 units (pines in decimetres: about 1 300 trees),
+    // each planted as CGAL's tripod (CC0), lying along the direction of least curvature.
+    bull.vertices.iter_mut().for_each(|v| *v = v.map(|c| c * 400.0 / 78.0));
+    motif_io::write_obj(&demo.path("points-bull-400.obj"), &bull, "CGAL's bull.off (CC0), scaled by 400")?;
+    motif_io::write_bytes(
+        &demo.path("points-swedishpines.csv"),
+        include_bytes!("../../../../../data/real/points/swedishpines.csv"),
+    )?;
+    motif_io::write_bytes(
+        &demo.path("points-tripod.obj"),
+        include_bytes!("../../../../../data/real/meshes/tripod.obj"),
+    )?;
+    demo.case(DemoCase {
+        title: "points: pine positions planted on a bull's surface".into(),
+        description: "The 71 trees of a real Swedish pine plot (spatstat, decimetres) laid on the surface of a real \
+                      mesh (CGAL's bull, 12 396 triangles, scaled to 400 dm): copies of the plot laid in the \
+                      tangent planes, then optimized with the points kept on the mesh; each tree is drawn as \
+                      CGAL's tripod, lying along the direction of least curvature."
+            .into(),
+        inputs: vec![
+            ("exemplar".into(), "points-swedishpines.csv".into()),
+            ("surface".into(), "points-bull-400.obj".into()),
+            ("element mesh".into(), "points-tripod.obj".into()),
+        ],
+        outputs: vec![
+            ("preview".into(), "points-bull-pines.png".into()),
+            ("points".into(), "points-bull-pines.ply".into()),
+            ("elements".into(), "points-bull-tripods.obj".into()),
+        ],
+        args: [
+            "points",
+            "--exemplar",
+            "points-swedishpines.csv",
+            "--neighbourhood",
+            "32",
+            "--domain",
+            "surface:points-bull-400.obj",
+            "--element-mesh",
+            "points-tripod.obj",
+            "--element-size",
+            "12",
+            "--surface-out",
+            "points-bull-tripods.obj",
+            "--out",
+            "points-bull-pines.ply",
+            "--preview",
+            "points-bull-pines.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
     Ok(())
 }
