@@ -569,3 +569,62 @@ fn surface_domains_keep_points_on_the_mesh_and_refuse_bad_fields() {
     assert!(error.contains("needs a 2D exemplar"), "{error}");
     assert!(!dir.path().join("never.csv").exists());
 }
+
+#[test]
+fn element_meshes_stand_on_each_output_point_along_the_normal() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    std::fs::write(dir.path().join("solid.obj"), octahedron_obj(false)).unwrap();
+    // A tetrahedron standing on its base around the z axis: its apex is at z = 2.
+    std::fs::write(
+        dir.path().join("spike.obj"),
+        "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nv 0 0 2\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
+    )
+    .unwrap();
+    let base = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.5", "--domain", "surface:solid.obj"];
+    let run = |extra: &[&str]| motif(dir.path(), &[&base[..], extra].concat());
+    let placed = ["--element-mesh", "spike.obj", "--element-size", "0.5", "--surface-out", "spikes.obj"];
+    ok(&run(&[&placed[..], &["--out", "out.csv", "--preview", "preview.png"]].concat()));
+    let text = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
+    let points: Vec<[f64; 3]> = text
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').take(3).map(|v| v.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    let mesh = std::fs::read_to_string(dir.path().join("spikes.obj")).unwrap();
+    let vertices: Vec<[f64; 3]> = mesh
+        .lines()
+        .filter(|l| l.starts_with("v "))
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    assert_eq!(vertices.len(), 4 * points.len());
+    assert_eq!(mesh.lines().filter(|l| l.starts_with("f ")).count(), 4 * points.len());
+    let l1 = |p: &[f64; 3]| p.iter().map(|v| (v - 4.0).abs()).sum::<f64>();
+    for (point, copy) in points.iter().zip(vertices.chunks(4)) {
+        // Largest side 2 scaled to 0.5: the apex stands 0.5 off the point along the normal (the
+        // vertex normals interpolated, so between a face's normal and its corners'), off the
+        // surface (a tangent step would keep the L1 norm that measures it at 4).
+        let apex = copy[3];
+        let rise: Vec<f64> = (0..3).map(|a| apex[a] - point[a]).collect();
+        let length = rise.iter().map(|r| r * r).sum::<f64>().sqrt();
+        assert!((length - 0.5).abs() < 1e-9, "apex {length} from its point");
+        assert!((l1(&apex) - l1(point)).abs() > 0.2, "apex {apex:?} should leave the surface at {point:?}");
+        let middle: Vec<f64> = (0..3).map(|a| (copy[0][a] + copy[1][a]) / 2.0 - point[a]).collect();
+        assert!(middle.iter().map(|m| m * m).sum::<f64>().sqrt() < 0.26, "base not on the point");
+    }
+    assert!(dir.path().join("preview.png").exists());
+    let error = error_of(&run(&["--element-mesh", "missing.obj", "--surface-out", "never.obj", "--out", "never.csv"]));
+    assert!(error.contains("missing.obj"), "{error}");
+    let error =
+        error_of(&run(
+            &[&placed[..4], &["--surface-out", "never.obj", "--element-size", "-1", "--out", "never.csv"]].concat()
+        ));
+    assert!(error.contains("--element-size"), "{error}");
+    assert!(!dir.path().join("never.csv").exists() && !dir.path().join("never.obj").exists());
+}

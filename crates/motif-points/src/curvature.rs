@@ -2,8 +2,9 @@
 //! surface domain (§6.2: "we used the principal curvature directions as an orientation field",
 //! Figure 6 middle).
 //!
-//! - Normals are area-weighted face normals, each face turned to agree with the vertex's first
-//!   face, so that a mesh whose faces are not consistently oriented does not cancel them.
+//! - Normals are area-weighted face normals. Where they cancel (faces not consistently
+//!   oriented), each face is turned to agree with the vertex's first face instead; turning them
+//!   always would flip the faces around a sharp corner (an octahedron's, at 109°).
 //! - Curvature comes from a quadric height field `z = a x² + b xy + c y² + d x + e y` fitted by least
 //!   squares, in the vertex's tangent frame, to its two-ring (its one-ring when that is all there
 //!   is). The second fundamental form `[[2a, b], [b, 2c]]` is kept as a symmetric 3 × 3 tensor:
@@ -40,6 +41,8 @@ pub fn vertex_geometry(mesh: &TriangleMesh) -> VertexGeometry {
     let count = mesh.vertices.len();
     let mut normals: Vec<Option<Vec3>> = vec![None; count];
     let mut sums = vec![[0.0; 3]; count];
+    let mut plain = vec![[0.0; 3]; count];
+    let mut weights = vec![0.0; count];
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); count];
     for (t, triangle) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = mesh.corners(t);
@@ -50,7 +53,9 @@ pub fn vertex_geometry(mesh: &TriangleMesh) -> VertexGeometry {
             let sign = if dot(reference, face) < 0.0 { -1.0 } else { 1.0 };
             for axis in 0..3 {
                 sums[v][axis] += sign * face[axis];
+                plain[v][axis] += face[axis];
             }
+            weights[v] += dot(face, face).sqrt();
             neighbours[v].push(triangle[(i + 1) % 3]);
             neighbours[v].push(triangle[(i + 2) % 3]);
         }
@@ -59,7 +64,12 @@ pub fn vertex_geometry(mesh: &TriangleMesh) -> VertexGeometry {
         list.sort_unstable();
         list.dedup();
     }
-    let normals: Vec<Vec3> = sums.iter().map(|&s| normalized(s).unwrap_or([0.0, 0.0, 1.0])).collect();
+    let normals: Vec<Vec3> = (0..count)
+        .map(|v| {
+            let sum = if dot(plain[v], plain[v]).sqrt() > 0.1 * weights[v] { plain[v] } else { sums[v] };
+            normalized(sum).unwrap_or([0.0, 0.0, 1.0])
+        })
+        .collect();
     let tensors = (0..count)
         .map(|v| {
             let mut ring: Vec<u32> = neighbours[v].clone();
@@ -184,6 +194,25 @@ mod tests {
             assert!((most.abs() - 0.5).abs() < 0.01, "curvature around {most}");
             let along: Vec3 = std::array::from_fn(|i| direction[0] * u[i] + direction[1] * w[i]);
             assert!(along[2].abs() > 0.999, "least curvature direction {along:?} should be the axis");
+        }
+    }
+
+    #[test]
+    fn normals_at_sharp_corners_point_out_of_the_corner() {
+        // An octahedron: four faces meet at each corner, at 109° to each other.
+        let vertices = vec![
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ];
+        let triangles = vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
+        let mesh = TriangleMesh { vertices: vertices.clone(), triangles };
+        let geometry = vertex_geometry(&mesh);
+        for (n, v) in geometry.normals.iter().zip(&vertices) {
+            assert!(dot(*n, *v) > 0.999, "normal {n:?} at corner {v:?}");
         }
     }
 
