@@ -19,7 +19,7 @@
 //! - `domain` (§6.2): boxes, polygon regions, brush strokes, mesh volumes (`volume`: the inside
 //!   of a closed triangle mesh, Figure 1's chair), mesh surfaces (`mesh_surface`: a 2D exemplar
 //!   laid on the tangent planes, its x axis along the direction of least curvature from
-//!   `curvature`, Figure 6 middle; `triangles`: closest points); the regular quadrature grid;
+//!   `curvature`, Figure 6 middle; `triangles`: closest points); `quadrature`: the regular grid;
 //!   rotation and scale fields stored at the quadrature points (Eq. 8).
 //! - `matching` (§5.1, local step): per quadrature point, gradient descent from random starts and
 //!   from the grid neighbours' last matches (propagation, as in PatchMatch).
@@ -87,6 +87,7 @@ mod pairs;
 mod params;
 mod points;
 mod quadratic;
+mod quadrature;
 mod quilting;
 mod raster;
 mod reference;

@@ -30,7 +30,7 @@ pub enum EngineCommand {
     /// Discrete elements, continuous structures and mixtures, in boxes, regions or brush strokes
     /// (Roveri et al. 2015).
     #[command(allow_negative_numbers = true)]
-    Points(points::PointsArgs),
+    Points(Box<points::PointsArgs>),
     /// Grow a vector stroke pattern along a path or inside a region
     ///
     /// Hatching, stippling, brush marks and small figures analysed into elements and synthesized

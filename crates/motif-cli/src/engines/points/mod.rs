@@ -4,6 +4,7 @@
 mod bench;
 mod corpus;
 mod demo;
+mod meshes;
 mod preview;
 
 use std::path::{Path, PathBuf};
@@ -277,76 +278,6 @@ fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> 
     table_to_points(&table, what).with_context(|| format!("{}", path.display()))
 }
 
-/// The element mesh placed on every output element (each free point, each `element` id at its
-/// points' centroid), scaled so that its largest side is `size` exemplar units (default: the
-/// exemplar's mean spacing), then by the frame there.
-fn place_elements(
-    output: &motif_points::Output,
-    mesh: &motif_core::TriangleMesh,
-    side: f64,
-    size: Option<f64>,
-) -> anyhow::Result<motif_core::TriangleMesh> {
-    let points = &output.points;
-    let scale_of = |frame: &[[f64; 3]; 3]| (0..3).map(|i| frame[i][0] * frame[i][0]).sum::<f64>().sqrt();
-    let mean_scale = output.frames.iter().map(scale_of).sum::<f64>() / output.frames.len().max(1) as f64;
-    let size = size.unwrap_or(output.report.fidelity.spacing / mean_scale.max(1e-300));
-    let factor = size / side;
-    let position =
-        |i: usize| -> [f64; 3] { std::array::from_fn(|a| points.position(i).get(a).copied().unwrap_or(0.0)) };
-    let mut placements = Vec::new();
-    let mut elements: std::collections::BTreeMap<i64, (usize, [f64; 3], usize)> = std::collections::BTreeMap::new();
-    for i in 0..points.len() {
-        let frame = output.frames[i].map(|row| row.map(|v| v * factor));
-        match points.elements.as_ref().map_or(-1, |ids| ids[i]) {
-            id if id < 0 => placements.push((position(i), frame)),
-            id => {
-                let entry = elements.entry(id).or_insert((i, [0.0; 3], 0));
-                let p = position(i);
-                (0..3).for_each(|a| entry.1[a] += p[a]);
-                entry.2 += 1;
-            }
-        }
-    }
-    for (first, sum, count) in elements.values() {
-        let frame = output.frames[*first].map(|row| row.map(|v| v * factor));
-        placements.push((sum.map(|v| v / *count as f64), frame));
-    }
-    const MAX_TRIANGLES: usize = 20_000_000;
-    mesh.placed_copies(&placements, MAX_TRIANGLES).ok_or_else(|| {
-        anyhow::anyhow!(
-            "{} elements × {} triangles is more than {MAX_TRIANGLES} triangles; use a simpler element mesh",
-            placements.len(),
-            mesh.triangles.len()
-        )
-    })
-}
-
-/// `--surface-directions`: `curvature`, `X,Y,Z` or a file of one vector per vertex.
-fn surface_directions(spec: Option<&str>) -> anyhow::Result<DirectionsSpec> {
-    let Some(spec) = spec else { return Ok(DirectionsSpec::Curvature) };
-    if spec == "curvature" {
-        return Ok(DirectionsSpec::Curvature);
-    }
-    let numbers: Option<Vec<f64>> = spec.split(',').map(|s| s.trim().parse::<f64>().ok()).collect();
-    if let Some(values) = numbers {
-        return match values[..] {
-            [x, y, z] => Ok(DirectionsSpec::Constant([x, y, z])),
-            _ => bail!("--surface-directions {spec}: give three numbers X,Y,Z, `curvature` or a file of vectors"),
-        };
-    }
-    let path = Path::new(spec);
-    let table = motif_io::read_points(path)?;
-    let (vectors, _) = table_to_points(&table, "surface directions").with_context(|| format!("{}", path.display()))?;
-    if vectors.dimension != 3 {
-        bail!(
-            "--surface-directions {}: the vectors have {} coordinates; give x,y,z for each mesh vertex",
-            path.display(),
-            vectors.dimension
-        );
-    }
-    Ok(DirectionsSpec::PerVertex((0..vectors.len()).map(|i| std::array::from_fn(|a| vectors.position(i)[a])).collect()))
-}
-
 /// The job the arguments describe, with the domain's files read (`motif_jobs::points` turns it
 /// into engine parameters, as it does for every front end).
 fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
@@ -386,7 +317,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
             Some(spec) if spec.starts_with("surface:") => {
                 let file = Path::new(&spec["surface:".len()..]);
                 let mesh = motif_io::read_mesh(file)?;
-                let directions = surface_directions(args.surface_directions.as_deref())?;
+                let directions = meshes::surface_directions(args.surface_directions.as_deref())?;
                 let engine_directions = match &directions {
                     DirectionsSpec::Curvature => motif_points::SurfaceDirections::Curvature,
                     DirectionsSpec::Constant(v) => motif_points::SurfaceDirections::Constant(*v),
@@ -534,7 +465,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
     let mut surface = None;
     if let (Some(path), Some((mesh, side))) = (&args.surface_out, &element) {
-        let placed = place_elements(&output, mesh, *side, args.element_size)
+        let placed = meshes::place_elements(&output, mesh, *side, args.element_size)
             .with_context(|| format!("--element-mesh {}", args.element_mesh.as_deref().unwrap_or(path).display()))?;
         motif_io::write_obj(path, &placed, "element meshes placed by motif points")?;
         surface = Some(placed);
