@@ -225,6 +225,20 @@ def _columns(data: PointData, what: str) -> List[Tuple[str, bool, np.ndarray]]:
     return [(axis, False, np.ascontiguousarray(array[:, a])) for a, axis in enumerate("xyz"[: array.shape[1]])]
 
 
+def _surface_directions(directions: Any) -> Any:
+    """``surface_directions`` as the job's JSON: "curvature", one direction, or one per vertex."""
+    if isinstance(directions, str):
+        if directions != "curvature":
+            raise ValueError(f'surface_directions must be "curvature", a (3,) direction or a (V, 3) array, got {directions!r}')
+        return "curvature"
+    array = np.asarray(directions, dtype=np.float64)
+    if array.shape == (3,):
+        return {"constant": array.tolist()}
+    if array.ndim == 2 and array.shape[1] == 3:
+        return {"per-vertex": array.tolist()}
+    raise ValueError(f"surface_directions must be a (3,) direction or a (V, 3) array, got shape {array.shape}")
+
+
 def points(
     exemplar: PointData,
     neighbourhood: float,
@@ -233,6 +247,9 @@ def points(
     along: Optional[ArrayLike] = None,
     brush_width: Optional[float] = None,
     scale_along: Optional[Tuple[float, float]] = None,
+    volume: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    surface: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+    surface_directions: Any = "curvature",
     existing: Optional[PointData] = None,
     rotation_map: Optional[ArrayLike] = None,
     scale_map: Optional[ArrayLike] = None,
@@ -246,7 +263,11 @@ def points(
     ``exemplar`` is a dict of 1-D arrays (``x``, ``y``, optionally ``z``, ``element``, and any
     attributes; integer arrays stay discrete) or an (N, 2|3) array of positions. The domain is
     ``domain=(W, H)`` or ``(W, H, D)`` (a box from the origin), ``domain=polygon`` (an (M, 2)
-    outline), or ``along=polyline, brush_width=w`` (a brush stroke). ``neighbourhood`` is δ.
+    outline), ``along=polyline, brush_width=w`` (a brush stroke), ``volume=(vertices, triangles)``
+    (the inside of a closed triangle mesh: (V, 3) floats and (T, 3) integers), or
+    ``surface=(vertices, triangles)`` (a 2D exemplar laid on the mesh, 3D output on it, oriented
+    by ``surface_directions``: ``"curvature"``, one (3,) direction, or a (V, 3) array of one vector
+    per vertex). ``neighbourhood`` is δ.
     Options: ``sigma``, ``init``, ``refine``, ``patch_size``, ``exemplar_window``,
     ``attribute_weight``, ``max_points``, ``max_memory``, ... ``rotation_map`` and ``scale_map``
     (2D) are uint8 images over the domain's bounding box, as ``--rotation-map`` (360° × grey) and
@@ -259,8 +280,27 @@ def points(
         if scale_along is not None:
             stroke["scale-along"] = [float(v) for v in scale_along]
         spec: Dict[str, Any] = {"stroke": stroke}
+    elif volume is not None or surface is not None:
+        if volume is not None and surface is not None:
+            raise ValueError("give volume= or surface=, not both")
+        vertices, triangles = volume if volume is not None else surface  # type: ignore[misc]
+        vertex_array = np.asarray(vertices, dtype=np.float64)
+        triangle_array = np.asarray(triangles)
+        if vertex_array.ndim != 2 or vertex_array.shape[1] != 3:
+            raise ValueError(f"mesh vertices must be a (V, 3) array, got shape {vertex_array.shape}")
+        if triangle_array.ndim != 2 or triangle_array.shape[1] != 3 or not np.issubdtype(triangle_array.dtype, np.integer):
+            raise ValueError(f"mesh triangles must be a (T, 3) integer array, got {triangle_array.dtype} {triangle_array.shape}")
+        if triangle_array.size and (triangle_array.min() < 0 or triangle_array.max() >= len(vertex_array)):
+            raise ValueError(f"mesh triangles must index the {len(vertex_array)} vertices")
+        mesh = {"vertices": _plain(vertex_array), "triangles": triangle_array.astype(np.int64).tolist()}
+        if volume is not None:
+            spec = {"volume": mesh}
+        else:
+            spec = {"surface": {"mesh": mesh, "directions": _surface_directions(surface_directions)}}
     elif domain is None:
-        raise ValueError("give domain=(W, H) (a box), domain=polygon, or along=polyline with brush_width")
+        raise ValueError(
+            "give domain=(W, H) (a box), domain=polygon, along=polyline with brush_width, volume= or surface="
+        )
     else:
         shape = np.asarray(domain, dtype=np.float64)
         spec = {"box": shape.tolist()} if shape.ndim == 1 else {"region": shape.tolist()}

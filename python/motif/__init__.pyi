@@ -44,6 +44,8 @@ def curve(
 def points(
     exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
+    volume: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
+    surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,
     existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
     scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
     report: Literal[False] = ..., **options: Any
@@ -52,6 +54,8 @@ def points(
 def points(
     exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
+    volume: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
+    surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,
     existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
     scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
     report: Literal[True], **options: Any

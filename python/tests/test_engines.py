@@ -169,3 +169,36 @@ def test_points_maps_equal_the_cli(cli, tmp_path):
     assert np.allclose(result["y"], expected["y"], rtol=0, atol=1e-9)
     with pytest.raises(ValueError, match="rotation-map"):
         motif.points(pines, 32, domain=(400, 200), exemplar_window=[96, 100], rotation_map=ramp)
+
+
+def test_points_on_a_mesh_surface_equal_the_cli(cli, tmp_path):
+    # An octahedron |x − 4| + |y − 4| + |z − 4| = 4: its surface holds the Swedish pines scaled
+    # to its size (a 2D exemplar on a surface gives 3D points on it).
+    vertices = np.array([[8, 4, 4], [0, 4, 4], [4, 8, 4], [4, 0, 4], [4, 4, 8], [4, 4, 0]], dtype=np.float64)
+    triangles = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    obj = "".join(f"v {x:g} {y:g} {z:g}\n" for x, y, z in vertices) + "".join(
+        f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in triangles
+    )
+    (tmp_path / "solid.obj").write_text(obj)
+    pines = motif.read_points(str(POINTS / "swedishpines.csv"))
+    small = {"x": pines["x"] / 10, "y": pines["y"] / 10}
+    lines = ["x,y"] + [f"{float(x)!r},{float(y)!r}" for x, y in zip(small["x"], small["y"])]
+    (tmp_path / "small.csv").write_text("\n".join(lines) + "\n")
+    cli(["points", "--exemplar", "small.csv", "--neighbourhood", "3.2", "--domain", "surface:solid.obj",
+         "--surface-directions", "0,0,1", "--out", "out.csv"], tmp_path)
+    expected = motif.read_points(str(tmp_path / "out.csv"))
+    result, report = motif.points(
+        motif.read_points(str(tmp_path / "small.csv")), 3.2, surface=(vertices, triangles), surface_directions=[0, 0, 1],
+        report=True,
+    )
+    for axis in "xyz":
+        assert np.allclose(result[axis], expected[axis], rtol=0, atol=1e-9)
+    distance = np.abs(result["x"] - 4) + np.abs(result["y"] - 4) + np.abs(result["z"] - 4)
+    assert np.all(np.abs(distance - 4) < 1e-6)
+    assert abs(report["surface"]["area"] - 64 * np.sqrt(3)) < 1e-9
+    with pytest.raises(ValueError, match="integer"):
+        motif.points(small, 3.2, surface=(vertices, triangles.astype(np.float64)))
+    with pytest.raises(ValueError, match="surface_directions"):
+        motif.points(small, 3.2, surface=(vertices, triangles), surface_directions="along")
+    with pytest.raises(ValueError, match="not finite, or is zero"):
+        motif.points(small, 3.2, surface=(vertices, triangles), surface_directions=[0, 0, 0])
