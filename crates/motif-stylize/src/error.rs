@@ -40,6 +40,34 @@ pub enum Error {
         /// Channels of the target guide.
         target_channels: usize,
     },
+    /// A mask whose size is not the output's.
+    #[error("the mask is {mask} but the output is {target}: they must have the same size")]
+    MaskSize {
+        /// The mask's size, `W×H`.
+        mask: String,
+        /// The output's size, `W×H`.
+        target: String,
+    },
+    /// A mask that marks no pixel, or every pixel, for synthesis.
+    #[error("the mask marks {0}: mark the pixels to synthesize (white) and leave some to keep (black)")]
+    MaskCoverage(&'static str),
+    /// The image kept outside a mask has other channels than the style.
+    #[error("the kept image has {kept} channels but the style has {style}")]
+    MaskChannels {
+        /// Channels of the kept image.
+        kept: usize,
+        /// Channels of the style.
+        style: usize,
+    },
+    /// Inpainting with no whole patch outside the hole to copy from.
+    #[error("no {patch}×{patch} patch of the image lies wholly outside the hole: nothing to fill it from")]
+    NoSourceOutsideHole {
+        /// Patch size.
+        patch: usize,
+    },
+    /// A mask combined with pre-synthesized textures.
+    #[error("a mask cannot be combined with pre-synthesized textures")]
+    MaskWithTextures,
     /// An image has a channel count the engine does not handle.
     #[error("the {what} image has {channels} channels; 1, 3 or 4 are supported")]
     UnsupportedChannels {

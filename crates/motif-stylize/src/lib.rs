@@ -19,6 +19,7 @@
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
 //!   upsampling (§3.5), the optional 3×3 pass, the report.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
+//! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
@@ -52,6 +53,7 @@ mod band;
 mod error;
 mod field;
 mod level;
+mod mask;
 mod occurrence;
 mod params;
 pub mod samples;
@@ -63,6 +65,8 @@ mod vote;
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_mask;
+#[cfg(test)]
 mod tests_synthesis;
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
@@ -70,6 +74,7 @@ use serde::Serialize;
 
 pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
+pub use mask::Mask;
 pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 
@@ -112,17 +117,27 @@ pub struct Input {
     /// Pre-synthesized textures, one per segment: fill everything outside the band around
     /// segment edges from them and optimize only the band (§3.7). Needs guides.
     pub textures: Option<Vec<SegmentTexture>>,
+    /// Synthesize only the masked pixels and keep the others exactly.
+    pub mask: Option<Mask>,
 }
 
 impl Input {
     /// Guided stylization of the target guides' size.
     pub fn guided(style: FloatImage, guides: Vec<Guide>) -> Self {
-        Self { style, guides, size: None, textures: None }
+        Self { style, guides, size: None, textures: None, mask: None }
     }
 
     /// Non-guided texture synthesis of `width × height` from `exemplar`.
     pub fn texture(exemplar: FloatImage, width: usize, height: usize) -> Self {
-        Self { style: exemplar, guides: Vec::new(), size: Some((width, height)), textures: None }
+        Self { style: exemplar, guides: Vec::new(), size: Some((width, height)), textures: None, mask: None }
+    }
+
+    /// Inpainting: fills the `hole` of `image` (per pixel, row by row, `true` = fill) from the
+    /// rest of the image, with the occurrence penalty so the fill does not clone one patch.
+    pub fn inpaint(image: FloatImage, hole: Vec<bool>) -> Self {
+        let size = Some((image.width(), image.height()));
+        let mask = Mask { keep: image.clone(), hole, exclude_hole_from_style: true };
+        Self { style: image, guides: Vec::new(), size, textures: None, mask: Some(mask) }
     }
 }
 
@@ -372,6 +387,9 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         Some((composed, domain, seeds)) => (Some((composed, domain)), seeds),
         None => (None, None),
     };
+    if let Some(mask) = &input.mask {
+        mask::check(mask, style, target_size, patch, input.textures.is_some())?;
+    }
     let problem = synthesis::Problem {
         style,
         source_guides,
@@ -386,6 +404,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         tileable: params.tileable,
         composition,
         seeds,
+        mask: input.mask.as_ref(),
     };
     let mut output = synthesis::run(&problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
@@ -555,6 +574,7 @@ pub fn presynthesize(
             tileable: true,
             composition: None,
             seeds: None,
+            mask: None,
         };
         let mut segment_params = params.clone();
         segment_params.seed = motif_core::SeedStreams::new(params.seed).child("presynth", label as u64).seed();

@@ -27,6 +27,28 @@ pub(crate) struct Problem<'a> {
     /// Band mode: the starting source centre of every target pixel, from the textures' fields
     /// ([`crate::band::NO_SEED`] = none).
     pub seeds: Option<Vec<u32>>,
+    /// Synthesize only the hole, keep the rest (checked: the output's size, the style's channels).
+    pub mask: Option<&'a crate::Mask>,
+}
+
+/// A mask at pyramid level `level`: a coarse pixel is in the hole when any of the pixels it
+/// stands for is.
+fn hole_at(hole: &[bool], size: (usize, usize), level: usize) -> Vec<bool> {
+    let mut current = hole.to_vec();
+    let (mut width, mut height) = size;
+    for _ in 0..level {
+        let (next_width, next_height) = (width.div_ceil(2), height.div_ceil(2));
+        let mut next = vec![false; next_width * next_height];
+        for y in 0..height {
+            for x in 0..width {
+                if current[y * width + x] {
+                    next[(y / 2) * next_width + x / 2] = true;
+                }
+            }
+        }
+        (current, width, height) = (next, next_width, next_height);
+    }
+    current
 }
 
 /// Number of pyramid levels whose sides all stay ≥ `min_side`.
@@ -48,7 +70,7 @@ fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
 }
 
 /// Dilates a mask by `radius` (Chebyshev): the patch centres whose patch touches the mask.
-fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) -> Vec<bool> {
+pub(crate) fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) -> Vec<bool> {
     let mut horizontal = vec![false; mask.len()];
     for y in 0..height {
         for x in 0..width {
@@ -103,15 +125,26 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
     let style_pyramid = problem.style.gaussian_pyramid(levels, 1);
     let source_guide_pyramid = problem.source_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
     let target_guide_pyramid = problem.target_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
+    let keep_pyramid = problem.mask.map(|mask| mask.keep.gaussian_pyramid(levels, 1));
+    let holes: Option<Vec<Vec<bool>>> =
+        problem.mask.map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect());
     let spec = |level: usize, patch: usize| -> LevelSpec<'_> {
         let target_size = level_size(problem.target_size, level);
-        let (source_labels, target_labels, label_count) = match &problem.labels {
-            Some((source, target, count)) => (
+        let inpainting = problem.mask.filter(|mask| mask.exclude_hole_from_style).and(holes.as_ref());
+        let (source_labels, target_labels, label_count) = match (&problem.labels, inpainting) {
+            // Inpainting: the source is the target image; patches touching its hole form a
+            // second segment that no target patch may match.
+            (_, Some(holes)) => {
+                let touched = dilate(&holes[level], target_size.0, target_size.1, patch / 2);
+                let source = touched.iter().map(|&t| u16::from(t)).collect();
+                (Some(source), Some(vec![0; target_size.0 * target_size.1]), 2)
+            }
+            (Some((source, target, count)), None) => (
                 Some(segments::decimate(source, source_size.0, source_size.1, level_size(source_size, level), level)),
                 Some(segments::decimate(target, problem.target_size.0, problem.target_size.1, target_size, level)),
                 *count,
             ),
-            None => (None, None, 0),
+            (None, None) => (None, None, 0),
         };
         LevelSpec {
             patch,
@@ -127,11 +160,14 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
             label_count,
         }
     };
-    let band = |level: &mut Level| {
-        if let Some((_, domain)) = &problem.composition {
-            level.active = Some(dilate(domain, level.target_width, level.target_height, level.radius));
-            level.domain = Some(domain.clone());
-        }
+    let band = |level: &mut Level, index: usize| {
+        let domain = match (&problem.composition, &holes) {
+            (Some((_, domain)), _) => domain,
+            (None, Some(holes)) => &holes[index],
+            (None, None) => return,
+        };
+        level.active = Some(dilate(domain, level.target_width, level.target_height, level.radius));
+        level.domain = Some(domain.clone());
     };
 
     let mut reports = Vec::with_capacity(levels + 1);
@@ -144,15 +180,21 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         progress.report(&stage, 0.0);
         let level_streams = streams.child("level", level_index as u64);
         let mut level = Level::new(spec(level_index, patch));
-        band(&mut level);
+        band(&mut level, level_index);
         let mut field = match (&previous, &problem.seeds) {
             (None, Some(seeds)) => Field::seeded(&level, seeds, &level_streams),
             (None, None) => Field::random(&level, &level_streams),
             (Some((coarse, coarse_level)), _) => Field::upsample(coarse, coarse_level, &level, &level_streams),
         };
-        image = match &problem.composition {
-            Some((composed, _)) => composed.clone(),
-            None => {
+        image = match (&problem.composition, &keep_pyramid) {
+            (Some((composed, _)), _) => composed.clone(),
+            (None, Some(keep)) => {
+                // The kept pixels of this level; the hole from the field (random or upsampled).
+                let mut fresh = keep[level_index].clone();
+                vote(&level, &field, &mut fresh, false);
+                fresh
+            }
+            (None, None) => {
                 let mut fresh = FloatImage::new(level.target_width, level.target_height, level.style_channels);
                 vote(&level, &field, &mut fresh, false);
                 fresh
@@ -196,7 +238,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let stage = "extra 3×3 pass".to_string();
         progress.report(&stage, 0.0);
         let mut fine = Level::new(spec(0, 3));
-        band(&mut fine);
+        band(&mut fine, 0);
         fine.set_target_style(&image, false);
         let mut occurrence = Occurrence::new(&fine, 0.0);
         field.recompute_costs(&fine);
