@@ -5,7 +5,7 @@
 //! chosen by the front end (the CLI reads PNG and matches the channels of guide pairs).
 
 use motif_core::{FloatImage, InvalidParameter, Progress, RgbaImage};
-use motif_stylize::{Guide, Input, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
+use motif_stylize::{Guide, Input, Mask, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
@@ -200,6 +200,11 @@ job_with_synthesis! {
 }
 
 job_with_synthesis! {
+    /// Every option of `motif inpaint` that is not a file.
+    pub struct InpaintJob {}
+}
+
+job_with_synthesis! {
     /// Every option of `motif presynth` that is not a file.
     pub struct PresynthJob {
         /// Texture size `[W, H]` in pixels (default 256 × 256).
@@ -273,6 +278,18 @@ impl StylizeJob {
         textures: Option<Vec<SegmentTexture>>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
+        self.run_masked(style, guides, textures, None, progress)
+    }
+
+    /// [`StylizeJob::run`] that synthesizes only the mask's hole and keeps the rest.
+    pub fn run_masked(
+        &self,
+        style: motif_core::FloatImage,
+        guides: Vec<GuidePair>,
+        textures: Option<Vec<SegmentTexture>>,
+        mask: Option<Mask>,
+        progress: &mut dyn Progress,
+    ) -> Result<StylizeRun, JobError> {
         if !self.weight.is_empty() && self.weight.len() != guides.len() {
             let allowed = format!("none or exactly one per guide ({} guides), in order", guides.len());
             return Err(InvalidParameter::new("weight", format!("{} values", self.weight.len()), allowed).into());
@@ -285,6 +302,7 @@ impl StylizeJob {
             .collect();
         let mut input = Input::guided(style, guides);
         input.textures = textures;
+        input.mask = mask;
         let output = motif_stylize::synthesize(&input, &params, progress)?;
         let figures = figures(&output);
         Ok(StylizeRun { output, figures })
@@ -312,12 +330,67 @@ impl TextureJob {
 
     /// Runs the job on the decoded exemplar.
     pub fn run(&self, exemplar: motif_core::FloatImage, progress: &mut dyn Progress) -> Result<StylizeRun, JobError> {
+        self.run_masked(exemplar, None, progress)
+    }
+
+    /// [`TextureJob::run`] that synthesizes only the mask's hole and keeps the rest.
+    pub fn run_masked(
+        &self,
+        exemplar: motif_core::FloatImage,
+        mask: Option<Mask>,
+        progress: &mut dyn Progress,
+    ) -> Result<StylizeRun, JobError> {
         let params = self.params()?;
-        let input = Input::texture(exemplar, self.size[0], self.size[1]);
+        let mut input = Input::texture(exemplar, self.size[0], self.size[1]);
+        input.mask = mask;
         let output = motif_stylize::synthesize(&input, &params, progress)?;
         let figures = figures(&output);
         Ok(StylizeRun { output, figures })
     }
+}
+
+impl InpaintJob {
+    /// A job with every option at its default.
+    pub fn new() -> Self {
+        described(json!({}))
+    }
+
+    /// Fills the `hole` of `image` (per pixel, `true` = fill) from the rest of it.
+    pub fn run(
+        &self,
+        image: motif_core::FloatImage,
+        hole: Vec<bool>,
+        progress: &mut dyn Progress,
+    ) -> Result<StylizeRun, JobError> {
+        let params = self.synthesis().params();
+        params.validate()?;
+        let output = motif_stylize::synthesize(&Input::inpaint(image, hole), &params, progress)?;
+        let figures = figures(&output);
+        Ok(StylizeRun { output, figures })
+    }
+}
+
+impl Default for InpaintJob {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// A mask image read as a hole: pixels at least half white and half opaque are synthesized
+/// (white: synthesize, black or transparent: keep).
+pub fn hole_of(mask: &RgbaImage) -> Vec<bool> {
+    mask.pixels()
+        .iter()
+        .map(|&[r, g, b, a]| {
+            let luma = 0.299 * f32::from(r) + 0.587 * f32::from(g) + 0.114 * f32::from(b);
+            luma >= 127.5 && a >= 128
+        })
+        .collect()
+}
+
+/// The image kept outside a mask, with `channels` channels (the style's: 3 or 4; 1 for grey).
+pub fn kept_image(image: &RgbaImage, channels: usize) -> FloatImage {
+    image.to_float_channels(&channel_list(channels))
 }
 
 impl PresynthJob {

@@ -40,11 +40,19 @@ pub enum Error {
         /// Channels of the target guide.
         target_channels: usize,
     },
-    /// A mask whose size is not the output's.
-    #[error("the mask is {mask} but the output is {target}: they must have the same size")]
+    /// A kept image whose size is not the output's.
+    #[error("the kept image is {kept} but the output is {target}: they must have the same size")]
     MaskSize {
-        /// The mask's size, `W×H`.
-        mask: String,
+        /// The kept image's size, `W×H`.
+        kept: String,
+        /// The output's size, `W×H`.
+        target: String,
+    },
+    /// A hole with another number of pixels than the output.
+    #[error("the mask has {pixels} pixels but the output is {target}: they must have the same size")]
+    MaskPixels {
+        /// Pixels in the mask.
+        pixels: usize,
         /// The output's size, `W×H`.
         target: String,
     },

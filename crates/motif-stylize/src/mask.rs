@@ -35,8 +35,11 @@ pub(crate) fn check(
         return Err(Error::MaskWithTextures);
     }
     let size = (mask.keep.width(), mask.keep.height());
-    if size != (width, height) || mask.hole.len() != width * height {
-        return Err(Error::MaskSize { mask: format!("{}×{}", size.0, size.1), target: format!("{width}×{height}") });
+    if size != (width, height) {
+        return Err(Error::MaskSize { kept: format!("{}×{}", size.0, size.1), target: format!("{width}×{height}") });
+    }
+    if mask.hole.len() != width * height {
+        return Err(Error::MaskPixels { pixels: mask.hole.len(), target: format!("{width}×{height}") });
     }
     if mask.keep.channels() != style.channels() {
         return Err(Error::MaskChannels { kept: mask.keep.channels(), style: style.channels() });

@@ -91,7 +91,7 @@ fn bad_masks_are_refused() {
         |hole: Vec<bool>| synthesize(&Input::inpaint(image.clone(), hole), &params, &mut NoProgress).unwrap_err();
     assert!(matches!(refuse(vec![false; 32 * 32]), Error::MaskCoverage("no pixel")));
     assert!(matches!(refuse(vec![true; 32 * 32]), Error::MaskCoverage("every pixel")));
-    assert!(matches!(refuse(vec![true; 31 * 32]), Error::MaskSize { .. }));
+    assert!(matches!(refuse(vec![true; 31 * 32]), Error::MaskPixels { pixels: 992, .. }));
     // A hole that leaves no whole patch outside it.
     let error = refuse(rectangle(32, 32, (3, 3, 29, 29)));
     assert!(matches!(error, Error::NoSourceOutsideHole { .. }), "{error}");

@@ -52,6 +52,13 @@ pub enum EngineCommand {
     /// Grow a texture of any size from an exemplar image, optionally tileable
     #[command(allow_negative_numbers = true)]
     Texture(stylize::TextureArgs),
+    /// Fill a hole in an image from the rest of it
+    ///
+    /// Patch-based synthesis whose kept pixels are the image outside the hole and whose sources
+    /// are its patches wholly outside it, with the occurrence penalty so the fill does not clone
+    /// one patch.
+    #[command(allow_negative_numbers = true)]
+    Inpaint(stylize::InpaintArgs),
 }
 
 impl EngineCommand {
@@ -64,6 +71,7 @@ impl EngineCommand {
             EngineCommand::Stylize(_) => "stylize",
             EngineCommand::Presynth(_) => "presynth",
             EngineCommand::Texture(_) => "texture",
+            EngineCommand::Inpaint(_) => "inpaint",
         }
     }
 
@@ -76,6 +84,7 @@ impl EngineCommand {
             EngineCommand::Stylize(args) => stylize::run_stylize(args, context),
             EngineCommand::Presynth(args) => stylize::run_presynth(args, context),
             EngineCommand::Texture(args) => stylize::run_texture(args, context),
+            EngineCommand::Inpaint(args) => stylize::run_inpaint(args, context),
         }
     }
 }

@@ -5,6 +5,9 @@
 mod bench;
 mod cache;
 mod demo;
+mod masks;
+
+pub use masks::{InpaintArgs, run_inpaint};
 
 use std::path::{Path, PathBuf};
 
@@ -60,7 +63,7 @@ pub struct SynthesisOptions {
 }
 
 /// Sets the shared synthesis options of any stylize-family job (they have the same fields).
-macro_rules! with_synthesis {
+macro_rules! with_synthesis_options {
     ($job:expr, $options:expr, $context:expr) => {{
         let mut job = $job;
         let options: &SynthesisOptions = $options;
@@ -80,6 +83,7 @@ macro_rules! with_synthesis {
         job
     }};
 }
+pub(crate) use with_synthesis_options as with_synthesis;
 
 /// Segment guidance options (§3.6).
 #[derive(Args, Debug, Clone)]
@@ -119,6 +123,9 @@ pub struct StylizeArgs {
     /// Segment guidance.
     #[command(flatten)]
     pub segment: SegmentOptions,
+    /// Masks.
+    #[command(flatten)]
+    pub masking: masks::MaskOptions,
     /// Directory written by `motif presynth`: fill every pixel at least --band pixels
     /// from a segment edge of the target guide with its segment's texture and optimize only the
     /// band (§3.7). Implies --segments.
@@ -190,6 +197,9 @@ pub struct TextureArgs {
     /// Synthesis options.
     #[command(flatten)]
     pub synthesis: SynthesisOptions,
+    /// Masks.
+    #[command(flatten)]
+    pub masking: masks::MaskOptions,
     /// Also write nnf.png and error.png into this directory (see `motif stylize --help`).
     #[arg(long, value_name = "DIR")]
     pub debug_dir: Option<PathBuf>,
@@ -235,6 +245,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     let mut inputs: Vec<&Path> = vec![style_path.as_path()];
     inputs.extend(args.guide.iter().map(PathBuf::as_path));
     inputs.extend(args.apply_nnf.iter().map(PathBuf::as_path));
+    inputs.extend(args.masking.inputs());
     context.check_output(out, &inputs)?;
     let style_image = load(style_path)?;
     let style = style_image_channels(&style_image);
@@ -290,9 +301,10 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
         }
         textures = Some(loaded);
     }
-    let run = job.run(style, guides, textures, context.progress()).with_context(|| {
+    let mask = args.masking.read(style.channels())?;
+    let run = job.run_masked(style, guides, textures, mask, context.progress()).with_context(|| {
         let guides: Vec<String> = pairs.iter().map(|(a, b)| format!("{} → {}", a.display(), b.display())).collect();
-        format!("cannot stylize {} with guides {}", style_path.display(), guides.join(", "))
+        format!("cannot stylize {} with guides {}{}", style_path.display(), guides.join(", "), args.masking.describe())
     })?;
     let output = &run.output;
     motif_io::write_png(out, &RgbaImage::from_float(&output.image))?;
@@ -362,13 +374,18 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
 
 /// Runs `motif texture`.
 pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<()> {
-    context.check_output(&args.out, &[&args.exemplar])?;
+    let mut inputs = vec![args.exemplar.as_path()];
+    inputs.extend(args.masking.inputs());
+    context.check_output(&args.out, &inputs)?;
     let exemplar = style_image_channels(&load(&args.exemplar)?);
+    let mask = args.masking.read(exemplar.channels())?;
     let job = TextureJob {
         tileable: args.tileable,
         ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context)
     };
-    let run = job.run(exemplar, context.progress())?;
+    let run = job
+        .run_masked(exemplar, mask, context.progress())
+        .with_context(|| format!("cannot synthesize from {}{}", args.exemplar.display(), args.masking.describe()))?;
     let output = &run.output;
     motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
     if let Some(dir) = &args.debug_dir {

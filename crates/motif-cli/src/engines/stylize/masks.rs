@@ -1,0 +1,114 @@
+//! Masks on `motif stylize` and `motif texture` (`--mask` with `--keep`), and `motif inpaint`.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Context as _;
+use clap::Args;
+use motif_core::{FloatImage, RgbaImage};
+use motif_jobs::stylize::{InpaintJob, hole_of, kept_image, style_image_channels};
+use motif_stylize::Mask;
+
+use super::{SynthesisOptions, load, write_debug};
+use crate::context::Context;
+
+/// Synthesize only part of the output (ebsynth's masks).
+#[derive(Args, Debug, Clone)]
+pub struct MaskOptions {
+    /// Synthesize only where this image (the output's size) is white, at least half white and
+    /// half opaque; every other pixel is kept exactly from --keep. At every pyramid level only
+    /// the patches touching the mask are optimized, against the kept pixels around them, so the
+    /// border is seamless.
+    #[arg(long, value_name = "MASK.png", requires = "keep")]
+    pub mask: Option<PathBuf>,
+    /// The image (the output's size) whose pixels outside --mask the output keeps.
+    #[arg(long, value_name = "KEEP.png", requires = "mask")]
+    pub keep: Option<PathBuf>,
+}
+
+impl MaskOptions {
+    /// The files to protect from being overwritten.
+    pub fn inputs(&self) -> impl Iterator<Item = &Path> {
+        self.mask.iter().chain(&self.keep).map(PathBuf::as_path)
+    }
+
+    /// The mask for a style of `channels` channels, when one is given.
+    pub fn read(&self, channels: usize) -> anyhow::Result<Option<Mask>> {
+        let (Some(mask_path), Some(keep_path)) = (&self.mask, &self.keep) else { return Ok(None) };
+        let (mask, keep) = (load(mask_path)?, load(keep_path)?);
+        same_size(&mask, mask_path, &keep, keep_path)?;
+        Ok(Some(Mask { keep: kept_image(&keep, channels), hole: hole_of(&mask), exclude_hole_from_style: false }))
+    }
+
+    /// Names the files in an error of the masked run.
+    pub fn describe(&self) -> String {
+        match (&self.mask, &self.keep) {
+            (Some(mask), Some(keep)) => format!(" with --mask {} and --keep {}", mask.display(), keep.display()),
+            _ => String::new(),
+        }
+    }
+}
+
+/// A mask must have the size of the image it masks.
+fn same_size(mask: &RgbaImage, mask_path: &Path, image: &RgbaImage, image_path: &Path) -> anyhow::Result<()> {
+    if (mask.width(), mask.height()) != (image.width(), image.height()) {
+        anyhow::bail!(
+            "the mask {} is {}×{} but {} is {}×{}: they must have the same size",
+            mask_path.display(),
+            mask.width(),
+            mask.height(),
+            image_path.display(),
+            image.width(),
+            image.height()
+        );
+    }
+    Ok(())
+}
+
+/// Options of `motif inpaint`.
+#[derive(Args, Debug)]
+pub struct InpaintArgs {
+    /// The image with a hole to fill (PNG/JPEG).
+    #[arg(long, value_name = "IMAGE.png")]
+    pub image: PathBuf,
+    /// The hole: white (at least half white and half opaque) where the image is filled, black
+    /// where it is kept; the image's size.
+    #[arg(long, value_name = "HOLE.png")]
+    pub mask: PathBuf,
+    /// Synthesis options.
+    #[command(flatten)]
+    pub synthesis: SynthesisOptions,
+    /// Also write nnf.png and error.png into this directory (see `motif stylize --help`).
+    #[arg(long, value_name = "DIR")]
+    pub debug_dir: Option<PathBuf>,
+    /// The filled image (PNG).
+    #[arg(long, value_name = "OUT.png")]
+    pub out: PathBuf,
+}
+
+/// Runs `motif inpaint`.
+pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
+    context.check_output(&args.out, &[&args.image, &args.mask])?;
+    let (image, mask) = (load(&args.image)?, load(&args.mask)?);
+    same_size(&mask, &args.mask, &image, &args.image)?;
+    let image: FloatImage = style_image_channels(&image);
+    let hole = hole_of(&mask);
+    let holes = hole.iter().filter(|&&h| h).count();
+    let job = super::with_synthesis!(InpaintJob::new(), &args.synthesis, context);
+    let run = job
+        .run(image, hole, context.progress())
+        .with_context(|| format!("cannot fill {} with the hole {}", args.image.display(), args.mask.display()))?;
+    let output = &run.output;
+    motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
+    if let Some(dir) = &args.debug_dir {
+        write_debug(dir, output)?;
+    }
+    context.figure("hole_pixels", holes);
+    context.job_figures(run.figures);
+    context.summary(&format!(
+        "motif inpaint: {holes} pixels filled in {:.0} ms, energy {:.0} → {}",
+        output.report.total_ms,
+        output.report.energy.total,
+        args.out.display()
+    ));
+    Ok(())
+}

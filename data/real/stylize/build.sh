@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Rebuilds the real textures of the stylize corpus (PNG) from GIMP's patterns in Debian's
+# gimp-data. Needs Python 3 (standard library only) and apt-get/dpkg-deb: gimp-data need not be
+# installed; if it is not, this script fetches it with `apt-get download` into a temporary folder.
+# Made with gimp-data 2.10.34-1+deb12u10 (Debian bookworm), Python 3.11.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+PYTHON="${PYTHON:-python3}"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+
+# shellcheck source=../package_file.sh
+source "$here/../package_file.sh"
+
+for pattern in Stone/brick Stone/stone33 Wood/bark Wood/walnut Fabric/burlap Plant/leaves; do
+  file="$(package_file gimp-data "usr/share/gimp/2.0/patterns/$pattern.pat")"
+  name="$(basename "$pattern" | tr '[:upper:]' '[:lower:]')"
+  "$PYTHON" "$here/pat_to_png.py" "$file" "$here/$name.png"
+done
