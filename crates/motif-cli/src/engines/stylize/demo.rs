@@ -1,5 +1,5 @@
-//! The stylize cases of `motif demo`: a map stylized with segments, the pre-synthesized speed-up
-//! and a tileable texture.
+//! The stylize cases of `motif demo`: a map stylized with segments, the pre-synthesized speed-up,
+//! a tileable texture and a hole filled in a real texture.
 
 use motif_core::{FloatImage, RgbaImage};
 use motif_stylize::samples;
@@ -116,6 +116,47 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
             "--tileable",
             "--out",
             "texture-tile.png",
+        ]
+        .map(String::from)
+        .to_vec(),
+    })?;
+    // Real data: a hole cut into GIMP's stone pattern (GPL-3+, data/real/stylize), painted red so
+    // that any copy of it would show, filled from the rest of the image.
+    let stone_path = demo.path("inpaint-stone.png");
+    motif_io::write_bytes(&stone_path, include_bytes!("../../../../../data/real/stylize/stone33.png"))?;
+    let stone = motif_io::read_image(&stone_path)?;
+    let (width, height) = (stone.width(), stone.height());
+    let mut mask = RgbaImage::new(width, height);
+    let mut holed = stone.clone();
+    for (i, (pixel, hole)) in holed.pixels_mut().iter_mut().zip(mask.pixels_mut()).enumerate() {
+        let (x, y) = ((i % width) as f64 - 78.0, (i / width) as f64 - 70.0);
+        let inside = x * x + y * y < 28.0 * 28.0;
+        *hole = if inside { [255, 255, 255, 255] } else { [0, 0, 0, 255] };
+        if inside {
+            *pixel = [220, 30, 30, 255];
+        }
+    }
+    motif_io::write_png(&demo.path("inpaint-stone-hole.png"), &holed)?;
+    motif_io::write_png(&demo.path("inpaint-stone-mask.png"), &mask)?;
+    demo.case(DemoCase {
+        title: "inpaint: a hole in a real stone texture".into(),
+        description: "A disc cut out of GIMP's stone pattern (156×156; the hole painted red) is filled from \
+                      the rest of the image: only patches wholly outside the hole are copied, with the \
+                      occurrence penalty, and every pixel outside it is kept exactly."
+            .into(),
+        inputs: vec![
+            ("image".into(), "inpaint-stone-hole.png".into()),
+            ("hole".into(), "inpaint-stone-mask.png".into()),
+        ],
+        outputs: vec![("filled".into(), "inpaint-stone-filled.png".into())],
+        args: [
+            "inpaint",
+            "--image",
+            "inpaint-stone-hole.png",
+            "--mask",
+            "inpaint-stone-mask.png",
+            "--out",
+            "inpaint-stone-filled.png",
         ]
         .map(String::from)
         .to_vec(),
