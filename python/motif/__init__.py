@@ -43,6 +43,7 @@ ArrayLike = Any
 # Job fields that each function takes as its own arguments, not as options.
 _ARGUMENTS = {
     "texture": {"size", "seed"},
+    "inpaint": {"seed"},
     "stylize": {"weight", "seed"},
     "curve": {"width", "piece-length"},
     "points": {"neighbourhood", "domain", "seed"},
@@ -127,6 +128,27 @@ def texture(
     job = _job("texture", {"size": [width, height], "seed": _seed(seed)}, options)
     image, report_text = _motif.texture(_image(exemplar, "exemplar"), job, threads)
     return _finish(image, report_text, report)
+
+
+def inpaint(
+    image: ArrayLike,
+    hole: ArrayLike,
+    *,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Fills the ``hole`` (an H×W bool array, True = fill) of ``image`` from the rest of it
+    (``motif inpaint``): every pixel outside the hole is kept exactly. Options as for ``texture``.
+    Returns an H×W×4 uint8 array.
+    """
+    mask = np.asarray(hole)
+    if mask.dtype != np.bool_:
+        raise ValueError(f"hole must be a bool array (True = fill), got {mask.dtype}")
+    job = _job("inpaint", {"seed": _seed(seed)}, options)
+    filled, report_text = _motif.inpaint(_image(image, "image"), np.ascontiguousarray(mask), job, threads)
+    return _finish(filled, report_text, report)
 
 
 def _size(size: Any) -> Tuple[int, int]:

@@ -19,6 +19,16 @@ def texture(
     report: Literal[True], **options: Any
 ) -> Tuple[ImageArray, Dict[str, Any]]: ...
 @overload
+def inpaint(
+    image: npt.ArrayLike, hole: npt.ArrayLike, *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[False] = ..., **options: Any
+) -> ImageArray: ...
+@overload
+def inpaint(
+    image: npt.ArrayLike, hole: npt.ArrayLike, *, seed: int = ..., threads: Optional[int] = ...,
+    report: Literal[True], **options: Any
+) -> Tuple[ImageArray, Dict[str, Any]]: ...
+@overload
 def stylize(
     style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
     report: Literal[False] = ..., **options: Any

@@ -143,6 +143,32 @@ fn texture<'py>(
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
+/// `motif inpaint`: (image, report JSON). `hole` is an H×W bool array (true = fill).
+#[pyfunction]
+#[pyo3(signature = (image, hole, job, threads=None))]
+fn inpaint<'py>(
+    py: Python<'py>,
+    image: PyReadonlyArrayDyn<'py, u8>,
+    hole: PyReadonlyArrayDyn<'py, bool>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Image<'py>, String)> {
+    let job: motif_jobs::stylize::InpaintJob = description(job)?;
+    let image = image_of(&image, "image")?;
+    let shape = hole.shape().to_vec();
+    if shape != [image.height(), image.width()] {
+        return Err(value_error(format!(
+            "hole must be an H×W bool array of the image's size {}×{}, got shape {shape:?}",
+            image.height(),
+            image.width()
+        )));
+    }
+    let hole: Vec<bool> = hole.as_array().iter().copied().collect();
+    let image = motif_jobs::stylize::style_image_channels(&image);
+    let run = detached(py, threads, || job.run(image, hole, &mut NoProgress))?.map_err(job_error)?;
+    Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
+}
+
 /// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs.
 #[pyfunction]
 #[pyo3(signature = (style, guides, job, threads=None))]
@@ -323,6 +349,7 @@ fn options<'py>(py: Python<'py>, engine: &str) -> PyResult<Bound<'py, PyList>> {
         )),
         "stylize" => serde_json::to_value(motif_jobs::stylize::StylizeJob::new()),
         "texture" => serde_json::to_value(motif_jobs::stylize::TextureJob::new(1, 1)),
+        "inpaint" => serde_json::to_value(motif_jobs::stylize::InpaintJob::new()),
         other => return Err(value_error(format!("no engine named {other}"))),
     }
     .map_err(value_error)?;
@@ -336,6 +363,7 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(write_png, module)?)?;
     module.add_function(wrap_pyfunction!(read_points, module)?)?;
     module.add_function(wrap_pyfunction!(texture, module)?)?;
+    module.add_function(wrap_pyfunction!(inpaint, module)?)?;
     module.add_function(wrap_pyfunction!(stylize, module)?)?;
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(points, module)?)?;

@@ -202,3 +202,23 @@ def test_points_on_a_mesh_surface_equal_the_cli(cli, tmp_path):
         motif.points(small, 3.2, surface=(vertices, triangles), surface_directions="along")
     with pytest.raises(ValueError, match="not finite, or is zero"):
         motif.points(small, 3.2, surface=(vertices, triangles), surface_directions=[0, 0, 0])
+
+
+def test_inpaint_equals_the_cli_and_keeps_the_rest(cli, tmp_path):
+    stone = motif.read_image(str(ROOT / "data" / "real" / "stylize" / "stone33.png"))
+    height, width = stone.shape[:2]
+    y, x = np.mgrid[0:height, 0:width]
+    hole = (x - 78) ** 2 + (y - 70) ** 2 < 26**2
+    motif.write_png(str(tmp_path / "hole.png"), np.where(hole[:, :, None], 255, 0).astype(np.uint8).repeat(3, axis=2))
+    cli(["inpaint", "--image", str(ROOT / "data" / "real" / "stylize" / "stone33.png"), "--mask", "hole.png",
+         "--out", "filled.png"], tmp_path)
+    filled, report = motif.inpaint(stone, hole, report=True)
+    assert np.array_equal(filled, motif.read_image(str(tmp_path / "filled.png")))
+    assert np.array_equal(filled[~hole], stone[~hole])
+    assert report["searched_pixels"] < height * width
+    with pytest.raises(ValueError, match="bool"):
+        motif.inpaint(stone, hole.astype(np.uint8))
+    with pytest.raises(ValueError, match="size"):
+        motif.inpaint(stone, hole[:-1])
+    with pytest.raises(ValueError, match="no pixel"):
+        motif.inpaint(stone, np.zeros_like(hole))
