@@ -24,6 +24,8 @@
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
 //!   re-application (the same style gives back the output).
+//! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
+//!   texture keeps its exemplar's structure.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -59,6 +61,7 @@ mod params;
 pub mod samples;
 mod search;
 mod segments;
+mod structure;
 mod synthesis;
 mod vote;
 
@@ -77,6 +80,7 @@ pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
+pub use structure::{nearest_patch_distance, sharpness};
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
 #[derive(Debug, Clone, PartialEq)]

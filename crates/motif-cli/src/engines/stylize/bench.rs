@@ -93,6 +93,48 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if selected("exact") {
         figures.insert("patchmatch_vs_exact".into(), patchmatch_vs_exact(bench)?);
     }
+    if bench.names("structure") {
+        figures.insert("structure".into(), structure(bench)?);
+    }
+    Ok(Value::Object(figures))
+}
+
+/// Structure on the real textures of `data/real/stylize` (run with `--case structure`): each grown
+/// to twice its size with 5 × 5 patches (the default) and with 9 × 9 and 15 × 15 ones, and the
+/// nearest-patch distance at 15 × 15 (`motif_stylize::nearest_patch_distance`, 8-bit units
+/// squared, 100 output patches) of each, its sharpness over the exemplar's (below 1: washed out;
+/// the distance alone rewards blur) and seconds.
+fn structure(bench: &Bench) -> anyhow::Result<Value> {
+    let folder = crate::suite::corpus_folder("stylize");
+    let mut figures = Map::new();
+    for (name, kind) in [
+        ("brick", "regular"),
+        ("burlap", "regular"),
+        ("walnut", "directional"),
+        ("bark", "irregular"),
+        ("stone33", "irregular"),
+        ("leaves", "irregular"),
+    ] {
+        let image = motif_io::read_image(&folder.join(format!("{name}.png")))?;
+        let exemplar = motif_jobs::stylize::style_image_channels(&image);
+        let (width, height) = (2 * exemplar.width(), 2 * exemplar.height());
+        let mut runs = Map::new();
+        for patch in [5, 9, 15] {
+            let mut params = Params::default().with_seed(bench.seed);
+            params.patch_size = patch;
+            let input = Input::texture(exemplar.clone(), width, height);
+            let (output, wall, _) = timed(&input, &params)?;
+            let distance = motif_stylize::nearest_patch_distance(&output.image, &exemplar, 15, 100);
+            let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&exemplar).max(1e-9);
+            runs.insert(
+                format!("patch_{patch}"),
+                json!({ "nearest_patch_distance_15": distance, "sharpness_ratio": sharpness, "wall_s": wall }),
+            );
+        }
+        runs.insert("kind".into(), json!(kind));
+        runs.insert("size".into(), json!([width, height]));
+        figures.insert(name.into(), Value::Object(runs));
+    }
     Ok(Value::Object(figures))
 }
 
