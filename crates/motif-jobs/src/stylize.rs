@@ -205,6 +205,20 @@ job_with_synthesis! {
 }
 
 job_with_synthesis! {
+    /// Every option of `motif zoom` that is not a file.
+    pub struct ZoomJob {
+        /// Output size `[W, H]` in pixels, the same at every zoom level.
+        pub size: [usize; 2],
+        /// How much closer each level is than the one before (1.05–8, default 2).
+        #[serde(default)]
+        pub factor: Option<f64>,
+        /// Zoom levels, the first unzoomed (1–64, default 4).
+        #[serde(default)]
+        pub levels: Option<usize>,
+    }
+}
+
+job_with_synthesis! {
     /// Every option of `motif presynth` that is not a file.
     pub struct PresynthJob {
         /// Texture size `[W, H]` in pixels (default 256 × 256).
@@ -367,6 +381,27 @@ impl InpaintJob {
         let output = motif_stylize::synthesize(&Input::inpaint(image, hole), &params, progress)?;
         let figures = figures(&output);
         Ok(StylizeRun { output, figures })
+    }
+}
+
+impl ZoomJob {
+    /// A job for `width × height` levels with every other option at its default.
+    pub fn new(width: usize, height: usize) -> Self {
+        described(json!({ "size": [width, height] }))
+    }
+
+    /// Synthesizes the zoom levels of a texture of `exemplar`, outermost first.
+    pub fn run(
+        &self,
+        exemplar: motif_core::FloatImage,
+        progress: &mut dyn Progress,
+    ) -> Result<Vec<StylizeRun>, JobError> {
+        let params = self.synthesis().params();
+        params.validate()?;
+        let input = Input::texture(exemplar, self.size[0], self.size[1]);
+        let (factor, levels) = (self.factor.unwrap_or(2.0), self.levels.unwrap_or(4));
+        let outputs = motif_stylize::zoom(&input, factor, levels, &params, progress)?;
+        Ok(outputs.into_iter().map(|output| StylizeRun { figures: figures(&output), output }).collect())
     }
 }
 

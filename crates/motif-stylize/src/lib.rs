@@ -24,6 +24,8 @@
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
 //!   re-application (the same style gives back the output).
+//! - `zoom` (§5.3): infinite zoom, every level synthesized at full resolution and guided by the
+//!   centre of the level above.
 //! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
 //!   texture keeps its exemplar's structure.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
@@ -64,6 +66,7 @@ mod segments;
 mod structure;
 mod synthesis;
 mod vote;
+mod zoom;
 
 #[cfg(test)]
 mod tests;
@@ -81,6 +84,7 @@ pub use mask::Mask;
 pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
+pub use zoom::zoom;
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
 #[derive(Debug, Clone, PartialEq)]

@@ -59,6 +59,11 @@ pub enum EngineCommand {
     /// one patch.
     #[command(allow_negative_numbers = true)]
     Inpaint(stylize::InpaintArgs),
+    /// Zoom into a texture without end: every level synthesized at full resolution
+    ///
+    /// Each level is guided by the centre of the level above, scaled up, so zooming keeps both
+    /// the layout and the style's own detail (the map paper's §5.3).
+    Zoom(stylize::ZoomArgs),
 }
 
 impl EngineCommand {
@@ -72,6 +77,7 @@ impl EngineCommand {
             EngineCommand::Presynth(_) => "presynth",
             EngineCommand::Texture(_) => "texture",
             EngineCommand::Inpaint(_) => "inpaint",
+            EngineCommand::Zoom(_) => "zoom",
         }
     }
 
@@ -85,6 +91,7 @@ impl EngineCommand {
             EngineCommand::Presynth(args) => stylize::run_presynth(args, context),
             EngineCommand::Texture(args) => stylize::run_texture(args, context),
             EngineCommand::Inpaint(args) => stylize::run_inpaint(args, context),
+            EngineCommand::Zoom(args) => stylize::run_zoom(args, context),
         }
     }
 }

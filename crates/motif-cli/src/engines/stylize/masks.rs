@@ -1,11 +1,12 @@
-//! Masks on `motif stylize` and `motif texture` (`--mask` with `--keep`), and `motif inpaint`.
+//! Masks on `motif stylize` and `motif texture` (`--mask` with `--keep`), `motif inpaint`, and
+//! `motif zoom`.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
-use motif_jobs::stylize::{InpaintJob, hole_of, kept_image, style_image_channels};
+use motif_jobs::stylize::{InpaintJob, ZoomJob, hole_of, kept_image, style_image_channels};
 use motif_stylize::Mask;
 
 use super::{SynthesisOptions, load, write_debug};
@@ -109,6 +110,68 @@ pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<
         output.report.total_ms,
         output.report.energy.total,
         args.out.display()
+    ));
+    Ok(())
+}
+
+/// Options of `motif zoom`.
+#[derive(Args, Debug)]
+pub struct ZoomArgs {
+    /// The texture exemplar (PNG/JPEG).
+    #[arg(long, value_name = "EX.png")]
+    pub exemplar: PathBuf,
+    /// Size of every zoom level in pixels.
+    #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
+    pub size: (usize, usize),
+    /// How much closer each level is than the one before, 1.05–8.
+    #[arg(long, value_name = "F", default_value_t = 2.0)]
+    pub factor: f64,
+    /// Zoom levels, the first unzoomed, 1–64.
+    #[arg(long, value_name = "N", default_value_t = 4)]
+    pub levels: usize,
+    /// Synthesis options.
+    #[command(flatten)]
+    pub synthesis: SynthesisOptions,
+    /// Output folder (created if missing): zoom-01.png (unzoomed), zoom-02.png, …
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: PathBuf,
+}
+
+/// Runs `motif zoom`.
+pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
+    let names: Vec<PathBuf> =
+        (1..=args.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
+    // The folder is created after the run; the names are checked against the inputs when it exists.
+    if args.out_dir.is_dir() {
+        for name in &names {
+            context.check_output(name, &[&args.exemplar])?;
+        }
+    }
+    let exemplar = style_image_channels(&load(&args.exemplar)?);
+    let job = ZoomJob {
+        factor: Some(args.factor),
+        levels: Some(args.levels),
+        ..super::with_synthesis!(ZoomJob::new(args.size.0, args.size.1), &args.synthesis, context)
+    };
+    let runs = job
+        .run(exemplar, context.progress())
+        .with_context(|| format!("cannot zoom into {}", args.exemplar.display()))?;
+    std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    for (run, name) in runs.iter().zip(&names) {
+        motif_io::write_png(name, &RgbaImage::from_float(&run.output.image))?;
+    }
+    let total_ms: f64 = runs.iter().map(|run| run.output.report.total_ms).sum();
+    context.figure("levels", runs.len());
+    context.figure("factor", args.factor);
+    context.figure("level_ms", runs.iter().map(|run| run.output.report.total_ms).collect::<Vec<_>>());
+    context.summary(&format!(
+        "motif zoom: {} levels of {}×{}, each {}× closer, in {:.0} ms → {}",
+        runs.len(),
+        args.size.0,
+        args.size.1,
+        args.factor,
+        total_ms,
+        args.out_dir.display()
     ));
     Ok(())
 }

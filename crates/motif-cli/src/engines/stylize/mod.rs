@@ -7,7 +7,7 @@ mod cache;
 mod demo;
 mod masks;
 
-pub use masks::{InpaintArgs, run_inpaint};
+pub use masks::{InpaintArgs, ZoomArgs, run_inpaint, run_zoom};
 
 use std::path::{Path, PathBuf};
 
