@@ -121,6 +121,8 @@ CASES = [
     ("curve piece length 0.01", CURVE[:-1] + ["0.01", "--out", "out.png"], "clean-error"),
     ("10 MB one-path SVG curve", ["curve", "--exemplar", "curve-chain.png", "--path", "big.svg", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("texture 16384x16384", TEXTURE + ["--size", "16384x16384", "--out", "out.png"], "clean-error"),
+    ("zoom 64 levels of 4096x4096", ["zoom", "--exemplar", "texture-exemplar.png", "--size", "4096x4096", "--levels", "64", "--out-dir", "out-zoom"], "clean-error"),
+    ("inpaint with a mask of another size", ["inpaint", "--image", "stylize-A1.png", "--mask", "texture-exemplar.png", "--out", "out.png"], "clean-error"),
     ("presynth 4096x4096", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "4096x4096", "--out-dir", "out-presynth"], "clean-error"),
     ("points coordinate 1e300", ["points", "--exemplar", "far-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
     ("points scale 0.01", POINTS + ["--domain", "box:14,10", "--scale", "0.01", "--out", "out.ply"], "clean-error"),

@@ -60,6 +60,14 @@ pub fn zoom(
     if input.mask.is_some() || input.textures.is_some() {
         return Err(InvalidParameter::new("zoom", "with a mask or textures", "takes a texture or guides only").into());
     }
+    // Every level is a full synthesis: the pixel guard counts them all, before any work.
+    let size = input.size.or_else(|| input.guides.first().map(|g| (g.target.width(), g.target.height())));
+    if let Some((width, height)) = size {
+        let pixels = width.saturating_mul(height).saturating_mul(levels);
+        if pixels > params.max_pixels {
+            return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
+        }
+    }
     let mut outputs: Vec<Output> = Vec::with_capacity(levels);
     let blurred_style = blurred_by(&input.style, factor);
     let mut guides = input.guides.clone();
