@@ -44,6 +44,7 @@ ArrayLike = Any
 _ARGUMENTS = {
     "texture": {"size", "seed"},
     "inpaint": {"seed"},
+    "zoom": {"size", "factor", "levels", "seed"},
     "stylize": {"weight", "seed"},
     "curve": {"width", "piece-length"},
     "points": {"neighbourhood", "domain", "seed"},
@@ -149,6 +150,32 @@ def inpaint(
     job = _job("inpaint", {"seed": _seed(seed)}, options)
     filled, report_text = _motif.inpaint(_image(image, "image"), np.ascontiguousarray(mask), job, threads)
     return _finish(filled, report_text, report)
+
+
+def zoom(
+    exemplar: ArrayLike,
+    size: Tuple[int, int],
+    *,
+    factor: float = 2.0,
+    levels: int = 4,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Zooms into a texture of ``exemplar`` without end (``motif zoom``): ``levels`` images of
+    ``size`` = (width, height), each ``factor`` times closer than the one before and synthesized
+    at full resolution, guided by the centre of the one before. Options as for ``texture``.
+    Returns a list of H×W×4 uint8 arrays, outermost first (with ``report=True``, also the list of
+    their reports).
+    """
+    width, height = _size(size)
+    fixed = {"size": [width, height], "factor": float(factor), "levels": int(levels), "seed": _seed(seed)}
+    job = _job("zoom", fixed, options)
+    images, reports = _motif.zoom(_image(exemplar, "exemplar"), job, threads)
+    if report:
+        return list(images), [json.loads(text) for text in reports]
+    return list(images)
 
 
 def _size(size: Any) -> Tuple[int, int]:

@@ -19,6 +19,16 @@ def texture(
     report: Literal[True], **options: Any
 ) -> Tuple[ImageArray, Dict[str, Any]]: ...
 @overload
+def zoom(
+    exemplar: npt.ArrayLike, size: Tuple[int, int], *, factor: float = ..., levels: int = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
+) -> List[ImageArray]: ...
+@overload
+def zoom(
+    exemplar: npt.ArrayLike, size: Tuple[int, int], *, factor: float = ..., levels: int = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[True], **options: Any
+) -> Tuple[List[ImageArray], List[Dict[str, Any]]]: ...
+@overload
 def inpaint(
     image: npt.ArrayLike, hole: npt.ArrayLike, *, seed: int = ..., threads: Optional[int] = ...,
     report: Literal[False] = ..., **options: Any

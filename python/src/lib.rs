@@ -169,6 +169,25 @@ fn inpaint<'py>(
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
+/// `motif zoom`: (levels, report JSONs), outermost level first.
+#[pyfunction]
+#[pyo3(signature = (exemplar, job, threads=None))]
+fn zoom<'py>(
+    py: Python<'py>,
+    exemplar: PyReadonlyArrayDyn<'py, u8>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Vec<Image<'py>>, Vec<String>)> {
+    let job: motif_jobs::stylize::ZoomJob = description(job)?;
+    let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?);
+    let runs = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
+    let mut images = Vec::with_capacity(runs.len());
+    for run in &runs {
+        images.push(array_of(py, &RgbaImage::from_float(&run.output.image))?);
+    }
+    Ok((images, runs.iter().map(|run| report_json(&run.figures)).collect()))
+}
+
 /// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs.
 #[pyfunction]
 #[pyo3(signature = (style, guides, job, threads=None))]
@@ -350,6 +369,7 @@ fn options<'py>(py: Python<'py>, engine: &str) -> PyResult<Bound<'py, PyList>> {
         "stylize" => serde_json::to_value(motif_jobs::stylize::StylizeJob::new()),
         "texture" => serde_json::to_value(motif_jobs::stylize::TextureJob::new(1, 1)),
         "inpaint" => serde_json::to_value(motif_jobs::stylize::InpaintJob::new()),
+        "zoom" => serde_json::to_value(motif_jobs::stylize::ZoomJob::new(1, 1)),
         other => return Err(value_error(format!("no engine named {other}"))),
     }
     .map_err(value_error)?;
@@ -364,6 +384,7 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(read_points, module)?)?;
     module.add_function(wrap_pyfunction!(texture, module)?)?;
     module.add_function(wrap_pyfunction!(inpaint, module)?)?;
+    module.add_function(wrap_pyfunction!(zoom, module)?)?;
     module.add_function(wrap_pyfunction!(stylize, module)?)?;
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(points, module)?)?;

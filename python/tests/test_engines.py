@@ -222,3 +222,15 @@ def test_inpaint_equals_the_cli_and_keeps_the_rest(cli, tmp_path):
         motif.inpaint(stone, hole[:-1])
     with pytest.raises(ValueError, match="no pixel"):
         motif.inpaint(stone, np.zeros_like(hole))
+
+
+def test_zoom_equals_the_cli(cli, tmp_path):
+    stone = ROOT / "data" / "real" / "stylize" / "stone33.png"
+    cli(["zoom", "--exemplar", str(stone), "--size", "64x48", "--levels", "3", "--out-dir", "levels"], tmp_path)
+    levels, reports = motif.zoom(motif.read_image(str(stone)), (64, 48), levels=3, report=True)
+    assert len(levels) == 3 and len(reports) == 3
+    for index, level in enumerate(levels):
+        assert level.shape == (48, 64, 4)
+        assert np.array_equal(level, motif.read_image(str(tmp_path / "levels" / f"zoom-{index + 1:02d}.png")))
+    with pytest.raises(ValueError, match="zoom-factor"):
+        motif.zoom(motif.read_image(str(stone)), (64, 48), factor=30)

@@ -27,8 +27,8 @@ pub enum EngineCommand {
     Curve(curve::CurveArgs),
     /// Grow a repetitive structure of points with attributes, in 2D or 3D
     ///
-    /// Discrete elements, continuous structures and mixtures, in boxes, regions or brush strokes
-    /// (Roveri et al. 2015).
+    /// Discrete elements, continuous structures and mixtures, in boxes, regions, brush strokes,
+    /// mesh volumes or on mesh surfaces (Roveri et al. 2015).
     #[command(allow_negative_numbers = true)]
     Points(Box<points::PointsArgs>),
     /// Grow a vector stroke pattern along a path or inside a region
