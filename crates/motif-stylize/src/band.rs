@@ -9,6 +9,8 @@
 
 use motif_core::FloatImage;
 
+use crate::{Error, NearestNeighbourField, SegmentLabels, SegmentTexture};
+
 /// Pixels closer than `band` to a segment edge (none when `band` is 0 or there is one segment).
 pub(crate) fn band_mask(labels: &[u16], width: usize, height: usize, band: usize) -> Vec<bool> {
     if band == 0 {
@@ -192,4 +194,89 @@ mod tests {
         assert_eq!(count(3), 6 * h);
         assert!(band_mask(&vec![0; w * h], w, h, 5).iter().all(|&b| !b));
     }
+}
+
+/// The composed target, the band, and (when the textures carry fields) the starting source centre
+/// of every target pixel.
+pub(crate) type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
+
+/// Matches textures to segments by colour, composes the target from them (and their fields) and
+/// marks the band.
+pub(crate) fn compose_textures(
+    textures: &[SegmentTexture],
+    labels: &SegmentLabels,
+    (style_width, style_height, channels): (usize, usize, usize),
+    (width, height): (usize, usize),
+    band_width: usize,
+) -> Result<Composition, Error> {
+    if textures.is_empty() {
+        return Err(Error::NoTextures);
+    }
+    for (index, texture) in textures.iter().enumerate() {
+        if texture.image.is_empty() {
+            return Err(Error::EmptyImage(format!("pre-synthesized texture {}", index + 1)));
+        }
+        if texture.image.channels() != channels {
+            return Err(Error::TextureChannels {
+                texture: index + 1,
+                channels: texture.image.channels(),
+                style_channels: channels,
+            });
+        }
+        if let Some(field) = &texture.field {
+            let (tw, th) = (texture.image.width(), texture.image.height());
+            if field.width != tw || field.height != th || field.matches.len() != tw * th {
+                return Err(Error::TextureFieldSize {
+                    texture: index + 1,
+                    field_width: field.width,
+                    field_height: field.height,
+                    width: tw,
+                    height: th,
+                });
+            }
+            let outside =
+                |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
+            if field.matches.iter().any(outside) {
+                return Err(Error::TextureFieldOutside { texture: index + 1, style_width, style_height });
+            }
+            if field.source_width != style_width || field.source_height != style_height {
+                return Err(Error::TextureFieldSource {
+                    texture: index + 1,
+                    source_width: field.source_width,
+                    source_height: field.source_height,
+                    style_width,
+                    style_height,
+                });
+            }
+        }
+    }
+    let mut present = vec![false; labels.colours.len()];
+    for &label in &labels.target {
+        present[usize::from(label)] = true;
+    }
+    // Each label takes the texture of the nearest colour, which must be within 8/255 per channel.
+    let mut texture_of = vec![0; labels.colours.len()];
+    for (label, colour) in labels.colours.iter().enumerate() {
+        let distance =
+            |t: &SegmentTexture| -> f32 { t.colour.iter().zip(colour).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max) };
+        let (best, gap) = textures
+            .iter()
+            .enumerate()
+            .map(|(i, t)| (i, if t.colour.len() == colour.len() { distance(t) } else { f32::INFINITY }))
+            .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
+        if present[label] && gap > 8.5 / 255.0 {
+            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
+            return Err(Error::MissingTexture { colour: hex });
+        }
+        texture_of[label] = best;
+    }
+    let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
+    let composed = compose(&labels.target, width, height, &images, &texture_of, channels);
+    let domain = band_mask(&labels.target, width, height, band_width);
+    let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
+    let seeds = fields
+        .iter()
+        .any(Option::is_some)
+        .then(|| compose_field(&labels.target, width, height, &fields, &texture_of, style_width));
+    Ok((composed, domain, seeds))
 }

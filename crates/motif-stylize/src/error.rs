@@ -230,4 +230,26 @@ pub enum Error {
         /// The patch side.
         patch: usize,
     },
+    /// A video with no frames.
+    #[error("video: no frames given")]
+    NoFrames,
+    /// A video with no keyframe.
+    #[error("video: no keyframe given: stylize at least one frame and pass it as a keyframe")]
+    NoKeyframes,
+    /// A keyframe past the last frame.
+    #[error("video: keyframe {frame} is past the last frame (the sequence has {frames} frames, numbered from 0)")]
+    KeyframeOutOfRange {
+        /// The keyframe's position.
+        frame: usize,
+        /// Frames in the sequence.
+        frames: usize,
+    },
+    /// Keyframes out of order, or two at one frame.
+    #[error("video: keyframe {frame} comes after keyframe {previous}: give keyframes once each, in frame order")]
+    KeyframeOrder {
+        /// The keyframe's position.
+        frame: usize,
+        /// The keyframe before it.
+        previous: usize,
+    },
 }

@@ -26,6 +26,9 @@
 //!   re-application (the same style gives back the output).
 //! - `zoom` (§5.3): infinite zoom, every level synthesized at full resolution and guided by the
 //!   centre of the level above.
+//! - `motion` and `video`: video stylization from keyframes (Jamriška et al. 2019): motion by
+//!   the engine's own PatchMatch, edge, positional and temporal guides, forward and backward
+//!   passes blended between keyframes, in independent keyframe intervals.
 //! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
 //!   texture keeps its exemplar's structure.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
@@ -58,6 +61,7 @@ mod error;
 mod field;
 mod level;
 mod mask;
+mod motion;
 mod occurrence;
 mod params;
 pub mod samples;
@@ -65,6 +69,7 @@ mod search;
 mod segments;
 mod structure;
 mod synthesis;
+mod video;
 mod vote;
 mod zoom;
 
@@ -81,9 +86,14 @@ use serde::Serialize;
 pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
+pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
+pub use video::{
+    Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, flicker,
+    intervals, stylize_interval, stylize_video,
+};
 pub use zoom::zoom;
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
@@ -381,7 +391,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let composition = match &input.textures {
         Some(textures) => {
             let labels = labels.as_ref().expect("textures imply segments");
-            Some(compose_textures(
+            Some(band::compose_textures(
                 textures,
                 labels,
                 (style.width(), style.height(), style.channels()),
@@ -417,91 +427,6 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let mut output = synthesis::run(&problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
     Ok(output)
-}
-
-/// The composed target, the band, and (when the textures carry fields) the starting source centre
-/// of every target pixel.
-type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
-
-/// Matches textures to segments by colour, composes the target from them (and their fields) and
-/// marks the band.
-fn compose_textures(
-    textures: &[SegmentTexture],
-    labels: &SegmentLabels,
-    (style_width, style_height, channels): (usize, usize, usize),
-    (width, height): (usize, usize),
-    band_width: usize,
-) -> Result<Composition, Error> {
-    if textures.is_empty() {
-        return Err(Error::NoTextures);
-    }
-    for (index, texture) in textures.iter().enumerate() {
-        if texture.image.is_empty() {
-            return Err(Error::EmptyImage(format!("pre-synthesized texture {}", index + 1)));
-        }
-        if texture.image.channels() != channels {
-            return Err(Error::TextureChannels {
-                texture: index + 1,
-                channels: texture.image.channels(),
-                style_channels: channels,
-            });
-        }
-        if let Some(field) = &texture.field {
-            let (tw, th) = (texture.image.width(), texture.image.height());
-            if field.width != tw || field.height != th || field.matches.len() != tw * th {
-                return Err(Error::TextureFieldSize {
-                    texture: index + 1,
-                    field_width: field.width,
-                    field_height: field.height,
-                    width: tw,
-                    height: th,
-                });
-            }
-            let outside =
-                |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
-            if field.matches.iter().any(outside) {
-                return Err(Error::TextureFieldOutside { texture: index + 1, style_width, style_height });
-            }
-            if field.source_width != style_width || field.source_height != style_height {
-                return Err(Error::TextureFieldSource {
-                    texture: index + 1,
-                    source_width: field.source_width,
-                    source_height: field.source_height,
-                    style_width,
-                    style_height,
-                });
-            }
-        }
-    }
-    let mut present = vec![false; labels.colours.len()];
-    for &label in &labels.target {
-        present[usize::from(label)] = true;
-    }
-    // Each label takes the texture of the nearest colour, which must be within 8/255 per channel.
-    let mut texture_of = vec![0; labels.colours.len()];
-    for (label, colour) in labels.colours.iter().enumerate() {
-        let distance =
-            |t: &SegmentTexture| -> f32 { t.colour.iter().zip(colour).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max) };
-        let (best, gap) = textures
-            .iter()
-            .enumerate()
-            .map(|(i, t)| (i, if t.colour.len() == colour.len() { distance(t) } else { f32::INFINITY }))
-            .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-        if present[label] && gap > 8.5 / 255.0 {
-            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::MissingTexture { colour: hex });
-        }
-        texture_of[label] = best;
-    }
-    let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
-    let composed = band::compose(&labels.target, width, height, &images, &texture_of, channels);
-    let domain = band::band_mask(&labels.target, width, height, band_width);
-    let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
-    let seeds = fields
-        .iter()
-        .any(Option::is_some)
-        .then(|| band::compose_field(&labels.target, width, height, &fields, &texture_of, style_width));
-    Ok((composed, domain, seeds))
 }
 
 /// What [`presynthesize`] makes textures from.

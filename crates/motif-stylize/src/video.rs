@@ -1,0 +1,622 @@
+//! Video stylization from keyframes, after Jamriška et al. 2019, "Stylizing Video by Example".
+//!
+//! A keyframe is a frame the artist painted over. Every other frame is synthesized from the
+//! nearest keyframes with four guides (§3 of that paper):
+//! - the frames' colours (keyframe against the frame), as ebsynth's video guide;
+//! - G_edge, the frame's blurred edges ([`edge_guide`]);
+//! - G_pos, the keyframe's pixel coordinates carried frame by frame along the motion, so a
+//!   patch of the style stays on the surface it was painted on ([`coordinate_guide`]);
+//! - G_temp, the previous output frame carried along the motion, against the style itself, so
+//!   that consecutive frames agree where their content agrees (temporal coherence).
+//!
+//! Synthesis runs forward from a keyframe and backward from the next one; between two
+//! keyframes the two results are blended per pixel, weighted by how far the frame is from each
+//! keyframe and by each result's synthesis error (the paper chooses the result with the lower
+//! error; the weighted blend avoids seams where the choice flips). The frames between two
+//! keyframes form one [`Interval`], independent of every other interval, so front ends can run
+//! intervals in parallel or on other machines and get the same bytes.
+
+use motif_core::timing::{Clock, elapsed_ms};
+use motif_core::{FloatImage, Progress, SeedStreams};
+use serde::Serialize;
+
+use crate::motion::{MotionField, coordinate_guide, edge_guide, estimate_motion};
+use crate::{Error, Guide, Input, Mask, Params, synthesize};
+
+/// The guide weights of video stylization (β of the map paper's Eq. 4, per guide).
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct VideoParams {
+    /// Weight of the frames' colours. Range `[0, 1000]`, default 1.
+    pub colour_weight: f32,
+    /// Weight of the edge guide G_edge. Range `[0, 1000]`, default 1.
+    pub edge_weight: f32,
+    /// Weight of the positional guide G_pos. Range `[0, 1000]`, default 2.
+    pub position_weight: f32,
+    /// Weight of the temporal guide G_temp (0 = frames stylized independently of each other,
+    /// still with the positional guide). Range `[0, 1000]`, default 0.5.
+    pub temporal_weight: f32,
+}
+
+impl VideoParams {
+    /// The defaults, as a constant.
+    pub const DEFAULT: Self = Self { colour_weight: 1.0, edge_weight: 1.0, position_weight: 2.0, temporal_weight: 0.5 };
+
+    /// Checks every weight's range.
+    pub fn validate(&self) -> Result<(), Error> {
+        use motif_core::error::check_range;
+        check_range("colour-weight", f64::from(self.colour_weight), 0.0, 1000.0)?;
+        check_range("edge-weight", f64::from(self.edge_weight), 0.0, 1000.0)?;
+        check_range("position-weight", f64::from(self.position_weight), 0.0, 1000.0)?;
+        check_range("temporal-weight", f64::from(self.temporal_weight), 0.0, 1000.0)?;
+        Ok(())
+    }
+}
+
+impl Default for VideoParams {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+motif_core::builders! { VideoParams {
+    with_colour_weight => colour_weight: f32,
+    with_edge_weight => edge_weight: f32,
+    with_position_weight => position_weight: f32,
+    with_temporal_weight => temporal_weight: f32,
+}}
+
+/// A frame the artist stylized.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Keyframe {
+    /// Its position in the sequence, from 0.
+    pub frame: usize,
+    /// The stylized frame: the frames' size, 1, 3 or 4 channels (the same for every keyframe).
+    pub style: FloatImage,
+}
+
+/// What to stylize: the frames in order and at least one keyframe.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VideoInput {
+    /// The frames, all of one size and channel count (1, 3 or 4).
+    pub frames: Vec<FloatImage>,
+    /// The keyframes, in increasing frame order.
+    pub keys: Vec<Keyframe>,
+    /// Synthesize only these pixels (row by row, `true` = synthesize) and keep the frame's own
+    /// pixels elsewhere; `None` = every pixel.
+    pub mask: Option<Vec<bool>>,
+}
+
+/// A run of frames synthesized together: from one keyframe to the next (both ends included),
+/// or before the first keyframe, or after the last.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Interval {
+    /// First frame.
+    pub first: usize,
+    /// Last frame (included).
+    pub last: usize,
+    /// Whether `first` is a keyframe (synthesis runs forward from it).
+    pub starts_at_key: bool,
+    /// Whether `last` is a keyframe (synthesis runs backward from it).
+    pub ends_at_key: bool,
+}
+
+/// The intervals of a sequence of `frame_count` frames with keyframes at `key_frames`
+/// (increasing, within the sequence).
+pub fn intervals(frame_count: usize, key_frames: &[usize]) -> Vec<Interval> {
+    let mut out = Vec::new();
+    let (Some(&first_key), Some(&last_key)) = (key_frames.first(), key_frames.last()) else { return out };
+    if first_key > 0 {
+        out.push(Interval { first: 0, last: first_key, starts_at_key: false, ends_at_key: true });
+    }
+    for pair in key_frames.windows(2) {
+        out.push(Interval { first: pair[0], last: pair[1], starts_at_key: true, ends_at_key: true });
+    }
+    if key_frames.len() == 1 || last_key + 1 < frame_count {
+        out.push(Interval { first: last_key, last: frame_count - 1, starts_at_key: true, ends_at_key: false });
+    }
+    out
+}
+
+/// Figures of one interval.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct IntervalReport {
+    /// The interval.
+    pub interval: Interval,
+    /// Frames synthesized (a frame between two keyframes counts once, though it is
+    /// synthesized from both).
+    pub synthesized_frames: usize,
+    /// Milliseconds estimating motion.
+    pub motion_ms: f64,
+    /// Milliseconds of synthesis and blending.
+    pub synthesis_ms: f64,
+    /// Mean absolute difference between consecutive output frames after motion compensation
+    /// (estimated motion, pixels visible in both, colour channels, values in `[0, 1]`).
+    pub flicker: f64,
+}
+
+/// Figures of a whole video.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct VideoReport {
+    /// Frames in the sequence.
+    pub frames: usize,
+    /// Keyframe positions.
+    pub keyframes: Vec<usize>,
+    /// Per interval.
+    pub intervals: Vec<IntervalReport>,
+    /// Wall-clock milliseconds of the whole run.
+    pub total_ms: f64,
+    /// `total_ms` over the synthesized frames.
+    pub ms_per_frame: f64,
+    /// Mean of the intervals' flicker, weighted by their frame pairs.
+    pub flicker: f64,
+}
+
+/// The stylized frames and the report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VideoOutput {
+    /// One image per input frame, the keyframes' styles' channels.
+    pub frames: Vec<FloatImage>,
+    /// What was done.
+    pub report: VideoReport,
+}
+
+impl VideoInput {
+    /// Checks the frames, keyframes and mask once, before any work.
+    pub fn validate(&self, params: &Params) -> Result<(), Error> {
+        validate(self, params)
+    }
+}
+
+fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
+    let first = input.frames.first().ok_or(Error::NoFrames)?;
+    let (width, height) = (first.width(), first.height());
+    if width == 0 || height == 0 {
+        return Err(Error::EmptyImage("frame 0".into()));
+    }
+    let pixels = width.saturating_mul(height).saturating_mul(input.frames.len());
+    if pixels > params.max_pixels {
+        return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
+    }
+    for (index, frame) in input.frames.iter().enumerate() {
+        if !matches!(frame.channels(), 1 | 3 | 4) {
+            return Err(Error::UnsupportedChannels { what: format!("frame {index}"), channels: frame.channels() });
+        }
+        if (frame.width(), frame.height(), frame.channels()) != (width, height, first.channels()) {
+            return Err(size_mismatch(
+                "every frame must have the first frame's size and channels",
+                0,
+                first,
+                index,
+                frame,
+            ));
+        }
+    }
+    if input.keys.is_empty() {
+        return Err(Error::NoKeyframes);
+    }
+    for (position, key) in input.keys.iter().enumerate() {
+        if key.frame >= input.frames.len() {
+            return Err(Error::KeyframeOutOfRange { frame: key.frame, frames: input.frames.len() });
+        }
+        if position > 0 && key.frame <= input.keys[position - 1].frame {
+            return Err(Error::KeyframeOrder { frame: key.frame, previous: input.keys[position - 1].frame });
+        }
+        if (key.style.width(), key.style.height()) != (width, height) {
+            return Err(Error::SizeMismatch {
+                what: "a keyframe's style must have its frame's size".into(),
+                first: format!("keyframe {}", key.frame),
+                first_size: format!("{}×{}", key.style.width(), key.style.height()),
+                second: "the frames".into(),
+                second_size: format!("{width}×{height}"),
+            });
+        }
+        if !matches!(key.style.channels(), 1 | 3 | 4) || key.style.channels() != input.keys[0].style.channels() {
+            return Err(Error::UnsupportedChannels {
+                what: format!("keyframe {} (every keyframe needs the first one's channels)", key.frame),
+                channels: key.style.channels(),
+            });
+        }
+    }
+    if let Some(mask) = &input.mask {
+        let keep = kept_frame(first, input.keys[0].style.channels());
+        crate::mask::check(
+            &Mask { keep, hole: mask.clone(), exclude_hole_from_style: false },
+            &input.keys[0].style,
+            (width, height),
+            params.patch_size,
+            false,
+        )?;
+    }
+    Ok(())
+}
+
+fn size_mismatch(what: &str, a: usize, first: &FloatImage, b: usize, second: &FloatImage) -> Error {
+    Error::SizeMismatch {
+        what: what.into(),
+        first: format!("frame {a}"),
+        first_size: format!("{}×{}×{}", first.width(), first.height(), first.channels()),
+        second: format!("frame {b}"),
+        second_size: format!("{}×{}×{}", second.width(), second.height(), second.channels()),
+    }
+}
+
+/// Stylizes every frame of `input`: each interval in turn (see [`stylize_interval`]).
+pub fn stylize_video(
+    input: &VideoInput,
+    params: &Params,
+    video: &VideoParams,
+    progress: &mut dyn Progress,
+) -> Result<VideoOutput, Error> {
+    params.validate()?;
+    video.validate()?;
+    validate(input, params)?;
+    let start = Clock::now();
+    let key_frames: Vec<usize> = input.keys.iter().map(|k| k.frame).collect();
+    let mut frames: Vec<Option<FloatImage>> = vec![None; input.frames.len()];
+    let mut reports = Vec::new();
+    let all = intervals(input.frames.len(), &key_frames);
+    let count = all.len();
+    for (number, interval) in all.into_iter().enumerate() {
+        let style_at = |frame: usize| input.keys.iter().find(|k| k.frame == frame).map(|k| &k.style);
+        let first_style = if interval.starts_at_key { style_at(interval.first) } else { None };
+        let last_style = if interval.ends_at_key { style_at(interval.last) } else { None };
+        let mut report = |stage: &str, fraction: f64| {
+            progress.report(&format!("interval {} of {count}: {stage}", number + 1), fraction)
+        };
+        let part = stylize_interval(
+            &input.frames[interval.first..=interval.last],
+            interval.first,
+            first_style,
+            last_style,
+            input.mask.as_deref(),
+            params,
+            video,
+            &mut report,
+        )?;
+        for (offset, frame) in part.frames.into_iter().enumerate() {
+            frames[interval.first + offset].get_or_insert(frame);
+        }
+        reports.push(part.report);
+    }
+    let total_ms = elapsed_ms(start);
+    let pairs: usize = reports.iter().map(|r| r.interval.last - r.interval.first).sum();
+    let flicker = reports.iter().map(|r| r.flicker * (r.interval.last - r.interval.first) as f64).sum::<f64>()
+        / pairs.max(1) as f64;
+    let synthesized: usize = reports.iter().map(|r| r.synthesized_frames).sum();
+    Ok(VideoOutput {
+        frames: frames.into_iter().map(|f| f.expect("every frame is in an interval")).collect(),
+        report: VideoReport {
+            frames: input.frames.len(),
+            keyframes: key_frames,
+            intervals: reports,
+            total_ms,
+            ms_per_frame: total_ms / synthesized.max(1) as f64,
+            flicker,
+        },
+    })
+}
+
+/// The frames of one interval and its figures.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntervalOutput {
+    /// One image per frame of the interval, keyframes included (as their styles, or the style
+    /// within the mask and the frame outside it).
+    pub frames: Vec<FloatImage>,
+    /// What was done.
+    pub report: IntervalReport,
+}
+
+/// Stylizes one interval: `frames` are its frames (`first_frame` is the position of the first
+/// in the whole sequence, which keys every random choice, so an interval gives the same bytes
+/// wherever it runs). `first_style` is the stylized first frame (then synthesis runs forward
+/// from it), `last_style` the stylized last one (backward); at least one is needed. The input
+/// must have passed [`VideoInput::validate`] as part of its whole video.
+#[allow(clippy::too_many_arguments)]
+pub fn stylize_interval(
+    frames: &[FloatImage],
+    first_frame: usize,
+    first_style: Option<&FloatImage>,
+    last_style: Option<&FloatImage>,
+    mask: Option<&[bool]>,
+    params: &Params,
+    video: &VideoParams,
+    progress: &mut dyn Progress,
+) -> Result<IntervalOutput, Error> {
+    let last = frames.len().checked_sub(1).ok_or(Error::NoFrames)?;
+    let interval = Interval {
+        first: first_frame,
+        last: first_frame + last,
+        starts_at_key: first_style.is_some(),
+        ends_at_key: last_style.is_some(),
+    };
+    let style_channels = first_style.or(last_style).ok_or(Error::NoKeyframes)?.channels();
+    let mut motion_ms = 0.0;
+    let streams = SeedStreams::new(params.seed);
+    // Motion between neighbours, both ways when both passes run: forward[i] carries frame i to
+    // frame i + 1, backward[i] frame i + 1 to frame i.
+    let mut forward = Vec::new();
+    let mut backward = Vec::new();
+    for i in 0..last {
+        progress.report("motion", i as f64 / (2 * last.max(1)) as f64);
+        let time = Clock::now();
+        let global = (first_frame + i) as u64;
+        forward.push(estimate_motion(&frames[i], &frames[i + 1], streams.child("forward motion", global).seed())?);
+        if last_style.is_some() {
+            backward.push(estimate_motion(
+                &frames[i + 1],
+                &frames[i],
+                streams.child("backward motion", global).seed(),
+            )?);
+        }
+        motion_ms += elapsed_ms(time);
+    }
+    let synthesis_time = Clock::now();
+    let context = Pass { frames, first_frame, mask, params, video, style_channels, streams: &streams };
+    let mut done = 0;
+    let total = if first_style.is_some() && last_style.is_some() { 2 * last } else { last };
+    let mut step = |progress: &mut dyn Progress| {
+        done += 1;
+        progress.report("synthesis", 0.5 + 0.5 * done as f64 / total.max(1) as f64);
+    };
+    let from_first = match first_style {
+        Some(style) => Some(context.run(style, 0, &forward, &mut |p| step(p), progress)?),
+        None => None,
+    };
+    let from_last = match last_style {
+        Some(style) => Some(context.run(style, last, &backward, &mut |p| step(p), progress)?),
+        None => None,
+    };
+    let out: Vec<FloatImage> = match (from_first, from_last) {
+        (Some(a), Some(b)) => (0..=last)
+            .map(|i| {
+                let along = i as f32 / last.max(1) as f32;
+                blend(&a[i], &b[i], along)
+            })
+            .collect(),
+        (Some(a), None) => a.into_iter().map(|r| r.image).collect(),
+        (None, Some(b)) => b.into_iter().map(|r| r.image).collect(),
+        (None, None) => return Err(Error::NoKeyframes),
+    };
+    let flicker = flicker(&out, &forward);
+    Ok(IntervalOutput {
+        report: IntervalReport {
+            interval,
+            synthesized_frames: last + 1 - usize::from(first_style.is_some()) - usize::from(last_style.is_some()),
+            motion_ms,
+            synthesis_ms: elapsed_ms(synthesis_time),
+            flicker,
+        },
+        frames: out,
+    })
+}
+
+/// One synthesized frame with its per-pixel error (for blending).
+struct Synthesized {
+    image: FloatImage,
+    error: FloatImage,
+}
+
+struct Pass<'a> {
+    frames: &'a [FloatImage],
+    first_frame: usize,
+    mask: Option<&'a [bool]>,
+    params: &'a Params,
+    video: &'a VideoParams,
+    style_channels: usize,
+    streams: &'a SeedStreams,
+}
+
+impl Pass<'_> {
+    /// Synthesizes every frame from the keyframe at `key` (0 or the last), walking away from it;
+    /// `motion[i]` carries frame `i` to `i + 1` forward, or `i + 1` to `i` backward.
+    fn run(
+        &self,
+        style: &FloatImage,
+        key: usize,
+        motion: &[MotionField],
+        step: &mut dyn FnMut(&mut dyn Progress),
+        progress: &mut dyn Progress,
+    ) -> Result<Vec<Synthesized>, Error> {
+        let last = self.frames.len() - 1;
+        let forward = key == 0;
+        let key_frame = &self.frames[key];
+        let (width, height) = (key_frame.width(), key_frame.height());
+        let key_colour = crate::motion::colour_channels(key_frame);
+        let key_edges = edge_guide(key_frame);
+        let coordinates = coordinate_guide(width, height);
+        let mut results: Vec<Option<Synthesized>> = (0..=last).map(|_| None).collect();
+        let key_image = match self.mask {
+            Some(hole) => composite(style, &kept_frame(key_frame, self.style_channels), hole),
+            None => style.clone(),
+        };
+        results[key] = Some(Synthesized { image: key_image, error: FloatImage::new(width, height, 1) });
+        let mut position = coordinates.clone();
+        let order: Vec<usize> = if forward { (1..=last).collect() } else { (0..last).rev().collect() };
+        let mut previous = key;
+        for frame in order {
+            let carried = if forward { &motion[previous] } else { &motion[frame] };
+            position = carried.warp(&position);
+            let temporal = carried.warp(&results[previous].as_ref().expect("walked in order").image);
+            let target = &self.frames[frame];
+            let mut guides = Vec::with_capacity(4);
+            let mut add = |source: &FloatImage, target: FloatImage, weight: f32| {
+                if weight > 0.0 {
+                    guides.push(Guide { source: source.clone(), target, weight: Some(weight) });
+                }
+            };
+            add(&key_colour, crate::motion::colour_channels(target), self.video.colour_weight);
+            add(&key_edges, edge_guide(target), self.video.edge_weight);
+            add(&coordinates, position.clone(), self.video.position_weight);
+            add(style, temporal, self.video.temporal_weight);
+            let global = (self.first_frame + frame) as u64;
+            let seed = self.streams.child(if forward { "forward frame" } else { "backward frame" }, global).seed();
+            let params = self.params.clone().with_seed(seed);
+            let mut input = Input::guided(style.clone(), guides);
+            if input.guides.is_empty() {
+                input.size = Some((width, height));
+            }
+            if let Some(hole) = self.mask {
+                input.mask = Some(Mask {
+                    keep: kept_frame(target, self.style_channels),
+                    hole: hole.to_vec(),
+                    exclude_hole_from_style: false,
+                });
+            }
+            let output = synthesize(&input, &params, &mut motif_core::NoProgress)?;
+            results[frame] = Some(Synthesized { image: output.image, error: output.error_map });
+            step(progress);
+            previous = frame;
+        }
+        Ok(results.into_iter().map(|r| r.expect("every frame synthesized")).collect())
+    }
+}
+
+/// The two passes' results for a frame `along` of the way (0–1) from the first keyframe to the
+/// last: per pixel, each weighs by its nearness to its keyframe over its smoothed error.
+fn blend(from_first: &Synthesized, from_last: &Synthesized, along: f32) -> FloatImage {
+    if along <= 0.0 {
+        return from_first.image.clone();
+    }
+    if along >= 1.0 {
+        return from_last.image.clone();
+    }
+    let smooth = |error: &FloatImage| error.blur().blur().blur();
+    let (error_first, error_last) = (smooth(&from_first.error), smooth(&from_last.error));
+    let floor = 1e-3 + 0.01 * mean(&error_first).max(mean(&error_last));
+    let mut out = from_first.image.clone();
+    let channels = out.channels();
+    for (index, pixel) in out.data_mut().chunks_exact_mut(channels).enumerate() {
+        let first = (1.0 - along) / (error_first.data()[index] + floor);
+        let last = along / (error_last.data()[index] + floor);
+        let weight = last / (first + last);
+        let other = &from_last.image.data()[index * channels..(index + 1) * channels];
+        for (value, &theirs) in pixel.iter_mut().zip(other) {
+            *value += weight * (theirs - *value);
+        }
+    }
+    out
+}
+
+fn mean(image: &FloatImage) -> f32 {
+    image.data().iter().sum::<f32>() / image.data().len().max(1) as f32
+}
+
+/// The frame as the pixels kept outside a mask: the style's channel count (alpha 1 added, or
+/// dropped; grey repeated).
+pub(crate) fn kept_frame(frame: &FloatImage, channels: usize) -> FloatImage {
+    let colour = crate::motion::colour_channels(frame);
+    let grey = colour.channels() == 1;
+    let data = colour
+        .data()
+        .chunks_exact(colour.channels())
+        .flat_map(|p| {
+            let rgb = if grey { [p[0]; 3] } else { [p[0], p[1], p[2]] };
+            match channels {
+                1 => vec![0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2]],
+                3 => rgb.to_vec(),
+                _ => vec![rgb[0], rgb[1], rgb[2], 1.0],
+            }
+        })
+        .collect();
+    FloatImage::from_data(frame.width(), frame.height(), channels, data).expect("sizes match")
+}
+
+fn composite(style: &FloatImage, kept: &FloatImage, hole: &[bool]) -> FloatImage {
+    let mut out = kept.clone();
+    let channels = out.channels();
+    for (index, pixel) in out.data_mut().chunks_exact_mut(channels).enumerate() {
+        if hole[index] {
+            pixel.copy_from_slice(&style.data()[index * channels..(index + 1) * channels]);
+        }
+    }
+    out
+}
+
+/// Temporal flicker: the mean absolute difference between consecutive `frames` after motion
+/// compensation (`motion[i]` carries frame `i` to frame `i + 1`), over the pixels that were
+/// visible in both and the colour channels. 0 for fewer than two frames.
+pub fn flicker(frames: &[FloatImage], motion: &[MotionField]) -> f64 {
+    let mut total = 0.0;
+    let mut count = 0usize;
+    for (pair, carried) in frames.windows(2).zip(motion) {
+        let warped = carried.warp(&pair[0]);
+        let channels = warped.channels().min(3);
+        let stride = warped.channels();
+        for index in 0..carried.width * carried.height {
+            if !carried.came_from_inside(index) {
+                continue;
+            }
+            let (a, b) = (&warped.data()[index * stride..], &pair[1].data()[index * stride..]);
+            total += (0..channels).map(|c| f64::from((a[c] - b[c]).abs())).sum::<f64>() / channels as f64;
+            count += 1;
+        }
+    }
+    if count == 0 { 0.0 } else { total / count as f64 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tests::texture;
+    use motif_core::NoProgress;
+
+    #[test]
+    fn intervals_run_from_key_to_key_and_out_to_both_ends() {
+        let ends = |list: Vec<Interval>| -> Vec<(usize, usize, bool, bool)> {
+            list.into_iter().map(|i| (i.first, i.last, i.starts_at_key, i.ends_at_key)).collect()
+        };
+        assert_eq!(ends(intervals(10, &[0])), vec![(0, 9, true, false)]);
+        assert_eq!(ends(intervals(10, &[3, 9])), vec![(0, 3, false, true), (3, 9, true, true)]);
+        assert_eq!(ends(intervals(10, &[0, 4, 6])), vec![(0, 4, true, true), (4, 6, true, true), (6, 9, true, false)]);
+        assert_eq!(ends(intervals(1, &[0])), vec![(0, 0, true, false)]);
+    }
+
+    #[test]
+    fn a_static_sequence_keeps_the_keyframes_stylization_in_every_frame() {
+        let frame = texture(56, 44, 3, 8);
+        let style = texture(56, 44, 3, 9);
+        let input =
+            VideoInput { frames: vec![frame; 5], keys: vec![Keyframe { frame: 2, style: style.clone() }], mask: None };
+        let output =
+            stylize_video(&input, &Params::default().with_seed(4), &VideoParams::default(), &mut NoProgress).unwrap();
+        assert_eq!(output.frames.len(), 5);
+        assert_eq!(output.frames[2], style);
+        for (index, frame) in output.frames.iter().enumerate() {
+            let difference = frame.data().iter().zip(style.data()).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+            assert!(difference < 1.5 / 255.0, "frame {index} differs from the keyframe's style by {difference}");
+        }
+        assert!(output.report.flicker < 1e-3, "flicker {}", output.report.flicker);
+        assert_eq!(output.report.intervals.len(), 2);
+    }
+
+    #[test]
+    fn bad_sequences_are_refused_with_the_frame_named() {
+        let frame = texture(24, 20, 3, 1);
+        let params = Params::default();
+        let video = VideoParams::default();
+        let run = |frames: Vec<FloatImage>, keys: Vec<Keyframe>| {
+            stylize_video(&VideoInput { frames, keys, mask: None }, &params, &video, &mut NoProgress).unwrap_err()
+        };
+        let key = |frame: usize| Keyframe { frame, style: frame_like(&frame_of(24, 20)) };
+        assert_eq!(run(vec![], vec![key(0)]), Error::NoFrames);
+        assert_eq!(run(vec![frame.clone(); 3], vec![]), Error::NoKeyframes);
+        assert_eq!(run(vec![frame.clone(); 3], vec![key(3)]), Error::KeyframeOutOfRange { frame: 3, frames: 3 });
+        assert_eq!(run(vec![frame.clone(); 3], vec![key(2), key(1)]), Error::KeyframeOrder { frame: 1, previous: 2 });
+        let message = run(vec![frame.clone(), texture(20, 20, 3, 1)], vec![key(0)]).to_string();
+        assert!(message.contains("frame 1") && message.contains("20×20×3"), "{message}");
+        let small = Keyframe { frame: 0, style: texture(12, 20, 3, 1) };
+        let message = run(vec![frame.clone(); 2], vec![small]).to_string();
+        assert!(message.contains("keyframe 0") && message.contains("12×20"), "{message}");
+        let all = VideoInput { frames: vec![frame; 2], keys: vec![key(0)], mask: Some(vec![true; 24 * 20]) };
+        assert_eq!(all.validate(&params).unwrap_err(), Error::MaskCoverage("every pixel"));
+    }
+
+    fn frame_of(width: usize, height: usize) -> FloatImage {
+        texture(width, height, 3, 2)
+    }
+
+    fn frame_like(image: &FloatImage) -> FloatImage {
+        image.clone()
+    }
+}
