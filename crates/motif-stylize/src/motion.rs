@@ -11,6 +11,7 @@
 //! flow, and the field PatchMatch gives is what the paper's own guides are built on.
 
 use motif_core::{FloatImage, NoProgress, SeedStreams};
+use rayon::prelude::*;
 
 use crate::{Error, Guide, Input, Params, synthesize};
 
@@ -105,6 +106,7 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
     // (and a few elsewhere) at a poor match: each pixel keeps, of its own match, no motion and
     // its four neighbours' matches, the one its window fits best.
     let chosen: Vec<[isize; 2]> = (0..width * height)
+        .into_par_iter()
         .map(|index| {
             let (x, y) = (index % width, index / width);
             let mut best = ([0, 0], window_cost(&early, &late, x, y, [0, 0]));
@@ -124,9 +126,13 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
             best.0
         })
         .collect();
-    let refined: Vec<[f32; 2]> =
-        (0..width * height).map(|index| refine(&early, &late, index % width, index / width, chosen[index])).collect();
-    Ok(MotionField { width, height, offsets: median_filtered(&refined, width, height) })
+    let planes = Planes::new(&early);
+    let refined: Vec<[f32; 2]> = (0..width * height)
+        .into_par_iter()
+        .map(|index| refine(&planes, &late, index % width, index / width, chosen[index]))
+        .collect();
+    let m = median_filtered(&refined, width, height);
+    Ok(MotionField { width, height, offsets: m })
 }
 
 /// The centre of the nearest whole motion patch along one axis.
@@ -135,11 +141,50 @@ fn inner(at: usize, side: usize) -> isize {
     at.clamp(radius.min(side / 2), side.saturating_sub(radius + 1).max(side / 2)) as isize
 }
 
+/// The earlier frame's luma and its central-difference gradients, interleaved, so one bilinear
+/// weight set reads all three.
+struct Planes {
+    width: usize,
+    height: usize,
+    values: Vec<[f32; 3]>,
+}
+
+impl Planes {
+    fn new(luma: &FloatImage) -> Self {
+        let (width, height) = (luma.width(), luma.height());
+        let values = (0..width * height)
+            .map(|index| {
+                let (x, y) = ((index % width) as isize, (index / width) as isize);
+                let gx = 0.5 * (clamped(luma, x + 1, y) - clamped(luma, x - 1, y));
+                let gy = 0.5 * (clamped(luma, x, y + 1) - clamped(luma, x, y - 1));
+                [luma.data()[index], gx, gy]
+            })
+            .collect();
+        Self { width, height, values }
+    }
+
+    /// Luma and gradient at pixel coordinates `(x, y)` (pixel centres at integers), clamped.
+    fn sample(&self, x: f64, y: f64) -> [f64; 3] {
+        let fx = x.clamp(0.0, (self.width - 1) as f64);
+        let fy = y.clamp(0.0, (self.height - 1) as f64);
+        let (x0, y0) = (fx as usize, fy as usize);
+        let (x1, y1) = ((x0 + 1).min(self.width - 1), (y0 + 1).min(self.height - 1));
+        let (tx, ty) = (fx - x0 as f64, fy - y0 as f64);
+        let at = |x: usize, y: usize| self.values[y * self.width + x];
+        let (a, b, c, d) = (at(x0, y0), at(x1, y0), at(x0, y1), at(x1, y1));
+        std::array::from_fn(|k| {
+            let top = f64::from(a[k]) + (f64::from(b[k]) - f64::from(a[k])) * tx;
+            let bottom = f64::from(c[k]) + (f64::from(d[k]) - f64::from(c[k])) * tx;
+            top + (bottom - top) * ty
+        })
+    }
+}
+
 /// The sub-pixel offset at `(x, y)`: Lucas–Kanade steps from the integer match (a window of
 /// brightness constancy, linearized around the current offset; the structure tensor is damped so
 /// that where the window sees an edge only, the offset across it moves and the one along it
 /// stays at the match).
-fn refine(early: &FloatImage, late: &FloatImage, x: usize, y: usize, [dx, dy]: [isize; 2]) -> [f32; 2] {
+fn refine(early: &Planes, late: &FloatImage, x: usize, y: usize, [dx, dy]: [isize; 2]) -> [f32; 2] {
     let start = [dx as f64, dy as f64];
     let mut offset = start;
     for _ in 0..REFINE_STEPS {
@@ -147,11 +192,9 @@ fn refine(early: &FloatImage, late: &FloatImage, x: usize, y: usize, [dx, dy]: [
         let mut residual_total = 0.0;
         for wy in -REFINE_RADIUS..=REFINE_RADIUS {
             for wx in -REFINE_RADIUS..=REFINE_RADIUS {
-                let (lx, ly) = (x as f64 + 0.5 + wx as f64, y as f64 + 0.5 + wy as f64);
-                let (ex, ey) = (lx + offset[0], ly + offset[1]);
-                let residual = sample(late, lx, ly) - sample(early, ex, ey);
-                let gx = 0.5 * (sample(early, ex + 1.0, ey) - sample(early, ex - 1.0, ey));
-                let gy = 0.5 * (sample(early, ex, ey + 1.0) - sample(early, ex, ey - 1.0));
+                let (lx, ly) = (x as isize + wx, y as isize + wy);
+                let [value, gx, gy] = early.sample(lx as f64 + offset[0], ly as f64 + offset[1]);
+                let residual = f64::from(clamped(late, lx, ly)) - value;
                 a += gx * gx;
                 b += gx * gy;
                 c += gy * gy;
@@ -171,12 +214,6 @@ fn refine(early: &FloatImage, late: &FloatImage, x: usize, y: usize, [dx, dy]: [
         ];
     }
     [offset[0] as f32, offset[1] as f32]
-}
-
-fn sample(image: &FloatImage, x: f64, y: f64) -> f64 {
-    let mut value = [0.0f32];
-    image.sample_bilinear(x, y, &mut value);
-    f64::from(value[0])
 }
 
 /// Squared luma differences over the refinement window at an integer offset.

@@ -1,8 +1,11 @@
 //! Seeded synthetic inputs for demos, benchmarks and tests: a map-like segment guide and a
-//! hand-drawn-looking style for it, plus smooth multi-channel guides.
+//! hand-drawn-looking style for it, smooth multi-channel guides, and footage filmed over a still
+//! photo with its exact motion (for video stylization).
 
 use motif_core::random::Rng;
 use motif_core::{FloatImage, SeedStreams, math};
+
+use crate::MotionField;
 
 /// Colours of the map segments: water, grass, built-up, sand, road (like the paper's Fig. 1).
 pub const MAP_PALETTE: [[f32; 3]; 5] =
@@ -104,6 +107,128 @@ pub fn smooth_field(width: usize, height: usize, channels: usize, seed: u64) -> 
         }
     }
     FloatImage::from_data(width, height, channels, data).expect("sizes match")
+}
+
+/// A camera path over a still photo: the frame's centre in photo pixels and its zoom (frame
+/// pixels per photo pixel), the centre moving linearly and the zoom geometrically from start to
+/// end. Zooms of 1 and more keep the photo sharp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraPath {
+    /// Centre of the first frame, in photo pixels.
+    pub start_centre: [f64; 2],
+    /// Centre of the last frame.
+    pub end_centre: [f64; 2],
+    /// Zoom of the first frame.
+    pub start_zoom: f64,
+    /// Zoom of the last frame.
+    pub end_zoom: f64,
+}
+
+/// Frames filmed over a still photo along a [`CameraPath`], with their exact motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Footage {
+    /// The frames.
+    pub frames: Vec<FloatImage>,
+    /// `motion[i]` carries frame `i` to frame `i + 1` (exact, from the path).
+    pub motion: Vec<MotionField>,
+    centres: Vec<[f64; 2]>,
+    zooms: Vec<f64>,
+}
+
+impl Footage {
+    /// Where frame `frame`'s pixel centre `(x, y)` lies in frame `other`, in pixels.
+    fn position_in(&self, frame: usize, other: usize, x: usize, y: usize) -> [f64; 2] {
+        let (width, height) = (self.frames[0].width() as f64, self.frames[0].height() as f64);
+        let photo = [
+            self.centres[frame][0] + (x as f64 + 0.5 - 0.5 * width) / self.zooms[frame],
+            self.centres[frame][1] + (y as f64 + 0.5 - 0.5 * height) / self.zooms[frame],
+        ];
+        [
+            (photo[0] - self.centres[other][0]) * self.zooms[other] + 0.5 * width,
+            (photo[1] - self.centres[other][1]) * self.zooms[other] + 0.5 * height,
+        ]
+    }
+
+    /// `image`, aligned with frame `from`, as frame `frame` shows it, and per pixel whether it
+    /// was inside frame `from` (the ideal result of carrying a keyframe's style along).
+    pub fn carried(&self, image: &FloatImage, from: usize, frame: usize) -> (FloatImage, Vec<bool>) {
+        let (width, height) = (image.width(), image.height());
+        let mut out = FloatImage::new(width, height, image.channels());
+        let mut visible = Vec::with_capacity(width * height);
+        for y in 0..height {
+            for x in 0..width {
+                let [px, py] = self.position_in(frame, from, x, y);
+                image.sample_bilinear(px, py, out.pixel_mut(x, y));
+                visible.push(px >= 0.0 && py >= 0.0 && px <= width as f64 && py <= height as f64);
+            }
+        }
+        (out, visible)
+    }
+}
+
+/// `frames` frames of `width × height` filmed over `photo` along `path` (bilinear samples).
+pub fn pan_and_zoom(photo: &FloatImage, width: usize, height: usize, frames: usize, path: CameraPath) -> Footage {
+    let along = |i: usize| if frames > 1 { i as f64 / (frames - 1) as f64 } else { 0.0 };
+    let centres: Vec<[f64; 2]> = (0..frames)
+        .map(|i| {
+            let t = along(i);
+            [
+                path.start_centre[0] + t * (path.end_centre[0] - path.start_centre[0]),
+                path.start_centre[1] + t * (path.end_centre[1] - path.start_centre[1]),
+            ]
+        })
+        .collect();
+    let zooms: Vec<f64> =
+        (0..frames).map(|i| path.start_zoom * math::powf(path.end_zoom / path.start_zoom, along(i))).collect();
+    let mut footage = Footage { frames: Vec::new(), motion: Vec::new(), centres, zooms };
+    for i in 0..frames {
+        let mut frame = FloatImage::new(width, height, photo.channels());
+        for y in 0..height {
+            for x in 0..width {
+                let px = footage.centres[i][0] + (x as f64 + 0.5 - 0.5 * width as f64) / footage.zooms[i];
+                let py = footage.centres[i][1] + (y as f64 + 0.5 - 0.5 * height as f64) / footage.zooms[i];
+                photo.sample_bilinear(px, py, frame.pixel_mut(x, y));
+            }
+        }
+        footage.frames.push(frame);
+    }
+    for i in 1..frames {
+        let mut motion = MotionField::zero(width, height);
+        for y in 0..height {
+            for x in 0..width {
+                let [px, py] = footage.position_in(i, i - 1, x, y);
+                motion.offsets[y * width + x] = [(px - 0.5 - x as f64) as f32, (py - 0.5 - y as f64) as f32];
+            }
+        }
+        footage.motion.push(motion);
+    }
+    footage
+}
+
+/// A keyframe "painted" over `frame` for demos and tests of video stylization: flat posterized
+/// colours, dark outlines along the frame's edges, and the weave of `canvas` (a real texture)
+/// pressed into the paint. The weave is detail that must stay on the surface as the camera moves.
+pub fn painted_keyframe(frame: &FloatImage, canvas: &FloatImage) -> FloatImage {
+    let colour = crate::motion::colour_channels(frame);
+    let flat = colour.blur().blur().blur();
+    let edges = crate::motion::edge_guide(frame);
+    let weave = crate::motion::luminance(&crate::motion::colour_channels(canvas));
+    let weave_mean = (weave.data().iter().sum::<f32>() / weave.data().len().max(1) as f32).max(1e-3);
+    let (width, height) = (frame.width(), frame.height());
+    let mut out = FloatImage::new(width, height, 3);
+    for y in 0..height {
+        for x in 0..width {
+            let base = flat.pixel(x, y);
+            let outline = 1.0 - 0.75 * (edges.pixel(x, y)[0] * 1.5).min(1.0);
+            let thread = weave.pixel(x % weave.width(), y % weave.height())[0] / weave_mean;
+            let pixel = out.pixel_mut(x, y);
+            for c in 0..3 {
+                let level = (base[c.min(base.len() - 1)] * 4.0).round() / 4.0;
+                pixel[c] = (level * outline * (0.7 + 0.3 * thread)).clamp(0.0, 1.0);
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

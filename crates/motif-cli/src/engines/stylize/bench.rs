@@ -93,6 +93,9 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if selected("exact") {
         figures.insert("patchmatch_vs_exact".into(), patchmatch_vs_exact(bench)?);
     }
+    if bench.names("video") {
+        figures.insert("video".into(), super::video_bench::video(bench)?);
+    }
     if bench.names("structure") {
         figures.insert("structure".into(), structure(bench)?);
     }

@@ -6,6 +6,7 @@ mod bench;
 mod cache;
 mod demo;
 mod masks;
+mod video_bench;
 
 pub use masks::{InpaintArgs, ZoomArgs, run_inpaint, run_zoom};
 
