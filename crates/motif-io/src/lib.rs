@@ -16,6 +16,7 @@
 //!   ([`read_mesh`]), and written as OBJ ([`write_obj`]).
 //! - [`json`]: reports and piece lists via `serde_json`.
 
+mod frames;
 pub mod json;
 mod mesh;
 pub mod points;
@@ -26,6 +27,7 @@ pub mod svg;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+pub use frames::FramePattern;
 pub use json::{read_json, write_json};
 pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};

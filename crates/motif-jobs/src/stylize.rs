@@ -1,4 +1,5 @@
-//! `stylize`, `texture` and `presynth` jobs: guided patch-based synthesis (`motif_stylize`).
+//! `stylize`, `texture`, `inpaint`, `zoom`, `presynth` and `video` jobs: guided patch-based
+//! synthesis (`motif_stylize`).
 //!
 //! Field names are the flags of `motif stylize`, `motif texture` and `motif presynth`
 //! (ebsynth's names where it has them). Images come decoded as float images with their channels
@@ -229,6 +230,9 @@ job_with_synthesis! {
         pub segment_count: Option<usize>,
     }
 }
+
+mod video;
+pub use video::VideoJob;
 
 /// One decoded guide pair: source (the style's size) and target, with equal channel counts.
 pub type GuidePair = (motif_core::FloatImage, motif_core::FloatImage);

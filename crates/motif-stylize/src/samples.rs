@@ -205,8 +205,8 @@ pub fn pan_and_zoom(photo: &FloatImage, width: usize, height: usize, frames: usi
     footage
 }
 
-/// A keyframe "painted" over `frame` for demos and tests of video stylization: flat posterized
-/// colours, dark outlines along the frame's edges, and the weave of `canvas` (a real texture)
+/// A keyframe "painted" over `frame` for demos and tests of video stylization: flat tones (the
+/// luma posterized, the hue kept), dark outlines along the frame's edges, and the weave of `canvas` (a real texture)
 /// pressed into the paint. The weave is detail that must stay on the surface as the camera moves.
 pub fn painted_keyframe(frame: &FloatImage, canvas: &FloatImage) -> FloatImage {
     let colour = crate::motion::colour_channels(frame);
@@ -221,10 +221,13 @@ pub fn painted_keyframe(frame: &FloatImage, canvas: &FloatImage) -> FloatImage {
             let base = flat.pixel(x, y);
             let outline = 1.0 - 0.75 * (edges.pixel(x, y)[0] * 1.5).min(1.0);
             let thread = weave.pixel(x % weave.width(), y % weave.height())[0] / weave_mean;
+            // Flat tones: the luma rounded to one of five levels, the hue kept.
+            let rgb = [base[0], base[1.min(base.len() - 1)], base[2.min(base.len() - 1)]];
+            let luma = (0.299 * rgb[0] + 0.587 * rgb[1] + 0.114 * rgb[2]).max(1e-3);
+            let tone = ((luma * 5.0).round() / 5.0).max(0.1) / luma;
             let pixel = out.pixel_mut(x, y);
             for c in 0..3 {
-                let level = (base[c.min(base.len() - 1)] * 4.0).round() / 4.0;
-                pixel[c] = (level * outline * (0.7 + 0.3 * thread)).clamp(0.0, 1.0);
+                pixel[c] = (rgb[c] * tone * outline * (0.7 + 0.3 * thread)).clamp(0.0, 1.0);
             }
         }
     }

@@ -64,6 +64,14 @@ pub enum EngineCommand {
     /// Each level is guided by the centre of the level above, scaled up, so zooming keeps both
     /// the layout and the style's own detail (the map paper's §5.3).
     Zoom(stylize::ZoomArgs),
+    /// Stylize a video from one or more keyframes painted by an artist
+    ///
+    /// Each frame is synthesized from the nearest keyframes with the frame's colours and edges,
+    /// the keyframe's positions carried along the motion and the previous output (against
+    /// flicker), forward and backward from keyframes and blended between them (Jamriška et al.
+    /// 2019). Keyframe intervals are independent (--interval).
+    #[command(allow_negative_numbers = true)]
+    Video(stylize::VideoArgs),
 }
 
 impl EngineCommand {
@@ -78,6 +86,7 @@ impl EngineCommand {
             EngineCommand::Texture(_) => "texture",
             EngineCommand::Inpaint(_) => "inpaint",
             EngineCommand::Zoom(_) => "zoom",
+            EngineCommand::Video(_) => "video",
         }
     }
 
@@ -92,6 +101,7 @@ impl EngineCommand {
             EngineCommand::Texture(args) => stylize::run_texture(args, context),
             EngineCommand::Inpaint(args) => stylize::run_inpaint(args, context),
             EngineCommand::Zoom(args) => stylize::run_zoom(args, context),
+            EngineCommand::Video(args) => stylize::run_video(args, context),
         }
     }
 }

@@ -161,5 +161,5 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
-    Ok(())
+    super::video_bench::demo_case(demo)
 }

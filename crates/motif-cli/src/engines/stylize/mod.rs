@@ -6,9 +6,11 @@ mod bench;
 mod cache;
 mod demo;
 mod masks;
+mod video;
 mod video_bench;
 
 pub use masks::{InpaintArgs, ZoomArgs, run_inpaint, run_zoom};
+pub use video::{VideoArgs, run_video};
 
 use std::path::{Path, PathBuf};
 

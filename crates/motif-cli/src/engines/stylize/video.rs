@@ -1,0 +1,221 @@
+//! `motif video`: a frame sequence stylized from keyframes, interval by interval (only one
+//! interval's frames are in memory at a time).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context as _, bail};
+use clap::Args;
+use motif_core::{FloatImage, RgbaImage};
+use motif_io::FramePattern;
+use motif_jobs::stylize::{VideoJob, hole_of, style_image_channels};
+use serde_json::json;
+
+use super::{SynthesisOptions, load};
+use crate::context::Context;
+
+/// Options of `motif video`.
+#[derive(Args, Debug)]
+pub struct VideoArgs {
+    /// The frames: a pattern with %d or %0Nd for the frame number, e.g. 'in/%04d.png'. Every
+    /// file of that folder that matches is a frame, in order of its number.
+    #[arg(long, value_name = "PATTERN")]
+    pub frames: String,
+    /// A keyframe: a frame number and the image of that frame as the artist stylized it (the
+    /// frames' size). Repeat for several keyframes; frames between two keyframes blend both.
+    #[arg(long = "key", value_name = "N:STYLE.png", required = true, action = clap::ArgAction::Append)]
+    pub keys: Vec<String>,
+    /// Synthesize only where this image (the frames' size) is white, at least half white and
+    /// half opaque, and keep the frames' own pixels elsewhere.
+    #[arg(long, value_name = "MASK.png")]
+    pub mask: Option<PathBuf>,
+    /// Weight of the frames' colours (keyframe against each frame), 0–1000.
+    #[arg(long, value_name = "W", default_value_t = 1.0, allow_negative_numbers = true)]
+    pub colour_weight: f32,
+    /// Weight of the edge guide (the frames' blurred edges), 0–1000.
+    #[arg(long, value_name = "W", default_value_t = 1.0, allow_negative_numbers = true)]
+    pub edge_weight: f32,
+    /// Weight of the positional guide (the keyframe's pixel positions carried along the
+    /// motion, so the style stays on the surfaces it was painted on), 0–1000.
+    #[arg(long, value_name = "W", default_value_t = 4.0, allow_negative_numbers = true)]
+    pub position_weight: f32,
+    /// Weight of the temporal guide (the previous output carried along the motion; against
+    /// flicker), 0–1000; 0 stylizes frames independently of each other.
+    #[arg(long, value_name = "W", default_value_t = 2.0, allow_negative_numbers = true)]
+    pub temporal_weight: f32,
+    /// Run only this keyframe interval, counted from 1 (the report lists them): intervals are
+    /// independent, so several machines can share a video and give the same frames.
+    #[arg(long, value_name = "I")]
+    pub interval: Option<usize>,
+    /// Synthesis options.
+    #[command(flatten)]
+    pub synthesis: SynthesisOptions,
+    /// The stylized frames: a pattern like --frames, in an existing folder; each output frame
+    /// has its input frame's number.
+    #[arg(long, value_name = "PATTERN")]
+    pub out: String,
+}
+
+/// A frame read as the engine takes it (colour channels), with its size checked.
+fn read_frame(path: &Path, size: Option<(usize, usize)>) -> anyhow::Result<FloatImage> {
+    let image = load(path)?;
+    if let Some((width, height)) = size
+        && (image.width(), image.height()) != (width, height)
+    {
+        bail!("frame {} is {}×{} but the frames are {width}×{height}", path.display(), image.width(), image.height());
+    }
+    Ok(image.to_float_channels(&[0, 1, 2]))
+}
+
+/// Runs `motif video`.
+pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> {
+    let pattern = FramePattern::parse(&args.frames).context("--frames")?;
+    let out = FramePattern::parse(&args.out).context("--out")?;
+    let frames = pattern.find().context("--frames")?;
+    let numbers: Vec<u64> = frames.iter().map(|(number, _)| *number).collect();
+    let describe_range = || {
+        format!("{} frames numbered {}–{} match {}", numbers.len(), numbers[0], numbers[numbers.len() - 1], args.frames)
+    };
+    let mut keys: Vec<(usize, PathBuf)> = Vec::new();
+    for key in &args.keys {
+        let (number, path) = key
+            .split_once(':')
+            .with_context(|| format!("--key {key}: give a frame number and a file, as 0:style.png"))?;
+        let number: u64 =
+            number.trim().parse().with_context(|| format!("--key {key}: {number:?} is not a frame number"))?;
+        let position = numbers
+            .binary_search(&number)
+            .map_err(|_| anyhow::anyhow!("--key {key}: there is no frame {number} ({})", describe_range()))?;
+        if keys.iter().any(|(p, _)| *p == position) {
+            bail!("--key {key}: frame {number} has two keyframes; give one");
+        }
+        keys.push((position, PathBuf::from(path)));
+    }
+    keys.sort();
+    let mut inputs: Vec<&Path> = frames.iter().map(|(_, path)| path.as_path()).collect();
+    inputs.extend(keys.iter().map(|(_, path)| path.as_path()));
+    inputs.extend(args.mask.as_deref());
+    let intervals = VideoJob::intervals(frames.len(), &keys.iter().map(|(p, _)| *p).collect::<Vec<_>>());
+    let chosen: Vec<usize> = match args.interval {
+        Some(i) if i == 0 || i > intervals.len() => {
+            bail!("--interval {i}: the keyframes make {} intervals, counted from 1", intervals.len())
+        }
+        Some(i) => vec![i - 1],
+        None => (0..intervals.len()).collect(),
+    };
+    for &i in &chosen {
+        for position in intervals[i].first..=intervals[i].last {
+            context.check_output(&out.path(numbers[position]), &inputs)?;
+        }
+    }
+
+    let first = read_frame(&frames[0].1, None)?;
+    let size = (first.width(), first.height());
+    let mut styles: Vec<RgbaImage> = Vec::new();
+    for (_, path) in &keys {
+        let style = load(path)?;
+        if (style.width(), style.height()) != size {
+            bail!(
+                "keyframe {} is {}×{} but the frames are {}×{}",
+                path.display(),
+                style.width(),
+                style.height(),
+                size.0,
+                size.1
+            );
+        }
+        styles.push(style);
+    }
+    // Every keyframe with the same channels: RGBA when any has transparency.
+    let alpha = styles.iter().any(|s| !s.is_fully_opaque());
+    let styles: Vec<FloatImage> =
+        styles.iter().map(|s| if alpha { s.to_float() } else { style_image_channels(s) }).collect();
+    let mask = match &args.mask {
+        Some(path) => {
+            let image = load(path)?;
+            if (image.width(), image.height()) != size {
+                bail!(
+                    "the mask {} is {}×{} but the frames are {}×{}",
+                    path.display(),
+                    image.width(),
+                    image.height(),
+                    size.0,
+                    size.1
+                );
+            }
+            Some(hole_of(&image))
+        }
+        None => None,
+    };
+
+    let job = VideoJob {
+        colour_weight: Some(args.colour_weight),
+        edge_weight: Some(args.edge_weight),
+        position_weight: Some(args.position_weight),
+        temporal_weight: Some(args.temporal_weight),
+        ..super::with_synthesis!(VideoJob::new(), &args.synthesis, context)
+    };
+    job.params()?;
+    let style_at = |position: usize| keys.iter().position(|(p, _)| *p == position).map(|k| &styles[k]);
+    let mut reports = Vec::new();
+    let count = chosen.len();
+    for (done, &i) in chosen.iter().enumerate() {
+        let interval = intervals[i];
+        let mut interval_frames = Vec::with_capacity(interval.last - interval.first + 1);
+        for (_, path) in &frames[interval.first..=interval.last] {
+            interval_frames.push(read_frame(path, Some(size))?);
+        }
+        let (first_number, last_number) = (numbers[interval.first], numbers[interval.last]);
+        let progress = context.progress();
+        let mut report = |stage: &str, fraction: f64| {
+            progress.report(
+                &format!("interval {} of {count} (frames {first_number}–{last_number}): {stage}", done + 1),
+                fraction,
+            )
+        };
+        let output = job
+            .run_interval(
+                &interval_frames,
+                interval,
+                style_at(interval.first),
+                style_at(interval.last),
+                mask.as_deref(),
+                &mut report,
+            )
+            .with_context(|| format!("cannot stylize frames {first_number}–{last_number} of {}", args.frames))?;
+        for (offset, image) in output.frames.iter().enumerate() {
+            motif_io::write_png(&out.path(numbers[interval.first + offset]), &RgbaImage::from_float(image))?;
+        }
+        reports.push(json!({
+            "interval": i + 1,
+            "frames": [first_number, last_number],
+            "figures": output.report,
+        }));
+    }
+    let synthesized: usize =
+        reports.iter().map(|r| r["figures"]["synthesized_frames"].as_u64().unwrap_or(0) as usize).sum();
+    let motion_ms: f64 = reports.iter().map(|r| r["figures"]["motion_ms"].as_f64().unwrap_or(0.0)).sum();
+    let synthesis_ms: f64 = reports.iter().map(|r| r["figures"]["synthesis_ms"].as_f64().unwrap_or(0.0)).sum();
+    let pairs: f64 = chosen.iter().map(|&i| (intervals[i].last - intervals[i].first) as f64).sum();
+    let flicker = reports
+        .iter()
+        .zip(&chosen)
+        .map(|(r, &i)| {
+            r["figures"]["flicker"].as_f64().unwrap_or(0.0) * (intervals[i].last - intervals[i].first) as f64
+        })
+        .sum::<f64>()
+        / pairs.max(1.0);
+    let seconds_per_frame = (motion_ms + synthesis_ms) / 1000.0 / synthesized.max(1) as f64;
+    context.figure("frames", frames.len());
+    context.figure("keyframes", keys.iter().map(|(p, _)| numbers[*p]).collect::<Vec<_>>());
+    context.figure("intervals", reports);
+    context.figure("synthesized_frames", synthesized);
+    context.figure("seconds_per_frame", seconds_per_frame);
+    context.figure("flicker", flicker);
+    context.summary(&format!(
+        "motif video: {synthesized} frames synthesized from {} keyframes, {seconds_per_frame:.2} s per frame, flicker \
+         {flicker:.4} → {}",
+        keys.len(),
+        args.out
+    ));
+    Ok(())
+}

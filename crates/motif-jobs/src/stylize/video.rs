@@ -1,0 +1,162 @@
+//! `video` jobs: a frame sequence stylized from keyframes (`motif_stylize::stylize_video`).
+//!
+//! A video runs as independent keyframe intervals ([`VideoJob::intervals`]): a front end may
+//! run them in any order, in parallel or on other machines ([`VideoJob::run_interval`]), and
+//! gets the same bytes as one whole run ([`VideoJob::run`]).
+
+use motif_core::{FloatImage, Progress};
+use motif_stylize::{
+    Interval, IntervalOutput, Keyframe, NnfMethod, Params, VideoInput, VideoOutput, VideoParams, intervals,
+    stylize_interval,
+};
+use serde::{Deserialize, Serialize};
+use serde_json::{Map, Value, json};
+
+use super::{Synthesis, default_seed, described};
+use crate::JobError;
+
+job_with_synthesis! {
+    /// Every option of `motif video` that is not a file.
+    pub struct VideoJob {
+        /// Weight of the frames' colours (default 1).
+        #[serde(default)]
+        pub colour_weight: Option<f32>,
+        /// Weight of the edge guide (default 1).
+        #[serde(default)]
+        pub edge_weight: Option<f32>,
+        /// Weight of the positional guide carried along the motion (default 4).
+        #[serde(default)]
+        pub position_weight: Option<f32>,
+        /// Weight of the temporal guide, the previous output carried along the motion (default 2;
+        /// 0 turns temporal coherence off).
+        #[serde(default)]
+        pub temporal_weight: Option<f32>,
+    }
+}
+
+impl VideoJob {
+    /// A job with every option at its default.
+    pub fn new() -> Self {
+        described(json!({}))
+    }
+
+    /// The engine's parameters and guide weights, validated.
+    pub fn params(&self) -> Result<(Params, VideoParams), JobError> {
+        let params = self.synthesis().params();
+        params.validate()?;
+        let d = VideoParams::default();
+        let video = VideoParams::default()
+            .with_colour_weight(self.colour_weight.unwrap_or(d.colour_weight))
+            .with_edge_weight(self.edge_weight.unwrap_or(d.edge_weight))
+            .with_position_weight(self.position_weight.unwrap_or(d.position_weight))
+            .with_temporal_weight(self.temporal_weight.unwrap_or(d.temporal_weight));
+        video.validate()?;
+        Ok((params, video))
+    }
+
+    /// The independent intervals of `frame_count` frames with keyframes at `key_frames`
+    /// (positions from 0, increasing).
+    pub fn intervals(frame_count: usize, key_frames: &[usize]) -> Vec<Interval> {
+        intervals(frame_count, key_frames)
+    }
+
+    /// Stylizes the whole sequence.
+    pub fn run(
+        &self,
+        frames: Vec<FloatImage>,
+        keys: Vec<Keyframe>,
+        mask: Option<Vec<bool>>,
+        progress: &mut dyn Progress,
+    ) -> Result<(VideoOutput, Map<String, Value>), JobError> {
+        let (params, video) = self.params()?;
+        let output = motif_stylize::stylize_video(&VideoInput { frames, keys, mask }, &params, &video, progress)?;
+        let figures = crate::object(json!({
+            "frames": output.report.frames,
+            "keyframes": output.report.keyframes,
+            "intervals": output.report.intervals,
+            "engine_ms": output.report.total_ms,
+            "ms_per_frame": output.report.ms_per_frame,
+            "flicker": output.report.flicker,
+        }));
+        Ok((output, figures))
+    }
+
+    /// Stylizes one interval: `frames` are its frames, `interval` where it lies (from
+    /// [`intervals`](Self::intervals)), and the styles of its keyframe ends. The interval is
+    /// checked as a video of its own (sizes, channels, mask) before any work.
+    pub fn run_interval(
+        &self,
+        frames: &[FloatImage],
+        interval: Interval,
+        first_style: Option<&FloatImage>,
+        last_style: Option<&FloatImage>,
+        mask: Option<&[bool]>,
+        progress: &mut dyn Progress,
+    ) -> Result<IntervalOutput, JobError> {
+        let (params, video) = self.params()?;
+        let mut keys = Vec::new();
+        if let (true, Some(style)) = (interval.starts_at_key, first_style) {
+            keys.push(Keyframe { frame: 0, style: style.clone() });
+        }
+        if let (true, Some(style)) = (interval.ends_at_key, last_style) {
+            keys.push(Keyframe { frame: frames.len().saturating_sub(1), style: style.clone() });
+        }
+        let check = VideoInput { frames: frames.to_vec(), keys, mask: mask.map(<[bool]>::to_vec) };
+        check.validate(&params)?;
+        let first = interval.starts_at_key.then_some(first_style).flatten();
+        let last = interval.ends_at_key.then_some(last_style).flatten();
+        Ok(stylize_interval(frames, interval.first, first, last, mask, &params, &video, progress)?)
+    }
+}
+
+impl Default for VideoJob {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use motif_core::NoProgress;
+    use motif_stylize::samples::{CameraPath, crayon_style, map_guide, pan_and_zoom};
+
+    use super::*;
+
+    #[test]
+    fn intervals_run_apart_give_the_bytes_of_one_whole_run() {
+        let photo = crayon_style(&map_guide(120, 90, 5, 3), 4);
+        let path = CameraPath { start_centre: [40.0, 40.0], end_centre: [70.0, 50.0], start_zoom: 1.0, end_zoom: 1.1 };
+        let footage = pan_and_zoom(&photo, 48, 40, 5, path);
+        let styles = [crayon_style(&footage.frames[1], 7), crayon_style(&footage.frames[3], 8)];
+        let keys =
+            vec![Keyframe { frame: 1, style: styles[0].clone() }, Keyframe { frame: 3, style: styles[1].clone() }];
+        let job: VideoJob = serde_json::from_value(json!({ "seed": 5, "search-vote-iters": 2 })).unwrap();
+        let (whole, figures) = job.run(footage.frames.clone(), keys, None, &mut NoProgress).unwrap();
+        assert_eq!(figures["frames"], json!(5));
+        let parts = VideoJob::intervals(5, &[1, 3]);
+        assert_eq!(parts.len(), 3);
+        // In reverse order, each on its own.
+        for interval in parts.iter().rev() {
+            let style_at = |frame: usize| match frame {
+                1 => Some(&styles[0]),
+                3 => Some(&styles[1]),
+                _ => None,
+            };
+            let part = job
+                .run_interval(
+                    &footage.frames[interval.first..=interval.last],
+                    *interval,
+                    style_at(interval.first),
+                    style_at(interval.last),
+                    None,
+                    &mut NoProgress,
+                )
+                .unwrap();
+            for (offset, frame) in part.frames.iter().enumerate() {
+                assert_eq!(frame, &whole.frames[interval.first + offset], "frame {}", interval.first + offset);
+            }
+        }
+        let error = serde_json::from_value::<VideoJob>(json!({ "temporal-weight": -1 })).unwrap().params().unwrap_err();
+        assert!(error.to_string().contains("temporal-weight"), "{error}");
+    }
+}
