@@ -57,6 +57,7 @@ def prepare(folder, binary):
     shutil.copy(os.path.join(folder, "mixed-presynth", "segment-2.png"), os.path.join(folder, "mixed-presynth", "segment-1.png"))
     with open(os.path.join(folder, "huge-header.png"), "wb") as handle:
         handle.write(png_with_header(16384, 16384))
+    shutil.copy(os.path.join(folder, "huge-header.png"), os.path.join(folder, "huge-0.png"))
     # A real image cut to a third (a JPEG when the demo has none: re-encode is not available, so
     # a PNG cut short stands for a truncated file).
     with open(os.path.join(folder, "texture-exemplar.png"), "rb") as handle:
@@ -122,6 +123,10 @@ CASES = [
     ("10 MB one-path SVG curve", ["curve", "--exemplar", "curve-chain.png", "--path", "big.svg", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("texture 16384x16384", TEXTURE + ["--size", "16384x16384", "--out", "out.png"], "clean-error"),
     ("zoom 64 levels of 4096x4096", ["zoom", "--exemplar", "texture-exemplar.png", "--size", "4096x4096", "--levels", "64", "--out-dir", "out-zoom"], "clean-error"),
+    ("video keyframe of another size", ["video", "--frames", "video-in/%04d.png", "--key", "0:texture-exemplar.png", "--out", "video-out/%04d.png"], "clean-error"),
+    ("video frames pattern without a number", ["video", "--frames", "video-in/0000.png", "--key", "0:video-key-0000.png", "--out", "video-out/%04d.png"], "clean-error"),
+    ("video output over its own frames", ["video", "--frames", "video-in/%04d.png", "--key", "0:video-key-0000.png", "--out", "video-in/%04d.png"], "clean-error"),
+    ("video frame of 16384^2 header", ["video", "--frames", "huge-%d.png", "--key", "0:video-key-0000.png", "--out", "out-%d.png"], "clean-error"),
     ("inpaint with a mask of another size", ["inpaint", "--image", "stylize-A1.png", "--mask", "texture-exemplar.png", "--out", "out.png"], "clean-error"),
     ("presynth 4096x4096", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "4096x4096", "--out-dir", "out-presynth"], "clean-error"),
     ("points coordinate 1e300", ["points", "--exemplar", "far-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),

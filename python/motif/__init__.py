@@ -27,6 +27,9 @@ from . import _motif
 
 __all__ = [
     "texture",
+    "inpaint",
+    "zoom",
+    "video",
     "stylize",
     "curve",
     "points",
@@ -45,6 +48,7 @@ _ARGUMENTS = {
     "texture": {"size", "seed"},
     "inpaint": {"seed"},
     "zoom": {"size", "factor", "levels", "seed"},
+    "video": {"seed"},
     "stylize": {"weight", "seed"},
     "curve": {"width", "piece-length"},
     "points": {"neighbourhood", "domain", "seed"},
@@ -175,6 +179,65 @@ def zoom(
     images, reports = _motif.zoom(_image(exemplar, "exemplar"), job, threads)
     if report:
         return list(images), [json.loads(text) for text in reports]
+    return list(images)
+
+
+
+def _video_inputs(frames: Sequence[ArrayLike], mask: Optional[ArrayLike]) -> Tuple[List[np.ndarray], Optional[np.ndarray]]:
+    frames = [_image(frame, f"frame {index}") for index, frame in enumerate(frames)]
+    if mask is None:
+        return frames, None
+    hole = np.asarray(mask)
+    if hole.dtype != np.bool_:
+        raise ValueError(f"mask must be a bool array (True = synthesize), got {hole.dtype}")
+    return frames, np.ascontiguousarray(hole)
+
+
+def video(
+    frames: Sequence[ArrayLike],
+    keyframes: Dict[int, ArrayLike],
+    *,
+    mask: Optional[ArrayLike] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """Stylizes a frame sequence from stylized keyframes (``motif video``): ``keyframes`` maps a
+    frame index (from 0) to that frame as the artist stylized it. Every other frame is synthesized
+    with the frames' colours and edges, the keyframe's positions and the previous output carried
+    along the motion, forward and backward from keyframes and blended between two.
+
+    Options: ``colour_weight`` (1), ``edge_weight`` (1), ``position_weight`` (4),
+    ``temporal_weight`` (2; 0 stylizes frames independently), and the synthesis options of
+    ``texture``. ``mask`` (H×W bool, True = synthesize) keeps the frames' own pixels elsewhere.
+    Returns one H×W×4 uint8 array per frame. ``motif.batch.stylize_frames`` runs the keyframe
+    intervals as Dask tasks and gives the same arrays.
+    """
+    frames, hole = _video_inputs(frames, mask)
+    keys = [(int(index), _image(style, f"keyframe {index}")) for index, style in sorted(keyframes.items())]
+    job = _job("video", {"seed": _seed(seed)}, options)
+    images, report_text = _motif.video(frames, keys, hole, job, threads)
+    return _finish(list(images), report_text, report)
+
+
+def _video_interval(
+    frames: Sequence[ArrayLike],
+    interval: Tuple[int, int, bool, bool],
+    first_style: Optional[ArrayLike],
+    last_style: Optional[ArrayLike],
+    *,
+    mask: Optional[ArrayLike] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    **options: Any,
+) -> List[np.ndarray]:
+    """One keyframe interval of ``video`` (for ``motif.batch``)."""
+    frames, hole = _video_inputs(frames, mask)
+    first = None if first_style is None else _image(first_style, "keyframe")
+    last = None if last_style is None else _image(last_style, "keyframe")
+    job = _job("video", {"seed": _seed(seed)}, options)
+    images, _ = _motif.video_interval(frames, tuple(interval), first, last, hole, job, threads)
     return list(images)
 
 

@@ -39,6 +39,16 @@ def inpaint(
     report: Literal[True], **options: Any
 ) -> Tuple[ImageArray, Dict[str, Any]]: ...
 @overload
+def video(
+    frames: Sequence[npt.ArrayLike], keyframes: Dict[int, npt.ArrayLike], *, mask: Optional[npt.ArrayLike] = ...,
+    seed: int = ..., threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
+) -> List[ImageArray]: ...
+@overload
+def video(
+    frames: Sequence[npt.ArrayLike], keyframes: Dict[int, npt.ArrayLike], *, mask: Optional[npt.ArrayLike] = ...,
+    seed: int = ..., threads: Optional[int] = ..., report: Literal[True], **options: Any
+) -> Tuple[List[ImageArray], Dict[str, Any]]: ...
+@overload
 def stylize(
     style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
     report: Literal[False] = ..., **options: Any

@@ -1,5 +1,5 @@
 """Large stylizations as many independent tasks on Dask: a big guide in overlapping tiles, or a
-frame sequence split at its keyframes.
+frame sequence split into its keyframe intervals (``motif video``).
 
 motif schedules nothing itself: the tasks go to a ``dask.distributed`` ``Client`` (yours, or a
 ``LocalCluster`` started for the call and closed after it). The style and the source guides are
@@ -144,10 +144,6 @@ def stylize_tiles(
     return result
 
 
-def _stylize_frame(keyframe_style, keyframe_guide, frame_guide, options) -> np.ndarray:
-    return motif.stylize(keyframe_style, [(keyframe_guide, frame_guide)], **options)
-
-
 def stylize_frames(
     frames: Sequence[np.ndarray],
     keyframes: Dict[int, np.ndarray],
@@ -155,42 +151,52 @@ def stylize_frames(
     client: Any = None,
     threads: int = 1,
     seed: int = 1,
+    mask: Optional[np.ndarray] = None,
     **options: Any,
 ) -> List[np.ndarray]:
-    """Stylizes a frame sequence from stylized keyframes on Dask.
+    """Stylizes a frame sequence from stylized keyframes on Dask, as ``motif.video`` does.
 
-    ``frames`` are the frames' guides (the frames themselves, or edges, masks...); ``keyframes``
-    maps a frame index to its stylized version. The sequence is split at the midpoints between
-    keyframes; each frame is stylized from its keyframe's style with the guide pair (keyframe's
-    guide, the frame's guide), as its own task. Returns one H×W×4 array per frame (keyframes
-    included, re-synthesized like the others).
+    ``keyframes`` maps a frame index (from 0) to that frame as the artist stylized it. The
+    sequence splits into keyframe intervals (before the first keyframe, between two, after the
+    last), which are independent: each is one task, and the frames are the bytes
+    ``motif.video(frames, keyframes, seed=seed, ...)`` gives. Returns one H×W×4 array per frame.
     """
     if not keyframes:
         raise ValueError("stylize_frames needs at least one keyframe")
     for index in keyframes:
         if not 0 <= index < len(frames):
             raise ValueError(f"keyframe {index} is not a frame index (0–{len(frames) - 1})")
-    ordered = sorted(keyframes)
+    intervals = motif._motif.video_intervals(len(frames), sorted(keyframes))
     dask_client, close = _client(client)
     try:
         futures = []
-        for number, frame in enumerate(frames):
-            nearest = min(ordered, key=lambda k: (abs(k - number), k))
-            frame_options = dict(options, seed=int(seed) + number, threads=int(threads))
+        for first, last, starts, ends in intervals:
             futures.append(
                 dask_client.submit(
-                    _stylize_frame, keyframes[nearest], frames[nearest], frame, frame_options, pure=False
+                    motif._video_interval,
+                    [frames[i] for i in range(first, last + 1)],
+                    (first, last, starts, ends),
+                    keyframes[first] if starts else None,
+                    keyframes[last] if ends else None,
+                    mask=mask,
+                    seed=seed,
+                    threads=int(threads),
+                    pure=False,
+                    **options,
                 )
             )
-        results = []
-        for number, future in enumerate(futures):
+        results: List[Optional[np.ndarray]] = [None] * len(frames)
+        for (first, last, _, _), future in zip(intervals, futures):
             try:
-                results.append(future.result())
-            except Exception as error:  # noqa: BLE001 - re-raised with the frame named
-                raise RuntimeError(f"frame {number} failed: {error}") from error
+                part = future.result()
+            except Exception as error:  # noqa: BLE001 - re-raised with the interval named
+                raise RuntimeError(f"frames {first}–{last} failed: {error}") from error
+            for offset, image in enumerate(part):
+                if results[first + offset] is None:
+                    results[first + offset] = image
     finally:
         close()
-    return results
+    return [image for image in results if image is not None]
 
 
 def seam_error(image: np.ndarray, tile: int) -> float:

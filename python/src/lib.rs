@@ -188,6 +188,106 @@ fn zoom<'py>(
     Ok((images, runs.iter().map(|run| report_json(&run.figures)).collect()))
 }
 
+/// A mask array (H×W bool, true = synthesize) as a hole of `size`.
+fn hole_array(mask: &PyReadonlyArrayDyn<'_, bool>, (width, height): (usize, usize), what: &str) -> PyResult<Vec<bool>> {
+    let shape = mask.shape().to_vec();
+    if shape != [height, width] {
+        return Err(value_error(format!(
+            "{what} must be an H×W bool array of the frames' size {height}×{width}, got shape {shape:?}"
+        )));
+    }
+    Ok(mask.as_array().iter().copied().collect())
+}
+
+/// Frames and keyframe styles decoded as `motif video` decodes them.
+fn video_inputs(
+    frames: &[PyReadonlyArrayDyn<'_, u8>],
+    styles: &[PyReadonlyArrayDyn<'_, u8>],
+) -> PyResult<(Vec<motif_core::FloatImage>, Vec<motif_core::FloatImage>)> {
+    let frames = frames
+        .iter()
+        .enumerate()
+        .map(|(i, f)| image_of(f, &format!("frame {i}")).map(|image| motif_jobs::stylize::video_frame(&image)))
+        .collect::<PyResult<Vec<_>>>()?;
+    let styles = styles.iter().map(|s| image_of(s, "keyframe")).collect::<PyResult<Vec<_>>>()?;
+    Ok((frames, motif_jobs::stylize::video_styles(&styles)))
+}
+
+/// `motif video`: (frames, report JSON). `keys` are (frame index, stylized frame) pairs.
+#[pyfunction]
+#[pyo3(signature = (frames, keys, mask, job, threads=None))]
+fn video<'py>(
+    py: Python<'py>,
+    frames: Vec<PyReadonlyArrayDyn<'py, u8>>,
+    keys: Vec<(usize, PyReadonlyArrayDyn<'py, u8>)>,
+    mask: Option<PyReadonlyArrayDyn<'py, bool>>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Vec<Image<'py>>, String)> {
+    let job: motif_jobs::stylize::VideoJob = description(job)?;
+    let styles: Vec<PyReadonlyArrayDyn<'py, u8>> = keys.iter().map(|(_, s)| s.clone()).collect();
+    let (frames, styles) = video_inputs(&frames, &styles)?;
+    let size = frames.first().map_or((0, 0), |f| (f.width(), f.height()));
+    let mask = mask.map(|m| hole_array(&m, size, "mask")).transpose()?;
+    let keys =
+        keys.iter().zip(styles).map(|((frame, _), style)| motif_stylize::Keyframe { frame: *frame, style }).collect();
+    let (output, figures) =
+        detached(py, threads, || job.run(frames, keys, mask, &mut NoProgress))?.map_err(job_error)?;
+    let images = output.frames.iter().map(|f| array_of(py, &RgbaImage::from_float(f))).collect::<PyResult<Vec<_>>>()?;
+    Ok((images, report_json(&figures)))
+}
+
+/// The independent keyframe intervals: (first, last, starts at a keyframe, ends at one).
+#[pyfunction]
+fn video_intervals(frame_count: usize, key_frames: Vec<usize>) -> Vec<(usize, usize, bool, bool)> {
+    motif_jobs::stylize::VideoJob::intervals(frame_count, &key_frames)
+        .into_iter()
+        .map(|i| (i.first, i.last, i.starts_at_key, i.ends_at_key))
+        .collect()
+}
+
+/// One interval of `motif video` (see `video_intervals`): (frames, report JSON).
+#[pyfunction]
+#[pyo3(signature = (frames, interval, first_style, last_style, mask, job, threads=None))]
+#[allow(clippy::too_many_arguments)]
+fn video_interval<'py>(
+    py: Python<'py>,
+    frames: Vec<PyReadonlyArrayDyn<'py, u8>>,
+    interval: (usize, usize, bool, bool),
+    first_style: Option<PyReadonlyArrayDyn<'py, u8>>,
+    last_style: Option<PyReadonlyArrayDyn<'py, u8>>,
+    mask: Option<PyReadonlyArrayDyn<'py, bool>>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Vec<Image<'py>>, String)> {
+    let job: motif_jobs::stylize::VideoJob = description(job)?;
+    let (first, last, starts_at_key, ends_at_key) = interval;
+    if last < first || last - first + 1 != frames.len() {
+        return Err(value_error(format!("interval {first}–{last} does not hold the {} frames given", frames.len())));
+    }
+    let styles: Vec<PyReadonlyArrayDyn<'py, u8>> = first_style.iter().chain(&last_style).cloned().collect();
+    let (frames, mut styles) = video_inputs(&frames, &styles)?;
+    let last_decoded = if last_style.is_some() { styles.pop() } else { None };
+    let first_decoded = if first_style.is_some() { styles.pop() } else { None };
+    let size = frames.first().map_or((0, 0), |f| (f.width(), f.height()));
+    let mask = mask.map(|m| hole_array(&m, size, "mask")).transpose()?;
+    let interval = motif_stylize::Interval { first, last, starts_at_key, ends_at_key };
+    let output = detached(py, threads, || {
+        job.run_interval(
+            &frames,
+            interval,
+            first_decoded.as_ref(),
+            last_decoded.as_ref(),
+            mask.as_deref(),
+            &mut NoProgress,
+        )
+    })?
+    .map_err(job_error)?;
+    let images = output.frames.iter().map(|f| array_of(py, &RgbaImage::from_float(f))).collect::<PyResult<Vec<_>>>()?;
+    let report = serde_json::to_value(&output.report).map_err(value_error)?;
+    Ok((images, report.to_string()))
+}
+
 /// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs.
 #[pyfunction]
 #[pyo3(signature = (style, guides, job, threads=None))]
@@ -370,6 +470,7 @@ fn options<'py>(py: Python<'py>, engine: &str) -> PyResult<Bound<'py, PyList>> {
         "texture" => serde_json::to_value(motif_jobs::stylize::TextureJob::new(1, 1)),
         "inpaint" => serde_json::to_value(motif_jobs::stylize::InpaintJob::new()),
         "zoom" => serde_json::to_value(motif_jobs::stylize::ZoomJob::new(1, 1)),
+        "video" => serde_json::to_value(motif_jobs::stylize::VideoJob::new()),
         other => return Err(value_error(format!("no engine named {other}"))),
     }
     .map_err(value_error)?;
@@ -385,6 +486,9 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(texture, module)?)?;
     module.add_function(wrap_pyfunction!(inpaint, module)?)?;
     module.add_function(wrap_pyfunction!(zoom, module)?)?;
+    module.add_function(wrap_pyfunction!(video, module)?)?;
+    module.add_function(wrap_pyfunction!(video_intervals, module)?)?;
+    module.add_function(wrap_pyfunction!(video_interval, module)?)?;
     module.add_function(wrap_pyfunction!(stylize, module)?)?;
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(points, module)?)?;

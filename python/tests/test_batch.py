@@ -1,5 +1,5 @@
 """motif.batch on a Dask LocalCluster: a tiled stylization of a real photo against the one-piece
-run, its seams, a failing tile, and frames split at keyframes."""
+run, its seams, a failing tile, and a video split into its keyframe intervals."""
 
 import numpy as np
 import pytest
@@ -80,15 +80,24 @@ def test_a_failing_tile_is_named_and_nothing_is_written(case, tmp_path):
     assert not out.exists()
 
 
-def test_frames_follow_their_nearest_keyframe(client, photo):
-    frames = [grey_guide(np.ascontiguousarray(photo[10 * i : 10 * i + 80, :80, :3])) for i in range(4)]
-    keyframe = np.ascontiguousarray(photo[:80, :80, :3])
-    results = motif.batch.stylize_frames(frames, {0: keyframe}, client=client, seed=3)
-    assert len(results) == 4 and all(r.shape == (80, 80, 4) for r in results)
-    # Frame 0 is guided by itself: it reproduces its keyframe closely.
-    assert interior_difference(results[0], keyframe) < 12.0
+def pan(photo, count, step=6):
+    """Frames panning over the photo (a real one), 80 × 64, `step` pixels a frame."""
+    return [np.ascontiguousarray(photo[20 : 20 + 64, step * i : step * i + 80, :3]) for i in range(count)]
+
+
+def test_frames_run_as_keyframe_intervals_give_the_bytes_of_one_video_run(client, photo):
+    frames = pan(photo, 6)
+    # Keyframes "painted" over frames 1 and 4: their colours inverted.
+    keyframes = {1: 255 - frames[1], 4: 255 - frames[4]}
+    results = motif.batch.stylize_frames(frames, keyframes, client=client, seed=3, search_vote_iters=2)
+    assert len(results) == 6 and all(r.shape == (64, 80, 4) for r in results)
+    whole = motif.video(frames, keyframes, seed=3, search_vote_iters=2)
+    for index, (result, expected) in enumerate(zip(results, whole)):
+        assert np.array_equal(result, expected), f"frame {index}"
+    # A keyframe's frame is the keyframe itself.
+    assert np.array_equal(results[1][:, :, :3], keyframes[1])
     with pytest.raises(ValueError, match="keyframe 9"):
-        motif.batch.stylize_frames(frames, {9: keyframe}, client=client)
+        motif.batch.stylize_frames(frames, {9: keyframes[1]}, client=client)
 
 
 def test_tile_grid_covers_every_pixel_once():

@@ -234,3 +234,26 @@ def test_zoom_equals_the_cli(cli, tmp_path):
         assert np.array_equal(level, motif.read_image(str(tmp_path / "levels" / f"zoom-{index + 1:02d}.png")))
     with pytest.raises(ValueError, match="zoom-factor"):
         motif.zoom(motif.read_image(str(stone)), (64, 48), factor=30)
+
+
+def test_video_equals_the_cli_and_checks_its_inputs(cli, tmp_path, photo):
+    frames = [np.ascontiguousarray(photo[30 : 30 + 48, 5 * i : 5 * i + 64, :3]) for i in range(4)]
+    key = np.ascontiguousarray(255 - frames[0])
+    (tmp_path / "in").mkdir()
+    (tmp_path / "out").mkdir()
+    for index, frame in enumerate(frames):
+        motif.write_png(str(tmp_path / "in" / f"{index:03d}.png"), frame)
+    motif.write_png(str(tmp_path / "key.png"), key)
+    cli(["--seed", "4", "video", "--frames", "in/%03d.png", "--key", "0:key.png", "--out", "out/%03d.png"], tmp_path)
+    images, report = motif.video(frames, {0: key}, seed=4, report=True)
+    assert len(images) == 4 and report["frames"] == 4 and report["flicker"] > 0
+    for index, image in enumerate(images):
+        assert np.array_equal(image, motif.read_image(str(tmp_path / "out" / f"{index:03d}.png"))), index
+    with pytest.raises(ValueError, match="keyframe 7"):
+        motif.video(frames, {7: key})
+    with pytest.raises(ValueError, match="temporal-weight"):
+        motif.video(frames, {0: key}, temporal_weight=-1)
+    with pytest.raises(ValueError, match="mask"):
+        motif.video(frames, {0: key}, mask=np.ones((3, 3), dtype=bool))
+    with pytest.raises(TypeError, match="temporal_weight"):
+        motif.video(frames, {0: key}, temporal_wieght=1)

@@ -232,7 +232,7 @@ job_with_synthesis! {
 }
 
 mod video;
-pub use video::VideoJob;
+pub use video::{VideoJob, video_frame, video_styles};
 
 /// One decoded guide pair: source (the style's size) and target, with equal channel counts.
 pub type GuidePair = (motif_core::FloatImage, motif_core::FloatImage);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Rebuilds the real textures of the stylize corpus (PNG) from GIMP's patterns in Debian's
-# gimp-data. Needs Python 3 (standard library only) and apt-get/dpkg-deb: gimp-data need not be
-# installed; if it is not, this script fetches it with `apt-get download` into a temporary folder.
-# Made with gimp-data 2.10.34-1+deb12u10 (Debian bookworm), Python 3.11.
+# gimp-data, and copies scikit-image's CC0 photo of a cat (chelsea.png) from python3-skimage. Needs Python 3 (standard library only) and apt-get/dpkg-deb: gimp-data need not be
+# installed; if it is not, this script fetches it with `apt-get download` into a temporary folder
+# (the same for python3-skimage).
+# Made with gimp-data 2.10.34-1+deb12u10 and python3-skimage 0.19.3-8 (Debian bookworm), Python 3.11.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -18,3 +19,7 @@ for pattern in Stone/brick Stone/stone33 Wood/bark Wood/walnut Fabric/burlap Pla
   name="$(basename "$pattern" | tr '[:upper:]' '[:lower:]')"
   "$PYTHON" "$here/pat_to_png.py" "$file" "$here/$name.png"
 done
+
+# The photo the video footage is filmed over (`motif demo`, `motif bench --case video`): copied
+# byte for byte.
+cp "$(package_file python3-skimage usr/lib/python3/dist-packages/skimage/data/chelsea.png)" "$here/chelsea.png"

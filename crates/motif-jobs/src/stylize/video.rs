@@ -4,7 +4,7 @@
 //! run them in any order, in parallel or on other machines ([`VideoJob::run_interval`]), and
 //! gets the same bytes as one whole run ([`VideoJob::run`]).
 
-use motif_core::{FloatImage, Progress};
+use motif_core::{FloatImage, Progress, RgbaImage};
 use motif_stylize::{
     Interval, IntervalOutput, Keyframe, NnfMethod, Params, VideoInput, VideoOutput, VideoParams, intervals,
     stylize_interval,
@@ -107,6 +107,17 @@ impl VideoJob {
         let last = interval.ends_at_key.then_some(last_style).flatten();
         Ok(stylize_interval(frames, interval.first, first, last, mask, &params, &video, progress)?)
     }
+}
+
+/// A frame as the engine takes it: its colour channels (alpha is not part of a video frame).
+pub fn video_frame(image: &RgbaImage) -> FloatImage {
+    image.to_float_channels(&[0, 1, 2])
+}
+
+/// Keyframe styles with one channel count: RGBA when any has transparency, else RGB.
+pub fn video_styles(images: &[RgbaImage]) -> Vec<FloatImage> {
+    let alpha = images.iter().any(|image| !image.is_fully_opaque());
+    images.iter().map(|image| if alpha { image.to_float() } else { super::style_image_channels(image) }).collect()
 }
 
 impl Default for VideoJob {

@@ -7,7 +7,7 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_io::FramePattern;
-use motif_jobs::stylize::{VideoJob, hole_of, style_image_channels};
+use motif_jobs::stylize::{VideoJob, hole_of, video_frame, video_styles};
 use serde_json::json;
 
 use super::{SynthesisOptions, load};
@@ -63,7 +63,7 @@ fn read_frame(path: &Path, size: Option<(usize, usize)>) -> anyhow::Result<Float
     {
         bail!("frame {} is {}×{} but the frames are {width}×{height}", path.display(), image.width(), image.height());
     }
-    Ok(image.to_float_channels(&[0, 1, 2]))
+    Ok(video_frame(&image))
 }
 
 /// Runs `motif video`.
@@ -102,10 +102,11 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         Some(i) => vec![i - 1],
         None => (0..intervals.len()).collect(),
     };
-    for &i in &chosen {
-        for position in intervals[i].first..=intervals[i].last {
-            context.check_output(&out.path(numbers[position]), &inputs)?;
-        }
+    // A keyframe ends one interval and starts the next: each output is checked once.
+    let mut positions: Vec<usize> = chosen.iter().flat_map(|&i| intervals[i].first..=intervals[i].last).collect();
+    positions.dedup();
+    for position in positions {
+        context.check_output(&out.path(numbers[position]), &inputs)?;
     }
 
     let first = read_frame(&frames[0].1, None)?;
@@ -125,10 +126,7 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         }
         styles.push(style);
     }
-    // Every keyframe with the same channels: RGBA when any has transparency.
-    let alpha = styles.iter().any(|s| !s.is_fully_opaque());
-    let styles: Vec<FloatImage> =
-        styles.iter().map(|s| if alpha { s.to_float() } else { style_image_channels(s) }).collect();
+    let styles = video_styles(&styles);
     let mask = match &args.mask {
         Some(path) => {
             let image = load(path)?;
@@ -157,6 +155,7 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
     job.params()?;
     let style_at = |position: usize| keys.iter().position(|(p, _)| *p == position).map(|k| &styles[k]);
     let mut reports = Vec::new();
+    let mut written: Vec<usize> = Vec::new();
     let count = chosen.len();
     for (done, &i) in chosen.iter().enumerate() {
         let interval = intervals[i];
@@ -183,7 +182,12 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
             )
             .with_context(|| format!("cannot stylize frames {first_number}–{last_number} of {}", args.frames))?;
         for (offset, image) in output.frames.iter().enumerate() {
-            motif_io::write_png(&out.path(numbers[interval.first + offset]), &RgbaImage::from_float(image))?;
+            let position = interval.first + offset;
+            if written.last().is_some_and(|&last| last >= position) {
+                continue;
+            }
+            motif_io::write_png(&out.path(numbers[position]), &RgbaImage::from_float(image))?;
+            written.push(position);
         }
         reports.push(json!({
             "interval": i + 1,
