@@ -141,61 +141,6 @@ pub(crate) fn compose_field(
     out
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn distance_transform_matches_brute_force() {
-        let (w, h) = (23, 17);
-        let seeds = [(3usize, 4usize), (20, 2), (11, 15), (12, 8)];
-        let mut grid: Vec<f32> =
-            (0..w * h).map(|i| if seeds.contains(&(i % w, i / w)) { 0.0 } else { f32::INFINITY }).collect();
-        squared_distance_transform(&mut grid, w, h);
-        for y in 0..h {
-            for x in 0..w {
-                let best = seeds
-                    .iter()
-                    .map(|&(sx, sy)| (x as f32 - sx as f32).powi(2) + (y as f32 - sy as f32).powi(2))
-                    .fold(f32::INFINITY, f32::min);
-                assert_eq!(grid[y * w + x], best, "at {x},{y}");
-            }
-        }
-    }
-
-    #[test]
-    fn composed_field_takes_each_segment_textures_match_where_it_tiles() {
-        let field = |offset: u32| crate::NearestNeighbourField {
-            width: 2,
-            height: 2,
-            source_width: 10,
-            source_height: 10,
-            patch_size: 3,
-            matches: vec![Some([offset + 1, 1]), Some([offset + 2, 1]), None, Some([offset + 2, 2])],
-            weights: None,
-        };
-        let (first, second) = (field(0), field(5));
-        let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];
-        // Label 0 takes texture 1, label 1 texture 0.
-        let out = compose_field(&labels, 3, 2, &[Some(&first), Some(&second)], &[1, 0], 10);
-        // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
-        // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
-        assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
-        assert_eq!(compose_field(&labels, 3, 2, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
-    }
-
-    #[test]
-    fn band_widens_with_t_and_is_empty_at_zero() {
-        let (w, h) = (20, 10);
-        let labels: Vec<u16> = (0..w * h).map(|i| u16::from(i % w >= 10)).collect();
-        let count = |t| band_mask(&labels, w, h, t).iter().filter(|&&b| b).count();
-        assert_eq!(count(0), 0);
-        assert_eq!(count(1), 2 * h);
-        assert_eq!(count(3), 6 * h);
-        assert!(band_mask(&vec![0; w * h], w, h, 5).iter().all(|&b| !b));
-    }
-}
-
 /// The composed target, the band, and (when the textures carry fields) the starting source centre
 /// of every target pixel.
 pub(crate) type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
@@ -279,4 +224,59 @@ pub(crate) fn compose_textures(
         .any(Option::is_some)
         .then(|| compose_field(&labels.target, width, height, &fields, &texture_of, style_width));
     Ok((composed, domain, seeds))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distance_transform_matches_brute_force() {
+        let (w, h) = (23, 17);
+        let seeds = [(3usize, 4usize), (20, 2), (11, 15), (12, 8)];
+        let mut grid: Vec<f32> =
+            (0..w * h).map(|i| if seeds.contains(&(i % w, i / w)) { 0.0 } else { f32::INFINITY }).collect();
+        squared_distance_transform(&mut grid, w, h);
+        for y in 0..h {
+            for x in 0..w {
+                let best = seeds
+                    .iter()
+                    .map(|&(sx, sy)| (x as f32 - sx as f32).powi(2) + (y as f32 - sy as f32).powi(2))
+                    .fold(f32::INFINITY, f32::min);
+                assert_eq!(grid[y * w + x], best, "at {x},{y}");
+            }
+        }
+    }
+
+    #[test]
+    fn composed_field_takes_each_segment_textures_match_where_it_tiles() {
+        let field = |offset: u32| crate::NearestNeighbourField {
+            width: 2,
+            height: 2,
+            source_width: 10,
+            source_height: 10,
+            patch_size: 3,
+            matches: vec![Some([offset + 1, 1]), Some([offset + 2, 1]), None, Some([offset + 2, 2])],
+            weights: None,
+        };
+        let (first, second) = (field(0), field(5));
+        let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];
+        // Label 0 takes texture 1, label 1 texture 0.
+        let out = compose_field(&labels, 3, 2, &[Some(&first), Some(&second)], &[1, 0], 10);
+        // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
+        // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
+        assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
+        assert_eq!(compose_field(&labels, 3, 2, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
+    }
+
+    #[test]
+    fn band_widens_with_t_and_is_empty_at_zero() {
+        let (w, h) = (20, 10);
+        let labels: Vec<u16> = (0..w * h).map(|i| u16::from(i % w >= 10)).collect();
+        let count = |t| band_mask(&labels, w, h, t).iter().filter(|&&b| b).count();
+        assert_eq!(count(0), 0);
+        assert_eq!(count(1), 2 * h);
+        assert_eq!(count(3), 6 * h);
+        assert!(band_mask(&vec![0; w * h], w, h, 5).iter().all(|&b| !b));
+    }
 }
