@@ -14,7 +14,7 @@ trap 'rm -rf "$tmp"' EXIT
 # shellcheck source=../package_file.sh
 source "$here/../package_file.sh"
 
-for pattern in Stone/brick Stone/stone33 Wood/bark Wood/walnut Fabric/burlap Plant/leaves; do
+for pattern in Stone/brick Stone/stone33 Wood/bark Wood/walnut Fabric/burlap Plant/leaves Wood/parque1 Wood/parque2; do
   file="$(package_file gimp-data "usr/share/gimp/2.0/patterns/$pattern.pat")"
   name="$(basename "$pattern" | tr '[:upper:]' '[:lower:]')"
   "$PYTHON" "$here/pat_to_png.py" "$file" "$here/$name.png"
