@@ -63,6 +63,7 @@ struct Synthesis {
     style_weight: Option<f32>,
     uniformity: Option<f32>,
     patch_size: Option<usize>,
+    coarse_patch_size: Option<usize>,
     pyramid_levels: Option<usize>,
     search_vote_iters: Option<usize>,
     patchmatch_iters: Option<usize>,
@@ -80,6 +81,7 @@ impl Synthesis {
             .with_style_weight(self.style_weight.unwrap_or(d.style_weight))
             .with_uniformity(self.uniformity.unwrap_or(d.uniformity))
             .with_patch_size(self.patch_size.unwrap_or(d.patch_size))
+            .with_coarse_patch_size(self.coarse_patch_size.unwrap_or(d.coarse_patch_size))
             .with_pyramid_levels(self.pyramid_levels.unwrap_or(d.pyramid_levels))
             .with_search_vote_iterations(self.search_vote_iters.unwrap_or(d.search_vote_iterations))
             .with_patchmatch_iterations(self.patchmatch_iters.unwrap_or(d.patchmatch_iterations))
@@ -114,6 +116,9 @@ macro_rules! job_with_synthesis {
             /// Patch side in pixels (odd).
             #[serde(default)]
             pub patch_size: Option<usize>,
+            /// Patch side at the coarsest level, shrinking to `patch-size` at the finest (0 = off).
+            #[serde(default)]
+            pub coarse_patch_size: Option<usize>,
             /// Pyramid levels (0 = as many as fit).
             #[serde(default)]
             pub pyramid_levels: Option<usize>,
@@ -148,6 +153,7 @@ macro_rules! job_with_synthesis {
                     style_weight: self.style_weight,
                     uniformity: self.uniformity,
                     patch_size: self.patch_size,
+                    coarse_patch_size: self.coarse_patch_size,
                     pyramid_levels: self.pyramid_levels,
                     search_vote_iters: self.search_vote_iters,
                     patchmatch_iters: self.patchmatch_iters,

@@ -45,6 +45,12 @@ pub struct Params {
     pub uniformity: f32,
     /// Side of the square patches in pixels. Odd, range 3..=31, default 5.
     pub patch_size: usize,
+    /// Side of the patches at the coarsest pyramid level, shrinking level by level to
+    /// `patch_size` at the finest (Kwatra et al.'s coarse-to-fine patch sizes): the coarse levels,
+    /// which decide the layout, see whole structures (bricks and their mortar), the fine ones keep
+    /// the detail sharp. Never smaller than `patch_size`, and at every level at most what the
+    /// level's images hold. 0 = `patch_size` at every level. Odd or 0, range 0..=31, default 0.
+    pub coarse_patch_size: usize,
     /// Number of pyramid levels (§3.5); 0 = as many as fit (coarsest level at least
     /// `2·patch_size + 1` pixels on each side of both source and target). Range 0..=32, default 0.
     pub pyramid_levels: usize,
@@ -104,6 +110,7 @@ impl Default for Params {
             style_weight: 1.0,
             uniformity: 3500.0,
             patch_size: 5,
+            coarse_patch_size: 0,
             pyramid_levels: 0,
             search_vote_iterations: 6,
             patchmatch_iterations: 4,
@@ -133,6 +140,14 @@ impl Params {
         if self.patch_size < 3 || self.patch_size.is_multiple_of(2) || self.patch_size > 31 {
             return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd and between 3 and 31").into());
         }
+        if self.coarse_patch_size != 0 && (self.coarse_patch_size.is_multiple_of(2) || self.coarse_patch_size > 31) {
+            return Err(InvalidParameter::new(
+                "coarse-patch-size",
+                self.coarse_patch_size,
+                "must be 0 (off) or odd and at most 31",
+            )
+            .into());
+        }
         check_range("stop-threshold", f64::from(self.stop_threshold), 0.0, 1020.0)?;
         check_count("pyramid-levels", self.pyramid_levels, 0, 32)?;
         check_count("search-vote-iters", self.search_vote_iterations, 1, 100)?;
@@ -152,6 +167,7 @@ motif_core::builders! { Params {
     with_style_weight => style_weight: f32,
     with_uniformity => uniformity: f32,
     with_patch_size => patch_size: usize,
+    with_coarse_patch_size => coarse_patch_size: usize,
     with_pyramid_levels => pyramid_levels: usize,
     with_search_vote_iterations => search_vote_iterations: usize,
     with_patchmatch_iterations => patchmatch_iterations: usize,

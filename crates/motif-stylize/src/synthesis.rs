@@ -64,6 +64,30 @@ fn fitting_levels(sizes: &[(usize, usize)], min_side: usize) -> usize {
     }
 }
 
+/// The patch side at pyramid level `level` (0 = finest) of `levels`: from
+/// [`Params::coarse_patch_size`] at the coarsest down to `patch_size` at the finest, linearly,
+/// odd, and small enough that the level's source and target hold two patches a side.
+fn patch_at_level(
+    params: &Params,
+    levels: usize,
+    level: usize,
+    source_size: (usize, usize),
+    target_size: (usize, usize),
+) -> usize {
+    let fine = params.patch_size;
+    if params.coarse_patch_size <= fine || levels < 2 {
+        return fine;
+    }
+    let along = level as f64 / (levels - 1) as f64;
+    let wanted = fine as f64 + along * (params.coarse_patch_size - fine) as f64;
+    let mut side = (wanted / 2.0).floor() as usize * 2 + 1;
+    let (source, target) = (level_size(source_size, level), level_size(target_size, level));
+    let room = source.0.min(source.1).min(target.0).min(target.1).saturating_sub(1) / 2;
+    let room = if room.is_multiple_of(2) { room.saturating_sub(1) } else { room };
+    side = side.min(room).max(fine);
+    side
+}
+
 /// Size of pyramid level `level` of an image of size `size`.
 fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
     (0..level).fold(size, |(w, h), _| (w.div_ceil(2), h.div_ceil(2)))
@@ -179,7 +203,8 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let stage = format!("level {} of {}", levels - level_index, levels);
         progress.report(&stage, 0.0);
         let level_streams = streams.child("level", level_index as u64);
-        let mut level = Level::new(spec(level_index, patch));
+        let level_patch = patch_at_level(params, levels, level_index, source_size, problem.target_size);
+        let mut level = Level::new(spec(level_index, level_patch));
         band(&mut level, level_index);
         let mut field = match (&previous, &problem.seeds) {
             (None, Some(seeds)) => Field::seeded(&level, seeds, &level_streams),
@@ -225,7 +250,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
             name: stage,
             width: level.target_width,
             height: level.target_height,
-            patch_size: patch,
+            patch_size: level_patch,
             energies,
             ms,
         });

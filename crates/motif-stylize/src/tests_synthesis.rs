@@ -343,3 +343,28 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
     let error = Params::default().with_max_memory(0).validate().unwrap_err();
     assert!(error.to_string().contains("max-memory"), "{error}");
 }
+
+#[test]
+fn coarse_patches_shrink_level_by_level_to_the_patch_size() {
+    let input = Input::texture(texture(96, 96, 3, 4), 160, 160);
+    let params = Params::default().with_coarse_patch_size(11).with_seed(2);
+    let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+    let sides: Vec<usize> = output.report.levels.iter().map(|level| level.patch_size).collect();
+    assert!(sides.len() >= 3, "{sides:?}");
+    // Coarsest first: odd, at most 11, larger than 5 at some level and shrinking from there to
+    // exactly 5 (the coarsest level may hold less than the schedule asks), and each fits its level.
+    let largest = sides.iter().position(|&side| side == *sides.iter().max().unwrap()).unwrap();
+    assert!(sides[largest..].windows(2).all(|pair| pair[0] >= pair[1]), "{sides:?}");
+    assert!(sides.iter().all(|&side| side % 2 == 1 && side <= 11) && sides[largest] > 5, "{sides:?}");
+    assert_eq!(*sides.last().unwrap(), 5, "{sides:?}");
+    for level in &output.report.levels {
+        assert!(2 * level.patch_size < level.width.min(level.height).min(96), "{level:?}");
+    }
+    // Off, or no larger than the patch size: 5 everywhere.
+    let plain = synthesize(&input, &Params::default().with_seed(2), &mut NoProgress).unwrap();
+    assert!(plain.report.levels.iter().all(|level| level.patch_size == 5));
+    for bad in [4, 33] {
+        let error = Params::default().with_coarse_patch_size(bad).validate().unwrap_err();
+        assert!(error.to_string().contains("coarse-patch-size"), "{error}");
+    }
+}

@@ -103,7 +103,8 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
 }
 
 /// Structure on the real textures of `data/real/stylize` (run with `--case structure`): each grown
-/// to twice its size with 5 × 5 patches (the default) and with 9 × 9 and 15 × 15 ones, and the
+/// to twice its size with 5 × 5 patches (the default), with 9 × 9 and 15 × 15 ones, and with
+/// patches from 11 × 11 or 15 × 15 at the coarsest level down to 5 × 5 (`coarse_patch_size`), and the
 /// nearest-patch distance at 15 × 15 (`motif_stylize::nearest_patch_distance`, 8-bit units
 /// squared, 100 output patches) of each, its sharpness over the exemplar's (below 1: washed out;
 /// the distance alone rewards blur) and seconds.
@@ -113,6 +114,8 @@ fn structure(bench: &Bench) -> anyhow::Result<Value> {
     for (name, kind) in [
         ("brick", "regular"),
         ("burlap", "regular"),
+        ("parque1", "regular"),
+        ("parque2", "regular"),
         ("walnut", "directional"),
         ("bark", "irregular"),
         ("stone33", "irregular"),
@@ -122,15 +125,16 @@ fn structure(bench: &Bench) -> anyhow::Result<Value> {
         let exemplar = motif_jobs::stylize::style_image_channels(&image);
         let (width, height) = (2 * exemplar.width(), 2 * exemplar.height());
         let mut runs = Map::new();
-        for patch in [5, 9, 15] {
-            let mut params = Params::default().with_seed(bench.seed);
-            params.patch_size = patch;
+        for (name, patch, coarse) in
+            [("patch_5", 5, 0), ("patch_9", 9, 0), ("patch_15", 15, 0), ("coarse_11", 5, 11), ("coarse_15", 5, 15)]
+        {
+            let params = Params::default().with_seed(bench.seed).with_patch_size(patch).with_coarse_patch_size(coarse);
             let input = Input::texture(exemplar.clone(), width, height);
             let (output, wall, _) = timed(&input, &params)?;
             let distance = motif_stylize::nearest_patch_distance(&output.image, &exemplar, 15, 100);
             let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&exemplar).max(1e-9);
             runs.insert(
-                format!("patch_{patch}"),
+                name.to_string(),
                 json!({ "nearest_patch_distance_15": distance, "sharpness_ratio": sharpness, "wall_s": wall }),
             );
         }

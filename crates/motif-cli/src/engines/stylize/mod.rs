@@ -39,6 +39,11 @@ pub struct SynthesisOptions {
     /// Patch side in pixels: odd, 3–31. Larger keeps bigger structures of the style.
     #[arg(long, value_name = "P", default_value_t = 5, allow_negative_numbers = true)]
     pub patch_size: usize,
+    /// Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at
+    /// the finest: odd, up to 31, or 0 for --patch-size everywhere. The coarse levels decide the
+    /// layout; larger patches there keep regular structures (bricks, weaves, parquet) whole.
+    #[arg(long, value_name = "P", default_value_t = 0)]
+    pub coarse_patch_size: usize,
     /// Pyramid levels, 0–32; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
     #[arg(long, value_name = "L", default_value_t = 0)]
     pub pyramid_levels: usize,
@@ -76,6 +81,7 @@ macro_rules! with_synthesis_options {
         job.style_weight = Some(options.style_weight);
         job.uniformity = Some(options.uniformity);
         job.patch_size = Some(options.patch_size);
+        job.coarse_patch_size = Some(options.coarse_patch_size);
         job.pyramid_levels = Some(options.pyramid_levels);
         job.search_vote_iters = Some(options.search_vote_iterations);
         job.patchmatch_iters = Some(options.patchmatch_iterations);
