@@ -79,6 +79,8 @@ mod tests;
 mod tests_mask;
 #[cfg(test)]
 mod tests_synthesis;
+#[cfg(test)]
+mod tests_video;
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
@@ -86,13 +88,13 @@ use serde::Serialize;
 pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
-pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion};
+pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
-    Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, flicker,
-    intervals, stylize_interval, stylize_video,
+    Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, intervals,
+    stylize_interval, stylize_video,
 };
 pub use zoom::zoom;
 

@@ -307,6 +307,28 @@ pub fn edge_guide(frame: &FloatImage) -> FloatImage {
     edges.blur()
 }
 
+/// Temporal flicker: the mean absolute difference between consecutive `frames` after motion
+/// compensation (`motion[i]` carries frame `i` to frame `i + 1`), over the pixels that were
+/// visible in both and the colour channels. 0 for fewer than two frames.
+pub fn flicker(frames: &[FloatImage], motion: &[MotionField]) -> f64 {
+    let mut total = 0.0;
+    let mut count = 0usize;
+    for (pair, carried) in frames.windows(2).zip(motion) {
+        let warped = carried.warp(&pair[0]);
+        let channels = warped.channels().min(3);
+        let stride = warped.channels();
+        for index in 0..carried.width * carried.height {
+            if !carried.came_from_inside(index) {
+                continue;
+            }
+            let (a, b) = (&warped.data()[index * stride..], &pair[1].data()[index * stride..]);
+            total += (0..channels).map(|c| f64::from((a[c] - b[c]).abs())).sum::<f64>() / channels as f64;
+            count += 1;
+        }
+    }
+    if count == 0 { 0.0 } else { total / count as f64 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -20,7 +20,7 @@ use motif_core::timing::{Clock, elapsed_ms};
 use motif_core::{FloatImage, Progress, SeedStreams};
 use serde::Serialize;
 
-use crate::motion::{MotionField, coordinate_guide, edge_guide, estimate_motion};
+use crate::motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 use crate::{Error, Guide, Input, Mask, Params, synthesize};
 
 /// The guide weights of video stylization (β of the map paper's Eq. 4, per guide).
@@ -585,92 +585,4 @@ fn composite(style: &FloatImage, kept: &FloatImage, hole: &[bool]) -> FloatImage
         }
     }
     out
-}
-
-/// Temporal flicker: the mean absolute difference between consecutive `frames` after motion
-/// compensation (`motion[i]` carries frame `i` to frame `i + 1`), over the pixels that were
-/// visible in both and the colour channels. 0 for fewer than two frames.
-pub fn flicker(frames: &[FloatImage], motion: &[MotionField]) -> f64 {
-    let mut total = 0.0;
-    let mut count = 0usize;
-    for (pair, carried) in frames.windows(2).zip(motion) {
-        let warped = carried.warp(&pair[0]);
-        let channels = warped.channels().min(3);
-        let stride = warped.channels();
-        for index in 0..carried.width * carried.height {
-            if !carried.came_from_inside(index) {
-                continue;
-            }
-            let (a, b) = (&warped.data()[index * stride..], &pair[1].data()[index * stride..]);
-            total += (0..channels).map(|c| f64::from((a[c] - b[c]).abs())).sum::<f64>() / channels as f64;
-            count += 1;
-        }
-    }
-    if count == 0 { 0.0 } else { total / count as f64 }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::tests::texture;
-    use motif_core::NoProgress;
-
-    #[test]
-    fn intervals_run_from_key_to_key_and_out_to_both_ends() {
-        let ends = |list: Vec<Interval>| -> Vec<(usize, usize, bool, bool)> {
-            list.into_iter().map(|i| (i.first, i.last, i.starts_at_key, i.ends_at_key)).collect()
-        };
-        assert_eq!(ends(intervals(10, &[0])), vec![(0, 9, true, false)]);
-        assert_eq!(ends(intervals(10, &[3, 9])), vec![(0, 3, false, true), (3, 9, true, true)]);
-        assert_eq!(ends(intervals(10, &[0, 4, 6])), vec![(0, 4, true, true), (4, 6, true, true), (6, 9, true, false)]);
-        assert_eq!(ends(intervals(1, &[0])), vec![(0, 0, true, false)]);
-    }
-
-    #[test]
-    fn a_static_sequence_keeps_the_keyframes_stylization_in_every_frame() {
-        let frame = texture(56, 44, 3, 8);
-        let style = texture(56, 44, 3, 9);
-        let input =
-            VideoInput { frames: vec![frame; 5], keys: vec![Keyframe { frame: 2, style: style.clone() }], mask: None };
-        let output =
-            stylize_video(&input, &Params::default().with_seed(4), &VideoParams::default(), &mut NoProgress).unwrap();
-        assert_eq!(output.frames.len(), 5);
-        assert_eq!(output.frames[2], style);
-        for (index, frame) in output.frames.iter().enumerate() {
-            let difference = frame.data().iter().zip(style.data()).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
-            assert!(difference < 1.5 / 255.0, "frame {index} differs from the keyframe's style by {difference}");
-        }
-        assert!(output.report.flicker < 1e-3, "flicker {}", output.report.flicker);
-        assert_eq!(output.report.intervals.len(), 2);
-    }
-
-    #[test]
-    fn bad_sequences_are_refused_with_the_frame_named() {
-        let frame = texture(24, 20, 3, 1);
-        let params = Params::default();
-        let video = VideoParams::default();
-        let run = |frames: Vec<FloatImage>, keys: Vec<Keyframe>| {
-            stylize_video(&VideoInput { frames, keys, mask: None }, &params, &video, &mut NoProgress).unwrap_err()
-        };
-        let key = |frame: usize| Keyframe { frame, style: frame_like(&frame_of(24, 20)) };
-        assert_eq!(run(vec![], vec![key(0)]), Error::NoFrames);
-        assert_eq!(run(vec![frame.clone(); 3], vec![]), Error::NoKeyframes);
-        assert_eq!(run(vec![frame.clone(); 3], vec![key(3)]), Error::KeyframeOutOfRange { frame: 3, frames: 3 });
-        assert_eq!(run(vec![frame.clone(); 3], vec![key(2), key(1)]), Error::KeyframeOrder { frame: 1, previous: 2 });
-        let message = run(vec![frame.clone(), texture(20, 20, 3, 1)], vec![key(0)]).to_string();
-        assert!(message.contains("frame 1") && message.contains("20×20×3"), "{message}");
-        let small = Keyframe { frame: 0, style: texture(12, 20, 3, 1) };
-        let message = run(vec![frame.clone(); 2], vec![small]).to_string();
-        assert!(message.contains("keyframe 0") && message.contains("12×20"), "{message}");
-        let all = VideoInput { frames: vec![frame; 2], keys: vec![key(0)], mask: Some(vec![true; 24 * 20]) };
-        assert_eq!(all.validate(&params).unwrap_err(), Error::MaskCoverage("every pixel"));
-    }
-
-    fn frame_of(width: usize, height: usize) -> FloatImage {
-        texture(width, height, 3, 2)
-    }
-
-    fn frame_like(image: &FloatImage) -> FloatImage {
-        image.clone()
-    }
 }
