@@ -187,3 +187,40 @@ fn bad_sequences_and_keyframes_are_refused_with_the_file_or_flag_named() {
     // Nothing was written by any failed run.
     assert_eq!(std::fs::read_dir(d.join("out")).unwrap().count(), 0);
 }
+
+#[test]
+fn a_mask_keeps_every_frame_outside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    footage(d, 0);
+    // Synthesize the left half only.
+    let mut mask = RgbaImage::new(96, 64);
+    for (i, pixel) in mask.pixels_mut().iter_mut().enumerate() {
+        *pixel = if i % 96 < 48 { [255, 255, 255, 255] } else { [0, 0, 0, 255] };
+    }
+    motif_io::write_png(&d.join("mask.png"), &mask).unwrap();
+    ok(&motif(
+        d,
+        &["video", "--frames", "in/%04d.png", "--key", "0:key.png", "--out", "out/%04d.png", "--mask", "mask.png"],
+    ));
+    let key = motif_io::read_image(&d.join("key.png")).unwrap();
+    for index in 0..7 {
+        let name = format!("{index:04}.png");
+        let (frame, out) = (
+            motif_io::read_image(&d.join("in").join(&name)).unwrap(),
+            motif_io::read_image(&d.join("out").join(&name)).unwrap(),
+        );
+        for (i, (kept, made)) in frame.pixels().iter().zip(out.pixels()).enumerate() {
+            if i % 96 >= 48 {
+                assert_eq!(kept, made, "frame {index}, pixel {i} outside the mask");
+            }
+        }
+        // In the keyframe's own frame, the hole is the keyframe's style.
+        let inside = |image: &RgbaImage| -> f64 {
+            image.pixels().iter().enumerate().filter(|(i, _)| i % 96 < 48).map(|(_, p)| f64::from(p[0])).sum::<f64>()
+        };
+        if index == 0 {
+            assert!((inside(&out) - inside(&key)).abs() < 1.0, "frame 0's hole is not the keyframe's style");
+        }
+    }
+}
