@@ -142,15 +142,17 @@ impl RgbaImage {
 
     /// Converts to a 4-channel float image with values in `[0, 1]` (straight alpha).
     pub fn to_float(&self) -> FloatImage {
-        let data = self.pixels.iter().flat_map(|pixel| pixel.map(|c| f32::from(c) / 255.0)).collect();
+        // Sized up front: collecting a flat map grows by doubling, up to twice the image.
+        let mut data = Vec::with_capacity(self.pixels.len() * 4);
+        data.extend(self.pixels.iter().flat_map(|pixel| pixel.map(|c| f32::from(c) / 255.0)));
         FloatImage { width: self.width, height: self.height, channels: 4, data }
     }
 
     /// Converts to a float image keeping only the listed channels (0 = red ... 3 = alpha),
     /// values in `[0, 1]`.
     pub fn to_float_channels(&self, channels: &[usize]) -> FloatImage {
-        let data =
-            self.pixels.iter().flat_map(|pixel| channels.iter().map(move |&c| f32::from(pixel[c]) / 255.0)).collect();
+        let mut data = Vec::with_capacity(self.pixels.len() * channels.len());
+        data.extend(self.pixels.iter().flat_map(|pixel| channels.iter().map(move |&c| f32::from(pixel[c]) / 255.0)));
         FloatImage { width: self.width, height: self.height, channels: channels.len(), data }
     }
 
@@ -361,6 +363,21 @@ impl FloatImage {
             pyramid.push(next);
         }
         pyramid
+    }
+
+    /// The levels of [`gaussian_pyramid`](Self::gaussian_pyramid) above this one (without a copy
+    /// of this image): at most `levels − 1` images, coarser and coarser.
+    pub fn coarser_levels(&self, levels: usize, min_size: usize) -> Vec<FloatImage> {
+        let mut coarser: Vec<FloatImage> = Vec::new();
+        while coarser.len() + 1 < levels {
+            let last = coarser.last().unwrap_or(self);
+            if last.width.div_ceil(2) < min_size || last.height.div_ceil(2) < min_size {
+                break;
+            }
+            let next = last.downsample();
+            coarser.push(next);
+        }
+        coarser
     }
 
     /// Stacks the channels of several images of the same size into one image.

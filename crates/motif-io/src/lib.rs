@@ -111,6 +111,21 @@ pub fn physical_memory() -> Option<u64> {
     }
 }
 
+/// Resets this process's peak resident memory (Linux: `5` into `/proc/self/clear_refs`), so that
+/// [`peak_memory`] then gives the peak of what runs next. False where that is not possible.
+pub fn reset_peak_memory() -> bool {
+    std::fs::write("/proc/self/clear_refs", b"5").is_ok()
+}
+
+/// This process's peak resident memory, bytes (`VmHWM` in `/proc/self/status`); `None` on
+/// other systems.
+pub fn peak_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = text.lines().find(|line| line.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
 /// True when `a` and `b` name the same file (or would, once `b` is created): compares canonical
 /// paths, canonicalizing the parent directory for a file that does not exist yet.
 pub fn same_file(a: &Path, b: &Path) -> bool {

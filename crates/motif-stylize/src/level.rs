@@ -68,8 +68,9 @@ pub(crate) struct LevelSpec<'a> {
     pub style: FloatImage,
     /// Per style channel: α / style channels.
     pub style_weights: &'a [f32],
-    pub source_guides: Option<&'a FloatImage>,
-    pub target_guides: Option<&'a FloatImage>,
+    /// The source guides (style's size) and target guides (target size), one image each.
+    pub source_guides: Vec<&'a FloatImage>,
+    pub target_guides: Vec<&'a FloatImage>,
     /// Per stacked guide channel: β_i / channels of guide i.
     pub guide_weights: &'a [f32],
     pub target_size: (usize, usize),
@@ -99,22 +100,28 @@ impl Level {
                 for (c, value) in spec.style.pixel(x, y).iter().enumerate() {
                     out[c] = quantize(*value, scales[c]);
                 }
-                if let Some(guides) = spec.source_guides {
-                    for (c, value) in guides.pixel(x, y).iter().enumerate() {
-                        out[style_channels + c] = quantize(*value, scales[style_channels + c]);
+                let mut c = style_channels;
+                for guide in &spec.source_guides {
+                    for value in guide.pixel(x, y) {
+                        out[c] = quantize(*value, scales[c]);
+                        c += 1;
                     }
                 }
             }
         });
         let (target_width, target_height) = spec.target_size;
-        let mut target_guides = Vec::new();
-        if let Some(guides) = spec.target_guides {
-            target_guides = guides
-                .data()
-                .iter()
-                .enumerate()
-                .map(|(i, &v)| quantize(v, scales[style_channels + i % guide_channels]))
-                .collect();
+        let mut target_guides = Vec::with_capacity(target_width * target_height * guide_channels);
+        if !spec.target_guides.is_empty() {
+            for index in 0..target_width * target_height {
+                let mut c = style_channels;
+                for guide in &spec.target_guides {
+                    let channels = guide.channels();
+                    for value in &guide.data()[index * channels..(index + 1) * channels] {
+                        target_guides.push(quantize(*value, scales[c]));
+                        c += 1;
+                    }
+                }
+            }
         }
         let padded_width = target_width + 2 * radius;
         let padded_height = target_height + 2 * radius;

@@ -364,13 +364,10 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         let weight = guide.weight.unwrap_or(1.0 / guide_count as f32);
         guide_weights.extend(channel_weights(weight, guide.source.channels()));
     }
-    let (source_guides, target_guides) = if guide_count == 0 {
-        (None, None)
-    } else {
-        let sources: Vec<&FloatImage> = input.guides.iter().map(|g| &g.source).collect();
-        let targets: Vec<&FloatImage> = input.guides.iter().map(|g| &g.target).collect();
-        (Some(FloatImage::stack(&sources)?), Some(FloatImage::stack(&targets)?))
-    };
+    // Guides stay as given (one borrowed image each, no stacked copy): the level stacks their
+    // channels as it quantizes them.
+    let source_guides: Vec<&FloatImage> = input.guides.iter().map(|g| &g.source).collect();
+    let target_guides: Vec<&FloatImage> = input.guides.iter().map(|g| &g.target).collect();
     let wants_segments = params.segments.is_some() || input.textures.is_some();
     let labels = if wants_segments {
         let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
@@ -500,8 +497,8 @@ pub fn presynthesize(
         }
         let problem = synthesis::Problem {
             style: &input.style,
-            source_guides: None,
-            target_guides: None,
+            source_guides: Vec::new(),
+            target_guides: Vec::new(),
             style_weights: style_weights.clone(),
             guide_weights: Vec::new(),
             target_size: input.size,

@@ -14,8 +14,9 @@ use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, 
 /// A validated problem in the engine's terms (built by the public entry points).
 pub(crate) struct Problem<'a> {
     pub style: &'a FloatImage,
-    pub source_guides: Option<FloatImage>,
-    pub target_guides: Option<FloatImage>,
+    /// One image per guide (none without guides), each with its own channels.
+    pub source_guides: Vec<&'a FloatImage>,
+    pub target_guides: Vec<&'a FloatImage>,
     pub style_weights: Vec<f32>,
     pub guide_weights: Vec<f32>,
     pub target_size: (usize, usize),
@@ -61,6 +62,23 @@ fn fitting_levels(sizes: &[(usize, usize)], min_side: usize) -> usize {
             return levels;
         }
         levels += 1;
+    }
+}
+
+/// A Gaussian pyramid over a borrowed finest level.
+struct Pyramid<'a> {
+    finest: &'a FloatImage,
+    coarser: Vec<FloatImage>,
+}
+
+impl<'a> Pyramid<'a> {
+    fn new(finest: &'a FloatImage, levels: usize) -> Self {
+        Self { finest, coarser: finest.coarser_levels(levels, 1) }
+    }
+
+    /// Level `index`, 0 = finest.
+    fn level(&self, index: usize) -> &FloatImage {
+        if index == 0 { self.finest } else { &self.coarser[index - 1] }
     }
 }
 
@@ -146,10 +164,14 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
         return Ok(composition_only(composed, source_size, patch, start));
     }
-    let style_pyramid = problem.style.gaussian_pyramid(levels, 1);
-    let source_guide_pyramid = problem.source_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
-    let target_guide_pyramid = problem.target_guides.as_ref().map(|g| g.gaussian_pyramid(levels, 1));
-    let keep_pyramid = problem.mask.map(|mask| mask.keep.gaussian_pyramid(levels, 1));
+    // Pyramids hold the coarser levels only; level 0 is the problem's own image (no copy of the
+    // largest images: the stacked guides are the biggest buffers of a run).
+    let style_pyramid = Pyramid::new(problem.style, levels);
+    let source_guide_pyramids: Vec<Pyramid<'_>> =
+        problem.source_guides.iter().map(|g| Pyramid::new(g, levels)).collect();
+    let target_guide_pyramids: Vec<Pyramid<'_>> =
+        problem.target_guides.iter().map(|g| Pyramid::new(g, levels)).collect();
+    let keep_pyramid = problem.mask.map(|mask| Pyramid::new(&mask.keep, levels));
     let holes: Option<Vec<Vec<bool>>> =
         problem.mask.map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect());
     let spec = |level: usize, patch: usize| -> LevelSpec<'_> {
@@ -172,10 +194,10 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         };
         LevelSpec {
             patch,
-            style: style_pyramid[level].clone(),
+            style: style_pyramid.level(level).clone(),
             style_weights: &problem.style_weights,
-            source_guides: source_guide_pyramid.as_ref().map(|p| &p[level]),
-            target_guides: target_guide_pyramid.as_ref().map(|p| &p[level]),
+            source_guides: source_guide_pyramids.iter().map(|p| p.level(level)).collect(),
+            target_guides: target_guide_pyramids.iter().map(|p| p.level(level)).collect(),
             guide_weights: &problem.guide_weights,
             target_size,
             tileable: problem.tileable,
@@ -215,7 +237,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
             (Some((composed, _)), _) => composed.clone(),
             (None, Some(keep)) => {
                 // The kept pixels of this level; the hole from the field (random or upsampled).
-                let mut fresh = keep[level_index].clone();
+                let mut fresh = keep.level(level_index).clone();
                 vote(&level, &field, &mut fresh, false);
                 fresh
             }

@@ -52,7 +52,7 @@ fn timed(input: &Input, params: &Params) -> anyhow::Result<(Output, f64, Option<
 /// Figures for `motif bench`: CPU-seconds per megapixel on the two ebsynth-like workloads,
 /// Table 1 (band 0/2/4/8/full on a 360×360 5-segment map, one thread), PatchMatch/exact energy.
 pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
-    // `--case 0.15mp`, `1mp`, `table1` or `exact` times only those parts (default: all four).
+    // `--case 0.15mp`, `1mp`, `table1`, `exact` or `memory` runs only those parts (default: all).
     let selected = |key: &str| bench.selects(key, "generated");
     let mut figures = Map::new();
     let cases: [(&str, &str, usize, usize, usize); 2] = if bench.quick {
@@ -93,6 +93,9 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if selected("exact") {
         figures.insert("patchmatch_vs_exact".into(), patchmatch_vs_exact(bench)?);
     }
+    if selected("memory") {
+        figures.insert("memory_0.8mp_three_guides".into(), memory(bench)?);
+    }
     if bench.names("video") {
         figures.insert("video".into(), super::video_bench::video(bench)?);
     }
@@ -100,6 +103,38 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
         figures.insert("structure".into(), structure(bench)?);
     }
     Ok(Value::Object(figures))
+}
+
+/// Peak memory on ebsynth's `facestyle` shape (issue 16): a 900 × 900 style (0.81 MP) with three
+/// guides, two grey and one RGB, to a 900 × 900 target. The peak is the process's resident memory
+/// while the inputs are held and the synthesis runs (Linux; the bench's own baseline included);
+/// ebsynth peaks at about 91 MB on that example.
+fn memory(bench: &Bench) -> anyhow::Result<Value> {
+    let size = if bench.quick { 200 } else { 900 };
+    let grey = |seed: u64| samples::smooth_field(size, size, 1, seed);
+    let source = samples::map_guide(size, size, 5, bench.seed);
+    let target = samples::map_guide(size, size, 5, bench.seed + 1);
+    let style = samples::crayon_style(&source, bench.seed + 2);
+    let guides = vec![
+        Guide { source: grey(bench.seed + 3), target: grey(bench.seed + 4), weight: None },
+        Guide { source: grey(bench.seed + 5), target: grey(bench.seed + 6), weight: None },
+        Guide { source, target, weight: None },
+    ];
+    let input = Input::guided(style, guides);
+    let params = Params::default().with_seed(bench.seed);
+    let before = motif_io::peak_memory();
+    let reset = motif_io::reset_peak_memory();
+    let (output, wall, _) = timed(&input, &params)?;
+    let peak = if reset { motif_io::peak_memory() } else { None };
+    Ok(json!({
+        "size": [size, size],
+        "channels": { "style": 3, "guide": 5 },
+        "peak_resident_bytes": peak,
+        "peak_before_the_case_bytes": before,
+        "estimated_memory_bytes": output.report.estimated_memory_bytes,
+        "wall_s": wall,
+        "ebsynth_peak_bytes": "about 91 MB (facestyle)",
+    }))
 }
 
 /// Structure on the real textures of `data/real/stylize` (run with `--case structure`): each grown
