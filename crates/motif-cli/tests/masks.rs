@@ -1,23 +1,12 @@
 //! `motif inpaint`, and `--mask` with `--keep` on `motif texture` and `motif stylize`, end to end
 //! on real textures (GIMP's patterns, data/real/stylize).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
+use common::{error_of, motif, ok};
 use motif_core::RgbaImage;
-
-fn motif(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_motif")).current_dir(dir).args(args).output().unwrap()
-}
-
-fn ok(output: &Output) {
-    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
-}
-
-fn error_of(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure");
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 fn corpus(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/stylize").join(name)

@@ -2,24 +2,13 @@
 //! data/real/stylize) with a keyframe painted over a frame, a static sequence, intervals run
 //! apart, and bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
+use std::path::{Path, PathBuf};
+
+use common::{error_of, motif, ok};
 use motif_core::{FloatImage, RgbaImage};
 use motif_stylize::samples::{CameraPath, Footage, painted_keyframe, pan_and_zoom};
-
-fn motif(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_motif")).current_dir(dir).args(args).output().unwrap()
-}
-
-fn ok(output: &Output) {
-    assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
-}
-
-fn error_of(output: &Output) -> String {
-    assert!(!output.status.success(), "expected a failure");
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
 
 fn corpus(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/stylize").join(name)

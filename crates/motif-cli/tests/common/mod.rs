@@ -1,4 +1,4 @@
-//! Helpers shared by the `motif points` test files (each test file uses a subset: the rest would
+//! Helpers shared by the CLI test files (each test file uses a subset: the rest would
 //! be dead code in that crate).
 #![allow(dead_code)]
 
