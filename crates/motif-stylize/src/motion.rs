@@ -85,7 +85,7 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
         .with_style_weight(0.0)
         .with_uniformity(0.0)
         .with_patch_size(MOTION_PATCH)
-        .with_search_vote_iterations(2)
+        .with_search_vote_iterations(1)
         .with_stop_threshold(0.0)
         .with_seed(SeedStreams::new(seed).child("motion", 0).seed());
     let output = synthesize(&Input::guided(luminance(&colour_earlier), guides), &params, &mut NoProgress)?;
@@ -131,8 +131,7 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
         .into_par_iter()
         .map(|index| refine(&planes, &late, index % width, index / width, chosen[index]))
         .collect();
-    let m = median_filtered(&refined, width, height);
-    Ok(MotionField { width, height, offsets: m })
+    Ok(MotionField { width, height, offsets: median_filtered(&refined, width, height) })
 }
 
 /// The centre of the nearest whole motion patch along one axis.
