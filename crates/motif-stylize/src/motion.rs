@@ -88,7 +88,8 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
         .with_search_vote_iterations(1)
         .with_stop_threshold(0.0)
         .with_seed(SeedStreams::new(seed).child("motion", 0).seed());
-    let output = synthesize(&Input::guided(luminance(&colour_earlier), guides), &params, &mut NoProgress)?;
+    let early = luminance(&colour_earlier);
+    let output = synthesize(&Input::guided(early.clone(), guides), &params, &mut NoProgress)?;
     let integer: Vec<[isize; 2]> = output
         .field
         .matches
@@ -100,7 +101,6 @@ pub fn estimate_motion(earlier: &FloatImage, later: &FloatImage, seed: u64) -> R
             None => [0, 0],
         })
         .collect();
-    let early = luminance(&colour_earlier);
     let late = luminance(&colour_later);
     // The patch search compares whole patches only, which leaves some pixels near the borders
     // (and a few elsewhere) at a poor match: each pixel keeps, of its own match, no motion and

@@ -355,7 +355,9 @@ pub fn stylize_interval(
         progress.report("motion", i as f64 / (2 * last.max(1)) as f64);
         let time = Clock::now();
         let global = (first_frame + i) as u64;
-        forward.push(estimate_motion(&frames[i], &frames[i + 1], streams.child("forward motion", global).seed())?);
+        if first_style.is_some() {
+            forward.push(estimate_motion(&frames[i], &frames[i + 1], streams.child("forward motion", global).seed())?);
+        }
         if last_style.is_some() {
             backward.push(estimate_motion(
                 &frames[i + 1],
@@ -392,7 +394,15 @@ pub fn stylize_interval(
         (None, Some(b)) => b.into_iter().map(|r| r.image).collect(),
         (None, None) => return Err(Error::NoKeyframes),
     };
-    let flicker = flicker(&out, &forward);
+    // Measured along whichever motion the passes estimated: backward fields carry frame i + 1 to
+    // frame i, so the frames are walked in reverse with them.
+    let flicker = if first_style.is_some() {
+        flicker(&out, &forward)
+    } else {
+        let reversed: Vec<FloatImage> = out.iter().rev().cloned().collect();
+        let motion: Vec<MotionField> = backward.iter().rev().cloned().collect();
+        flicker(&reversed, &motion)
+    };
     Ok(IntervalOutput {
         report: IntervalReport {
             interval,
