@@ -94,7 +94,7 @@ pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
     Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, intervals,
-    stylize_interval, stylize_video,
+    mean_flicker, stylize_interval, stylize_video,
 };
 pub use zoom::zoom;
 

@@ -1,20 +1,17 @@
 //! Video stylization from keyframes, after Jamriška et al. 2019, "Stylizing Video by Example".
 //!
-//! A keyframe is a frame the artist painted over. Every other frame is synthesized from the
-//! nearest keyframes with four guides (§3 of that paper):
+//! A keyframe is a frame the artist painted over. Other frames come from the nearest keyframes
+//! with four guides (§3 of that paper):
 //! - the frames' colours (keyframe against the frame), as ebsynth's video guide;
 //! - G_edge, the frame's blurred edges ([`edge_guide`]);
-//! - G_pos, the keyframe's pixel coordinates carried frame by frame along the motion, so a
-//!   patch of the style stays on the surface it was painted on ([`coordinate_guide`]);
-//! - G_temp, the previous output frame carried along the motion, against the style itself, so
-//!   that consecutive frames agree where their content agrees (temporal coherence).
+//! - G_pos, the keyframe's coordinates carried along the motion ([`coordinate_guide`]);
+//! - G_temp, the previous output carried along the motion, against the style (temporal coherence).
 //!
 //! Synthesis runs forward from a keyframe and backward from the next one; between two
 //! keyframes the two results are blended per pixel, weighted by how far the frame is from each
-//! keyframe and by each result's synthesis error (the paper chooses the result with the lower
-//! error; the weighted blend avoids seams where the choice flips). The frames between two
-//! keyframes form one [`Interval`], independent of every other interval, so front ends can run
-//! intervals in parallel or on other machines and get the same bytes.
+//! keyframe and by each result's synthesis error (the paper picks the lower error; the blend
+//! avoids seams where the pick flips). The frames between two keyframes form one [`Interval`],
+//! independent of every other, so front ends can run intervals apart and get the same bytes.
 
 use motif_core::timing::{Clock, elapsed_ms};
 use motif_core::{FloatImage, Progress, SeedStreams};
@@ -294,9 +291,7 @@ pub fn stylize_video(
         reports.push(part.report);
     }
     let total_ms = elapsed_ms(start);
-    let pairs: usize = reports.iter().map(|r| r.interval.last - r.interval.first).sum();
-    let flicker = reports.iter().map(|r| r.flicker * (r.interval.last - r.interval.first) as f64).sum::<f64>()
-        / pairs.max(1) as f64;
+    let flicker = mean_flicker(&reports);
     let synthesized: usize = reports.iter().map(|r| r.synthesized_frames).sum();
     Ok(VideoOutput {
         frames: frames.into_iter().map(|f| f.expect("every frame is in an interval")).collect(),
@@ -309,6 +304,13 @@ pub fn stylize_video(
             flicker,
         },
     })
+}
+
+/// A whole video's flicker from its intervals', weighted by their pairs of consecutive frames.
+pub fn mean_flicker(reports: &[IntervalReport]) -> f64 {
+    let pairs: usize = reports.iter().map(|r| r.interval.last - r.interval.first).sum();
+    let weighted: f64 = reports.iter().map(|r| r.flicker * (r.interval.last - r.interval.first) as f64).sum();
+    weighted / pairs.max(1) as f64
 }
 
 /// The frames of one interval and its figures.

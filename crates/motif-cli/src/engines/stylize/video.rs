@@ -8,6 +8,7 @@ use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_io::FramePattern;
 use motif_jobs::stylize::{VideoJob, hole_of, video_frame, video_styles};
+use motif_stylize::{IntervalReport, mean_flicker};
 use serde_json::json;
 
 use super::{SynthesisOptions, load};
@@ -189,25 +190,17 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
             motif_io::write_png(&out.path(numbers[position]), &RgbaImage::from_float(image))?;
             written.push(position);
         }
-        reports.push(json!({
-            "interval": i + 1,
-            "frames": [first_number, last_number],
-            "figures": output.report,
-        }));
+        reports.push((i + 1, [first_number, last_number], output.report));
     }
-    let synthesized: usize =
-        reports.iter().map(|r| r["figures"]["synthesized_frames"].as_u64().unwrap_or(0) as usize).sum();
-    let motion_ms: f64 = reports.iter().map(|r| r["figures"]["motion_ms"].as_f64().unwrap_or(0.0)).sum();
-    let synthesis_ms: f64 = reports.iter().map(|r| r["figures"]["synthesis_ms"].as_f64().unwrap_or(0.0)).sum();
-    let pairs: f64 = chosen.iter().map(|&i| (intervals[i].last - intervals[i].first) as f64).sum();
-    let flicker = reports
-        .iter()
-        .zip(&chosen)
-        .map(|(r, &i)| {
-            r["figures"]["flicker"].as_f64().unwrap_or(0.0) * (intervals[i].last - intervals[i].first) as f64
-        })
-        .sum::<f64>()
-        / pairs.max(1.0);
+    let figures: Vec<IntervalReport> = reports.iter().map(|(_, _, report)| report.clone()).collect();
+    let synthesized: usize = figures.iter().map(|r| r.synthesized_frames).sum();
+    let motion_ms: f64 = figures.iter().map(|r| r.motion_ms).sum();
+    let synthesis_ms: f64 = figures.iter().map(|r| r.synthesis_ms).sum();
+    let flicker = mean_flicker(&figures);
+    let reports: Vec<_> = reports
+        .into_iter()
+        .map(|(interval, frames, figures)| json!({ "interval": interval, "frames": frames, "figures": figures }))
+        .collect();
     let seconds_per_frame = (motion_ms + synthesis_ms) / 1000.0 / synthesized.max(1) as f64;
     context.figure("frames", frames.len());
     context.figure("keyframes", keys.iter().map(|(p, _)| numbers[*p]).collect::<Vec<_>>());
