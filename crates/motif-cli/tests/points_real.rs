@@ -89,19 +89,28 @@ fn small_real_patterns_keep_their_density_and_beat_a_random_set() {
 
 /// With the default refinement only the seams between patches move: the points copied into
 /// patch interiors come out exactly where the copies alone put them, and there are many of them.
+/// The pair-statistics refinement after it moves only the points within its band of the seams.
 /// Moving every point leaves far fewer in place.
 #[test]
 fn patch_interiors_stay_as_copied() {
-    let case =
-        |refine: &str| run_case_with("swedishpines.csv", "32", "box:192,200", "patches", "3", &["--refine", refine]);
-    let (_, copies) = case("none");
+    let case = |refine: &str, statistics: &str| {
+        let extra = ["--refine", refine, "--statistics-iterations", statistics];
+        run_case_with("swedishpines.csv", "32", "box:192,200", "patches", "3", &extra)
+    };
+    let (_, copies) = case("none", "0");
     let copied: std::collections::BTreeSet<&str> = copies.lines().skip(1).collect();
-    let (report, seams) = case("seams");
+    let (report, seams) = case("seams", "0");
     let interiors = report["patch_interior_points"].as_u64().unwrap() as usize;
     let kept = seams.lines().skip(1).filter(|l| copied.contains(l)).count();
     assert!(interiors >= copied.len() / 5, "{interiors} interior points of {}", copied.len());
     assert!(kept >= interiors, "{kept} points in place, {interiors} interior points");
-    let (everywhere_report, everywhere) = case("everywhere");
+    let (refined_report, refined) = case("seams", "40");
+    let movable = refined_report["pair_statistics"]["movable_points"].as_u64().unwrap() as usize;
+    let output_points = refined_report["output_points"].as_u64().unwrap() as usize;
+    let refined_kept = refined.lines().skip(1).filter(|l| copied.contains(l)).count();
+    assert!(movable < output_points, "{movable} of {output_points} points movable");
+    assert!(refined_kept + movable >= output_points, "{refined_kept} in place, {movable} movable of {output_points}");
+    let (everywhere_report, everywhere) = case("everywhere", "0");
     assert_eq!(everywhere_report["patch_interior_points"].as_u64(), Some(0));
     let moved_kept = everywhere.lines().skip(1).filter(|l| copied.contains(l)).count();
     assert!(moved_kept < kept / 2, "{moved_kept} in place when every point moves, {kept} with seams only");

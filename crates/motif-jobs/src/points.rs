@@ -99,6 +99,9 @@ pub struct PointsJob {
     /// Which points move after a patch initialization: `seams`, `everywhere` or `none`.
     #[serde(default)]
     pub refine: Option<Refinement>,
+    /// Gradient steps of the pair-statistics refinement (default 40; 0 turns it off).
+    #[serde(default)]
+    pub statistics_iterations: Option<usize>,
     /// The exemplar's observation window: sizes from the origin (one per axis) or both corners.
     #[serde(default)]
     pub exemplar_window: Option<Vec<f64>>,
@@ -186,6 +189,7 @@ impl PointsJob {
             patch_candidates: None,
             patch_balance: None,
             refine: None,
+            statistics_iterations: None,
             exemplar_window: None,
             attributes: None,
             discrete: Vec::new(),
@@ -297,6 +301,7 @@ impl PointsJob {
             .with_patch_candidates(self.patch_candidates.unwrap_or(defaults.patch_candidates))
             .with_patch_balance(self.patch_balance.unwrap_or(defaults.patch_balance))
             .with_refinement(self.refine.unwrap_or(defaults.refinement))
+            .with_statistics_iterations(self.statistics_iterations.unwrap_or(defaults.statistics_iterations))
             .with_exemplar_window(exemplar_window)
             .with_continuous_attributes(self.continuous.clone())
             .with_attribute_weights(self.attribute_weight.iter().map(|(name, w)| (name.clone(), *w)).collect())
@@ -358,6 +363,7 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
         "fixed_points": report.fixed_points,
         "patch_interior_points": report.patch_interior_points,
         "patch_usage_variation": report.patch_usage_variation,
+        "pair_statistics": report.pair_statistics,
         "shrink": report.shrink,
         "sigma": report.sigma,
         "neighbourhood": report.neighbourhood,

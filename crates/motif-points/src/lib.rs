@@ -83,6 +83,7 @@ mod matching;
 mod merging;
 mod mesh_surface;
 mod model;
+mod pair_statistics;
 mod pairs;
 mod params;
 mod points;
@@ -109,6 +110,7 @@ mod volume;
 
 pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};
+pub use pair_statistics::StatisticsRefinement;
 pub use params::{
     Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, SurfaceDirections,
     Window,

@@ -258,6 +258,10 @@ pub struct Params {
     /// sparse irregular pattern's box is smaller than the window it was observed in, so its
     /// density comes out too high: 15 % for 71 Swedish pines).
     pub exemplar_window: Option<(Vec<f64>, Vec<f64>)>,
+    /// Gradient steps of the pair-statistics refinement after the optimization (0–1000, default
+    /// 40; 0 turns it off): the movable points move so that the output's pair distances and
+    /// nearest-neighbour distances follow the exemplar's (flat domains at a uniform scale).
+    pub statistics_iterations: usize,
     /// Initialization (§5.2). Default patches.
     pub initialization: Initialization,
     /// Which points the optimization moves after a patch initialization. Default seams.
@@ -328,6 +332,7 @@ impl Default for Params {
             patch_candidates: 48,
             patch_balance: 0.5,
             exemplar_window: None,
+            statistics_iterations: 40,
             initialization: Initialization::Patches,
             refinement: Refinement::Seams,
             rotation: Field::None,
@@ -413,6 +418,7 @@ impl Params {
         check_range("patch-size", self.patch_size, 1.0, 20.0)?;
         check_count("patch-candidates", self.patch_candidates, 1, 256)?;
         check_range("patch-balance", self.patch_balance, 0.0, 10.0)?;
+        check_count("statistics-iterations", self.statistics_iterations, 0, 1000)?;
         check_range("attribute-weight", self.attribute_weight, 1e-6, 100.0)?;
         check_count("max-points", self.max_points, 1, 100_000_000)?;
         motif_core::memory::check_max_memory(self.max_memory)?;
@@ -451,6 +457,7 @@ motif_core::builders! { Params {
     with_patch_candidates => patch_candidates: usize,
     with_patch_balance => patch_balance: f64,
     with_exemplar_window => exemplar_window: Option<(Vec<f64>, Vec<f64>)>,
+    with_statistics_iterations => statistics_iterations: usize,
     with_initialization => initialization: Initialization,
     with_refinement => refinement: Refinement,
     with_rotation => rotation: Field,

@@ -13,6 +13,7 @@ use crate::linear::Vector;
 use crate::matching::{self, MatchSettings, SearchFields};
 use crate::merging::{self, MergeSettings};
 use crate::model::State;
+use crate::pair_statistics::StatisticsRefinement;
 use crate::params::{Domain, Evaluator, Input, Params, Refinement};
 use crate::setup::{Setup, count_bounds, measure_fidelity, prepare, to_point_set};
 use crate::{PointSet, reference, sampling};
@@ -81,6 +82,9 @@ pub struct Report {
     /// output points copy each exemplar point (0: all equally often, as in a tiled copy; `None`
     /// without patch initialization).
     pub patch_usage_variation: Option<f64>,
+    /// The pair-statistics refinement after the optimization (`None` where it does not apply:
+    /// surfaces, scale fields, `statistics_iterations` 0).
+    pub pair_statistics: Option<StatisticsRefinement>,
     /// Structure fidelity on the interior.
     pub fidelity: Fidelity,
     /// Milliseconds per stage.
@@ -346,6 +350,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
         }
     }
     progress.report("synthesis", 1.0);
+    timer.start("pair statistics");
+    let pair_statistics = crate::pair_statistics::refine_state(&setup, &mut state, params.statistics_iterations);
     timer.start("fidelity");
     let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
     let points = to_point_set(&setup, &state);
@@ -382,6 +388,7 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             fixed_points,
             patch_interior_points: setup.patch_interiors,
             patch_usage_variation: setup.patch_usage_variation,
+            pair_statistics,
             fidelity,
             stages_ms,
             surface: match &setup.region {

@@ -89,6 +89,11 @@ pub struct PointsArgs {
     /// none (the patches are the output).
     #[arg(long, value_enum, default_value = "seams")]
     pub refine: Refinement,
+    /// Gradient steps of the pair-statistics refinement after the optimization (0–1000; 0 turns it
+    /// off): the points the optimization moved move again so that the output's pair distances and
+    /// nearest-neighbour distances follow the exemplar's. Flat domains at a uniform scale only.
+    #[arg(long, value_name = "N", default_value_t = 40)]
+    pub statistics_iterations: usize,
     /// The window the exemplar was observed in: `W,H[,D]` from the origin, or its corners
     /// `X0,Y0,X1,Y1` (`X0,Y0,Z0,X1,Y1,Z1` in 3D). It must hold every point. The exemplar's density
     /// is its count over this window; without it, the bounding box grown by one mean spacing per
@@ -355,6 +360,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
         patch_candidates: Some(args.patch_candidates),
         patch_balance: Some(args.patch_balance),
         refine: Some(args.refine),
+        statistics_iterations: Some(args.statistics_iterations),
         exemplar_window: args.exemplar_window.clone(),
         attributes: args.attributes.clone(),
         discrete: args.discrete.clone(),
