@@ -57,16 +57,16 @@ fn figure(report: &serde_json::Value, set: &str, distance: &str) -> f64 {
     report["fidelity"][set][distance].as_f64().unwrap()
 }
 
-/// Density within ±10 % from patches and from random points; both distances below a uniform
-/// random set's from patches (fixed seeds): 71 Swedish pines (inhibited, 96 × 100 dm), and 62
-/// redwood seedlings (clustered, unit square), where both stay under half the random set's. From
-/// random points the output crystallizes and its distances are not bounded here; the 65 Japanese
-/// pines fall short from either start (see docs/points.md).
+/// Density within ±10 % from patches and from random points, and both distances under half the
+/// random set's (fixed seeds): 71 Swedish pines (inhibited, 96 × 100 dm) from either start, and 62
+/// redwood seedlings (clustered, unit square) from patches. From random points the redwood output
+/// does not form the clusters (its g(r) distance is 0.66–0.76 × the random set's), so only its
+/// density is bounded there (see docs/points.md).
 #[test]
 fn small_real_patterns_keep_their_density_and_beat_a_random_set() {
     let cases = [
-        ("swedishpines.csv", "32", "box:192,200", "patches", Some(1.0)),
-        ("swedishpines.csv", "32", "box:192,200", "random", None),
+        ("swedishpines.csv", "32", "box:192,200", "patches", Some(0.5)),
+        ("swedishpines.csv", "32", "box:192,200", "random", Some(0.5)),
         ("redwood.csv", "0.16", "box:2,2", "patches", Some(0.5)),
         ("redwood.csv", "0.16", "box:2,2", "random", None),
     ];

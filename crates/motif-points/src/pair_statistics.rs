@@ -510,3 +510,7 @@ fn movable_points<const D: usize>(state: &State<D>, positions: &[Vector<D>], gro
         })
         .collect()
 }
+
+#[cfg(test)]
+#[path = "tests_pair_statistics.rs"]
+mod tests;
