@@ -170,7 +170,12 @@ pub fn patches<const D: usize>(
         return Copies { sources, interiors: 0, usage_variation: 0.0 };
     }
     let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
+    // The tiles start at the lowest cell's border, not at the lowest point: tiles from the point
+    // left a strip of up to half a cell along the domain's lower borders empty (the last tiles
+    // reach past the upper borders anyway).
     let (low, high) = crate::grid::bounds(&points);
+    let half_cell = 0.5 * quadrature.spacing();
+    let low: Vector<D> = std::array::from_fn(|a| low[a] - half_cell);
     let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
     let total: usize = dims.iter().product();
     // Which tile each fill point belongs to, so that tiles outside the domain are skipped.

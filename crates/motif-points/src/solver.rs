@@ -351,7 +351,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     }
     progress.report("synthesis", 1.0);
     timer.start("pair statistics");
-    let pair_statistics = crate::pair_statistics::refine_state(&setup, &mut state, params.statistics_iterations);
+    let pair_statistics =
+        crate::pair_statistics::refine_state(&setup, &mut state, params.statistics_iterations, params.count_tolerance);
     timer.start("fidelity");
     let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
     let points = to_point_set(&setup, &state);

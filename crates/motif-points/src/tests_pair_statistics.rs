@@ -115,7 +115,7 @@ fn thinning_removes_movable_points_only_and_lowers_the_energy() {
     let movable: Vec<bool> = (0..points.len()).map(|i| i >= grid_points || i % 2 == 0).collect();
     let depth = box_depth(side as f64);
     let volume = (side * side) as f64;
-    let removed = thin(&target, &points, &movable, &depth, volume, 12);
+    let removed = thin(&target, &points, &movable, &depth, volume, 0, 12);
     assert!(!removed.is_empty() && removed.len() <= 12, "{} removed", removed.len());
     assert!(removed.windows(2).all(|w| w[0] < w[1]));
     assert!(removed.iter().all(|&i| movable[i]), "a fixed point was removed");
@@ -154,4 +154,19 @@ fn the_same_points_whatever_the_thread_count() {
         })
     };
     assert_eq!(run(1), run(2));
+}
+
+#[test]
+fn thinning_removes_what_is_required_even_when_the_energy_rises() {
+    // The exemplar's own structure: no removal improves it, yet 5 must go.
+    let side = 10usize;
+    let target = grid_target(side);
+    let points = jittered_grid(side, 1);
+    let movable = vec![true; points.len()];
+    let depth = box_depth(side as f64);
+    let volume = (side * side) as f64;
+    let improving = thin(&target, &points, &movable, &depth, volume, 0, 5);
+    let required = thin(&target, &points, &movable, &depth, volume, 5, 5);
+    assert!(improving.len() < 5, "{} removed although none was required", improving.len());
+    assert_eq!(required.len(), 5);
 }
