@@ -292,7 +292,7 @@ fn evaluate<const D: usize>(
 }
 
 /// Moves the movable points to lower the energy: at most `iterations` steps along the gradient,
-/// the fastest point moving `step` spacings, the step growing after a kept step and shrinking
+/// each point moving at most `step` spacings, the step growing after a kept step and shrinking
 /// after a refused one.
 pub fn refine<const D: usize>(
     target: &Target,
@@ -315,8 +315,14 @@ pub fn refine<const D: usize>(
         if longest == 0.0 || step < 1e-4 {
             break;
         }
-        let scale = step / longest;
+        // Points whose gradient is above the mean move `step`, the others in proportion: scaling
+        // by the longest gradient alone left most points nearly still (corpus, seeds 1-4: 25 of
+        // 44 runs within 1.5x the tiled copy; 27 with the mean; 24 and 26 with half and twice it).
+        let norms: Vec<f64> =
+            current.gradient.iter().zip(movable).filter(|(_, m)| **m).map(|(g, _)| linear::norm2(g).sqrt()).collect();
+        let reference = norms.iter().sum::<f64>() / norms.len().max(1) as f64;
         candidate.par_iter_mut().zip(positions.par_iter()).zip(&current.gradient).for_each(|((c, p), g)| {
+            let scale = step / linear::norm2(g).sqrt().max(reference);
             let moved = settle(&linear::add(p, &linear::scale(g, -scale)));
             *c = if allowed(&moved) { moved } else { *p };
         });
