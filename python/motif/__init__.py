@@ -380,7 +380,7 @@ def points(
     ``surface=(vertices, triangles)`` (a 2D exemplar laid on the mesh, 3D output on it, oriented
     by ``surface_directions``: ``"curvature"``, one (3,) direction, or a (V, 3) array of one vector
     per vertex). ``neighbourhood`` is δ.
-    Options: ``sigma``, ``init``, ``refine``, ``patch_size``, ``exemplar_window``,
+    Options: ``sigma``, ``init``, ``refine``, ``statistics_iterations`` (40; 0: off), ``patch_size``, ``exemplar_window``,
     ``attribute_weight``, ``max_points``, ``max_memory``, ... ``rotation_map`` and ``scale_map``
     (2D) are uint8 images over the domain's bounding box, as ``--rotation-map`` (360° × grey) and
     ``--scale-map`` (2^(2·grey − 1)). Returns a dict of 1-D arrays.

@@ -28,6 +28,10 @@
 //!   snapped (§4.4).
 //! - `sampling` (§5.1, Eq. 7): sampling control by the signed density difference P, within count
 //!   bounds around the exemplar's density.
+//! - `pair_statistics` (after Algorithm 1; not in the paper): the points near the seams between
+//!   copies move so that the output's ring counts and nearest-neighbour distances follow the
+//!   exemplar's (pair-correlation synthesis, Öztireli and Gross 2012), and a surplus over the
+//!   exemplar's density is thinned where that helps them most.
 //! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its
 //!   copy's source) or random points.
 //! - `setup`: the exemplar as features (attributes normalized, labels detected), the domain and
