@@ -269,6 +269,10 @@ fn windows_out_of_scale_and_huge_domains_are_refused_before_any_work() {
         (&["--neighbourhood", "2", "--sigma", "1e300", "--domain", "box:8,8"][..], "invalid sigma = 1e300"),
         (&["--neighbourhood", "2", "--domain", "box:1000,1000"][..], "more than the 150000 allowed (max-points)"),
         (&["--neighbourhood", "2", "--domain", "box:20,20", "--max-points", "100"][..], "more than the 100 allowed"),
+        (
+            &["--neighbourhood", "2", "--domain", "box:8,8", "--statistics-iterations", "5000"][..],
+            "invalid statistics-iterations = 5000: must be an integer between 0 and 1000",
+        ),
     ] {
         let stderr = run(extra);
         assert!(stderr.contains(expected) && !stderr.contains("internal error"), "{extra:?}: {stderr}");
