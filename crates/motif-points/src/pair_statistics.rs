@@ -45,8 +45,9 @@ const RAMP: f64 = 0.5 * RING;
 const BAND: f64 = 4.0;
 /// Weight of the nearest-neighbour term against the pair term.
 const NEAREST_WEIGHT: f64 = 1.0;
-/// First and largest step of the fastest-moving point, in spacings.
+/// First step, in spacings, of a point whose gradient is at least the mean.
 const FIRST_STEP: f64 = 0.02;
+/// The step grows after each kept step up to this.
 const LARGEST_STEP: f64 = 0.1;
 /// A surplus over the expected count below this fraction of it is left alone.
 const COUNT_SLACK: f64 = 0.01;
