@@ -170,19 +170,24 @@ pub fn patches<const D: usize>(
         return Copies { sources, interiors: 0, usage_variation: 0.0 };
     }
     let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
-    // The tiles start at the lowest cell's border, not at the lowest point: tiles from the point
-    // left a strip of up to half a cell along the domain's lower borders empty (the last tiles
-    // reach past the upper borders anyway).
+    // The tiles cover the cells the quadrature points stand for, not only the points: tiles from
+    // the lowest point left a strip of up to half a cell along the domain's lower borders empty.
     let (low, high) = crate::grid::bounds(&points);
     let half_cell = 0.5 * quadrature.spacing();
-    let low: Vector<D> = std::array::from_fn(|a| low[a] - half_cell);
+    let (low, high): (Vector<D>, Vector<D>) =
+        (std::array::from_fn(|a| low[a] - half_cell), std::array::from_fn(|a| high[a] + half_cell));
     let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
+    // Tiles fit the domain's extent exactly, each side at most `patch`: a last tile reaching past
+    // the domain held only a strip of its copy, which the running count could not constrain, and
+    // balancing filled such strips from the least-copied places, the exemplar's borders (bei's
+    // right edge came out at 1.9× the density).
+    let sides: Vector<D> = std::array::from_fn(|a| ((high[a] - low[a]) / dims[a] as f64).max(1e-12));
     let total: usize = dims.iter().product();
     // Which tile each fill point belongs to, so that tiles outside the domain are skipped.
     let tile_of = |x: &Vector<D>| -> usize {
         let mut index = 0;
         for a in (0..D).rev() {
-            let c = (((x[a] - low[a]) / patch).floor().max(0.0) as usize).min(dims[a] - 1);
+            let c = (((x[a] - low[a]) / sides[a]).floor().max(0.0) as usize).min(dims[a] - 1);
             index = index * dims[a] + c;
         }
         index
@@ -193,7 +198,7 @@ pub fn patches<const D: usize>(
         std::array::from_fn(|a| {
             let c = rest % dims[a];
             rest /= dims[a];
-            low[a] + (c as f64 + 0.5) * patch
+            low[a] + (c as f64 + 0.5) * sides[a]
         })
     };
     // On a surface: per tile, the fill point nearest its centre and its squared distance.
@@ -237,18 +242,18 @@ pub fn patches<const D: usize>(
             centre = quadrature.points[k];
         }
         let s = quadrature.scale[k];
-        let half = 0.5 * patch / s;
+        let half: Vector<D> = std::array::from_fn(|a| 0.5 * sides[a] / s);
         // On a surface a copy reaches the whole tile from its centre's tangent plane (half the
         // tile's diagonal) and keeps only the points that land in the tile, since copies centred
         // off the tiles' centres would otherwise overlap (+27 % points on the bull).
-        let reach = if on_surface { 0.5 * 3f64.sqrt() * patch / s } else { half };
+        let reach: Vector<D> = if on_surface { [0.5 * 3f64.sqrt() * patch / s; D] } else { half };
         let in_tile = |x: &Vector<D>| !on_surface || tile_of(x) == tile;
         // Patch centres whose patch lies inside the exemplar where possible: uniform draws and,
         // with balancing, as many with one axis at an end of its range (the others drawn), since
         // only those copy the exemplar's borders, which balancing then can choose.
         let mut candidate = |end: Option<(usize, f64)>| -> Vector<D> {
             std::array::from_fn(|a| {
-                let margin = half.min(0.5 * extent[a]);
+                let margin = half[a].min(0.5 * extent[a]);
                 let t = match end {
                     Some((axis, t)) if axis == a => t,
                     _ => stream.random::<f64>(),
@@ -258,7 +263,7 @@ pub fn patches<const D: usize>(
         };
         let frame = Tile {
             centre,
-            half: 0.5 * patch,
+            half: std::array::from_fn(|a| 0.5 * sides[a]),
             band,
             inverse: &quadrature.inverse[k],
             frame: &quadrature.transform[k],
@@ -279,7 +284,7 @@ pub fn patches<const D: usize>(
             for (e, u) in exemplar.positions.iter().zip(usage) {
                 let offset = linear::sub(e, o);
                 let x = linear::add(&centre, &linear::mat_vec(transform, &offset));
-                if (0..D).all(|a| offset[a].abs() <= reach) && in_tile(&x) && allowed(&x) {
+                if (0..D).all(|a| offset[a].abs() <= reach[a]) && in_tile(&x) && allowed(&x) {
                     count += 1.0;
                     used += u;
                 }
@@ -373,7 +378,7 @@ pub fn patches<const D: usize>(
                     inverse: &quadrature.inverse[k],
                     scale: s,
                 },
-                [0.5 * patch, band],
+                (std::array::from_fn(|a| 0.5 * sides[a]), band),
                 lower_placed,
                 allowed,
             );
@@ -392,14 +397,14 @@ pub fn patches<const D: usize>(
                 }
             };
             let offset = linear::sub(&anchor, &origin);
-            if (0..D).any(|a| offset[a].abs() > reach) {
+            if (0..D).any(|a| offset[a].abs() > reach[a]) {
                 continue;
             }
             let x = linear::add(&centre, &linear::mat_vec(&quadrature.transform[k], &offset));
             if !in_tile(&x) {
                 continue;
             }
-            let frozen = seam.is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * patch - seam));
+            let frozen = seam.is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * sides[a] - seam));
             let placed =
                 place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed, frozen);
             placed_so_far += placed as f64;
@@ -444,9 +449,10 @@ struct CopyFrame<'a, const D: usize> {
     scale: f64,
 }
 
-/// Copies the exemplar into one tile (2D, free points) and into the bands of width `sizes[1]` on
+/// Copies the exemplar into one tile (2D, free points) and into the bands of width `sizes.1` on
 /// its already copied lower sides (`lower_placed`), replacing there the points beyond the minimum
-/// error boundary cut. `sizes[0]` is half the tile's side. Returns the change in the point count.
+/// error boundary cut. `sizes.0` is half the tile's side per axis. Returns the change in the point
+/// count.
 #[allow(clippy::too_many_arguments)]
 fn copy_with_cuts<const D: usize>(
     exemplar: &Exemplar<D>,
@@ -455,14 +461,14 @@ fn copy_with_cuts<const D: usize>(
     tile: u32,
     first_copy: usize,
     frame: CopyFrame<'_, D>,
-    sizes: [f64; 2],
+    sizes: (Vector<D>, f64),
     lower_placed: [bool; D],
     allowed: &dyn Fn(&Vector<D>) -> bool,
 ) -> f64 {
-    let [half, band] = sizes;
+    let (half, band) = sizes;
     let flat = |p: &Vector<D>| [p[0], p[1]];
-    let low: [f64; 2] = std::array::from_fn(|a| frame.centre[a] - half);
-    let high: [f64; 2] = std::array::from_fn(|a| frame.centre[a] + half);
+    let low: [f64; 2] = std::array::from_fn(|a| frame.centre[a] - half[a]);
+    let high: [f64; 2] = std::array::from_fn(|a| frame.centre[a] + half[a]);
     let extension: [f64; 2] = std::array::from_fn(|a| if lower_placed[a] { band } else { 0.0 });
     // The new copy over the tile and its bands.
     let copy: Vec<(usize, Vector<D>)> = (0..exemplar.positions.len())

@@ -24,8 +24,8 @@ pub struct Band<const D: usize> {
 pub struct Tile<'a, const D: usize> {
     /// The tile's centre (output coordinates).
     pub centre: Vector<D>,
-    /// Half the tile's side (output units).
-    pub half: f64,
+    /// Half the tile's side along each axis (output units).
+    pub half: Vector<D>,
     /// Width of the judged band around the tile (output units).
     pub band: f64,
     /// Output → exemplar frame at the tile (without the translation).
@@ -38,8 +38,8 @@ pub struct Tile<'a, const D: usize> {
 
 impl<const D: usize> Tile<'_, D> {
     fn in_band(&self, offset: &Vector<D>) -> bool {
-        let inside_tile = (0..D).all(|a| offset[a].abs() <= self.half);
-        let inside_band = (0..D).all(|a| offset[a].abs() <= self.half + self.band);
+        let inside_tile = (0..D).all(|a| offset[a].abs() <= self.half[a]);
+        let inside_band = (0..D).all(|a| offset[a].abs() <= self.half[a] + self.band);
         inside_band && !inside_tile
     }
 }
@@ -89,11 +89,11 @@ impl<const D: usize> Band<D> {
             count += 1;
         }
         // Exemplar points of the band, carried into the output.
-        let half = (tile.half + tile.band) / tile.scale;
+        let half: Vector<D> = std::array::from_fn(|a| (tile.half[a] + tile.band) / tile.scale);
         let scaled_reach = reach * tile.scale;
         for c in exemplar {
             let local = linear::sub(c, origin);
-            if (0..D).any(|a| local[a].abs() > half) {
+            if (0..D).any(|a| local[a].abs() > half[a]) {
                 continue;
             }
             let offset = linear::mat_vec(tile.frame, &local);
@@ -130,8 +130,14 @@ mod tests {
             .collect();
         let grid = StaticGrid::new(&exemplar, 1.0);
         let identity = [[1.0, 0.0], [0.0, 1.0]];
-        let tile =
-            Tile { centre: [50.0, 50.0], half: 3.0, band: 2.0, inverse: &identity, frame: &identity, scale: 1.0 };
+        let tile = Tile {
+            centre: [50.0, 50.0],
+            half: [3.0, 3.0],
+            band: 2.0,
+            inverse: &identity,
+            frame: &identity,
+            scale: 1.0,
+        };
         let origin = [10.0, 10.0];
         let placed: Vec<Vector<2>> = exemplar
             .iter()
