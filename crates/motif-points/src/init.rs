@@ -178,10 +178,16 @@ pub fn patches<const D: usize>(
         (std::array::from_fn(|a| low[a] - half_cell), std::array::from_fn(|a| high[a] + half_cell));
     let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
     // Tiles fit the domain's extent exactly, each side at most `patch`: a last tile reaching past
-    // the domain held only a strip of its copy, which the running count could not constrain, and
+    // the domain held only a strip of its copy, which the running count could not steer, and
     // balancing filled such strips from the least-copied places, the exemplar's borders (bei's
-    // right edge came out at 1.9× the density).
-    let sides: Vector<D> = std::array::from_fn(|a| ((high[a] - low[a]) / dims[a] as f64).max(1e-12));
+    // right edge came out at 1.9× the density). Where fitting would shrink the tiles below three
+    // quarters of a patch (a domain under three patches across), they keep the patch's side: on
+    // the generated hex lattice, 11.5 × 7.5 with patches of 6, tiles of 3.75 put seams through
+    // the lattice every few rows (nearest-neighbour distance 0.01 → 0.10).
+    let sides: Vector<D> = std::array::from_fn(|a| {
+        let fitted = (high[a] - low[a]) / dims[a] as f64;
+        if fitted >= 0.75 * patch { fitted } else { patch }
+    });
     let total: usize = dims.iter().product();
     // Which tile each fill point belongs to, so that tiles outside the domain are skipped.
     let tile_of = |x: &Vector<D>| -> usize {
