@@ -33,7 +33,7 @@
 //!   exemplar's (pair-correlation synthesis, Öztireli and Gross 2012), and a surplus over the
 //!   exemplar's density is thinned where that helps them most.
 //! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its
-//!   copy's source) or random points.
+//!   copy's source); `placement`: random points, and placing exemplar points or elements.
 //! - `setup`: the exemplar as features (attributes normalized, labels detected), the domain and
 //!   its quadrature, the initial output; the output set, sampling control's count bounds and the
 //!   fidelity figures read off the final state.
@@ -90,6 +90,7 @@ mod model;
 mod pair_statistics;
 mod pairs;
 mod params;
+mod placement;
 mod points;
 mod quadratic;
 mod quadrature;

@@ -18,7 +18,7 @@ use crate::grid::{CellLists, StaticGrid};
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Kernel, Rigid, State};
 use crate::params::{Initialization, Input, Params, Refinement};
-use crate::{PointSet, init, sampling};
+use crate::{PointSet, init, placement, sampling};
 
 /// Attribute bookkeeping: which exemplar columns are used and how they are made unit-free.
 #[derive(Debug, Clone)]
@@ -409,7 +409,7 @@ impl<const D: usize> Setup<D> {
         let matches = match params.initialization {
             Initialization::Random => {
                 let share = self.node_share;
-                init::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed, share);
+                placement::random(&self.exemplar, &self.quadrature, &self.fill, &mut state, streams, &allowed, share);
                 Vec::new()
             }
             Initialization::Patches => {
