@@ -245,6 +245,10 @@ fn evaluate<const D: usize>(
         (0..positions.len()).filter(|&i| per_point[i].1 != usize::MAX && per_point[i].2 <= depths[i]).collect();
     counted.sort_by(|&a, &b| per_point[a].2.total_cmp(&per_point[b].2).then(a.cmp(&b)));
     let mut nearest_pull = vec![0.0; positions.len()];
+    // An exemplar too small for any of its nearest neighbours to count has no such term.
+    if target.nearest.is_empty() {
+        counted.clear();
+    }
     for (rank, &i) in counted.iter().enumerate() {
         let wanted = target.nearest_at((rank as f64 + 0.5) / counted.len() as f64);
         let miss = (per_point[i].2 - wanted) / RING;
@@ -364,7 +368,7 @@ pub fn thin<const D: usize>(
     let mut current = evaluate(target, &points, &depths, density_ratio(points.len()), None);
     let (mut removed, mut batch) = (0, surplus.div_ceil(4).max(1));
     while removed < surplus && batch > 0 {
-        let ratio_after = density_ratio(points.len() - 1);
+        let ratio_after = density_ratio(points.len().saturating_sub(1));
         let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d)).collect();
         let grid = StaticGrid::new(&points, reach);
         let mut gains: Vec<(f64, usize)> = (0..points.len())
@@ -479,7 +483,7 @@ pub(crate) fn refine_state<const D: usize>(
     let surplus = positions.len() as f64 - (1.0 + COUNT_SLACK) * setup.expected_points;
     let most = ((1.0 + count_tolerance) * setup.expected_points).floor() as usize;
     if surplus >= 1.0 && setup.margin.is_none() {
-        let required = positions.len().saturating_sub(most);
+        let required = positions.len().saturating_sub(most).min(surplus as usize);
         let candidates = if movable.iter().filter(|&&m| m).count() < 2 * required {
             state.unit_of.iter().map(|&u| state.units[u as usize].rigid.is_none()).collect()
         } else {

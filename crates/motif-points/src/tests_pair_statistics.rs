@@ -170,3 +170,28 @@ fn thinning_removes_what_is_required_even_when_the_energy_rises() {
     assert!(improving.len() < 5, "{} removed although none was required", improving.len());
     assert_eq!(required.len(), 5);
 }
+
+#[test]
+fn an_exemplar_without_counted_neighbours_still_refines() {
+    // Three points, each nearer the window's border than its nearest neighbour.
+    let exemplar = [[0.2, 0.2], [1.8, 0.2], [1.0, 1.8]];
+    let target = Target::new(&exemplar, &box_depth(2.0), 4.0);
+    assert!(target.nearest.is_empty());
+    let side = 6.0;
+    let mut points = random_points(20, side, 3);
+    let movable = vec![true; points.len()];
+    let depth = box_depth(side);
+    let removed = thin(&target, &points, &movable, &depth, side * side, 5, 5);
+    assert!(removed.len() <= 5);
+    let output = Output {
+        positions: &mut points,
+        movable: &movable,
+        depth: &depth,
+        allowed: &|_: &Vector<2>| true,
+        settle: &|p: &Vector<2>| *p,
+        volume: side * side,
+    };
+    let mut outcome = StatisticsRefinement::default();
+    refine(&target, output, 5, &mut outcome);
+    assert!(points.iter().all(|p| p.iter().all(|x| x.is_finite())));
+}
