@@ -80,6 +80,10 @@ def prepare(folder, binary):
     # Point sets: one coordinate at 1e300, and a non-integer element column.
     with open(os.path.join(folder, "far-points.csv"), "w") as handle:
         handle.write("x,y\n" + "".join(f"{i % 10},{i // 10}\n" for i in range(99)) + "1e300,5\n")
+    # Three points, each nearer the window's border than its nearest neighbour: no counted
+    # nearest-neighbour distance for the pair-statistics refinement.
+    with open(os.path.join(folder, "three-points.csv"), "w") as handle:
+        handle.write("x,y\n0.2,0.2\n1.8,0.2\n1.0,1.8\n")
     with open(os.path.join(folder, "bad-elements.csv"), "w") as handle:
         handle.write("x,y,element\n" + "".join(f"{i % 10},{i // 10},{i / 3}\n" for i in range(100)))
     with open(os.path.join(folder, "long-stroke.json"), "w") as handle:
@@ -130,6 +134,7 @@ CASES = [
     ("inpaint with a mask of another size", ["inpaint", "--image", "stylize-A1.png", "--mask", "texture-exemplar.png", "--out", "out.png"], "clean-error"),
     ("presynth 4096x4096", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "4096x4096", "--out-dir", "out-presynth"], "clean-error"),
     ("points coordinate 1e300", ["points", "--exemplar", "far-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
+    ("points from three points", ["points", "--exemplar", "three-points.csv", "--neighbourhood", "1", "--domain", "box:6,6", "--out", "out.csv"], "success"),
     ("points scale 0.01", POINTS + ["--domain", "box:14,10", "--scale", "0.01", "--out", "out.ply"], "clean-error"),
     ("points long stroke", POINTS + ["--along", "long-stroke.json", "--brush-width", "3", "--out", "out.ply"], "clean-error"),
     ("points blob region (200 000 points)", POINTS + ["--domain", "strokes-blob.svg", "--out", "out.ply"], "clean-error"),
