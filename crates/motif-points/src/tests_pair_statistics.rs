@@ -29,6 +29,23 @@ fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
     move |p: &Vector<2>| fidelity::box_depth(p, &[0.0, 0.0], &[side, side], 2)
 }
 
+/// Refines every point of `points` in the box `[0, side)²` with no other constraint.
+fn refine_all(target: &Target, points: &mut [Vector<2>], side: f64, iterations: usize) -> StatisticsRefinement {
+    let movable = vec![true; points.len()];
+    let depth = box_depth(side);
+    let output = Output {
+        positions: points,
+        movable: &movable,
+        depth: &depth,
+        allowed: &|_: &Vector<2>| true,
+        settle: &|p: &Vector<2>| *p,
+        volume: side * side,
+    };
+    let mut outcome = StatisticsRefinement::default();
+    refine(target, output, iterations, &mut outcome);
+    outcome
+}
+
 fn grid_target(side: usize) -> Target {
     let s = side as f64;
     Target::new(&jittered_grid(side, 1), &box_depth(s), s * s)
@@ -139,17 +156,7 @@ fn the_same_points_whatever_the_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let mut points = random_points(120, side, 11);
-            let movable = vec![true; points.len()];
-            let depth = box_depth(side);
-            let output = Output {
-                positions: &mut points,
-                movable: &movable,
-                depth: &depth,
-                allowed: &|_: &Vector<2>| true,
-                settle: &|p: &Vector<2>| *p,
-                volume: side * side,
-            };
-            refine(&target, output, 10, &mut StatisticsRefinement::default());
+            refine_all(&target, &mut points, side, 10);
             points
         })
     };
@@ -183,15 +190,6 @@ fn an_exemplar_without_counted_neighbours_still_refines() {
     let depth = box_depth(side);
     let removed = thin(&target, &points, &movable, &depth, side * side, 5, 5);
     assert!(removed.len() <= 5);
-    let output = Output {
-        positions: &mut points,
-        movable: &movable,
-        depth: &depth,
-        allowed: &|_: &Vector<2>| true,
-        settle: &|p: &Vector<2>| *p,
-        volume: side * side,
-    };
-    let mut outcome = StatisticsRefinement::default();
-    refine(&target, output, 5, &mut outcome);
+    refine_all(&target, &mut points, side, 5);
     assert!(points.iter().all(|p| p.iter().all(|x| x.is_finite())));
 }
