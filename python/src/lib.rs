@@ -179,7 +179,7 @@ fn zoom<'py>(
     threads: Option<usize>,
 ) -> PyResult<(Vec<Image<'py>>, Vec<String>)> {
     let job: motif_jobs::stylize::ZoomJob = description(job)?;
-    let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?);
+    let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?).to_float();
     let runs = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
     let mut images = Vec::with_capacity(runs.len());
     for run in &runs {

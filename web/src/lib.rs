@@ -411,7 +411,9 @@ impl StylizePanel {
         let target = rgba_image(rgba, width, height, "target guide")?;
         let source = self.guide.clone();
         let guides = vec![motif_jobs::stylize::guide_pair(&source, &target)];
-        let run = job.run(self.style.clone(), guides, Some(self.textures.clone()), &mut NoProgress).map_err(error)?;
+        // 8-bit, as every front end hands the engine its images.
+        let style = motif_core::ByteImage::from_float(&self.style);
+        let run = job.run(style, guides, Some(self.textures.clone()), &mut NoProgress).map_err(error)?;
         Ok(image_result(&RgbaImage::from_float(&run.output.image), &run.figures, start))
     }
 }

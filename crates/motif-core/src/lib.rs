@@ -5,6 +5,8 @@
 //!
 //! - [`image`]: 8-bit RGBA images ([`RgbaImage`]) and N-channel float images ([`FloatImage`]), alpha
 //!   helpers, bilinear sampling, resizing and Gaussian pyramids (used by the curve and stylize engines).
+//! - [`channel_image`]: 8-bit images of any channel count ([`ByteImage`]) and [`ChannelImage`], which
+//!   lets the stylize engine take float or 8-bit inputs alike.
 //! - [`geometry`]: polylines with arc-length parameterization, resampling, tangents, normals, offsets,
 //!   curvature and closed curves, built on `kurbo` points; flattening of `kurbo` Bézier paths; simple
 //!   polygons (area, containment).
@@ -27,6 +29,7 @@
 //! alpha unless a type says otherwise.
 
 mod builders;
+pub mod channel_image;
 pub mod error;
 pub mod geometry;
 pub mod image;
@@ -41,6 +44,7 @@ pub mod vector;
 
 pub use error::InvalidParameter;
 pub use geometry::{Polygon, Polyline};
+pub use channel_image::{ByteImage, ChannelImage, Samples};
 pub use image::{FloatImage, RgbaImage};
 pub use kurbo;
 pub use kurbo::{Point, Vec2};

@@ -20,6 +20,8 @@ fn main() {
     let style = motif_stylize::samples::crayon_style(&guide, 1);
     let presynth: PresynthJob = serde_json::from_value(serde_json::json!({ "size": [SIDE, SIDE] })).expect("job");
     let textures = presynth.run(style.clone(), guide.clone(), &mut NoProgress).expect("presynth");
+    // The front ends hand the engine 8-bit images.
+    let style = motif_core::ByteImage::from_float(&style);
     let source = RgbaImage::from_float(&guide);
     // The palette as `StylizePanel::palette` gives it.
     let colour = &textures[COLOUR].colour;

@@ -2,10 +2,12 @@
 //! synthesis (`motif_stylize`).
 //!
 //! Field names are the flags of `motif stylize`, `motif texture` and `motif presynth`
-//! (ebsynth's names where it has them). Images come decoded as float images with their channels
-//! chosen by the front end (the CLI reads PNG and matches the channels of guide pairs).
+//! (ebsynth's names where it has them). Images come decoded as 8-bit images with their channels
+//! chosen by the helpers here (the front ends decode PNG or arrays to RGBA first); the engine
+//! keeps them as bytes (a quarter of the memory of floats). Zoom, video and presynth work on
+//! floats (their guides are computed) and convert.
 
-use motif_core::{FloatImage, InvalidParameter, Progress, RgbaImage};
+use motif_core::{ByteImage, ChannelImage, InvalidParameter, Progress, RgbaImage};
 use motif_stylize::{Guide, Input, Mask, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
@@ -32,24 +34,25 @@ fn channel_list(channels: usize) -> Vec<usize> {
 }
 
 /// A style (or texture exemplar) as the engine takes it: RGB when fully opaque, else RGBA.
-pub fn style_image_channels(image: &RgbaImage) -> FloatImage {
-    if image.is_fully_opaque() { image.to_float_channels(&[0, 1, 2]) } else { image.to_float() }
+pub fn style_image_channels(image: &RgbaImage) -> ByteImage {
+    let channels = if image.is_fully_opaque() { 3 } else { 4 };
+    ByteImage::from_rgba_channels(image, &channel_list(channels))
 }
 
 /// A guide on its own (presynth's segment guide): grey, RGB or RGBA as its pixels are.
-pub fn guide_image_channels(image: &RgbaImage) -> FloatImage {
-    image.to_float_channels(&channel_list(guide_channel_count(image)))
+pub fn guide_image_channels(image: &RgbaImage) -> ByteImage {
+    ByteImage::from_rgba_channels(image, &channel_list(guide_channel_count(image)))
 }
 
 /// A source and target guide pair with matching channels: equal counts stay; a grey image next
 /// to an RGB one is read as RGB (grey is a special RGB); transparency on one side only is a
 /// mismatch the engine reports.
-pub fn guide_pair(source: &RgbaImage, target: &RgbaImage) -> (FloatImage, FloatImage) {
+pub fn guide_pair(source: &RgbaImage, target: &RgbaImage) -> GuidePair {
     let (a, b) = match (guide_channel_count(source), guide_channel_count(target)) {
         (1, 3) | (3, 1) => (3, 3),
         pair => pair,
     };
-    (source.to_float_channels(&channel_list(a)), target.to_float_channels(&channel_list(b)))
+    (ByteImage::from_rgba_channels(source, &channel_list(a)), ByteImage::from_rgba_channels(target, &channel_list(b)))
 }
 
 fn default_seed() -> u64 {
@@ -240,8 +243,9 @@ job_with_synthesis! {
 mod video;
 pub use video::{VideoJob, video_frame, video_styles};
 
-/// One decoded guide pair: source (the style's size) and target, with equal channel counts.
-pub type GuidePair = (motif_core::FloatImage, motif_core::FloatImage);
+/// One decoded guide pair: source (the style's size) and target, with equal channel counts
+/// (8-bit as decoded by default; float images work too).
+pub type GuidePair<I = ByteImage> = (I, I);
 
 /// A finished stylize or texture job.
 #[derive(Debug, Clone)]
@@ -295,10 +299,10 @@ impl StylizeJob {
 
     /// Runs the job: the style A', the guide pairs (A, B) and, for the band mode of §3.7, the
     /// pre-synthesized textures.
-    pub fn run(
+    pub fn run<I: ChannelImage>(
         &self,
-        style: motif_core::FloatImage,
-        guides: Vec<GuidePair>,
+        style: I,
+        guides: Vec<GuidePair<I>>,
         textures: Option<Vec<SegmentTexture>>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
@@ -306,12 +310,12 @@ impl StylizeJob {
     }
 
     /// [`StylizeJob::run`] that synthesizes only the mask's hole and keeps the rest.
-    pub fn run_masked(
+    pub fn run_masked<I: ChannelImage>(
         &self,
-        style: motif_core::FloatImage,
-        guides: Vec<GuidePair>,
+        style: I,
+        guides: Vec<GuidePair<I>>,
         textures: Option<Vec<SegmentTexture>>,
-        mask: Option<Mask>,
+        mask: Option<Mask<I>>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
         if !self.weight.is_empty() && self.weight.len() != guides.len() {
@@ -353,15 +357,15 @@ impl TextureJob {
     }
 
     /// Runs the job on the decoded exemplar.
-    pub fn run(&self, exemplar: motif_core::FloatImage, progress: &mut dyn Progress) -> Result<StylizeRun, JobError> {
+    pub fn run<I: ChannelImage>(&self, exemplar: I, progress: &mut dyn Progress) -> Result<StylizeRun, JobError> {
         self.run_masked(exemplar, None, progress)
     }
 
     /// [`TextureJob::run`] that synthesizes only the mask's hole and keeps the rest.
-    pub fn run_masked(
+    pub fn run_masked<I: ChannelImage>(
         &self,
-        exemplar: motif_core::FloatImage,
-        mask: Option<Mask>,
+        exemplar: I,
+        mask: Option<Mask<I>>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
         let params = self.params()?;
@@ -380,9 +384,9 @@ impl InpaintJob {
     }
 
     /// Fills the `hole` of `image` (per pixel, `true` = fill) from the rest of it.
-    pub fn run(
+    pub fn run<I: ChannelImage>(
         &self,
-        image: motif_core::FloatImage,
+        image: I,
         hole: Vec<bool>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
@@ -434,8 +438,8 @@ pub fn hole_of(mask: &RgbaImage) -> Vec<bool> {
 }
 
 /// The image kept outside a mask, with `channels` channels (the style's: 3 or 4; 1 for grey).
-pub fn kept_image(image: &RgbaImage, channels: usize) -> FloatImage {
-    image.to_float_channels(&channel_list(channels))
+pub fn kept_image(image: &RgbaImage, channels: usize) -> ByteImage {
+    ByteImage::from_rgba_channels(image, &channel_list(channels))
 }
 
 impl PresynthJob {

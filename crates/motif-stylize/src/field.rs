@@ -5,7 +5,7 @@
 //! size ([`apply_field`]), e.g. to stylize a second layer of a map with exactly the same patch
 //! layout; applied to the style it was made with, it gives back the output.
 
-use motif_core::{FloatImage, RgbaImage};
+use motif_core::{ChannelImage, FloatImage, RgbaImage};
 
 use crate::Error;
 use crate::vote::weight_of_code;
@@ -141,7 +141,7 @@ impl NearestNeighbourField {
 /// the synthesis weighed them (plain when the field has none), summed in the synthesis's order,
 /// so that the style the field was made with gives back the output bit for bit; unsearched pixels
 /// stay transparent (zero).
-pub fn apply_field(field: &NearestNeighbourField, style: &FloatImage) -> Result<FloatImage, Error> {
+pub fn apply_field(field: &NearestNeighbourField, style: &impl ChannelImage) -> Result<FloatImage, Error> {
     if style.width() != field.source_width || style.height() != field.source_height {
         return Err(Error::SizeMismatch {
             what: "the style a field is applied to must have the field's source size".into(),
@@ -153,6 +153,7 @@ pub fn apply_field(field: &NearestNeighbourField, style: &FloatImage) -> Result<
     }
     let (w, h, r) = (field.width as isize, field.height as isize, (field.patch_size / 2) as isize);
     let channels = style.channels();
+    let samples = style.samples();
     let mut out = FloatImage::new(field.width, field.height, channels);
     let mut sum = vec![0.0_f32; channels];
     let weight = |t: usize| field.weights.as_ref().map_or(1.0, |w| weight_of_code(w[t]));
@@ -168,10 +169,11 @@ pub fn apply_field(field: &NearestNeighbourField, style: &FloatImage) -> Result<
                     }
                     let t = (py * w + px) as usize;
                     if let Some([sx, sy]) = field.matches[t] {
-                        let value = style.pixel((sx as isize - ox) as usize, (sy as isize - oy) as usize);
+                        let (column, row) = ((sx as isize - ox) as usize, (sy as isize - oy) as usize);
+                        let start = (row * field.source_width + column) * channels;
                         let weight = weight(t);
-                        for (acc, v) in sum.iter_mut().zip(value) {
-                            *acc += weight * v;
+                        for (c, acc) in sum.iter_mut().enumerate() {
+                            *acc += weight * samples.value(start + c);
                         }
                         total_weight += weight;
                     }

@@ -10,14 +10,14 @@
 //! The target buffer is padded by the patch radius (border clamped, or wrapped when tileable) so
 //! every target patch is in bounds too.
 
-use motif_core::FloatImage;
+use motif_core::{ChannelImage, FloatImage, Samples};
 use rayon::prelude::*;
 
 /// Marks a target pixel whose segment has no source pixels: it may match anywhere.
 pub(crate) const UNRESTRICTED: u16 = u16::MAX;
 
 /// A pyramid level of the source (style + guides) and target (output style + guides).
-pub(crate) struct Level {
+pub(crate) struct Level<'a> {
     /// Patch side.
     pub patch: usize,
     /// Patch radius, `patch / 2`.
@@ -32,8 +32,9 @@ pub(crate) struct Level {
     pub source_height: usize,
     /// Stacked source, 8-bit: `source_width × source_height × channels`.
     pub source: Vec<u8>,
-    /// The style at this level, unweighted (voting averages these values).
-    pub style: FloatImage,
+    /// The style at this level, unweighted (voting averages these values), borrowed from the
+    /// pyramid: no copy of the largest level.
+    pub style: Samples<'a>,
     /// Per stacked channel: `255 · sqrt(w_c / w_max)`, the 8-bit scale of its values.
     pub channel_scales: Vec<f32>,
     /// `w_max`: the largest channel weight, the factor of every integer sum of squares.
@@ -45,9 +46,8 @@ pub(crate) struct Level {
     /// Padded target row length in pixels: `target_width + 2 · radius`.
     pub padded_width: usize,
     /// Stacked, padded target, 8-bit: `padded_width × (target_height + 2·radius) × channels`.
+    /// Its guide channels are written once, when the level is built; votes rewrite the style's.
     pub target: Vec<u8>,
-    /// Target guide channels, 8-bit, unpadded: `target_width × target_height × guide channels`.
-    target_guides: Vec<u8>,
     /// Whether target patches wrap around the borders.
     pub tileable: bool,
     /// Segment label of every source pixel (when segments are on).
@@ -63,16 +63,17 @@ pub(crate) struct Level {
 }
 
 /// What a level is built from.
-pub(crate) struct LevelSpec<'a> {
+/// `'a`: the style, which the level keeps borrowing; `'s`: the rest, read while building it.
+pub(crate) struct LevelSpec<'s, 'a, I> {
     pub patch: usize,
-    pub style: FloatImage,
+    pub style: &'a I,
     /// Per style channel: α / style channels.
-    pub style_weights: &'a [f32],
+    pub style_weights: &'s [f32],
     /// The source guides (style's size) and target guides (target size), one image each.
-    pub source_guides: Vec<&'a FloatImage>,
-    pub target_guides: Vec<&'a FloatImage>,
+    pub source_guides: Vec<&'s I>,
+    pub target_guides: Vec<&'s I>,
     /// Per stacked guide channel: β_i / channels of guide i.
-    pub guide_weights: &'a [f32],
+    pub guide_weights: &'s [f32],
     pub target_size: (usize, usize),
     pub tileable: bool,
     pub source_labels: Option<Vec<u16>>,
@@ -80,9 +81,9 @@ pub(crate) struct LevelSpec<'a> {
     pub label_count: usize,
 }
 
-impl Level {
+impl<'a> Level<'a> {
     /// Stacks and weights the images of one level.
-    pub fn new(spec: LevelSpec<'_>) -> Level {
+    pub fn new<I: ChannelImage>(spec: LevelSpec<'_, 'a, I>) -> Level<'a> {
         let patch = spec.patch;
         let radius = patch / 2;
         let style_channels = spec.style.channels();
@@ -93,38 +94,47 @@ impl Level {
         let weight = weights.iter().copied().fold(0.0_f32, f32::max);
         let scales: Vec<f32> =
             weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
+        let style_samples = spec.style.samples();
+        let source_guides: Vec<(Samples<'_>, usize)> =
+            spec.source_guides.iter().map(|g| (g.samples(), g.channels())).collect();
         let mut source = vec![0_u8; source_width * source_height * channels];
         source.par_chunks_mut(source_width * channels).enumerate().for_each(|(y, row)| {
             for x in 0..source_width {
+                let index = y * source_width + x;
                 let out = &mut row[x * channels..(x + 1) * channels];
-                for (c, value) in spec.style.pixel(x, y).iter().enumerate() {
-                    out[c] = quantize(*value, scales[c]);
+                for (c, slot) in out[..style_channels].iter_mut().enumerate() {
+                    *slot = quantize(style_samples.value(index * style_channels + c), scales[c]);
                 }
                 let mut c = style_channels;
-                for guide in &spec.source_guides {
-                    for value in guide.pixel(x, y) {
-                        out[c] = quantize(*value, scales[c]);
+                for (samples, guide_channels) in &source_guides {
+                    for k in 0..*guide_channels {
+                        out[c] = quantize(samples.value(index * guide_channels + k), scales[c]);
                         c += 1;
                     }
                 }
             }
         });
         let (target_width, target_height) = spec.target_size;
-        let mut target_guides = Vec::with_capacity(target_width * target_height * guide_channels);
-        if !spec.target_guides.is_empty() {
-            for index in 0..target_width * target_height {
-                let mut c = style_channels;
-                for guide in &spec.target_guides {
-                    let channels = guide.channels();
-                    for value in &guide.data()[index * channels..(index + 1) * channels] {
-                        target_guides.push(quantize(*value, scales[c]));
-                        c += 1;
-                    }
-                }
-            }
-        }
         let padded_width = target_width + 2 * radius;
         let padded_height = target_height + 2 * radius;
+        let mut target = vec![0_u8; padded_width * padded_height * channels];
+        if guide_channels > 0 {
+            let guides: Vec<(Samples<'_>, usize)> =
+                spec.target_guides.iter().map(|g| (g.samples(), g.channels())).collect();
+            target.par_chunks_mut(padded_width * channels).enumerate().for_each(|(py, row)| {
+                let y = unpadded(py, target_height, radius, spec.tileable);
+                for px in 0..padded_width {
+                    let index = y * target_width + unpadded(px, target_width, radius, spec.tileable);
+                    let mut c = style_channels;
+                    for (samples, guide_channels) in &guides {
+                        for k in 0..*guide_channels {
+                            row[px * channels + c] = quantize(samples.value(index * guide_channels + k), scales[c]);
+                            c += 1;
+                        }
+                    }
+                }
+            });
+        }
         let mut segment_centres = vec![Vec::new(); spec.label_count];
         if let Some(labels) = &spec.source_labels {
             for y in radius..source_height - radius {
@@ -153,15 +163,14 @@ impl Level {
             target_width,
             target_height,
             padded_width,
-            target: vec![0; padded_width * padded_height * channels],
-            target_guides,
+            target,
             tileable: spec.tileable,
             source_labels: spec.source_labels,
             target_restrict,
             segment_centres,
             active: None,
             domain: None,
-            style: spec.style,
+            style: style_samples,
         }
     }
 
@@ -345,31 +354,29 @@ impl Level {
         let domain = if only_domain { self.domain.as_deref() } else { None };
         let (channels, style_channels, radius) = (self.channels, self.style_channels, self.radius);
         let (width, height, padded_width) = (self.target_width, self.target_height, self.padded_width);
-        let guide_channels = channels - style_channels;
-        let tileable = self.tileable;
-        let (guides, scales) = (&self.target_guides, &self.channel_scales);
-        let map = |p: usize, size: usize| -> usize {
-            let v = p as isize - radius as isize;
-            if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
-        };
+        let (tileable, scales) = (self.tileable, &self.channel_scales[..style_channels]);
         self.target.par_chunks_mut(padded_width * channels).enumerate().for_each(|(py, row)| {
-            let y = map(py, height);
+            let y = unpadded(py, height, radius, tileable);
             for px in 0..padded_width {
-                let x = map(px, width);
+                let x = unpadded(px, width, radius, tileable);
                 if domain.is_some_and(|domain| !domain[y * width + x]) {
                     continue;
                 }
-                let out = &mut row[px * channels..(px + 1) * channels];
+                let out = &mut row[px * channels..px * channels + style_channels];
                 for ((slot, value), scale) in out.iter_mut().zip(image.pixel(x, y)).zip(scales) {
                     *slot = quantize(*value, *scale);
-                }
-                if guide_channels > 0 {
-                    let start = (y * width + x) * guide_channels;
-                    out[style_channels..].copy_from_slice(&guides[start..start + guide_channels]);
                 }
             }
         });
     }
+}
+
+/// The image coordinate of padded coordinate `p` (padding `radius`) on an axis of `size` pixels:
+/// wrapped when tileable, else clamped to the border.
+#[inline]
+fn unpadded(p: usize, size: usize, radius: usize, tileable: bool) -> usize {
+    let v = p as isize - radius as isize;
+    if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
 }
 
 /// A value in `[0, 1]` times `scale` (at most 255) as 8 bits, rounded.

@@ -82,7 +82,7 @@ mod tests_synthesis;
 #[cfg(test)]
 mod tests_video;
 
-use motif_core::{FloatImage, InvalidParameter, Progress};
+use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
 
 pub use error::Error;
@@ -99,12 +99,15 @@ pub use video::{
 pub use zoom::zoom;
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
+///
+/// Images are [`FloatImage`]s or, to hold a quarter of the memory, 8-bit
+/// [`ByteImage`](motif_core::ByteImage)s (what the front ends decode); one kind per [`Input`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Guide {
+pub struct Guide<I = FloatImage> {
     /// Source guide A (same size as the style), 1, 3 or 4 channels, values in `[0, 1]`.
-    pub source: FloatImage,
+    pub source: I,
     /// Target guide B (any size, the same for all guides), same channel count as `source`.
-    pub target: FloatImage,
+    pub target: I,
     /// β of Eq. 4 for this guide, shared by its channels; `None` = 1 / number of guides
     /// (ebsynth's default). Range `[0, 1000]`.
     pub weight: Option<f32>,
@@ -124,13 +127,14 @@ pub struct SegmentTexture {
     pub field: Option<NearestNeighbourField>,
 }
 
-/// What to synthesize.
+/// What to synthesize: float images ([`FloatImage`], the default) or 8-bit ones
+/// ([`ByteImage`](motif_core::ByteImage), a quarter of the memory; values `v / 255`).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Input {
+pub struct Input<I = FloatImage> {
     /// The style exemplar A' (or the texture exemplar), 1, 3 or 4 channels, values in `[0, 1]`.
-    pub style: FloatImage,
+    pub style: I,
     /// Guide pairs; empty for non-guided texture synthesis.
-    pub guides: Vec<Guide>,
+    pub guides: Vec<Guide<I>>,
     /// Output size `(width, height)`: required without guides, else must equal the target
     /// guides' size (or be `None`).
     pub size: Option<(usize, usize)>,
@@ -138,23 +142,23 @@ pub struct Input {
     /// segment edges from them and optimize only the band (§3.7). Needs guides.
     pub textures: Option<Vec<SegmentTexture>>,
     /// Synthesize only the masked pixels and keep the others exactly.
-    pub mask: Option<Mask>,
+    pub mask: Option<Mask<I>>,
 }
 
-impl Input {
+impl<I: ChannelImage> Input<I> {
     /// Guided stylization of the target guides' size.
-    pub fn guided(style: FloatImage, guides: Vec<Guide>) -> Self {
+    pub fn guided(style: I, guides: Vec<Guide<I>>) -> Self {
         Self { style, guides, size: None, textures: None, mask: None }
     }
 
     /// Non-guided texture synthesis of `width × height` from `exemplar`.
-    pub fn texture(exemplar: FloatImage, width: usize, height: usize) -> Self {
+    pub fn texture(exemplar: I, width: usize, height: usize) -> Self {
         Self { style: exemplar, guides: Vec::new(), size: Some((width, height)), textures: None, mask: None }
     }
 
     /// Inpainting: fills the `hole` of `image` (per pixel, row by row, `true` = fill) from the
     /// rest of the image, with the occurrence penalty so the fill does not clone one patch.
-    pub fn inpaint(image: FloatImage, hole: Vec<bool>) -> Self {
+    pub fn inpaint(image: I, hole: Vec<bool>) -> Self {
         let size = Some((image.width(), image.height()));
         let mask = Mask { keep: image.clone(), hole, exclude_hole_from_style: true };
         Self { style: image, guides: Vec::new(), size, textures: None, mask: Some(mask) }
@@ -224,12 +228,12 @@ pub struct Report {
     pub estimated_memory_bytes: u64,
 }
 
-fn size_of(image: &FloatImage) -> String {
+fn size_of(image: &impl ChannelImage) -> String {
     format!("{}×{}", image.width(), image.height())
 }
 
-fn check_image(image: &FloatImage, what: &str) -> Result<(), Error> {
-    if image.is_empty() || image.width() == 0 || image.height() == 0 {
+fn check_image(image: &impl ChannelImage, what: &str) -> Result<(), Error> {
+    if image.width() == 0 || image.height() == 0 {
         return Err(Error::EmptyImage(what.to_string()));
     }
     if ![1, 3, 4].contains(&image.channels()) {
@@ -279,7 +283,11 @@ fn channel_weights(weight: f32, channels: usize) -> impl Iterator<Item = f32> {
 /// Validates everything first: images non-empty with 1, 3 or 4 channels, source guides the
 /// style's size, target guides one common size, guide pairs with equal channels, parameters in
 /// range. Progress is reported per level.
-pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
+pub fn synthesize<I: ChannelImage>(
+    input: &Input<I>,
+    params: &Params,
+    progress: &mut dyn Progress,
+) -> Result<Output, Error> {
     params.validate()?;
     check_image(&input.style, "style")?;
     let style = &input.style;
@@ -366,8 +374,8 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     }
     // Guides stay as given (one borrowed image each, no stacked copy): the level stacks their
     // channels as it quantizes them.
-    let source_guides: Vec<&FloatImage> = input.guides.iter().map(|g| &g.source).collect();
-    let target_guides: Vec<&FloatImage> = input.guides.iter().map(|g| &g.target).collect();
+    let source_guides: Vec<&I> = input.guides.iter().map(|g| &g.source).collect();
+    let target_guides: Vec<&I> = input.guides.iter().map(|g| &g.target).collect();
     let wants_segments = params.segments.is_some() || input.textures.is_some();
     let labels = if wants_segments {
         let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
@@ -383,7 +391,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
             }
         })?;
         let mode = params.segments.unwrap_or(Segmentation::Palette);
-        Some(label_guides(&guide.source, &guide.target, mode, params.seed)?)
+        Some(label_guides(&guide.source.to_float_image(), &guide.target.to_float_image(), mode, params.seed)?)
     } else {
         None
     };

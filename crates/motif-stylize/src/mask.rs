@@ -1,7 +1,7 @@
 //! Masks: synthesize only the pixels of a hole and keep the others exactly (ebsynth's masks),
 //! and inpainting, where the kept image is also the style and no source patch may overlap the hole.
 
-use motif_core::FloatImage;
+use motif_core::{ChannelImage, FloatImage};
 
 use crate::error::Error;
 use crate::synthesis;
@@ -12,9 +12,9 @@ use crate::synthesis;
 /// that touch the hole are searched, so the fill is optimized against its surroundings: the
 /// border is seamless and the pixels outside the hole come out exactly as kept.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Mask {
+pub struct Mask<I = FloatImage> {
     /// The pixels kept outside the hole: an image of the output's size with the style's channels.
-    pub keep: FloatImage,
+    pub keep: I,
     /// Per output pixel, row by row: `true` where the output is synthesized.
     pub hole: Vec<bool>,
     /// Inpainting: the style is the kept image itself, and no source patch may overlap the hole
@@ -24,9 +24,9 @@ pub struct Mask {
 
 /// A mask must fit the output, mark some pixels and keep some, keep the style's channels, and
 /// for inpainting leave at least one whole patch outside the hole to copy from.
-pub(crate) fn check(
-    mask: &Mask,
-    style: &FloatImage,
+pub(crate) fn check<I: ChannelImage>(
+    mask: &Mask<I>,
+    style: &I,
     (width, height): (usize, usize),
     patch: usize,
     textures: bool,

@@ -2,7 +2,7 @@
 //! field upsampled between levels; optionally a final 3×3 pass; the report figures.
 
 use motif_core::timing::Clock;
-use motif_core::{FloatImage, Progress, SeedStreams, StageTimer};
+use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 
 use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
@@ -12,11 +12,11 @@ use crate::vote::{vote, weight_code};
 use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, segments};
 
 /// A validated problem in the engine's terms (built by the public entry points).
-pub(crate) struct Problem<'a> {
-    pub style: &'a FloatImage,
+pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
+    pub style: &'a I,
     /// One image per guide (none without guides), each with its own channels.
-    pub source_guides: Vec<&'a FloatImage>,
-    pub target_guides: Vec<&'a FloatImage>,
+    pub source_guides: Vec<&'a I>,
+    pub target_guides: Vec<&'a I>,
     pub style_weights: Vec<f32>,
     pub guide_weights: Vec<f32>,
     pub target_size: (usize, usize),
@@ -29,7 +29,7 @@ pub(crate) struct Problem<'a> {
     /// ([`crate::band::NO_SEED`] = none).
     pub seeds: Option<Vec<u32>>,
     /// Synthesize only the hole, keep the rest (checked: the output's size, the style's channels).
-    pub mask: Option<&'a crate::Mask>,
+    pub mask: Option<&'a crate::Mask<I>>,
 }
 
 /// A mask at pyramid level `level`: a coarse pixel is in the hole when any of the pixels it
@@ -66,18 +66,18 @@ fn fitting_levels(sizes: &[(usize, usize)], min_side: usize) -> usize {
 }
 
 /// A Gaussian pyramid over a borrowed finest level.
-struct Pyramid<'a> {
-    finest: &'a FloatImage,
-    coarser: Vec<FloatImage>,
+struct Pyramid<'a, I> {
+    finest: &'a I,
+    coarser: Vec<I>,
 }
 
-impl<'a> Pyramid<'a> {
-    fn new(finest: &'a FloatImage, levels: usize) -> Self {
+impl<'a, I: ChannelImage> Pyramid<'a, I> {
+    fn new(finest: &'a I, levels: usize) -> Self {
         Self { finest, coarser: finest.coarser_levels(levels, 1) }
     }
 
     /// Level `index`, 0 = finest.
-    fn level(&self, index: usize) -> &FloatImage {
+    fn level(&self, index: usize) -> &I {
         if index == 0 { self.finest } else { &self.coarser[index - 1] }
     }
 }
@@ -137,7 +137,11 @@ pub(crate) fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) 
 }
 
 /// Runs the whole optimization.
-pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Progress) -> Result<Output, Error> {
+pub(crate) fn run<I: ChannelImage>(
+    problem: &Problem<'_, I>,
+    params: &Params,
+    progress: &mut dyn Progress,
+) -> Result<Output, Error> {
     let start = Clock::now();
     // A band that starts from the textures' fields is nearly converged: fewer iterations (§3.7).
     let seeded_band = problem.composition.is_some() && problem.seeds.is_some();
@@ -167,14 +171,14 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
     // Pyramids hold the coarser levels only; level 0 is the problem's own image (no copy of the
     // largest images: the stacked guides are the biggest buffers of a run).
     let style_pyramid = Pyramid::new(problem.style, levels);
-    let source_guide_pyramids: Vec<Pyramid<'_>> =
-        problem.source_guides.iter().map(|g| Pyramid::new(g, levels)).collect();
-    let target_guide_pyramids: Vec<Pyramid<'_>> =
-        problem.target_guides.iter().map(|g| Pyramid::new(g, levels)).collect();
+    let source_guide_pyramids: Vec<Pyramid<'_, I>> =
+        problem.source_guides.iter().map(|&g| Pyramid::new(g, levels)).collect();
+    let target_guide_pyramids: Vec<Pyramid<'_, I>> =
+        problem.target_guides.iter().map(|&g| Pyramid::new(g, levels)).collect();
     let keep_pyramid = problem.mask.map(|mask| Pyramid::new(&mask.keep, levels));
     let holes: Option<Vec<Vec<bool>>> =
         problem.mask.map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect());
-    let spec = |level: usize, patch: usize| -> LevelSpec<'_> {
+    let spec = |level: usize, patch: usize| -> LevelSpec<'_, '_, I> {
         let target_size = level_size(problem.target_size, level);
         let inpainting = problem.mask.filter(|mask| mask.exclude_hole_from_style).and(holes.as_ref());
         let (source_labels, target_labels, label_count) = match (&problem.labels, inpainting) {
@@ -194,7 +198,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         };
         LevelSpec {
             patch,
-            style: style_pyramid.level(level).clone(),
+            style: style_pyramid.level(level),
             style_weights: &problem.style_weights,
             source_guides: source_guide_pyramids.iter().map(|p| p.level(level)).collect(),
             target_guides: target_guide_pyramids.iter().map(|p| p.level(level)).collect(),
@@ -228,22 +232,23 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let level_patch = patch_at_level(params, levels, level_index, source_size, problem.target_size);
         let mut level = Level::new(spec(level_index, level_patch));
         band(&mut level, level_index);
-        let mut field = match (&previous, &problem.seeds) {
+        // The coarser level is dropped once its field is upsampled.
+        let mut field = match (previous.take(), &problem.seeds) {
             (None, Some(seeds)) => Field::seeded(&level, seeds, &level_streams),
             (None, None) => Field::random(&level, &level_streams),
-            (Some((coarse, coarse_level)), _) => Field::upsample(coarse, coarse_level, &level, &level_streams),
+            (Some((coarse, coarse_level)), _) => Field::upsample(&coarse, &coarse_level, &level, &level_streams),
         };
         image = match (&problem.composition, &keep_pyramid) {
             (Some((composed, _)), _) => composed.clone(),
             (None, Some(keep)) => {
                 // The kept pixels of this level; the hole from the field (random or upsampled).
-                let mut fresh = keep.level(level_index).clone();
-                vote(&level, &field, &mut fresh, false);
+                let mut fresh = keep.level(level_index).to_float_image().into_owned();
+                vote(&level, &field, &mut fresh, false, 0.0);
                 fresh
             }
             (None, None) => {
                 let mut fresh = FloatImage::new(level.target_width, level.target_height, level.style_channels);
-                vote(&level, &field, &mut fresh, false);
+                vote(&level, &field, &mut fresh, false, 0.0);
                 fresh
             }
         };
@@ -260,10 +265,9 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
             search(&level, &mut field, &mut occurrence, &mut scratch, params, &level_streams, iteration, mask, current);
             occurrence.refresh(&level, &field.matches);
             energies.push(field.mean_energy(&level, &occurrence));
-            let before = (params.stop_threshold > 0.0).then(|| image.clone());
-            vote(&level, &field, &mut image, true);
+            let changed = vote(&level, &field, &mut image, true, params.stop_threshold);
             level.set_target_style(&image, true);
-            converged = before.map(|before| converged_patches(&level, &before, &image, params.stop_threshold));
+            converged = (params.stop_threshold > 0.0).then(|| converged_patches(&level, &changed));
             progress.report(&stage, (iteration + 1) as f64 / params.search_vote_iterations as f64);
         }
         let ms = motif_core::timing::elapsed_ms(level_start);
@@ -284,6 +288,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let pass_start = Clock::now();
         let stage = "extra 3×3 pass".to_string();
         progress.report(&stage, 0.0);
+        drop(level);
         let mut fine = Level::new(spec(0, 3));
         band(&mut fine, 0);
         fine.set_target_style(&image, false);
@@ -292,7 +297,7 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         let pass_streams = streams.child("extra pass", 0);
         search(&fine, &mut field, &mut occurrence, &mut scratch, params, &pass_streams, 0, None, false);
         let energies = vec![field.mean_energy(&fine, &occurrence)];
-        vote(&fine, &field, &mut image, true);
+        vote(&fine, &field, &mut image, true, 0.0);
         fine.set_target_style(&image, true);
         let ms = motif_core::timing::elapsed_ms(pass_start);
         timer.add(&stage, ms);
@@ -325,20 +330,27 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
         }
     }
     let searched = level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count());
+    // The public field is the largest buffer made at the end: the level's stacks, the costs and
+    // the occurrence counts are freed first.
+    let (width, height, source_width, source_height, patch_size) =
+        (level.target_width, level.target_height, level.source_width, level.source_height, level.patch);
+    let active = level.active.take();
+    drop((level, occurrence));
+    let Field { matches, costs } = field;
+    drop(costs);
     let nnf = NearestNeighbourField {
-        width: level.target_width,
-        height: level.target_height,
-        source_width: level.source_width,
-        source_height: level.source_height,
-        patch_size: level.patch,
-        matches: field
-            .matches
+        width,
+        height,
+        source_width,
+        source_height,
+        patch_size,
+        matches: matches
             .iter()
             .enumerate()
             .map(|(t, &s)| {
-                level.is_active(t).then(|| {
+                active.as_ref().is_none_or(|active| active[t]).then(|| {
                     let s = s as usize;
-                    [(s % level.source_width) as u32, (s / level.source_width) as u32]
+                    [(s % source_width) as u32, (s / source_width) as u32]
                 })
             })
             .collect(),
@@ -360,17 +372,9 @@ pub(crate) fn run(problem: &Problem<'_>, params: &Params, progress: &mut dyn Pro
     })
 }
 
-/// Patches none of whose pixels changed by `threshold` or more in the last vote
-/// (largest absolute change over the style channels, 8-bit units).
-fn converged_patches(level: &Level, before: &FloatImage, after: &FloatImage, threshold: f32) -> Vec<bool> {
-    let channels = level.style_channels;
-    let changed: Vec<bool> = before
-        .data()
-        .chunks_exact(channels)
-        .zip(after.data().chunks_exact(channels))
-        .map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f32::max) * 255.0 >= threshold)
-        .collect();
-    dilate(&changed, level.target_width, level.target_height, level.radius).into_iter().map(|c| !c).collect()
+/// Patches none of whose pixels `changed` (by the stop threshold, in the last vote).
+fn converged_patches(level: &Level, changed: &[bool]) -> Vec<bool> {
+    dilate(changed, level.target_width, level.target_height, level.radius).into_iter().map(|c| !c).collect()
 }
 
 /// The output of a band with no pixels: the composed textures, no field, zero energy.

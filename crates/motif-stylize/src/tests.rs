@@ -44,8 +44,11 @@ pub(crate) fn psnr(a: &FloatImage, b: &FloatImage) -> f64 {
 }
 
 /// A level with a 3-channel style, a 1-channel and a 3-channel guide of their own weights,
-/// and target guides of a different size.
-pub(crate) fn small_level(patch: usize) -> (Level, FloatImage, Vec<FloatImage>, Vec<FloatImage>, Vec<f32>, FloatImage) {
+/// and target guides of a different size. The level borrows its style for the whole test run
+/// (leaked: a few hundred bytes per call).
+pub(crate) fn small_level(
+    patch: usize,
+) -> (Level<'static>, FloatImage, Vec<FloatImage>, Vec<FloatImage>, Vec<f32>, FloatImage) {
     let style = texture(14, 12, 3, 1);
     let sources = vec![texture(14, 12, 1, 2), texture(14, 12, 3, 3)];
     let targets = vec![texture(11, 9, 1, 4), texture(11, 9, 3, 5)];
@@ -55,9 +58,10 @@ pub(crate) fn small_level(patch: usize) -> (Level, FloatImage, Vec<FloatImage>, 
     guide_weights.extend([0.2_f32 / 3.0; 3]);
     let source_stack = FloatImage::stack(&[&sources[0], &sources[1]]).unwrap();
     let target_stack = FloatImage::stack(&[&targets[0], &targets[1]]).unwrap();
+    let borrowed: &'static FloatImage = Box::leak(Box::new(style.clone()));
     let mut level = Level::new(LevelSpec {
         patch,
-        style: style.clone(),
+        style: borrowed,
         style_weights: &style_weights,
         source_guides: vec![&source_stack],
         target_guides: vec![&target_stack],
@@ -272,7 +276,7 @@ fn patchmatch_energy_never_increases_and_nears_exact() {
     let weights = [1.0_f32 / 3.0; 3];
     let spec = |patch| LevelSpec {
         patch,
-        style: style.clone(),
+        style: &style,
         style_weights: &weights,
         source_guides: Vec::new(),
         target_guides: Vec::new(),

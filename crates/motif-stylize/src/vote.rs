@@ -8,7 +8,8 @@
 //! 16 bits ([`weight_code`]), so that a saved field carries the exact weights of the final vote and
 //! re-applying it reproduces the output (`crate::apply_field`).
 
-use motif_core::FloatImage;
+use motif_core::channel_image::BYTE_VALUES;
+use motif_core::{FloatImage, Samples};
 use rayon::prelude::*;
 
 use crate::level::Level;
@@ -25,19 +26,47 @@ pub(crate) fn weight_of_code(code: u16) -> f32 {
 }
 
 /// Votes the level's style through `field` into `output` (target size, style channels). Pixels
-/// outside the level's domain keep their value.
-pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weighted: bool) {
-    let (width, height, radius) = (level.target_width, level.target_height, level.radius as isize);
-    let channels = level.style_channels;
+/// outside the level's domain keep their value. Returns, per target pixel, whether its largest
+/// change over the style channels reached `threshold` (8-bit units): taken as each value is
+/// overwritten, so no copy of the image before the vote is needed.
+pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weighted: bool, threshold: f32) -> Vec<bool> {
     let area = (level.patch * level.patch) as f32;
     let weights: Vec<f32> = if weighted {
         field.costs.par_iter().map(|&cost| weight_of_code(weight_code(cost, area))).collect()
     } else {
         vec![1.0; field.costs.len()]
     };
-    let style = level.style.data();
+    let mut changed = vec![false; level.target_len()];
+    let gathered = Gathered { output, changed: &mut changed, threshold };
+    match level.style {
+        Samples::Float(style) => gather(level, field, &weights, gathered, style, |v| v),
+        Samples::Byte(style) => gather(level, field, &weights, gathered, style, |v| BYTE_VALUES[usize::from(v)]),
+    }
+    changed
+}
+
+/// Where a gather writes: the image and the per-pixel change flags.
+struct Gathered<'a> {
+    output: &'a mut FloatImage,
+    changed: &'a mut [bool],
+    threshold: f32,
+}
+
+/// The vote's gather over style samples of type `T`, read as values by `value` (monomorphized
+/// per sample type: no branch per sample).
+fn gather<T: Copy + Sync>(
+    level: &Level,
+    field: &Field,
+    weights: &[f32],
+    Gathered { output, changed, threshold }: Gathered<'_>,
+    style: &[T],
+    value: impl Fn(T) -> f32 + Sync,
+) {
+    let (width, height, radius) = (level.target_width, level.target_height, level.radius as isize);
+    let channels = level.style_channels;
     let source_width = level.source_width as isize;
-    output.data_mut().par_chunks_mut(width * channels).enumerate().for_each(|(y, row)| {
+    let rows = output.data_mut().par_chunks_mut(width * channels).zip(changed.par_chunks_mut(width));
+    rows.enumerate().for_each(|(y, (row, changed_row))| {
         let mut sum = [0.0_f32; 4];
         for x in 0..width {
             if !level.in_domain(y * width + x) {
@@ -72,17 +101,21 @@ pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weight
                     let s = field.matches[t] as isize;
                     let start = (s - oy * source_width - ox) as usize * channels;
                     let weight = weights[t];
-                    for (acc, value) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
-                        *acc += weight * value;
+                    for (acc, &sample) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
+                        *acc += weight * value(sample);
                     }
                     total_weight += weight;
                 }
             }
             if total_weight > 0.0 {
                 let out = &mut row[x * channels..(x + 1) * channels];
+                let mut largest = 0.0_f32;
                 for (value, acc) in out.iter_mut().zip(&sum[..channels]) {
-                    *value = acc / total_weight;
+                    let new = acc / total_weight;
+                    largest = largest.max((new - *value).abs());
+                    *value = new;
                 }
+                changed_row[x] = largest * 255.0 >= threshold;
             }
         }
     });

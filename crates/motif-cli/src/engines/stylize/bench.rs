@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use motif_core::NoProgress;
+use motif_core::{ByteImage, FloatImage, NoProgress};
 use motif_stylize::{
     Guide, Input, NnfMethod, Output, Params, PresynthInput, Segmentation, presynthesize, samples, synthesize,
 };
@@ -40,7 +40,7 @@ fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> Input {
     Input::guided(style, guides)
 }
 
-fn timed(input: &Input, params: &Params) -> anyhow::Result<(Output, f64, Option<f64>)> {
+fn timed<I: motif_core::ChannelImage>(input: &Input<I>, params: &Params) -> anyhow::Result<(Output, f64, Option<f64>)> {
     let cpu_start = cpu_seconds();
     let start = std::time::Instant::now();
     let output = synthesize(input, params, &mut NoProgress)?;
@@ -111,10 +111,13 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
 /// ebsynth peaks at about 91 MB on that example.
 fn memory(bench: &Bench) -> anyhow::Result<Value> {
     let size = if bench.quick { 200 } else { 900 };
-    let grey = |seed: u64| samples::smooth_field(size, size, 1, seed);
+    // 8-bit, as the front ends decode PNGs; each float sample is dropped once converted.
+    let bytes = |image: FloatImage| ByteImage::from_float(&image);
+    let grey = |seed: u64| bytes(samples::smooth_field(size, size, 1, seed));
     let source = samples::map_guide(size, size, 5, bench.seed);
-    let target = samples::map_guide(size, size, 5, bench.seed + 1);
-    let style = samples::crayon_style(&source, bench.seed + 2);
+    let target = bytes(samples::map_guide(size, size, 5, bench.seed + 1));
+    let style = bytes(samples::crayon_style(&source, bench.seed + 2));
+    let source = bytes(source);
     let guides = vec![
         Guide { source: grey(bench.seed + 3), target: grey(bench.seed + 4), weight: None },
         Guide { source: grey(bench.seed + 5), target: grey(bench.seed + 6), weight: None },
@@ -157,7 +160,7 @@ fn structure(bench: &Bench) -> anyhow::Result<Value> {
         ("leaves", "irregular"),
     ] {
         let image = motif_io::read_image(&folder.join(format!("{name}.png")))?;
-        let exemplar = motif_jobs::stylize::style_image_channels(&image);
+        let exemplar = motif_jobs::stylize::style_image_channels(&image).to_float();
         let (width, height) = (2 * exemplar.width(), 2 * exemplar.height());
         let mut runs = Map::new();
         for (name, patch, coarse) in

@@ -10,7 +10,7 @@
 use std::path::Path;
 
 use anyhow::{Context as _, bail};
-use motif_core::{FloatImage, RgbaImage};
+use motif_core::RgbaImage;
 use motif_stylize::{NearestNeighbourField, SegmentTexture};
 use serde::{Deserialize, Serialize};
 
@@ -133,7 +133,7 @@ fn read_checked(dir: &Path, file: &str, expected: Option<&String>) -> anyhow::Re
 /// `patch_size`, and the cache's generation id (`None` for caches of older versions).
 pub fn read(
     dir: &Path,
-    style: &FloatImage,
+    style: &impl motif_core::ChannelImage,
     patch_size: usize,
 ) -> anyhow::Result<(Vec<SegmentTexture>, Option<String>)> {
     let manifest_path = dir.join(MANIFEST);
@@ -176,6 +176,7 @@ pub fn read(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use motif_core::FloatImage;
 
     fn texture(colour: f32, shade: f32) -> SegmentTexture {
         let image = FloatImage::from_data(6, 5, 3, vec![shade; 6 * 5 * 3]).unwrap();

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Context as _;
 use clap::Args;
-use motif_core::{FloatImage, RgbaImage};
+use motif_core::{ByteImage, RgbaImage};
 use motif_jobs::stylize::{InpaintJob, ZoomJob, hole_of, kept_image, style_image_channels};
 use motif_stylize::Mask;
 
@@ -33,7 +33,7 @@ impl MaskOptions {
     }
 
     /// The mask for a style of `channels` channels, when one is given.
-    pub fn read(&self, channels: usize) -> anyhow::Result<Option<Mask>> {
+    pub fn read(&self, channels: usize) -> anyhow::Result<Option<Mask<ByteImage>>> {
         let (Some(mask_path), Some(keep_path)) = (&self.mask, &self.keep) else { return Ok(None) };
         let (mask, keep) = (load(mask_path)?, load(keep_path)?);
         same_size(&mask, mask_path, &keep, keep_path)?;
@@ -91,7 +91,7 @@ pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<
     context.check_output(&args.out, &[&args.image, &args.mask])?;
     let (image, mask) = (load(&args.image)?, load(&args.mask)?);
     same_size(&mask, &args.mask, &image, &args.image)?;
-    let image: FloatImage = style_image_channels(&image);
+    let image = style_image_channels(&image);
     let hole = hole_of(&mask);
     let holes = hole.iter().filter(|&&h| h).count();
     let job = super::with_synthesis!(InpaintJob::new(), &args.synthesis, context);
@@ -147,7 +147,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
             context.check_output(name, &[&args.exemplar])?;
         }
     }
-    let exemplar = style_image_channels(&load(&args.exemplar)?);
+    let exemplar = style_image_channels(&load(&args.exemplar)?).to_float();
     let job = ZoomJob {
         factor: Some(args.factor),
         levels: Some(args.levels),

@@ -256,8 +256,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     inputs.extend(args.apply_nnf.iter().map(PathBuf::as_path));
     inputs.extend(args.masking.inputs());
     context.check_output(out, &inputs)?;
-    let style_image = load(style_path)?;
-    let style = style_image_channels(&style_image);
+    // Only the 8-bit channels the engine takes are kept (not the decoded RGBA).
+    let style = style_image_channels(&load(style_path)?);
     let job = StylizeJob {
         weight: args.weight.clone(),
         segments: args.segment.segments,
@@ -365,7 +365,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     };
     let params = job.params()?;
     let textures =
-        job.run(style_image_channels(&style_image), guide_image_channels(&guide_image), context.progress())?;
+        job.run(style_image_channels(&style_image).to_float(), guide_image_channels(&guide_image).to_float(), context.progress())?;
     std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
     context.figure("generation", generation);

@@ -21,8 +21,8 @@ use crate::suite::Bench;
 
 /// The bench's and the demo's footage over the photo and their keyframe style, on the canvas.
 fn footage(photo: &RgbaImage, canvas: &RgbaImage, frames: usize, width: usize, height: usize) -> (Footage, FloatImage) {
-    let photo = motif_jobs::stylize::style_image_channels(photo);
-    let canvas = motif_jobs::stylize::style_image_channels(canvas);
+    let photo = motif_jobs::stylize::style_image_channels(photo).to_float();
+    let canvas = motif_jobs::stylize::style_image_channels(canvas).to_float();
     let path = CameraPath { start_centre: [160.0, 140.0], end_centre: [290.0, 165.0], start_zoom: 1.0, end_zoom: 1.3 };
     let footage = samples::pan_and_zoom(&photo, width, height, frames, path);
     let style = samples::painted_keyframe(&footage.frames[0], &canvas);
