@@ -247,25 +247,40 @@ fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
     if pixels > max_pixels { Err(Error::TooMuchWork { pixels, max_pixels }) } else { Ok(()) }
 }
 
-/// The peak memory of one synthesis: at each level (4/3 of the finest over the pyramid) the style
-/// and source-guide stack with its quantized copy, the target guides with theirs, the output, the
-/// field with its errors, the vote's sums and the occurrence counts.
+/// The peak memory of one synthesis: the inputs with their coarser pyramid levels (4/3 of the
+/// finest, `sample_bytes` a value: 1 for 8-bit inputs, 4 for floats), the finest level's 8-bit
+/// patch stacks, the output with the vote's weights and change flags, the field with its costs
+/// and the occurrence counts with the search workers' changes (the public field made at the end
+/// replaces the stacks).
 fn memory_estimate(
     style_pixels: usize,
     style_channels: usize,
     guide_channels: usize,
     target_pixels: usize,
+    sample_bytes: usize,
 ) -> motif_core::MemoryEstimate {
     const PYRAMID: f64 = 4.0 / 3.0;
-    let (style_pixels, target_pixels) = (style_pixels as f64 * PYRAMID, target_pixels as f64 * PYRAMID);
-    let (style_channels, guide_channels) = (style_channels as f64, guide_channels as f64);
+    let (style_pixels, target_pixels) = (style_pixels as f64, target_pixels as f64);
+    let (style_channels, guide_channels, sample_bytes) =
+        (style_channels as f64, guide_channels as f64, sample_bytes as f64);
     let mut estimate = motif_core::MemoryEstimate::new();
     estimate
-        .add("style and source guides", style_pixels, (style_channels + guide_channels) * 4.0 * 2.0 + 4.0)
-        .add("target guides", target_pixels, guide_channels * 4.0 * 2.0)
-        .add("output and vote sums", target_pixels, (style_channels * 3.0 + 1.0) * 4.0)
-        .add("nearest-neighbour field", target_pixels, 16.0);
+        .add("style and source guides", style_pixels * PYRAMID, (style_channels + guide_channels) * sample_bytes)
+        .add("target guides", target_pixels * PYRAMID, guide_channels * sample_bytes)
+        .add("patch stacks", style_pixels + target_pixels, style_channels + guide_channels)
+        .add("output and vote", target_pixels, style_channels * 4.0 + 5.0)
+        .add("nearest-neighbour field", target_pixels, 8.0)
+        // The counts, and the changes each search worker keeps (two workers counted).
+        .add("occurrence counts", style_pixels, 12.0);
     estimate
+}
+
+/// Bytes per stored value of an input image.
+fn sample_bytes(image: &impl ChannelImage) -> usize {
+    match image.samples() {
+        motif_core::Samples::Float(_) => 4,
+        motif_core::Samples::Byte(_) => 1,
+    }
 }
 
 const MEMORY_ADVICE: &str = "use a smaller size or fewer guides";
@@ -356,7 +371,7 @@ pub fn synthesize<I: ChannelImage>(
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
     let style_pixels = style.width() * style.height();
     let estimated_memory_bytes =
-        memory_estimate(style_pixels, style.channels(), guide_channels, target_size.0 * target_size.1)
+        memory_estimate(style_pixels, style.channels(), guide_channels, target_size.0 * target_size.1, sample_bytes(style))
             .check(params.max_memory, MEMORY_ADVICE)?;
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
@@ -486,7 +501,7 @@ pub fn presynthesize(
     check_work(width * height * labels.colours.len(), params.max_pixels)?;
     let (sw, sh) = (input.style.width(), input.style.height());
     // Segments are synthesized one after the other; each keeps its texture and field.
-    let mut estimate = memory_estimate(sw * sh, input.style.channels(), 0, width * height);
+    let mut estimate = memory_estimate(sw * sh, input.style.channels(), 0, width * height, 4);
     estimate.add(
         "finished textures",
         (width * height * labels.colours.len()) as f64,
