@@ -42,9 +42,9 @@ pub mod timing;
 mod tone;
 pub mod vector;
 
+pub use channel_image::{ByteImage, ChannelImage, Samples};
 pub use error::InvalidParameter;
 pub use geometry::{Polygon, Polyline};
-pub use channel_image::{ByteImage, ChannelImage, Samples};
 pub use image::{FloatImage, RgbaImage};
 pub use kurbo;
 pub use kurbo::{Point, Vec2};

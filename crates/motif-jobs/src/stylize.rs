@@ -67,6 +67,7 @@ struct Synthesis {
     uniformity: Option<f32>,
     patch_size: Option<usize>,
     coarse_patch_size: Option<usize>,
+    structure_weight: Option<f32>,
     pyramid_levels: Option<usize>,
     search_vote_iters: Option<usize>,
     patchmatch_iters: Option<usize>,
@@ -85,6 +86,7 @@ impl Synthesis {
             .with_uniformity(self.uniformity.unwrap_or(d.uniformity))
             .with_patch_size(self.patch_size.unwrap_or(d.patch_size))
             .with_coarse_patch_size(self.coarse_patch_size.unwrap_or(d.coarse_patch_size))
+            .with_structure_weight(self.structure_weight.unwrap_or(d.structure_weight))
             .with_pyramid_levels(self.pyramid_levels.unwrap_or(d.pyramid_levels))
             .with_search_vote_iterations(self.search_vote_iters.unwrap_or(d.search_vote_iterations))
             .with_patchmatch_iterations(self.patchmatch_iters.unwrap_or(d.patchmatch_iterations))
@@ -122,6 +124,10 @@ macro_rules! job_with_synthesis {
             /// Patch side at the coarsest level, shrinking to `patch-size` at the finest (0 = off).
             #[serde(default)]
             pub coarse_patch_size: Option<usize>,
+            /// Texture synthesis: weight of the exemplar's feature-distance channel at the
+            /// coarsest level (Kaspar et al.'s structure guidance; 0 = off).
+            #[serde(default)]
+            pub structure_weight: Option<f32>,
             /// Pyramid levels (0 = as many as fit).
             #[serde(default)]
             pub pyramid_levels: Option<usize>,
@@ -157,6 +163,7 @@ macro_rules! job_with_synthesis {
                     uniformity: self.uniformity,
                     patch_size: self.patch_size,
                     coarse_patch_size: self.coarse_patch_size,
+                    structure_weight: self.structure_weight,
                     pyramid_levels: self.pyramid_levels,
                     search_vote_iters: self.search_vote_iters,
                     patchmatch_iters: self.patchmatch_iters,

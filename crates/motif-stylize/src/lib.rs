@@ -31,6 +31,9 @@
 //!   passes blended between keyframes, in independent keyframe intervals.
 //! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
 //!   texture keeps its exemplar's structure.
+//! - `feature_distance`: Kaspar et al. 2015's automatic structure guidance for texture synthesis
+//!   (the distance to the exemplar's gaps as a channel weighted at the coarse levels), and
+//!   [`mean_feature_distance`], the figure that sees merged or cut elements.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -58,6 +61,7 @@
 
 mod band;
 mod error;
+mod feature_distance;
 mod field;
 mod level;
 mod mask;
@@ -86,6 +90,7 @@ use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
 
 pub use error::Error;
+pub use feature_distance::mean_feature_distance;
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
@@ -370,9 +375,14 @@ pub fn synthesize<I: ChannelImage>(
     check_work(target_size.0 * target_size.1, params.max_pixels)?;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
     let style_pixels = style.width() * style.height();
-    let estimated_memory_bytes =
-        memory_estimate(style_pixels, style.channels(), guide_channels, target_size.0 * target_size.1, sample_bytes(style))
-            .check(params.max_memory, MEMORY_ADVICE)?;
+    let estimated_memory_bytes = memory_estimate(
+        style_pixels,
+        style.channels(),
+        guide_channels,
+        target_size.0 * target_size.1,
+        sample_bytes(style),
+    )
+    .check(params.max_memory, MEMORY_ADVICE)?;
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
             "guide",
@@ -430,6 +440,16 @@ pub fn synthesize<I: ChannelImage>(
     if let Some(mask) = &input.mask {
         mask::check(mask, style, target_size, patch, input.textures.is_some())?;
     }
+    if params.structure_weight > 0.0 {
+        if guide_count > 0 || input.mask.is_some() || input.textures.is_some() {
+            let allowed = "applies to texture synthesis only (no guides, mask or textures); 0 turns it off";
+            return Err(InvalidParameter::new("structure-weight", params.structure_weight, allowed).into());
+        }
+        let mut output =
+            feature_distance::synthesize_with_structure(style, &style_weights, target_size, params, progress)?;
+        output.report.estimated_memory_bytes = estimated_memory_bytes;
+        return Ok(output);
+    }
     let problem = synthesis::Problem {
         style,
         source_guides,
@@ -445,6 +465,7 @@ pub fn synthesize<I: ChannelImage>(
         composition,
         seeds,
         mask: input.mask.as_ref(),
+        structure_weight: None,
     };
     let mut output = synthesis::run(&problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
@@ -530,6 +551,7 @@ pub fn presynthesize(
             composition: None,
             seeds: None,
             mask: None,
+            structure_weight: None,
         };
         let mut segment_params = params.clone();
         segment_params.seed = motif_core::SeedStreams::new(params.seed).child("presynth", label as u64).seed();

@@ -51,6 +51,12 @@ pub struct Params {
     /// the detail sharp. Never smaller than `patch_size`, and at every level at most what the
     /// level's images hold. 0 = `patch_size` at every level. Odd or 0, range 0..=31, default 0.
     pub coarse_patch_size: usize,
+    /// Texture synthesis only: weight of the exemplar's distance-to-feature channel (Kaspar et
+    /// al.'s automatic structure guidance: mortar, gaps and grooves found by a two-class split of
+    /// the luminance), relative to one colour channel, at the coarsest level; it falls linearly
+    /// to 0 at the finest. Regular textures keep whole elements and continuous gaps. 0 = off.
+    /// Range `[0, 1000]`, default 0.
+    pub structure_weight: f32,
     /// Number of pyramid levels (§3.5); 0 = as many as fit (coarsest level at least
     /// `2·patch_size + 1` pixels on each side of both source and target). Range 0..=32, default 0.
     pub pyramid_levels: usize,
@@ -111,6 +117,7 @@ impl Default for Params {
             uniformity: 3500.0,
             patch_size: 5,
             coarse_patch_size: 0,
+            structure_weight: 0.0,
             pyramid_levels: 0,
             search_vote_iterations: 6,
             patchmatch_iterations: 4,
@@ -148,6 +155,7 @@ impl Params {
             )
             .into());
         }
+        check_range("structure-weight", f64::from(self.structure_weight), 0.0, 1000.0)?;
         check_range("stop-threshold", f64::from(self.stop_threshold), 0.0, 1020.0)?;
         check_count("pyramid-levels", self.pyramid_levels, 0, 32)?;
         check_count("search-vote-iters", self.search_vote_iterations, 1, 100)?;
@@ -168,6 +176,7 @@ motif_core::builders! { Params {
     with_uniformity => uniformity: f32,
     with_patch_size => patch_size: usize,
     with_coarse_patch_size => coarse_patch_size: usize,
+    with_structure_weight => structure_weight: f32,
     with_pyramid_levels => pyramid_levels: usize,
     with_search_vote_iterations => search_vote_iterations: usize,
     with_patchmatch_iterations => patchmatch_iterations: usize,

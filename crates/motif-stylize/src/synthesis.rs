@@ -30,6 +30,9 @@ pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
     pub seeds: Option<Vec<u32>>,
     /// Synthesize only the hole, keep the rest (checked: the output's size, the style's channels).
     pub mask: Option<&'a crate::Mask<I>>,
+    /// Structure guidance: the style's last channel is the feature distance, of this weight at
+    /// the coarsest level, falling linearly to 0 at the finest (`crate::feature_distance`).
+    pub structure_weight: Option<f32>,
 }
 
 /// A mask at pyramid level `level`: a coarse pixel is in the hole when any of the pixels it
@@ -178,6 +181,16 @@ pub(crate) fn run<I: ChannelImage>(
     let keep_pyramid = problem.mask.map(|mask| Pyramid::new(&mask.keep, levels));
     let holes: Option<Vec<Vec<bool>>> =
         problem.mask.map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect());
+    // Per level, the style channels' weights (they differ only with structure guidance).
+    let level_style_weights: Vec<Vec<f32>> = (0..levels)
+        .map(|level| {
+            let mut weights = problem.style_weights.clone();
+            if let (Some(weight), Some(last)) = (problem.structure_weight, weights.last_mut()) {
+                *last = if levels > 1 { weight * level as f32 / (levels - 1) as f32 } else { 0.0 };
+            }
+            weights
+        })
+        .collect();
     let spec = |level: usize, patch: usize| -> LevelSpec<'_, '_, I> {
         let target_size = level_size(problem.target_size, level);
         let inpainting = problem.mask.filter(|mask| mask.exclude_hole_from_style).and(holes.as_ref());
@@ -199,7 +212,7 @@ pub(crate) fn run<I: ChannelImage>(
         LevelSpec {
             patch,
             style: style_pyramid.level(level),
-            style_weights: &problem.style_weights,
+            style_weights: &level_style_weights[level],
             source_guides: source_guide_pyramids.iter().map(|p| p.level(level)).collect(),
             target_guides: target_guide_pyramids.iter().map(|p| p.level(level)).collect(),
             guide_weights: &problem.guide_weights,

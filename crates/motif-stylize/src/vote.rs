@@ -67,7 +67,8 @@ fn gather<T: Copy + Sync>(
     let source_width = level.source_width as isize;
     let rows = output.data_mut().par_chunks_mut(width * channels).zip(changed.par_chunks_mut(width));
     rows.enumerate().for_each(|(y, (row, changed_row))| {
-        let mut sum = [0.0_f32; 4];
+        // Up to 4 style channels, plus structure guidance's distance channel.
+        let mut sum = [0.0_f32; 5];
         for x in 0..width {
             if !level.in_domain(y * width + x) {
                 continue;

@@ -117,7 +117,10 @@ pub fn video_frame(image: &RgbaImage) -> FloatImage {
 /// Keyframe styles with one channel count: RGBA when any has transparency, else RGB.
 pub fn video_styles(images: &[RgbaImage]) -> Vec<FloatImage> {
     let alpha = images.iter().any(|image| !image.is_fully_opaque());
-    images.iter().map(|image| if alpha { image.to_float() } else { super::style_image_channels(image).to_float() }).collect()
+    images
+        .iter()
+        .map(|image| if alpha { image.to_float() } else { super::style_image_channels(image).to_float() })
+        .collect()
 }
 
 impl Default for VideoJob {

@@ -163,17 +163,36 @@ fn structure(bench: &Bench) -> anyhow::Result<Value> {
         let exemplar = motif_jobs::stylize::style_image_channels(&image).to_float();
         let (width, height) = (2 * exemplar.width(), 2 * exemplar.height());
         let mut runs = Map::new();
-        for (name, patch, coarse) in
-            [("patch_5", 5, 0), ("patch_9", 9, 0), ("patch_15", 15, 0), ("coarse_11", 5, 11), ("coarse_15", 5, 15)]
-        {
-            let params = Params::default().with_seed(bench.seed).with_patch_size(patch).with_coarse_patch_size(coarse);
+        for (name, patch, coarse, structure) in [
+            ("patch_5", 5, 0, 0.0),
+            ("patch_9", 9, 0, 0.0),
+            ("patch_15", 15, 0, 0.0),
+            ("coarse_11", 5, 11, 0.0),
+            ("coarse_15", 5, 15, 0.0),
+            ("structure_3", 5, 0, 3.0),
+            ("coarse_11_structure_1", 5, 11, 1.0),
+            ("coarse_11_structure_3", 5, 11, 3.0),
+            ("coarse_11_structure_10", 5, 11, 10.0),
+        ] {
+            let params = Params::default()
+                .with_seed(bench.seed)
+                .with_patch_size(patch)
+                .with_coarse_patch_size(coarse)
+                .with_structure_weight(structure);
             let input = Input::texture(exemplar.clone(), width, height);
             let (output, wall, _) = timed(&input, &params)?;
             let distance = motif_stylize::nearest_patch_distance(&output.image, &exemplar, 15, 100);
             let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&exemplar).max(1e-9);
+            let elements = motif_stylize::mean_feature_distance(&output.image)
+                / motif_stylize::mean_feature_distance(&exemplar).max(1e-9);
             runs.insert(
                 name.to_string(),
-                json!({ "nearest_patch_distance_15": distance, "sharpness_ratio": sharpness, "wall_s": wall }),
+                json!({
+                    "nearest_patch_distance_15": distance,
+                    "sharpness_ratio": sharpness,
+                    "feature_distance_ratio": elements,
+                    "wall_s": wall,
+                }),
             );
         }
         runs.insert("kind".into(), json!(kind));

@@ -44,6 +44,12 @@ pub struct SynthesisOptions {
     /// layout; larger patches there keep regular structures (bricks, weaves, parquet) whole.
     #[arg(long, value_name = "P", default_value_t = 0)]
     pub coarse_patch_size: usize,
+    /// Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps,
+    /// grooves; found by splitting its luminance in two) as one more channel, relative to a colour
+    /// channel, at the coarsest level and falling to 0 at the finest (Kaspar et al. 2015's
+    /// structure guidance), 0–1000; 0 = off. Keeps the elements of regular textures whole.
+    #[arg(long, value_name = "W", default_value_t = 0.0, allow_negative_numbers = true)]
+    pub structure_weight: f32,
     /// Pyramid levels, 0–32; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
     #[arg(long, value_name = "L", default_value_t = 0)]
     pub pyramid_levels: usize,
@@ -82,6 +88,7 @@ macro_rules! with_synthesis_options {
         job.uniformity = Some(options.uniformity);
         job.patch_size = Some(options.patch_size);
         job.coarse_patch_size = Some(options.coarse_patch_size);
+        job.structure_weight = Some(options.structure_weight);
         job.pyramid_levels = Some(options.pyramid_levels);
         job.search_vote_iters = Some(options.search_vote_iterations);
         job.patchmatch_iters = Some(options.patchmatch_iterations);
@@ -364,8 +371,11 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
         ..with_synthesis!(PresynthJob::new(), &args.synthesis, context)
     };
     let params = job.params()?;
-    let textures =
-        job.run(style_image_channels(&style_image).to_float(), guide_image_channels(&guide_image).to_float(), context.progress())?;
+    let textures = job.run(
+        style_image_channels(&style_image).to_float(),
+        guide_image_channels(&guide_image).to_float(),
+        context.progress(),
+    )?;
     std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
     let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
     context.figure("generation", generation);
