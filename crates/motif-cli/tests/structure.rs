@@ -62,3 +62,24 @@ fn structure_guidance_keeps_the_gaps_between_elements() {
         }
     }
 }
+
+/// `--quilt-block` (half the exemplar's smaller side) on the four regular textures and an
+/// irregular one, grown to twice the exemplar's size: starting from an image quilt keeps whole
+/// elements in continuous courses, so the output's 15 × 15 patches come much closer to the
+/// exemplar's than the default's (measured over seeds 1–5: at most 44 % of the default's lowest),
+/// and the output stays as sharp as the exemplar (the default loses 5–22 %).
+#[test]
+fn quilting_keeps_regular_textures_whole() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["brick.png", "burlap.png", "parque1.png", "parque2.png", "stone33.png"] {
+        let exemplar = motif_io::read_image(&corpus(name)).unwrap().to_float_channels(&[0, 1, 2]);
+        let block = (exemplar.width().min(exemplar.height()) / 2).to_string();
+        let default = grown(dir.path(), name, &[]);
+        let quilted = grown(dir.path(), name, &["--quilt-block", &block]);
+        let distance = |image: &FloatImage| motif_stylize::nearest_patch_distance(image, &exemplar, 15, 100).unwrap();
+        let (before, after) = (distance(&default), distance(&quilted));
+        assert!(after < 0.75 * before, "{name}: nearest 15×15 patch distance {after:.0} against {before:.0}");
+        let sharpness = motif_stylize::sharpness(&quilted) / motif_stylize::sharpness(&exemplar);
+        assert!(sharpness > 0.9, "{name}: sharpness {sharpness:.3} of the exemplar's");
+    }
+}

@@ -68,6 +68,7 @@ struct Synthesis {
     patch_size: Option<usize>,
     coarse_patch_size: Option<usize>,
     structure_weight: Option<f32>,
+    quilt_block: Option<usize>,
     pyramid_levels: Option<usize>,
     search_vote_iters: Option<usize>,
     patchmatch_iters: Option<usize>,
@@ -87,6 +88,7 @@ impl Synthesis {
             .with_patch_size(self.patch_size.unwrap_or(d.patch_size))
             .with_coarse_patch_size(self.coarse_patch_size.unwrap_or(d.coarse_patch_size))
             .with_structure_weight(self.structure_weight.unwrap_or(d.structure_weight))
+            .with_quilt_block(self.quilt_block.unwrap_or(d.quilt_block))
             .with_pyramid_levels(self.pyramid_levels.unwrap_or(d.pyramid_levels))
             .with_search_vote_iterations(self.search_vote_iters.unwrap_or(d.search_vote_iterations))
             .with_patchmatch_iterations(self.patchmatch_iters.unwrap_or(d.patchmatch_iterations))
@@ -128,6 +130,10 @@ macro_rules! job_with_synthesis {
             /// coarsest level (Kaspar et al.'s structure guidance; 0 = off).
             #[serde(default)]
             pub structure_weight: Option<f32>,
+            /// Texture synthesis: start from an image quilt of blocks of this side, optimized at
+            /// the finest level only (0 = off).
+            #[serde(default)]
+            pub quilt_block: Option<usize>,
             /// Pyramid levels (0 = as many as fit).
             #[serde(default)]
             pub pyramid_levels: Option<usize>,
@@ -164,6 +170,7 @@ macro_rules! job_with_synthesis {
                     patch_size: self.patch_size,
                     coarse_patch_size: self.coarse_patch_size,
                     structure_weight: self.structure_weight,
+                    quilt_block: self.quilt_block,
                     pyramid_levels: self.pyramid_levels,
                     search_vote_iters: self.search_vote_iters,
                     patchmatch_iters: self.patchmatch_iters,

@@ -71,7 +71,8 @@ pub(crate) fn feature_distance(style: &FloatImage) -> FloatImage {
 }
 
 /// The mean distance, in pixels, from the pixels off the image's features to the nearest feature
-/// (features as in [`feature_distance`]): about half the width of the elements between the gaps.
+/// (features: the darker or smaller class of a two-class split of the blurred luminance): about
+/// half the width of the elements between the gaps.
 /// Elements cut by stray gaps lower it; a figure of structure next to the patch distance. 0 for a
 /// flat image.
 pub fn mean_feature_distance(image: &FloatImage) -> f64 {
@@ -83,6 +84,27 @@ pub fn mean_feature_distance(image: &FloatImage) -> f64 {
     let squared = squared_distance_transform(&feature, width, height);
     let off: Vec<f64> = squared.iter().zip(&feature).filter(|(_, f)| !**f).map(|(d, _)| d.sqrt()).collect();
     off.iter().sum::<f64>() / off.len() as f64
+}
+
+/// How straight and continuous the image's rows and columns of structure are: the standard
+/// deviation of the mean luminance of each row (`[0]`) and of each column (`[1]`). A wall whose
+/// mortar runs straight across has dark rows and light ones; courses that break or wave average
+/// out. Compare with the exemplar's (an output wider than the exemplar averages more pixels per
+/// row, so straight courses keep the exemplar's figure and broken ones fall below it).
+pub fn line_contrast(image: &FloatImage) -> [f64; 2] {
+    let (width, height) = (image.width(), image.height());
+    let luminance = luminance(image);
+    let deviation = |means: &[f64]| {
+        let mean = means.iter().sum::<f64>() / means.len() as f64;
+        (means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / means.len() as f64).sqrt()
+    };
+    let rows: Vec<f64> = (0..height)
+        .map(|y| luminance[y * width..(y + 1) * width].iter().map(|&v| f64::from(v)).sum::<f64>() / width as f64)
+        .collect();
+    let columns: Vec<f64> = (0..width)
+        .map(|x| (0..height).map(|y| f64::from(luminance[y * width + x])).sum::<f64>() / height as f64)
+        .collect();
+    [deviation(&rows), deviation(&columns)]
 }
 
 /// The minority class of the two-class (Otsu) split of the blurred luminance.

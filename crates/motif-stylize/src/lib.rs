@@ -68,6 +68,7 @@ mod mask;
 mod motion;
 mod occurrence;
 mod params;
+mod quilting;
 pub mod samples;
 mod search;
 mod segments;
@@ -90,7 +91,7 @@ use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
 
 pub use error::Error;
-pub use feature_distance::mean_feature_distance;
+pub use feature_distance::{line_contrast, mean_feature_distance};
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
@@ -440,8 +441,19 @@ pub fn synthesize<I: ChannelImage>(
     if let Some(mask) = &input.mask {
         mask::check(mask, style, target_size, patch, input.textures.is_some())?;
     }
+    let texture_only = guide_count == 0 && input.mask.is_none() && input.textures.is_none();
+    let seeds = if params.quilt_block > 0 {
+        if !texture_only || params.structure_weight > 0.0 || params.tileable {
+            let allowed = "applies to texture synthesis only (no guides, mask, textures, structure weight or \
+                tileable output); 0 turns it off";
+            return Err(InvalidParameter::new("quilt-block", params.quilt_block, allowed).into());
+        }
+        Some(quilting::starting_field(style, target_size, params)?)
+    } else {
+        seeds
+    };
     if params.structure_weight > 0.0 {
-        if guide_count > 0 || input.mask.is_some() || input.textures.is_some() {
+        if !texture_only {
             let allowed = "applies to texture synthesis only (no guides, mask or textures); 0 turns it off";
             return Err(InvalidParameter::new("structure-weight", params.structure_weight, allowed).into());
         }

@@ -57,6 +57,12 @@ pub struct Params {
     /// to 0 at the finest. Regular textures keep whole elements and continuous gaps. 0 = off.
     /// Range `[0, 1000]`, default 0.
     pub structure_weight: f32,
+    /// Texture synthesis only: start from an image quilt (Efros and Freeman 2001) of square
+    /// blocks of this side, at most the exemplar's smaller side, and optimize at the finest level
+    /// only (no pyramid): blocks keep whole elements in continuous courses, the optimization mends
+    /// the seams. 0 = off (start from random patches at the coarsest level). Range 0 or 8..=4096,
+    /// default 0.
+    pub quilt_block: usize,
     /// Number of pyramid levels (§3.5); 0 = as many as fit (coarsest level at least
     /// `2·patch_size + 1` pixels on each side of both source and target). Range 0..=32, default 0.
     pub pyramid_levels: usize,
@@ -118,6 +124,7 @@ impl Default for Params {
             patch_size: 5,
             coarse_patch_size: 0,
             structure_weight: 0.0,
+            quilt_block: 0,
             pyramid_levels: 0,
             search_vote_iterations: 6,
             patchmatch_iterations: 4,
@@ -156,6 +163,11 @@ impl Params {
             .into());
         }
         check_range("structure-weight", f64::from(self.structure_weight), 0.0, 1000.0)?;
+        if self.quilt_block != 0 && !(8..=4096).contains(&self.quilt_block) {
+            return Err(
+                InvalidParameter::new("quilt-block", self.quilt_block, "must be 0 (off) or 8–4096 pixels").into()
+            );
+        }
         check_range("stop-threshold", f64::from(self.stop_threshold), 0.0, 1020.0)?;
         check_count("pyramid-levels", self.pyramid_levels, 0, 32)?;
         check_count("search-vote-iters", self.search_vote_iterations, 1, 100)?;
@@ -177,6 +189,7 @@ motif_core::builders! { Params {
     with_patch_size => patch_size: usize,
     with_coarse_patch_size => coarse_patch_size: usize,
     with_structure_weight => structure_weight: f32,
+    with_quilt_block => quilt_block: usize,
     with_pyramid_levels => pyramid_levels: usize,
     with_search_vote_iterations => search_vote_iterations: usize,
     with_patchmatch_iterations => patchmatch_iterations: usize,

@@ -158,8 +158,9 @@ pub(crate) fn run<I: ChannelImage>(
     let patch = params.patch_size;
     let streams = SeedStreams::new(params.seed);
     let source_size = (problem.style.width(), problem.style.height());
-    let levels = if problem.composition.is_some() {
-        // Band mode optimizes a thin band at full resolution only (§3.7).
+    let levels = if problem.composition.is_some() || problem.seeds.is_some() {
+        // Band mode optimizes a thin band at full resolution only (§3.7); a quilted start is
+        // already laid out at full resolution.
         1
     } else {
         let fit = fitting_levels(&[source_size, problem.target_size], 2 * patch + 1);

@@ -160,37 +160,48 @@ fn structure(bench: &Bench) -> anyhow::Result<Value> {
         ("leaves", "irregular"),
     ] {
         let image = motif_io::read_image(&folder.join(format!("{name}.png")))?;
-        let exemplar = motif_jobs::stylize::style_image_channels(&image).to_float();
+        // 8-bit, as `motif texture` hands it to the engine; the figures read it as floats.
+        let bytes = motif_jobs::stylize::style_image_channels(&image);
+        let exemplar = bytes.to_float();
         let (width, height) = (2 * exemplar.width(), 2 * exemplar.height());
         let mut runs = Map::new();
-        for (name, patch, coarse, structure) in [
-            ("patch_5", 5, 0, 0.0),
-            ("patch_9", 9, 0, 0.0),
-            ("patch_15", 15, 0, 0.0),
-            ("coarse_11", 5, 11, 0.0),
-            ("coarse_15", 5, 15, 0.0),
-            ("structure_3", 5, 0, 3.0),
-            ("coarse_11_structure_1", 5, 11, 1.0),
-            ("coarse_11_structure_3", 5, 11, 3.0),
-            ("coarse_11_structure_10", 5, 11, 10.0),
+        let side = exemplar.width().min(exemplar.height());
+        // Columns: name, patch side, coarsest patch side, structure weight, quilt block.
+        for (name, patch, coarse, structure, quilt) in [
+            ("patch_5", 5, 0, 0.0, 0),
+            ("patch_9", 9, 0, 0.0, 0),
+            ("patch_15", 15, 0, 0.0, 0),
+            ("coarse_11", 5, 11, 0.0, 0),
+            ("coarse_15", 5, 15, 0.0, 0),
+            ("structure_3", 5, 0, 3.0, 0),
+            ("coarse_11_structure_1", 5, 11, 1.0, 0),
+            ("coarse_11_structure_3", 5, 11, 3.0, 0),
+            ("coarse_11_structure_10", 5, 11, 10.0, 0),
+            ("quilt_third", 5, 0, 0.0, (side / 3).max(8)),
+            ("quilt_half", 5, 0, 0.0, (side / 2).max(8)),
         ] {
             let params = Params::default()
                 .with_seed(bench.seed)
                 .with_patch_size(patch)
                 .with_coarse_patch_size(coarse)
-                .with_structure_weight(structure);
-            let input = Input::texture(exemplar.clone(), width, height);
+                .with_structure_weight(structure)
+                .with_quilt_block(quilt);
+            let input = Input::texture(bytes.clone(), width, height);
             let (output, wall, _) = timed(&input, &params)?;
             let distance = motif_stylize::nearest_patch_distance(&output.image, &exemplar, 15, 100);
             let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&exemplar).max(1e-9);
             let elements = motif_stylize::mean_feature_distance(&output.image)
                 / motif_stylize::mean_feature_distance(&exemplar).max(1e-9);
+            let (lines, exemplar_lines) =
+                (motif_stylize::line_contrast(&output.image), motif_stylize::line_contrast(&exemplar));
+            let line_ratios = [lines[0] / exemplar_lines[0].max(1e-9), lines[1] / exemplar_lines[1].max(1e-9)];
             runs.insert(
                 name.to_string(),
                 json!({
                     "nearest_patch_distance_15": distance,
                     "sharpness_ratio": sharpness,
                     "feature_distance_ratio": elements,
+                    "line_contrast_ratio_rows_columns": line_ratios,
                     "wall_s": wall,
                 }),
             );

@@ -50,6 +50,12 @@ pub struct SynthesisOptions {
     /// structure guidance), 0–1000; 0 = off. Keeps the elements of regular textures whole.
     #[arg(long, value_name = "W", default_value_t = 0.0, allow_negative_numbers = true)]
     pub structure_weight: f32,
+    /// Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of
+    /// B pixels, at most the exemplar's smaller side, and optimize at the finest level only:
+    /// blocks keep whole elements in continuous courses (bricks, tiles), the optimization mends
+    /// the seams. 0 or 8–4096; 0 = off.
+    #[arg(long, value_name = "B", default_value_t = 0)]
+    pub quilt_block: usize,
     /// Pyramid levels, 0–32; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
     #[arg(long, value_name = "L", default_value_t = 0)]
     pub pyramid_levels: usize,
@@ -89,6 +95,7 @@ macro_rules! with_synthesis_options {
         job.patch_size = Some(options.patch_size);
         job.coarse_patch_size = Some(options.coarse_patch_size);
         job.structure_weight = Some(options.structure_weight);
+        job.quilt_block = Some(options.quilt_block);
         job.pyramid_levels = Some(options.pyramid_levels);
         job.search_vote_iters = Some(options.search_vote_iterations);
         job.patchmatch_iters = Some(options.patchmatch_iterations);
