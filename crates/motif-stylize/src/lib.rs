@@ -33,7 +33,10 @@
 //!   texture keeps its exemplar's structure.
 //! - `feature_distance`: Kaspar et al. 2015's automatic structure guidance for texture synthesis
 //!   (the distance to the exemplar's gaps as a channel weighted at the coarse levels), and
-//!   [`mean_feature_distance`], the figure that sees merged or cut elements.
+//!   [`mean_feature_distance`] and [`line_contrast`], figures that see merged or cut elements and
+//!   broken courses.
+//! - `quilting`: image quilting (Efros and Freeman 2001) as the start of texture optimization
+//!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
