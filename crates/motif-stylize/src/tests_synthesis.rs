@@ -50,6 +50,26 @@ fn same_seed_same_bytes_on_one_and_two_threads() {
     assert_ne!(bits(&one), bits(&three));
 }
 
+/// The texture paths of issue 16 (8-bit exemplar, quilted start, structure guidance) give the
+/// same bytes on one and two threads.
+#[test]
+fn texture_paths_give_the_same_bytes_on_one_and_two_threads() {
+    let exemplar = ByteImage::from_float(&texture(40, 36, 3, 5));
+    let input = Input::texture(exemplar, 64, 56);
+    for params in [
+        Params::default().with_seed(4).with_quilt_block(16),
+        Params::default().with_seed(4).with_structure_weight(3.0).with_coarse_patch_size(7),
+    ] {
+        let run = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| synthesize(&input, &params, &mut NoProgress).unwrap())
+        };
+        let (one, two) = (run(1), run(2));
+        assert_eq!(one.image, two.image);
+        assert_eq!(one.field, two.field);
+    }
+}
+
 #[test]
 fn identity_guides_reproduce_the_style() {
     let style = texture(48, 48, 3, 31);
