@@ -8,7 +8,7 @@
 use std::borrow::Cow;
 
 use crate::error::InvalidParameter;
-use crate::image::{FloatImage, RgbaImage};
+use crate::image::{FloatImage, RgbaImage, check_layout, coarser_chain};
 
 /// The value an 8-bit sample stands for, `v / 255`, exactly as [`RgbaImage::to_float`] computes it
 /// (so an 8-bit image and its float conversion read the same values).
@@ -35,13 +35,7 @@ pub struct ByteImage {
 impl ByteImage {
     /// Wraps interleaved `data`; fails if its length is not `width × height × channels`.
     pub fn from_data(width: usize, height: usize, channels: usize, data: Vec<u8>) -> Result<Self, InvalidParameter> {
-        if channels == 0 || data.len() != width * height * channels {
-            return Err(InvalidParameter::new(
-                "data",
-                data.len(),
-                format!("must hold width × height × channels = {} values (channels ≥ 1)", width * height * channels),
-            ));
-        }
+        check_layout(width, height, channels, data.len())?;
         Ok(Self { width, height, channels, data })
     }
 
@@ -202,16 +196,7 @@ impl ChannelImage for ByteImage {
         Samples::Byte(&self.data)
     }
     fn coarser_levels(&self, levels: usize, min_size: usize) -> Vec<Self> {
-        let mut coarser: Vec<ByteImage> = Vec::new();
-        while coarser.len() + 1 < levels {
-            let last = coarser.last().unwrap_or(self);
-            if last.width.div_ceil(2) < min_size || last.height.div_ceil(2) < min_size {
-                break;
-            }
-            let next = last.downsample();
-            coarser.push(next);
-        }
-        coarser
+        coarser_chain(self, levels, min_size, |image| (image.width, image.height), ByteImage::downsample)
     }
     fn to_float_image(&self) -> Cow<'_, FloatImage> {
         Cow::Owned(self.to_float())

@@ -191,13 +191,7 @@ impl FloatImage {
 
     /// Wraps interleaved `data`; fails if its length is not `width × height × channels`.
     pub fn from_data(width: usize, height: usize, channels: usize, data: Vec<f32>) -> Result<Self, InvalidParameter> {
-        if channels == 0 || data.len() != width * height * channels {
-            return Err(InvalidParameter::new(
-                "data",
-                data.len(),
-                format!("must hold width × height × channels = {} values (channels ≥ 1)", width * height * channels),
-            ));
-        }
+        check_layout(width, height, channels, data.len())?;
         Ok(Self { width, height, channels, data })
     }
 
@@ -368,16 +362,7 @@ impl FloatImage {
     /// The levels of [`gaussian_pyramid`](Self::gaussian_pyramid) above this one (without a copy
     /// of this image): at most `levels − 1` images, coarser and coarser.
     pub fn coarser_levels(&self, levels: usize, min_size: usize) -> Vec<FloatImage> {
-        let mut coarser: Vec<FloatImage> = Vec::new();
-        while coarser.len() + 1 < levels {
-            let last = coarser.last().unwrap_or(self);
-            if last.width.div_ceil(2) < min_size || last.height.div_ceil(2) < min_size {
-                break;
-            }
-            let next = last.downsample();
-            coarser.push(next);
-        }
-        coarser
+        coarser_chain(self, levels, min_size, |image| (image.width, image.height), FloatImage::downsample)
     }
 
     /// Stacks the channels of several images of the same size into one image.
@@ -400,6 +385,45 @@ impl FloatImage {
         }
         Ok(FloatImage { width: w, height: h, channels, data })
     }
+}
+
+/// Fails unless `values` is `width × height × channels` with at least one channel.
+pub(crate) fn check_layout(
+    width: usize,
+    height: usize,
+    channels: usize,
+    values: usize,
+) -> Result<(), InvalidParameter> {
+    if channels == 0 || values != width * height * channels {
+        return Err(InvalidParameter::new(
+            "data",
+            values,
+            format!("must hold width × height × channels = {} values (channels ≥ 1)", width * height * channels),
+        ));
+    }
+    Ok(())
+}
+
+/// The pyramid levels above `finest`, each `next` of the one before: at most `levels − 1`,
+/// stopping before one would be smaller than `min_size` on either side.
+pub(crate) fn coarser_chain<T>(
+    finest: &T,
+    levels: usize,
+    min_size: usize,
+    size: impl Fn(&T) -> (usize, usize),
+    next: impl Fn(&T) -> T,
+) -> Vec<T> {
+    let mut coarser: Vec<T> = Vec::new();
+    while coarser.len() + 1 < levels {
+        let last = coarser.last().unwrap_or(finest);
+        let (width, height) = size(last);
+        if width.div_ceil(2) < min_size || height.div_ceil(2) < min_size {
+            break;
+        }
+        let level = next(last);
+        coarser.push(level);
+    }
+    coarser
 }
 
 #[cfg(test)]
