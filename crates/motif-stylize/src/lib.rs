@@ -445,16 +445,18 @@ pub fn synthesize<I: ChannelImage>(
         mask::check(mask, style, target_size, patch, input.textures.is_some())?;
     }
     let texture_only = guide_count == 0 && input.mask.is_none() && input.textures.is_none();
+    let quilting_start = motif_core::timing::Clock::now();
     let seeds = if params.quilt_block > 0 {
         if !texture_only || params.structure_weight > 0.0 || params.tileable {
             let allowed = "applies to texture synthesis only (no guides, mask, textures, structure weight or \
                 tileable output); 0 turns it off";
             return Err(InvalidParameter::new("quilt-block", params.quilt_block, allowed).into());
         }
-        Some(quilting::starting_field(style, target_size, params)?)
+        Some(quilting::starting_field(style, target_size, params, progress)?)
     } else {
         seeds
     };
+    let quilting_ms = (params.quilt_block > 0).then(|| motif_core::timing::elapsed_ms(quilting_start));
     if params.structure_weight > 0.0 {
         if !texture_only {
             let allowed = "applies to texture synthesis only (no guides, mask or textures); 0 turns it off";
@@ -484,6 +486,10 @@ pub fn synthesize<I: ChannelImage>(
     };
     let mut output = synthesis::run(&problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
+    if let Some(ms) = quilting_ms {
+        output.report.stages_ms.insert(0, ("quilting".to_string(), ms));
+        output.report.total_ms += ms;
+    }
     Ok(output)
 }
 

@@ -9,7 +9,7 @@
 //! start texture optimization the same way).
 
 use motif_core::random::Rng;
-use motif_core::{ChannelImage, FloatImage, InvalidParameter, SeedStreams};
+use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress, SeedStreams};
 use rayon::prelude::*;
 
 use crate::{Error, Params};
@@ -21,6 +21,7 @@ pub(crate) fn starting_field(
     style: &impl ChannelImage,
     target_size: (usize, usize),
     params: &Params,
+    progress: &mut dyn Progress,
 ) -> Result<Vec<u32>, Error> {
     let (width, height) = (style.width(), style.height());
     let block = params.quilt_block;
@@ -29,7 +30,8 @@ pub(crate) fn starting_field(
         return Err(InvalidParameter::new("quilt-block", block, allowed).into());
     }
     let seed = SeedStreams::new(params.seed).child("quilting", 0).seed();
-    let origin = quilt(&style.to_float_image(), target_size, block, seed);
+    let origin =
+        quilt(&style.to_float_image(), target_size, block, seed, &mut |done| progress.report("quilting", done));
     let radius = params.patch_size / 2;
     Ok(origin
         .iter()
@@ -53,7 +55,14 @@ const MAX_CANDIDATES: usize = 4096;
 /// The exemplar pixel each target pixel comes from (`y · width + x` of the exemplar), for a
 /// `target_size` quilt of `block`-pixel blocks overlapping by `block / 6` (at least 1).
 /// `block` is at most the exemplar's smaller side and at least 2.
-pub(crate) fn quilt(style: &FloatImage, target_size: (usize, usize), block: usize, seed: u64) -> Vec<u32> {
+/// `done` hears the fraction of block rows laid.
+pub(crate) fn quilt(
+    style: &FloatImage,
+    target_size: (usize, usize),
+    block: usize,
+    seed: u64,
+    done: &mut dyn FnMut(f64),
+) -> Vec<u32> {
     let (source_width, source_height) = (style.width(), style.height());
     let (width, height) = target_size;
     let overlap = (block / 4).max(1);
@@ -69,6 +78,7 @@ pub(crate) fn quilt(style: &FloatImage, target_size: (usize, usize), block: usiz
     let blocks_x = width.saturating_sub(overlap).div_ceil(step).max(1);
     let blocks_y = height.saturating_sub(overlap).div_ceil(step).max(1);
     for by in 0..blocks_y {
+        done(by as f64 / blocks_y as f64);
         for bx in 0..blocks_x {
             let (x0, y0) = (bx * step, by * step);
             let (w, h) = (block.min(width - x0), block.min(height - y0));
@@ -97,6 +107,7 @@ pub(crate) fn quilt(style: &FloatImage, target_size: (usize, usize), block: usiz
             }
         }
     }
+    done(1.0);
     origin
 }
 
@@ -227,7 +238,7 @@ mod tests {
                 style.pixel_mut(x, y)[0] = ((x % period) as f32 * 0.1 + (y % period) as f32 * 0.05).min(1.0);
             }
         }
-        let origin = quilt(&style, (70, 55), 18, 4);
+        let origin = quilt(&style, (70, 55), 18, 4, &mut |_| ());
         assert!(origin.iter().all(|&s| (s as usize) < 30 * 30));
         let phase = |x: usize, y: usize| {
             let s = origin[y * 70 + x] as usize;
@@ -240,7 +251,7 @@ mod tests {
                 assert_eq!(phase(x, y), first, "({x}, {y})");
             }
         }
-        assert_eq!(quilt(&style, (70, 55), 18, 4), origin);
+        assert_eq!(quilt(&style, (70, 55), 18, 4, &mut |_| ()), origin);
     }
 
     /// A quilted texture optimizes one level from the quilt's field; the same seed gives the same
