@@ -8,7 +8,7 @@
 use std::borrow::Cow;
 
 use crate::error::InvalidParameter;
-use crate::image::{FloatImage, RgbaImage, check_layout, coarser_chain};
+use crate::image::{FloatImage, RgbaImage, TAPS, check_layout, coarser_chain};
 
 /// The value an 8-bit sample stands for, `v / 255`, exactly as [`RgbaImage::to_float`] computes it
 /// (so an 8-bit image and its float conversion read the same values).
@@ -89,7 +89,6 @@ impl ByteImage {
     /// kept pixels are filtered (the float path blurs every pixel, then drops three in four), so
     /// no full-size float copy is made.
     pub fn downsample(&self) -> ByteImage {
-        const TAPS: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
         let (w, h, c) = (self.width, self.height, self.channels);
         let (out_w, out_h) = (w.div_ceil(2), h.div_ceil(2));
         let clamp = |v: isize, size: usize| v.clamp(0, size as isize - 1) as usize;

@@ -298,7 +298,6 @@ impl FloatImage {
 
     /// Separable binomial blur `[1 4 6 4 1] / 16` (a Gaussian of σ ≈ 1), border clamped.
     pub fn blur(&self) -> FloatImage {
-        const TAPS: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
         let (w, h, c) = (self.width, self.height, self.channels);
         let mut horizontal = FloatImage::new(w, h, c);
         for y in 0..h {
@@ -386,6 +385,10 @@ impl FloatImage {
         Ok(FloatImage { width: w, height: h, channels, data })
     }
 }
+
+/// The binomial filter `[1 4 6 4 1] / 16` of the pyramids (float and 8-bit levels share it, so an
+/// 8-bit level is the float level rounded).
+pub(crate) const TAPS: [f32; 5] = [1.0 / 16.0, 4.0 / 16.0, 6.0 / 16.0, 4.0 / 16.0, 1.0 / 16.0];
 
 /// Fails unless `values` is `width × height × channels` with at least one channel.
 pub(crate) fn check_layout(
