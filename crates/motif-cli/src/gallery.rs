@@ -8,7 +8,6 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::Context as _;
 use serde_json::{Map, Value};
 
 use crate::context::Context;
@@ -35,6 +34,8 @@ struct CaseRecord {
     case: DemoCase,
     figures: Map<String, Value>,
     ms: f64,
+    /// The error and its causes, one per line, when the case failed.
+    failure: Option<String>,
 }
 
 /// The demo folder and the cases run so far.
@@ -48,9 +49,15 @@ pub struct Demo<'a> {
 }
 
 impl<'a> Demo<'a> {
-    /// An empty gallery in `dir`, whose cases run through `runner`.
+    /// An empty gallery in `dir`, whose cases run through `runner`. `dir` should be absolute (see
+    /// [`crate::demo::run`]): the cases' paths are joined to it once, whatever the working folder.
     pub fn new(dir: PathBuf, seed: u64, threads: usize, quiet: bool, runner: Runner<'a>) -> Self {
         Self { dir, seed, threads, quiet, runner, records: Vec::new() }
+    }
+
+    /// The titles of the cases that failed, in order.
+    pub fn failures(&self) -> Vec<&str> {
+        self.records.iter().filter(|record| record.failure.is_some()).map(|record| record.case.title.as_str()).collect()
     }
 
     /// The run's seed.
@@ -73,6 +80,9 @@ impl<'a> Demo<'a> {
                 let mut entry = record.figures.clone();
                 entry.insert("command".into(), Value::from(command_line(&record.case.args)));
                 entry.insert("case_ms".into(), Value::from(record.ms));
+                if let Some(failure) = &record.failure {
+                    entry.insert("error".into(), Value::from(failure.as_str()));
+                }
                 (record.case.title.clone(), Value::Object(entry))
             })
             .collect();
@@ -84,12 +94,43 @@ impl<'a> Demo<'a> {
         self.dir.join(name)
     }
 
-    /// Runs `case` in-process and adds it to the gallery.
+    /// Runs `case` in-process and adds it to the gallery. A case that fails is recorded with its
+    /// error (the gallery marks it) and the demo goes on; [`Demo::failures`] lists them.
     #[allow(clippy::print_stderr)]
     pub fn case(&mut self, case: DemoCase) -> anyhow::Result<()> {
+        let resolved = self.resolve(&case);
+        let start = std::time::Instant::now();
+        let mut context = Context::new(self.seed, self.threads, true);
+        let result = (self.runner)(&resolved, &mut context);
+        let ms = start.elapsed().as_secs_f64() * 1000.0;
+        let failure = result.err().map(|error| error_lines(&error));
+        if !self.quiet {
+            match &failure {
+                None => eprintln!("  {:<48} {:>8.0} ms", case.title, ms),
+                Some(error) => eprintln!("  {:<48}   FAILED: {}", case.title, error.replace('\n', " / ")),
+            }
+        }
+        let case = self.shown(case);
+        self.records.push(CaseRecord { case, figures: context.into_figures(), ms, failure });
+        Ok(())
+    }
+
+    /// Records that an engine's demo stopped before its cases ran (its inputs could not be made).
+    pub fn engine_failed(&mut self, engine: &str, error: &anyhow::Error) {
+        let case = DemoCase {
+            title: format!("{engine}: the demo's inputs"),
+            description: format!("The {engine} demo stopped before its remaining cases ran."),
+            inputs: Vec::new(),
+            outputs: Vec::new(),
+            args: Vec::new(),
+        };
+        self.records.push(CaseRecord { case, figures: Map::new(), ms: 0.0, failure: Some(error_lines(error)) });
+    }
+
+    /// The case's arguments with every file it names inside the demo folder.
+    fn resolve(&self, case: &DemoCase) -> Vec<String> {
         let listed: Vec<&str> = case.inputs.iter().chain(&case.outputs).map(|(_, file)| file.as_str()).collect();
-        let resolved: Vec<String> = case
-            .args
+        case.args
             .iter()
             .map(|arg| {
                 // A listed file behind a kind prefix (`volume:MESH.obj`).
@@ -102,17 +143,13 @@ impl<'a> Demo<'a> {
                     && (listed.contains(&arg.as_str()) || self.dir.join(arg).exists() || looks_like_file_name(arg));
                 if is_file { self.dir.join(arg).to_string_lossy().into_owned() } else { arg.clone() }
             })
-            .collect();
-        let start = std::time::Instant::now();
-        let mut context = Context::new(self.seed, self.threads, true);
-        (self.runner)(&resolved, &mut context).with_context(|| format!("demo case `{}` failed", case.title))?;
-        let ms = start.elapsed().as_secs_f64() * 1000.0;
-        if !self.quiet {
-            eprintln!("  {:<48} {:>8.0} ms", case.title, ms);
-        }
-        // Show the command as run inside the demo folder, whichever way the engine spelled paths.
+            .collect()
+    }
+
+    /// The case as shown: its command as run inside the demo folder, whichever way the engine
+    /// spelled paths.
+    fn shown(&self, mut case: DemoCase) -> DemoCase {
         let prefix = format!("{}{}", self.dir.display(), std::path::MAIN_SEPARATOR);
-        let mut case = case;
         for arg in &mut case.args {
             if let Some(relative) = arg.strip_prefix(&prefix) {
                 *arg = relative.to_string();
@@ -123,9 +160,13 @@ impl<'a> Demo<'a> {
                 *arg = format!("{kind}:{relative}");
             }
         }
-        self.records.push(CaseRecord { case, figures: context.into_figures(), ms });
-        Ok(())
+        case
     }
+}
+
+/// An error and its causes, one per line.
+fn error_lines(error: &anyhow::Error) -> String {
+    error.chain().map(ToString::to_string).collect::<Vec<_>>().join("\n")
 }
 
 /// A plain relative file name with an extension motif reads or writes (so an output that no case
@@ -199,7 +240,8 @@ fn gallery(records: &[CaseRecord], seed: u64, total_ms: f64) -> String {
          background:repeating-conic-gradient(#eee 0 25%,#fff 0 50%) 50%/16px 16px}\n\
          figcaption{font-size:.85em;color:#555}pre{background:#f3f3f3;padding:.6em;overflow-x:auto;white-space:pre-wrap}\n\
          table{border-collapse:collapse;font-size:.85em}td{border-top:1px solid #eee;padding:2px 8px;vertical-align:top}\n\
-         h3{font-size:.95em;margin:.8em 0 .3em}\n</style></head><body>\n",
+         h3{font-size:.95em;margin:.8em 0 .3em}\n\
+         section.failed{border:2px solid #c00}.failure{color:#a00;font-weight:bold}\n</style></head><body>\n",
     );
     let _ = writeln!(
         html,
@@ -208,9 +250,21 @@ fn gallery(records: &[CaseRecord], seed: u64, total_ms: f64) -> String {
         records.len(),
         total_ms / 1000.0
     );
+    let failed: Vec<&CaseRecord> = records.iter().filter(|record| record.failure.is_some()).collect();
+    if !failed.is_empty() {
+        let _ = write!(html, "<p class=\"failure\">{} of {} cases FAILED:", failed.len(), records.len());
+        for record in &failed {
+            let _ = write!(html, " {};", escape(&record.case.title));
+        }
+        html.push_str("</p>\n");
+    }
     for record in records {
         let case = &record.case;
-        let _ = writeln!(html, "<section><h2>{}</h2><p>{}</p>", escape(&case.title), escape(&case.description));
+        let class = if record.failure.is_some() { " class=\"failed\"" } else { "" };
+        let _ = writeln!(html, "<section{class}><h2>{}</h2><p>{}</p>", escape(&case.title), escape(&case.description));
+        if let Some(failure) = &record.failure {
+            let _ = writeln!(html, "<p class=\"failure\">FAILED</p><pre>{}</pre>", escape(failure));
+        }
         let _ = writeln!(html, "<pre>{}</pre>", escape(&command_line(&case.args)));
         html.push_str("<div class=\"row\"><div><h3>input</h3><div class=\"row\">");
         for (label, file) in &case.inputs {
@@ -262,7 +316,7 @@ mod tests {
         };
         let mut figures = Map::new();
         figures.insert("total_cost".into(), Value::from(12.5));
-        let html = gallery(&[CaseRecord { case, figures, ms: 3.0 }], 1, 10.0);
+        let html = gallery(&[CaseRecord { case, figures, ms: 3.0, failure: None }], 1, 10.0);
         assert!(html.contains("<img src=\"in.png\""));
         assert!(html.contains("href=\"out.ply\""));
         assert!(html.contains("A &lt;case&gt;"));

@@ -19,6 +19,8 @@ mod engines;
 mod gallery;
 mod options;
 mod progress;
+#[cfg(test)]
+mod reference;
 mod registry;
 mod suite;
 
@@ -184,6 +186,107 @@ mod tests {
         flags.sort_unstable();
         flags.dedup();
         flags.into_iter().map(|flag| format!("--{flag}")).collect()
+    }
+
+    /// `docs/cli.md` is the reference rendered from these definitions (`MOTIF_BLESS=1` rewrites it).
+    #[test]
+    fn cli_reference_is_current() {
+        let mut command = Cli::command();
+        command.build();
+        let rendered = crate::reference::markdown(&command);
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(crate::reference::PATH);
+        if std::env::var_os("MOTIF_BLESS").is_some() {
+            std::fs::write(&path, &rendered).unwrap();
+        }
+        let committed = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            committed == rendered,
+            "{} is stale: regenerate it with `MOTIF_BLESS=1 cargo test --release -p motif-cli cli_reference`",
+            crate::reference::PATH
+        );
+    }
+
+    /// Every command's help lists the global options under their own heading, after its own.
+    #[test]
+    fn global_options_have_their_own_heading() {
+        let mut command = Cli::command();
+        command.build();
+        for sub in command.get_subcommands_mut().filter(|sub| sub.get_name() != "help") {
+            let help = sub.render_long_help().to_string();
+            let heading =
+                help.find("Global options:").unwrap_or_else(|| panic!("{}: no heading\n{help}", sub.get_name()));
+            for flag in ["--seed", "--threads", "--max-memory", "--quiet", "--report"] {
+                let at = help.find(&format!("{flag} ")).or_else(|| help.find(&format!("{flag}\n")));
+                assert!(at.is_some_and(|at| at > heading), "{}: {flag} is not under the heading", sub.get_name());
+            }
+        }
+    }
+
+    /// The first number after each "default" in `text` (a stated default), as written.
+    fn stated_defaults(text: &str) -> Vec<String> {
+        let lower = text.to_lowercase();
+        lower
+            .match_indices("default")
+            .filter_map(|(at, _)| {
+                let after: String = lower[at..].chars().skip("default".len()).take(24).collect();
+                let clause = after.split("; ").next().and_then(|c| c.split(". ").next()).unwrap_or("").to_string();
+                let start = clause.find(|c: char| c.is_ascii_digit())?;
+                Some(clause[start..].chars().take_while(|c| c.is_ascii_digit() || *c == '.').collect())
+            })
+            .filter(|number: &String| !number.is_empty())
+            .collect()
+    }
+
+    /// A default a help text states in prose is the one in effect: for an option with a declared
+    /// default, that value; for one whose default the engine infers or computes, the engine's.
+    #[test]
+    fn defaults_stated_in_help_are_the_real_ones() {
+        let points = motif_points::Params::default();
+        let all = points.clone().with_refinement(motif_points::Refinement::Everywhere);
+        let strokes = motif_strokes::Params::default();
+        let inferred: &[(&str, &str, f64)] = &[
+            ("points", "keep-margin", motif_points::Params::DEFAULT_KEEP_MARGIN),
+            ("points", "attribute-weight", points.attribute_weight),
+            ("points", "window", points.window_cutoff),
+            ("points", "quadrature-spacing", motif_points::Params::DEFAULT_QUADRATURE_SPACING),
+            ("points", "shrink", all.effective_shrink()),
+            ("strokes", "rings", strokes.rings_for(true) as f64),
+            ("strokes", "thresholds", strokes.thresholds.shape),
+        ];
+        let mut command = Cli::command();
+        command.build();
+        let mut checked = 0;
+        for sub in command.get_subcommands() {
+            for arg in sub.get_arguments().filter(|arg| !arg.is_global_set() || sub.get_name() == "curve") {
+                let mut help = arg.get_long_help().or(arg.get_help()).map(ToString::to_string).unwrap_or_default();
+                for value in arg.get_possible_values() {
+                    help.push(' ');
+                    help.push_str(&value.get_help().map(ToString::to_string).unwrap_or_default());
+                }
+                let flag = arg.get_id().as_str();
+                for stated in stated_defaults(&help) {
+                    let stated: f64 = stated.trim_end_matches('.').parse().unwrap();
+                    let declared = arg.get_default_values().first().and_then(|v| v.to_str()?.parse::<f64>().ok());
+                    let engine = inferred
+                        .iter()
+                        .find(|(command, name, _)| *command == sub.get_name() && name.replace('-', "_") == flag)
+                        .map(|entry| entry.2);
+                    let real = declared.or(engine).unwrap_or_else(|| {
+                        panic!(
+                            "{} --{flag}: its help states a default of {stated}; list the engine's value here",
+                            sub.get_name()
+                        )
+                    });
+                    assert!(
+                        (stated - real).abs() < 1e-9,
+                        "{} --{flag}: help says default {stated}, the default is {real}",
+                        sub.get_name()
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked >= inferred.len(), "only {checked} stated defaults found");
     }
 
     fn subcommands() -> Vec<String> {

@@ -4,8 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-/// Options every command accepts.
+/// Options every command accepts (shown under their own heading in every command's help).
 #[derive(Args, Debug, Clone)]
+#[command(next_help_heading = "Global options")]
 pub struct GlobalArgs {
     /// Seed of every random choice; the same seed gives byte-identical output whatever the thread count.
     #[arg(long, global = true, default_value_t = 1, value_name = "N")]

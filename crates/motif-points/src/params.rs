@@ -378,6 +378,11 @@ impl Input {
 }
 
 impl Params {
+    /// `keep_margin` when unset, in units of the neighbourhood δ.
+    pub const DEFAULT_KEEP_MARGIN: f64 = 3.0;
+    /// `quadrature_spacing` when unset, in units of σ (coarser where δ / 8 is: wide windows).
+    pub const DEFAULT_QUADRATURE_SPACING: f64 = 2.0;
+
     /// The window shrink factor α in effect (see [`Params::shrink`]).
     pub fn effective_shrink(&self) -> f64 {
         let seams = self.initialization == Initialization::Patches && self.refinement == Refinement::Seams;

@@ -255,7 +255,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         Some(set) => (0..set.len()).map(|i| vector(set.position(i))).collect(),
         None => Vec::new(),
     };
-    let margin = input.existing.as_ref().map(|_| params.keep_margin.unwrap_or(3.0 * delta));
+    let margin = input.existing.as_ref().map(|_| params.keep_margin.unwrap_or(Params::DEFAULT_KEEP_MARGIN * delta));
     let existing_grid = StaticGrid::new(&existing, 2.0 * sigma);
     let near_existing = |q: &Vector<D>| {
         let mut found = false;
@@ -269,7 +269,9 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
             high[a] += margin;
         }
     }
-    let h = params.quadrature_spacing.map_or((2.0 * sigma).max(delta / 8.0), |spacing| spacing * sigma);
+    let h = params
+        .quadrature_spacing
+        .map_or((Params::DEFAULT_QUADRATURE_SPACING * sigma).max(delta / 8.0), |spacing| spacing * sigma);
     if let Region::Surface { band, surface } = &mut region {
         // Every point of the surface rounds to a grid node within the band (half a cell's
         // diagonal), and the lifted exemplar's window is as thick as the band.

@@ -28,8 +28,8 @@ pub struct PointsArgs {
     #[arg(long, value_name = "EX.ply")]
     pub exemplar: PathBuf,
     /// Neighbourhood size δ in exemplar units, > 0: the width of the Gaussian window (truncated at
-    /// 3δ) or the radius of the box window. Larger keeps larger structures; it shrinks to δ/2 during
-    /// the synthesis.
+    /// --window-cutoff × δ) or the radius of the box window. Larger keeps larger structures; it
+    /// shrinks to δ/2 during the synthesis.
     #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
     pub neighbourhood: f64,
     /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, an SVG file whose first
@@ -175,7 +175,7 @@ pub struct PointsArgs {
     /// Gradient iterations of each position merging step (1–1000; §7.1 uses 30).
     #[arg(long, value_name = "N", default_value_t = 30)]
     pub merge_iterations: usize,
-    /// Window shrink factor per scale α (0.5–0.99). Default: §7.1's 0.9, or 0.8 after patches
+    /// Window shrink factor per scale α (0.5–0.99). Default: 0.9 (§7.1), or 0.8 after patches
     /// with --refine seams (the same fidelity in less time on the real-data corpus).
     #[arg(long, value_name = "ALPHA")]
     pub shrink: Option<f64>,
