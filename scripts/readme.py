@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Runs every shell and Python block of a Markdown guide as written, as a reader would.
 
-Usage: scripts/readme.py [README.md] [--list]
+Usage: scripts/readme.py [README.md] [--python-only] [--folder DIR] [--list]
 
 The fenced blocks marked ``sh`` run in order in one bash session started in the guide's folder
 (so an ``export`` or ``. .venv/bin/activate`` in one block holds for the next, as in a reader's
@@ -13,6 +13,8 @@ the block on its standard input. An HTML comment on the line before a block chan
                                         before it run as usual, the server runs in the background
                                         until URL answers 200 (at most 120 s), then it is stopped
 
+With --python-only only the Python blocks run (docs/guide.md, whose shell blocks are templates
+naming the reader's own files); --folder sets the folder they run in (default: the guide's).
 Any failing command fails the whole run (exit status 1) and names the block and its line. CI runs
 this on a fresh clone (`.ci/run`), so every example in the README runs there as written.
 """
@@ -73,13 +75,13 @@ def serve_script(code, url):
     )
 
 
-def script(path, found):
+def script(path, found, python_only=False):
     """One bash script that runs the blocks in order, announcing each."""
     name = os.path.basename(path)
     parts = ["set -euo pipefail", "readme_log=$(mktemp)", "trap 'rm -f \"$readme_log\"' EXIT"]
     for language, line, code, mark, argument in found:
         where = f"{name}:{line}"
-        if language not in ("sh", "python"):
+        if language not in ("sh", "python") or (python_only and language != "python"):
             continue
         if mark == "skip":
             parts.append(f"echo {shlex.quote(f'== {where}: skipped {argument}')}")
@@ -99,15 +101,17 @@ def script(path, found):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("guide", nargs="?", default="README.md")
+    parser.add_argument("--python-only", action="store_true", help="run only the Python blocks")
+    parser.add_argument("--folder", help="the folder the blocks run in (default: the guide's)")
     parser.add_argument("--list", action="store_true", help="print the script instead of running it")
     args = parser.parse_args()
     with open(args.guide, encoding="utf-8") as handle:
         found = blocks(handle.read())
-    text = script(args.guide, found)
+    text = script(args.guide, found, args.python_only)
     if args.list:
         sys.stdout.write(text)
         return 0
-    folder = os.path.dirname(os.path.abspath(args.guide))
+    folder = args.folder or os.path.dirname(os.path.abspath(args.guide))
     # On failure bash's ERR trap names the block that was running.
     text = "trap 'echo \"readme: the block at $readme_block failed (line $LINENO of the script)\" >&2' ERR\n" + text
     return subprocess.run(["bash", "-c", text], cwd=folder).returncode

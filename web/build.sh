@@ -2,7 +2,7 @@
 # Builds the playground into web/dist: the WebAssembly module (release, wasm32-unknown-unknown),
 # its JavaScript glue (wasm-bindgen-cli of the exact version in web/Cargo.lock, installed from
 # the crate registry into web/.tools when missing), the page and the real exemplars it offers.
-# Serve with: python3 -m http.server -d web/dist 8000   (then open http://localhost:8000)
+# Serve with: python3 -m http.server --bind 127.0.0.1 -d web/dist 8000   (then open http://127.0.0.1:8000)
 set -euo pipefail
 cd "$(dirname "$0")"
 rustup target list --installed 2> /dev/null | grep -q wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
@@ -12,9 +12,19 @@ bindgen=.tools/bin/wasm-bindgen
 if ! [ -x "$bindgen" ] || [ "$("$bindgen" --version | awk '{print $2}')" != "$version" ]; then
   echo "installing wasm-bindgen-cli $version into web/.tools"
   # --locked pins the CLI's own dependencies; a registry mirror missing one of those versions
-  # falls back to the newest compatible ones.
-  cargo install --locked --quiet --root .tools wasm-bindgen-cli --version "$version" \
-    || cargo install --quiet --root .tools wasm-bindgen-cli --version "$version"
+  # falls back to the newest compatible ones. The first attempt's messages are kept back unless
+  # both fail, so that a build that succeeds prints no error line.
+  locked_log=$(mktemp)
+  if ! cargo install --locked --quiet --root .tools wasm-bindgen-cli --version "$version" 2> "$locked_log"; then
+    echo "some of wasm-bindgen-cli's locked dependencies are not in this registry; using the newest compatible ones"
+    if ! cargo install --quiet --root .tools wasm-bindgen-cli --version "$version"; then
+      echo "the locked install failed first with:" >&2
+      cat "$locked_log" >&2
+      rm -f "$locked_log"
+      exit 1
+    fi
+  fi
+  rm -f "$locked_log"
 fi
 rm -rf dist.tmp
 mkdir -p dist.tmp/pkg dist.tmp/exemplars

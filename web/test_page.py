@@ -1,6 +1,6 @@
 """Tests the built playground (web/dist) in a real browser: headless Chromium through Selenium.
 
-Usage: python web/test_page.py [--screenshots DIR] [--json FIGURES.json]
+Usage: python3 web/test_page.py [--screenshots DIR] [--json FIGURES.json]
 
 Serves web/dist on a free local port, loads the page, and with real input events drags a curve
 handle, brushes a stroke on the points canvas, moves the strokes scale slider and synthesizes,
