@@ -86,7 +86,7 @@ def script(path, found, python_only=False):
         if mark == "skip":
             parts.append(f"echo {shlex.quote(f'== {where}: skipped {argument}')}")
             continue
-        parts.append(f"echo {shlex.quote(f'== {where}: {language} block')}")
+        parts.append(f"echo {shlex.quote(f'== {where}: {language} block')} \"(at $SECONDS s)\"")
         parts.append(f"readme_block={shlex.quote(where)}")
         if mark == "serve":
             parts.append(serve_script(code, argument))
@@ -94,7 +94,7 @@ def script(path, found, python_only=False):
             parts.append(code)
         else:
             parts.append("python3 - <<'README_PYTHON_BLOCK'\n" + code + "README_PYTHON_BLOCK")
-    parts.append("echo '== every block ran'")
+    parts.append("echo \"== every block ran ($SECONDS s)\"")
     return "\n".join(parts) + "\n"
 
 

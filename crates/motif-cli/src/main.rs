@@ -9,6 +9,7 @@
 //! - [`engines`]: one folder per engine subcommand (`curve`, `points`, `strokes`, `stylize` with
 //!   `texture`) and the list of engines.
 //! - [`demo`](mod@demo): `motif demo`; [`bench`](mod@bench): `motif bench`, the single entry point for performance figures.
+//! - `reference` (tests only): `docs/cli.md`, rendered from the clap definitions.
 //! - `main.rs`: argument parsing (clap derive), running a subcommand with its report, error
 //!   printing and exit codes.
 
