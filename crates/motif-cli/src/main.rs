@@ -65,10 +65,11 @@ fn main() -> ExitCode {
             eprintln!("error: internal error (a bug in motif; please report it with the command you ran): {info}");
         }
     }));
-    // Ctrl-C or SIGTERM: remove the temporary file of a write in progress (outputs are replaced
-    // whole, by a rename, so no output is ever half-written) and exit as interrupted.
+    // Ctrl-C or SIGTERM: let a commit of the outputs in progress finish (a run's outputs replace
+    // the previous files all together or not at all), remove the temporary files of writes in
+    // progress and of outputs not committed, and exit as interrupted.
     let interrupted = ctrlc::set_handler(|| {
-        motif_io::remove_temporaries();
+        motif_io::stop_outputs();
         #[allow(clippy::print_stderr)]
         {
             eprintln!("error: interrupted");
