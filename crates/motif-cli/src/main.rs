@@ -132,7 +132,7 @@ fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> a
         .with_report(global.report.as_deref());
     motif_io::begin_outputs();
     let mut result = match &global.report {
-        Some(path) => context.check_writable(path).context("--report"),
+        Some(path) => context.check_writable(path),
         None => Ok(()),
     };
     if result.is_ok() {

@@ -305,8 +305,19 @@ fn sweep(folder: &Path) {
 /// there and removes it (a folder that exists can still refuse files: `/proc`, a read-only
 /// mount, permissions). Also removes the temporary files killed runs left there.
 pub fn check_folder_writable(folder: &Path) -> Result<()> {
+    static PROBES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
     sweep(folder);
-    temporary_builder().tempfile_in(folder).map(drop).map_err(|source| IoError::io(folder, source))
+    let probe = folder.join(format!("{}probe{}.tmp", temporary_prefix(), PROBES.fetch_add(1, Ordering::Relaxed)));
+    match std::fs::OpenOptions::new().write(true).create_new(true).open(&probe) {
+        Ok(file) => {
+            drop(file);
+            let _ = std::fs::remove_file(&probe);
+            Ok(())
+        }
+        // (Left by this process: the folder takes files.)
+        Err(error) if error.kind() == std::io::ErrorKind::AlreadyExists => Ok(()),
+        Err(error) => Err(IoError::format(folder, format!("cannot make a file there: {error}"))),
+    }
 }
 
 /// Runs `fill` on a temporary file beside `path`, then renames it onto `path` (at once, or when
