@@ -43,7 +43,7 @@ struct Plan {
     inputs: Vec<PathBuf>,
     /// Every output file checked so far.
     outputs: Vec<PathBuf>,
-    /// Folders the outputs go into, made at write time if missing (already checked).
+    /// Folders the outputs go into, made at write time if missing, each checked once.
     folders: Vec<PathBuf>,
     /// Folders whose files all count as outputs (their names depend on the run).
     whole_folders: Vec<PathBuf>,
@@ -265,6 +265,8 @@ impl Context {
             bail!("cannot write {}: the folder {} does not exist", output.display(), folder.display());
         }
         motif_io::check_folder_writable(folder).with_context(|| format!("cannot write {}", output.display()))?;
+        // Checked once for all its outputs (video frames).
+        self.plan.borrow_mut().folders.push(folder.to_path_buf());
         Ok(())
     }
 
