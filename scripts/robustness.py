@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Replays the failure classes of issue 13 against a built `motif` binary and counts outcomes.
+"""Replays the failure classes of issues 13 and 32 against a built `motif` binary and counts outcomes.
 
 Usage: scripts/robustness.py [path/to/motif] [--timeout SECONDS] [--json OUT.json]
 
@@ -11,8 +11,10 @@ hand) plus a few crafted files (a PNG header declaring 16384 x 16384 pixels, a t
   success      exit 0 (only expected where the case says so)
   panic        an internal error, exit 101 or a signal
   hang         still running after the timeout (killed)
-  data-loss    an input file changed or vanished
-  leftover     a `.motif-*.tmp` file, or an output of a failed run, left behind
+  data-loss    an input file (or a previous output, `previous.png`, `zoom-previous/`) changed or
+               vanished, in any folder
+  leftover     a new `.motif-*.tmp` file, one a case expects removed, or any new file of a failed
+               run other than its --report, left behind
 
 and the table of counts is printed (and written as JSON with --json). Every outcome other than
 the expected one is listed with its command, so a regression names itself.
@@ -47,6 +49,14 @@ def png_with_header(width, height):
 def digest(path):
     with open(path, "rb") as handle:
         return hashlib.sha256(handle.read()).hexdigest()
+
+
+def files_under(folder):
+    """Every file under `folder`, as paths relative to it."""
+    names = []
+    for root, _, files in os.walk(folder):
+        names.extend(os.path.relpath(os.path.join(root, f), folder) for f in files)
+    return names
 
 
 def prepare(folder, binary):
@@ -88,6 +98,24 @@ def prepare(folder, binary):
         handle.write("x,y,element\n" + "".join(f"{i % 10},{i // 10},{i / 3}\n" for i in range(100)))
     with open(os.path.join(folder, "long-stroke.json"), "w") as handle:
         json.dump([[float(i), 0.0] for i in range(0, 200_001, 1000)], handle)
+    # Previous outputs that a failed run must leave as they were (issue 32).
+    shutil.copy(os.path.join(folder, "texture-exemplar.png"), os.path.join(folder, "previous.png"))
+    os.makedirs(os.path.join(folder, "zoom-previous"))
+    for level in (1, 2):
+        shutil.copy(os.path.join(folder, "texture-exemplar.png"), os.path.join(folder, "zoom-previous", f"zoom-0{level}.png"))
+    # A --debug-dir holding the exemplar under a debug file's name.
+    os.makedirs(os.path.join(folder, "debug-in"))
+    shutil.copy(os.path.join(folder, "texture-exemplar.png"), os.path.join(folder, "debug-in", "error.png"))
+    # A presynth cache whose first texture is a link to a file outside its folder.
+    shutil.copytree(os.path.join(folder, "stylize-presynth"), os.path.join(folder, "linked-presynth"))
+    os.replace(os.path.join(folder, "linked-presynth", "segment-1.png"), os.path.join(folder, "outside-segment.png"))
+    os.symlink(os.path.join("..", "outside-segment.png"), os.path.join(folder, "linked-presynth", "segment-1.png"))
+    # The temporary file of a run killed with SIGKILL (its pid above Linux's largest: gone).
+    os.makedirs(os.path.join(folder, "stale"))
+    stale = os.path.join(folder, "stale", ".motif-999999999-a1b2c3.tmp")
+    with open(stale, "w") as handle:
+        handle.write("left by a killed run")
+    os.utime(stale, (time.time() - 600, time.time() - 600))
 
 
 CURVE = ["curve", "--exemplar", "curve-chain.png", "--path", "curve-heart.svg", "--width", "40", "--piece-length", "16"]
@@ -96,7 +124,10 @@ STYLE = ["stylize", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "st
 POINTS = ["points", "--exemplar", "points-hex.ply", "--neighbourhood", "1.2"]
 STROKES = ["strokes", "--reference", "strokes-hatch-reference.svg", "--scale", "6"]
 
-# (name, arguments, expected outcome). Outputs are named out*.
+ZOOM = ["zoom", "--exemplar", "texture-exemplar.png", "--size", "64x64", "--levels", "2"]
+INPAINT = ["inpaint", "--image", "stylize-A1.png", "--mask", "stylize-A.png"]
+
+# (name, arguments, expected outcome[, files the run must remove]). Outputs are named out*.
 CASES = [
     # Inputs are never overwritten.
     ("report names an input", TEXTURE + ["--size", "64x64", "--out", "out.png", "--report", "texture-exemplar.png"], "clean-error"),
@@ -154,6 +185,25 @@ CASES = [
     ("negative width", CURVE[:6] + ["-40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("negative scale", STROKES[:4] + ["-6", "--rect", "100,100", "--out", "out.svg"], "clean-error"),
     ("segment guide 2 of 1", STYLE + ["--segments", "--segment-guide", "2", "--out", "out.png"], "clean-error"),
+    # One output plan, checked before work, committed last (issue 32).
+    ("D1 report in /proc", ["--report", "/proc/r.json"] + TEXTURE + ["--size", "64x64", "--out", "previous.png"], "clean-error"),
+    ("D1 report name too long", ["--report", "r" * 300 + ".json"] + TEXTURE + ["--size", "64x64", "--out", "previous.png"], "clean-error"),
+    ("D1 zoom report in /proc", ["--report", "/proc/r.json"] + ZOOM + ["--out-dir", "zoom-previous"], "clean-error"),
+    ("D1 inpaint report in /proc", ["--report", "/proc/r.json"] + INPAINT + ["--out", "previous.png"], "clean-error"),
+    ("D2 texture debug file is the exemplar", TEXTURE[:-1] + ["debug-in/error.png", "--size", "64x64", "--debug-dir", "debug-in", "--out", "out.png"], "clean-error"),
+    ("D2 stylize debug file is the style", ["stylize", "--style", "debug-in/error.png", "--guide", "stylize-A.png", "stylize-B.png", "--debug-dir", "debug-in", "--out", "out.png"], "clean-error"),
+    ("D2 inpaint debug file is the image", ["inpaint", "--image", "debug-in/error.png", "--mask", "stylize-A.png", "--debug-dir", "debug-in", "--out", "out.png"], "clean-error"),
+    ("D2 out is a debug file", TEXTURE + ["--size", "64x64", "--debug-dir", "debug-in", "--out", "debug-in/nnf.png"], "clean-error"),
+    ("D3 stylize out in its presynth folder", STYLE + ["--presynth", "stylize-presynth", "--out", "stylize-presynth/segment-1.png"], "clean-error"),
+    ("D9 zoom report is the exemplar, new folder", ["--report", "texture-exemplar.png"] + ZOOM + ["--out-dir", "out-zoom"], "clean-error"),
+    ("D9 zoom report is a level", ["--report", "zoom-previous/zoom-01.png"] + ZOOM + ["--out-dir", "zoom-previous"], "clean-error"),
+    ("out in /proc", TEXTURE + ["--size", "64x64", "--out", "/proc/out.png"], "clean-error"),
+    ("debug-dir is a file", TEXTURE + ["--size", "64x64", "--debug-dir", "previous.png", "--out", "out.png"], "clean-error"),
+    ("zoom out-dir is a file", ZOOM + ["--out-dir", "previous.png"], "clean-error"),
+    ("presynth out-dir is a file", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "32x32", "--out-dir", "previous.png"], "clean-error"),
+    ("presynth report in its out-dir", ["--report", "zoom-previous/r.json", "presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "32x32", "--out-dir", "zoom-previous"], "clean-error"),
+    ("presynth cache links out of its folder", STYLE + ["--presynth", "linked-presynth", "--out", "out.png"], "clean-error"),
+    ("temporary file of a killed run", TEXTURE + ["--size", "64x64", "--out", "stale/out.png"], "success", ["stale/.motif-999999999-a1b2c3.tmp"]),
 ]
 
 
@@ -183,11 +233,13 @@ def main():
     inputs = os.path.join(base, "inputs")
     prepare(inputs, binary)
     counts, unexpected, rows = {}, [], []
-    for name, arguments, expected in CASES:
+    for name, arguments, expected, *removed in CASES:
+        removed = removed[0] if removed else []
         folder = os.path.join(base, "case")
         shutil.rmtree(folder, ignore_errors=True)
-        shutil.copytree(inputs, folder)
-        before = {f: digest(os.path.join(folder, f)) for f in os.listdir(folder) if os.path.isfile(os.path.join(folder, f))}
+        # (Links stay links; copies keep their times.)
+        shutil.copytree(inputs, folder, symlinks=True)
+        before = {f: digest(os.path.join(folder, f)) for f in files_under(folder)}
         start = time.monotonic()
         process = subprocess.Popen([binary, "--quiet"] + arguments, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
         try:
@@ -199,13 +251,13 @@ def main():
             timed_out = True
         seconds = time.monotonic() - start
         result = subprocess.CompletedProcess(arguments, process.returncode, stdout, stderr)
-        changed = [f for f, d in before.items() if not os.path.exists(os.path.join(folder, f)) or digest(os.path.join(folder, f)) != d]
-        names = set()
-        for root, _, files in os.walk(folder):
-            names.update(os.path.relpath(os.path.join(root, f), folder) for f in files)
-        leftovers = [f for f in names if ".motif-" in f and f.endswith(".tmp")]
+        changed = [f for f, d in before.items() if f not in removed and (not os.path.exists(os.path.join(folder, f)) or digest(os.path.join(folder, f)) != d)]
+        names = set(files_under(folder))
+        leftovers = [f for f in names if os.path.basename(f).startswith(".motif-") and f.endswith(".tmp") and f not in before]
+        leftovers += [f for f in removed if f in names]
         if process.returncode not in (0, None) and not timed_out:
-            leftovers += [f for f in names if os.path.basename(f).startswith("out") and f not in before]
+            report = arguments[arguments.index("--report") + 1] if "--report" in arguments else None
+            leftovers += [f for f in names if f not in before and f != report]
         outcome = classify(result, timed_out, changed, leftovers, expected)
         counts[outcome] = counts.get(outcome, 0) + 1
         message = (stderr.strip().splitlines() or [""])[0][:160]

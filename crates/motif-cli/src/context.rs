@@ -1,9 +1,17 @@
 //! What a running command gets from the CLI, and the report it leaves behind.
+//!
+//! Also the run's output plan: before any work, each engine names every file it will write (with
+//! [`Context::check_output`], [`Context::check_outputs_in`] for files in a folder made if missing,
+//! [`Context::check_output_folder`] for a folder whose files depend on the run) and the inputs to
+//! keep them off. Each is checked against every input (the same file through another spelling or
+//! a link, or a file in an input folder), against the other outputs and `--report`, and for a
+//! folder that takes files. The outputs are staged and committed together after the run (see
+//! `run_engine` in `main.rs`).
 
 use std::io::IsTerminal;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-use anyhow::bail;
+use anyhow::{Context as _, bail};
 use motif_core::Progress;
 use serde::Serialize;
 use serde_json::{Map, Value};
@@ -23,11 +31,40 @@ pub struct Context {
     progress: CliProgress,
     figures: Map<String, Value>,
     /// `--report`, checked against every input the engine names.
-    report: Option<std::path::PathBuf>,
-    /// Every input path the engine named (see [`Context::check_output`]).
-    inputs: std::cell::RefCell<Vec<std::path::PathBuf>>,
-    /// Every output path checked so far.
-    outputs: std::cell::RefCell<Vec<std::path::PathBuf>>,
+    report: Option<PathBuf>,
+    /// The files this run writes and reads, as far as the engine has named them.
+    plan: std::cell::RefCell<Plan>,
+}
+
+/// The output plan of a run (see the module's documentation).
+#[derive(Default)]
+struct Plan {
+    /// Every input the engine named: files, or folders whose files it reads (a presynth cache).
+    inputs: Vec<PathBuf>,
+    /// Every output file checked so far.
+    outputs: Vec<PathBuf>,
+    /// Folders the outputs go into, made at write time if missing, each checked once.
+    folders: Vec<PathBuf>,
+    /// Folders whose files all count as outputs (their names depend on the run).
+    whole_folders: Vec<PathBuf>,
+}
+
+/// The folder a file is in (`.` for a bare name).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    }
+}
+
+/// True when `path` lies directly in `folder`.
+fn inside(path: &Path, folder: &Path) -> bool {
+    motif_io::same_file(folder_of(path), folder)
+}
+
+/// True when writing `output` would replace `input`: the same file, or a file of an input folder.
+fn replaces(output: &Path, input: &Path) -> bool {
+    motif_io::same_file(output, input) || (input.is_dir() && inside(output, input))
 }
 
 impl Context {
@@ -42,8 +79,7 @@ impl Context {
             progress: CliProgress::new(visible),
             figures: Map::new(),
             report: None,
-            inputs: std::cell::RefCell::new(Vec::new()),
-            outputs: std::cell::RefCell::new(Vec::new()),
+            plan: std::cell::RefCell::new(Plan::default()),
         }
     }
 
@@ -59,10 +95,13 @@ impl Context {
         self
     }
 
-    /// True when `path` names one of the inputs the engine checked its outputs against, or one of
-    /// its outputs.
+    /// True when writing `path` would replace one of the inputs the engine named or one of its
+    /// outputs (a failed run's report is then not written).
     pub fn is_input_or_output(&self, path: &Path) -> bool {
-        self.inputs.borrow().iter().chain(self.outputs.borrow().iter()).any(|other| motif_io::same_file(path, other))
+        let plan = self.plan.borrow();
+        plan.inputs.iter().any(|input| replaces(path, input))
+            || plan.outputs.iter().any(|output| motif_io::same_file(path, output))
+            || plan.whole_folders.iter().any(|folder| inside(path, folder))
     }
 
     /// The progress sink to hand to an engine.
@@ -93,23 +132,18 @@ impl Context {
         self.figures.insert("stages_ms".to_string(), stages_object(stages));
     }
 
-    /// Refuses an output path (and `--report`) that names one of the inputs: motif never
+    /// Plans the output file `output`: refuses, before any work, one that would replace one of
+    /// `inputs` (or a file of an input folder), one given twice (or as `--report`), one in a
+    /// folder whose files are all outputs, and one that cannot be written (see
+    /// [`Context::check_writable`]); refuses `--report` naming one of `inputs`. Motif never
     /// overwrites its input.
     pub fn check_output(&self, output: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
-        self.inputs.borrow_mut().extend(inputs.iter().map(|input| input.to_path_buf()));
-        if let Some(report) = &self.report {
-            check_writable(report)?;
-            if inputs.iter().any(|input| motif_io::same_file(report, input)) {
-                bail!(
-                    "report {} is also an input; choose another --report path (motif never overwrites an input)",
-                    report.display()
-                );
-            }
-        }
-        check_writable(output)?;
-        let earlier = self.outputs.borrow().iter().chain(&self.report).any(|other| motif_io::same_file(output, other));
+        self.add_inputs(inputs)?;
+        self.check_writable(output)?;
+        let plan = &mut *self.plan.borrow_mut();
+        let earlier = plan.outputs.iter().chain(&self.report).any(|other| motif_io::same_file(output, other));
         // Recorded first, so that a report on the same path is not written either.
-        self.outputs.borrow_mut().push(output.to_path_buf());
+        plan.outputs.push(output.to_path_buf());
         if earlier {
             bail!("output {} is given twice; each output needs its own path", output.display());
         }
@@ -120,7 +154,119 @@ impl Context {
                     output.display()
                 );
             }
+            if input.is_dir() && inside(output, input) {
+                bail!(
+                    "output {} is in the folder {}, which is an input; choose another output path (motif never \
+                     overwrites an input)",
+                    output.display(),
+                    input.display()
+                );
+            }
         }
+        if let Some(folder) = plan.whole_folders.iter().find(|folder| inside(output, folder)) {
+            bail!(
+                "output {} is in {}, whose files this command writes; choose another output path",
+                output.display(),
+                folder.display()
+            );
+        }
+        Ok(())
+    }
+
+    /// Plans the output files `outputs`, all in `folder`, which is made at write time if missing
+    /// (`--debug-dir`, zoom levels): see [`Context::check_output`].
+    pub fn check_outputs_in(&self, folder: &Path, outputs: &[PathBuf], inputs: &[&Path]) -> anyhow::Result<()> {
+        self.plan_folder(folder)?;
+        outputs.iter().try_for_each(|output| self.check_output(output, inputs))
+    }
+
+    /// Plans the folder `folder` (given as `flag`) as an output whose files depend on the run (presynth's cache),
+    /// made at write time if missing: refuses, before any work, a folder that holds one of
+    /// `inputs` or `--report`, and, later, every other output in it.
+    pub fn check_output_folder(&self, flag: &str, folder: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+        self.add_inputs(inputs)?;
+        // Recorded first, so that a failed run's report does not go there either.
+        self.plan.borrow_mut().whole_folders.push(folder.to_path_buf());
+        self.plan_folder(folder)?;
+        for input in inputs {
+            if inside(input, folder) {
+                bail!(
+                    "input {} lies in the {flag} folder {}, whose files this command replaces; move it out or \
+                     choose another folder (motif never overwrites an input)",
+                    input.display(),
+                    folder.display()
+                );
+            }
+        }
+        if let Some(report) = self.report.as_deref().filter(|report| inside(report, folder)) {
+            bail!(
+                "report {} lies in the {flag} folder {}, whose files this command writes; choose another --report \
+                 path",
+                report.display(),
+                folder.display()
+            );
+        }
+        Ok(())
+    }
+
+    /// Records `inputs`, and refuses `--report` naming one of them.
+    fn add_inputs(&self, inputs: &[&Path]) -> anyhow::Result<()> {
+        self.plan.borrow_mut().inputs.extend(inputs.iter().map(|input| input.to_path_buf()));
+        if let Some(report) = &self.report
+            && inputs.iter().any(|input| replaces(report, input))
+        {
+            bail!(
+                "report {} is also an input; choose another --report path (motif never overwrites an input)",
+                report.display()
+            );
+        }
+        Ok(())
+    }
+
+    /// Plans a folder for outputs, made at write time if missing: refuses a file, and a folder
+    /// that cannot be made or takes no files.
+    fn plan_folder(&self, folder: &Path) -> anyhow::Result<()> {
+        if self.plan.borrow().folders.iter().any(|planned| motif_io::same_file(planned, folder)) {
+            return Ok(());
+        }
+        if folder.exists() && !folder.is_dir() {
+            bail!("{} is a file; give a folder", folder.display());
+        }
+        // The folder itself, or the nearest one above it that exists (where it will be made).
+        let mut existing = folder;
+        while !existing.as_os_str().is_empty() && !existing.exists() {
+            existing = existing.parent().unwrap_or(Path::new(""));
+        }
+        if existing.as_os_str().is_empty() {
+            existing = Path::new(".");
+        }
+        if !existing.is_dir() {
+            bail!("cannot make the folder {}: {} is a file", folder.display(), existing.display());
+        }
+        motif_io::check_folder_writable(existing)
+            .with_context(|| format!("cannot write into the folder {}", folder.display()))?;
+        self.plan.borrow_mut().folders.push(folder.to_path_buf());
+        Ok(())
+    }
+
+    /// Refuses, before any work, an output that cannot be written: a path that is a folder, a
+    /// folder that does not exist (unless planned), or one that takes no files (`/proc`, a
+    /// read-only mount, permissions). Found only at write time, such a path failed the run
+    /// after all its work.
+    pub fn check_writable(&self, output: &Path) -> anyhow::Result<()> {
+        if output.is_dir() {
+            bail!("output {} is a folder; give a file name", output.display());
+        }
+        let folder = folder_of(output);
+        if self.plan.borrow().folders.iter().any(|planned| motif_io::same_file(planned, folder)) {
+            return Ok(());
+        }
+        if !folder.is_dir() {
+            bail!("cannot write {}: the folder {} does not exist", output.display(), folder.display());
+        }
+        motif_io::check_folder_writable(folder).with_context(|| format!("cannot write {}", output.display()))?;
+        // Checked once for all its outputs (video frames).
+        self.plan.borrow_mut().folders.push(folder.to_path_buf());
         Ok(())
     }
 
@@ -141,23 +287,6 @@ impl Context {
         }
         self.figures
     }
-}
-
-/// Refuses, before any work, an output that cannot be written: a folder that does not exist, or a
-/// path that is a folder. (Found only at write time, such a path failed the run after the main
-/// output had already replaced the previous file.)
-pub fn check_writable(output: &Path) -> anyhow::Result<()> {
-    if output.is_dir() {
-        bail!("output {} is a folder; give a file name", output.display());
-    }
-    let folder = match output.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    if !folder.is_dir() {
-        bail!("cannot write {}: the folder {} does not exist", output.display(), folder.display());
-    }
-    Ok(())
 }
 
 /// `(stage, milliseconds)` pairs as a JSON object, in order.

@@ -31,7 +31,7 @@ use anyhow::{Context as _, bail};
 use clap::{Parser, Subcommand};
 use serde_json::{Map, Value};
 
-use crate::context::{Context, check_writable};
+use crate::context::Context;
 use crate::engines::{ENGINES, EngineCommand};
 use crate::options::GlobalArgs;
 
@@ -68,10 +68,11 @@ fn main() -> ExitCode {
             eprintln!("error: internal error (a bug in motif; please report it with the command you ran): {info}");
         }
     }));
-    // Ctrl-C or SIGTERM: remove the temporary file of a write in progress (outputs are replaced
-    // whole, by a rename, so no output is ever half-written) and exit as interrupted.
+    // Ctrl-C or SIGTERM: let a commit of the outputs in progress finish (a run's outputs replace
+    // the previous files all together or not at all), remove the temporary files of writes in
+    // progress and of outputs not committed, and exit as interrupted.
     let interrupted = ctrlc::set_handler(|| {
-        motif_io::remove_temporaries();
+        motif_io::stop_outputs();
         #[allow(clippy::print_stderr)]
         {
             eprintln!("error: interrupted");
@@ -122,41 +123,58 @@ fn print_error(error: &anyhow::Error) {
 }
 
 /// Runs an engine subcommand and writes `--report` if asked.
+///
+/// Every output, the report included, is staged and committed together once all were written:
+/// a run that fails at any point (the report too) leaves every previous file as it was. A failed
+/// run still writes its report, with its error, where that replaces neither an input nor one of
+/// the run's outputs.
 fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
     let mut context = Context::new(global.seed, threads, global.quiet)
         .with_max_memory(options::max_memory(global))
         .with_report(global.report.as_deref());
-    // The run's outputs appear together, and only if the whole run succeeded: a failure part-way
-    // leaves every previous file as it was.
     motif_io::begin_outputs();
-    let mut result = command.run(&mut context);
+    let mut result = match &global.report {
+        Some(path) => context.check_writable(path),
+        None => Ok(()),
+    };
     if result.is_ok() {
-        result = motif_io::commit_outputs().map_err(anyhow::Error::from);
-    } else {
-        motif_io::discard_outputs();
+        result = command.run(&mut context);
     }
+    let report_path = global.report.as_deref().filter(|path| !context.is_input_or_output(path));
+    let failed_report = report_path.filter(|path| context.check_writable(path).is_ok());
     let mut report = Map::new();
     report.insert("motif_version".into(), Value::from(env!("CARGO_PKG_VERSION")));
     report.insert("command".into(), Value::from(command.name()));
     report.insert("arguments".into(), Value::from(std::env::args().skip(1).collect::<Vec<_>>()));
     report.insert("seed".into(), Value::from(global.seed));
     report.insert("threads".into(), Value::from(threads));
-    report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
-    if let Err(error) = &result {
-        report.insert("error".into(), Value::from(format!("{error:#}")));
-    }
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
-    // A report that would replace an input or an output, or that cannot be written, is not
-    // written (the run has already failed for it); a failed run keeps its own error.
-    let report_path =
-        global.report.as_deref().filter(|path| !context.is_input_or_output(path) && check_writable(path).is_ok());
     report.extend(context.into_figures());
-    if let Some(path) = report_path {
-        let written = motif_io::write_json(path, &Value::Object(report)).with_context(|| "cannot write the report");
-        if result.is_ok() {
-            written?;
+    let with_status = |mut report: Map<String, Value>, result: &anyhow::Result<()>| {
+        report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
+        if let Err(error) = result {
+            report.insert("error".into(), Value::from(format!("{error:#}")));
         }
+        Value::Object(report)
+    };
+    if result.is_ok()
+        && let Some(path) = report_path
+    {
+        // Staged like the outputs: the report is committed with them, last.
+        result = motif_io::write_json(path, &with_status(report.clone(), &result))
+            .with_context(|| "cannot write the report");
+    }
+    if result.is_ok() {
+        result = motif_io::commit_outputs().map_err(anyhow::Error::from);
+    } else {
+        motif_io::discard_outputs();
+    }
+    if result.is_err()
+        && let Some(path) = failed_report
+    {
+        // Written at once (the run's outputs are discarded); the run keeps its own error.
+        let _ = motif_io::write_json(path, &with_status(report, &result));
     }
     result
 }

@@ -5,9 +5,10 @@
 //! rename, so a crash never leaves a half-written output and an output never replaces an input by
 //! accident halfway).
 //!
-//! - `staging`: the temporary files, the renames that wait until a run has succeeded
-//!   ([`begin_outputs`], [`commit_outputs`], [`discard_outputs`]) and [`remove_temporaries`] for a
-//!   signal handler.
+//! - `staging`: the temporary files, the renames that wait until a run has succeeded and then
+//!   happen all together or not at all ([`begin_outputs`], [`commit_outputs`],
+//!   [`discard_outputs`]), the folders made for outputs ([`create_folder`]), the check that a
+//!   folder takes files ([`check_folder_writable`]) and [`stop_outputs`] for a signal handler.
 //! - [`raster`]: PNG (8-bit RGBA/RGB/grey/grey-alpha, 16-bit read) and JPEG (read) via `image`.
 //! - [`svg`]: SVG read through `usvg` (paths as `kurbo` paths in document coordinates, transforms
 //!   applied, with stroke and fill), SVG write ([`SvgWriter`]) and rasterization via `resvg`.
@@ -33,7 +34,7 @@ pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
 pub use raster::{Rgba16, decode_image, read_image, read_png16, write_png, write_png16};
 pub(crate) use staging::write_with;
-pub use staging::{begin_outputs, commit_outputs, discard_outputs, remove_temporaries};
+pub use staging::{begin_outputs, check_folder_writable, commit_outputs, create_folder, discard_outputs, stop_outputs};
 pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};
 
 /// A file could not be read or written; always names the file.
@@ -126,24 +127,70 @@ pub fn peak_memory() -> Option<u64> {
     kib.checked_mul(1024)
 }
 
-/// True when `a` and `b` name the same file (or would, once `b` is created): compares canonical
-/// paths, canonicalizing the parent directory for a file that does not exist yet.
+/// True when `a` and `b` name the same file, or would once created: the same file through
+/// another spelling, a symbolic link or a hard link (same device and inode), or, for a file that
+/// does not exist yet, the same place (the nearest existing folder above it canonicalized).
 pub fn same_file(a: &Path, b: &Path) -> bool {
-    fn canonical(path: &Path) -> Option<PathBuf> {
-        if let Ok(full) = path.canonicalize() {
-            return Some(full);
-        }
-        let name = path.file_name()?;
-        let parent = match path.parent() {
-            Some(parent) if !parent.as_os_str().is_empty() => parent,
-            _ => Path::new("."),
-        };
-        Some(parent.canonicalize().ok()?.join(name))
+    #[cfg(unix)]
+    if let (Ok(a), Ok(b)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+        use std::os::unix::fs::MetadataExt;
+        return (a.dev(), a.ino()) == (b.dev(), b.ino());
     }
-    match (canonical(a), canonical(b)) {
+    match (full_path(a), full_path(b)) {
         (Some(a), Some(b)) => a == b,
         _ => a == b,
     }
+}
+
+/// `path` made absolute with its links resolved as far as it exists; the missing rest is
+/// appended as spelled, `.` and `..` resolved (nothing missing can be a link).
+fn full_path(path: &Path) -> Option<PathBuf> {
+    use std::path::Component;
+    let components: Vec<Component<'_>> = path.components().collect();
+    for existing in (0..=components.len()).rev() {
+        let prefix: PathBuf = components[..existing].iter().collect();
+        let prefix = if prefix.as_os_str().is_empty() { PathBuf::from(".") } else { prefix };
+        let Ok(mut full) = prefix.canonicalize() else { continue };
+        for component in &components[existing..] {
+            match component {
+                Component::ParentDir => {
+                    full.pop();
+                }
+                Component::Normal(name) => full.push(name),
+                _ => {}
+            }
+        }
+        return Some(full);
+    }
+    None
+}
+
+/// The file `name` of `folder`, for a name read from a file in that folder (a cache manifest):
+/// refused unless it is one plain file name (no folder, no `..`, not absolute) and, where it
+/// exists, stays in `folder` once links are followed.
+pub fn file_in_folder(folder: &Path, name: &str) -> Result<PathBuf> {
+    let mut components = Path::new(name).components();
+    let plain = matches!((components.next(), components.next()), (Some(std::path::Component::Normal(_)), None));
+    if !plain {
+        return Err(IoError::format(
+            folder,
+            format!("names the file {name:?}, which is not a file of this folder (a plain file name is expected)"),
+        ));
+    }
+    let path = folder.join(name);
+    if let (Ok(full), Ok(folder_full)) = (path.canonicalize(), folder.canonicalize())
+        && full.parent() != Some(folder_full.as_path())
+    {
+        return Err(IoError::format(
+            &path,
+            format!(
+                "leads out of {} (a link to {}); only the folder's own files are read",
+                folder.display(),
+                full.display()
+            ),
+        ));
+    }
+    Ok(path)
 }
 
 #[cfg(test)]
@@ -191,5 +238,45 @@ mod tests {
         assert!(same_file(&a, &dir.path().join(".").join("a.png")));
         assert!(!same_file(&a, &dir.path().join("b.png")));
         assert!(same_file(&dir.path().join("new.png"), &dir.path().join("new.png")));
+        // Files and folders that do not exist yet, spelled two ways.
+        let new = dir.path().join("new").join("level.png");
+        assert!(same_file(&new, &dir.path().join("new").join(".").join("x").join("..").join("level.png")));
+        assert!(!same_file(&new, &dir.path().join("new").join("other.png")));
+    }
+
+    #[test]
+    #[cfg(unix)]
+    fn same_file_sees_through_links() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.png");
+        std::fs::write(&a, b"x").unwrap();
+        let hard = dir.path().join("hard.png");
+        std::fs::hard_link(&a, &hard).unwrap();
+        let soft = dir.path().join("soft.png");
+        std::os::unix::fs::symlink(&a, &soft).unwrap();
+        assert!(same_file(&a, &hard));
+        assert!(same_file(&soft, &a));
+        let copy = dir.path().join("copy.png");
+        std::fs::copy(&a, &copy).unwrap();
+        assert!(!same_file(&a, &copy));
+    }
+
+    #[test]
+    fn files_named_by_a_manifest_stay_in_its_folder() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("segment-1.png"), b"x").unwrap();
+        assert_eq!(file_in_folder(dir.path(), "segment-1.png").unwrap(), dir.path().join("segment-1.png"));
+        for name in ["/etc/passwd", "../x.png", "sub/x.png", "..", ".", ""] {
+            let error = file_in_folder(dir.path(), name).unwrap_err();
+            assert!(error.to_string().contains("not a file of this folder"), "{name}: {error}");
+        }
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink("/etc/passwd", dir.path().join("out.png")).unwrap();
+            let error = file_in_folder(dir.path(), "out.png").unwrap_err();
+            assert!(error.to_string().contains("leads out of"), "{error}");
+            std::os::unix::fs::symlink(dir.path().join("segment-1.png"), dir.path().join("in.png")).unwrap();
+            assert!(file_in_folder(dir.path(), "in.png").is_ok());
+        }
     }
 }

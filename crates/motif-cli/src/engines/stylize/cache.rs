@@ -155,6 +155,14 @@ pub fn read(
             manifest_path.display()
         );
     }
+    // Only files of the folder: a manifest names nothing elsewhere on the disk (checked before
+    // any is read).
+    for entry in &manifest.segments {
+        for file in std::iter::once(&entry.file).chain(&entry.field) {
+            motif_io::file_in_folder(dir, file)
+                .with_context(|| format!("{} names files elsewhere", manifest_path.display()))?;
+        }
+    }
     let mut loaded = Vec::with_capacity(manifest.segments.len());
     for entry in &manifest.segments {
         let image = read_checked(dir, &entry.file, entry.checksum.as_ref())?;
@@ -204,6 +212,26 @@ mod tests {
         std::fs::write(other.path().join(MANIFEST), text.replace("segment-2.png", "segment-1.png")).unwrap();
         let message = format!("{:#}", read(other.path(), &style, 5).unwrap_err());
         assert!(message.contains("generation"), "{message}");
+        // A manifest naming files outside its folder is refused before any is read.
+        for outside in ["/etc/passwd", "../segment-1.png", "sub/segment-1.png"] {
+            let text = std::fs::read_to_string(dir.path().join(MANIFEST)).unwrap();
+            let mut manifest: Manifest = serde_json::from_str(&text).unwrap();
+            manifest.segments[0].file = outside.to_string();
+            manifest.generation = Some(super::generation(manifest.patch_size, &manifest.segments));
+            let edited = tempfile::tempdir().unwrap();
+            std::fs::write(edited.path().join(MANIFEST), serde_json::to_string(&manifest).unwrap()).unwrap();
+            let message = format!("{:#}", read(edited.path(), &style, 5).unwrap_err());
+            assert!(message.contains("names files elsewhere") && message.contains(outside), "{message}");
+        }
+        #[cfg(unix)]
+        {
+            let linked = tempfile::tempdir().unwrap();
+            std::fs::copy(dir.path().join(MANIFEST), linked.path().join(MANIFEST)).unwrap();
+            std::fs::copy(dir.path().join("segment-2.png"), linked.path().join("segment-2.png")).unwrap();
+            std::os::unix::fs::symlink(dir.path().join("segment-1.png"), linked.path().join("segment-1.png")).unwrap();
+            let message = format!("{:#}", read(linked.path(), &style, 5).unwrap_err());
+            assert!(message.contains("leads out of"), "{message}");
+        }
         // Another patch size is refused by name.
         let message = format!("{:#}", read(dir.path(), &style, 7).unwrap_err());
         assert!(message.contains("--patch-size 5"), "{message}");

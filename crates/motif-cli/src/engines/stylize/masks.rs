@@ -89,6 +89,7 @@ pub struct InpaintArgs {
 /// Runs `motif inpaint`.
 pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.image, &args.mask])?;
+    super::check_debug(args.debug_dir.as_deref(), &[&args.image, &args.mask], context)?;
     let (image, mask) = (load(&args.image)?, load(&args.mask)?);
     same_size(&mask, &args.mask, &image, &args.image)?;
     let image = style_image_channels(&image);
@@ -141,12 +142,8 @@ pub struct ZoomArgs {
 pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
     let names: Vec<PathBuf> =
         (1..=args.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
-    // The folder is created after the run; the names are checked against the inputs when it exists.
-    if args.out_dir.is_dir() {
-        for name in &names {
-            context.check_output(name, &[&args.exemplar])?;
-        }
-    }
+    // The folder is made after the run, if missing.
+    context.check_outputs_in(&args.out_dir, &names, &[&args.exemplar])?;
     let exemplar = style_image_channels(&load(&args.exemplar)?).to_float();
     let job = ZoomJob {
         factor: Some(args.factor),
@@ -156,7 +153,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
     let runs = job
         .run(exemplar, context.progress())
         .with_context(|| format!("cannot zoom into {}", args.exemplar.display()))?;
-    std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    motif_io::create_folder(&args.out_dir)?;
     for (run, name) in runs.iter().zip(&names) {
         motif_io::write_png(name, &RgbaImage::from_float(&run.output.image))?;
     }

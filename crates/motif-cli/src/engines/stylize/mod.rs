@@ -249,15 +249,26 @@ fn load(path: &Path) -> anyhow::Result<RgbaImage> {
     Ok(image)
 }
 
+/// The files `--debug-dir` writes: the field, then the error map.
+fn debug_files(dir: &Path) -> Vec<PathBuf> {
+    vec![dir.join("nnf.png"), dir.join("error.png")]
+}
+
+/// Plans `--debug-dir`'s files as outputs, when it is given.
+fn check_debug(dir: Option<&Path>, inputs: &[&Path], context: &Context) -> anyhow::Result<()> {
+    dir.map_or(Ok(()), |dir| context.check_outputs_in(dir, &debug_files(dir), inputs))
+}
+
 fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let [nnf_path, error_path] = <[PathBuf; 2]>::try_from(debug_files(dir)).expect("two files");
+    motif_io::create_folder(dir)?;
     let field = &output.field;
     let nnf = motif_io::Rgba16 { width: field.width, height: field.height, pixels: field.to_rgba16() };
-    motif_io::write_png16(&dir.join("nnf.png"), &nnf)?;
+    motif_io::write_png16(&nnf_path, &nnf)?;
     let max = output.error_map.data().iter().copied().fold(0.0_f32, f32::max).max(f32::MIN_POSITIVE);
     let mut error = output.error_map.clone();
     error.data_mut().iter_mut().for_each(|v| *v /= max);
-    motif_io::write_png(&dir.join("error.png"), &RgbaImage::from_float(&error))?;
+    motif_io::write_png(&error_path, &RgbaImage::from_float(&error))?;
     Ok(())
 }
 
@@ -269,7 +280,10 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     inputs.extend(args.guide.iter().map(PathBuf::as_path));
     inputs.extend(args.apply_nnf.iter().map(PathBuf::as_path));
     inputs.extend(args.masking.inputs());
+    // The cache's folder: its files are inputs.
+    inputs.extend(args.presynth.as_deref());
     context.check_output(out, &inputs)?;
+    check_debug(args.debug_dir.as_deref(), &inputs, context)?;
     // Only the 8-bit channels the engine takes are kept (not the decoded RGBA).
     let style = style_image_channels(&load(style_path)?);
     let job = StylizeJob {
@@ -350,26 +364,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
 /// Runs `motif presynth`.
 pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
     // The folder's files are replaced: no input may live there, and it must be a folder.
-    if args.out_dir.is_file() {
-        bail!("--out-dir {} is a file; give a folder", args.out_dir.display());
-    }
-    for input in [&args.style, &args.guide] {
-        let folder = match input.parent() {
-            Some(parent) if !parent.as_os_str().is_empty() => parent,
-            _ => Path::new("."),
-        };
-        if motif_io::same_file(folder, &args.out_dir) {
-            bail!(
-                "input {} lies in the --out-dir folder, whose files presynth replaces; move it out or choose another \
-                 folder (motif never overwrites an input)",
-                input.display()
-            );
-        }
-    }
-    // The manifest stands for the folder's outputs, so that --report is checked against the inputs.
-    if args.out_dir.is_dir() {
-        context.check_output(&args.out_dir.join(cache::MANIFEST), &[&args.style, &args.guide])?;
-    }
+    context.check_output_folder("--out-dir", &args.out_dir, &[&args.style, &args.guide])?;
     let style_image = load(&args.style)?;
     let guide_image = load(&args.guide)?;
     let job = PresynthJob {
@@ -383,7 +378,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
         guide_image_channels(&guide_image).to_float(),
         context.progress(),
     )?;
-    std::fs::create_dir_all(&args.out_dir).with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    motif_io::create_folder(&args.out_dir)?;
     let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
     context.figure("generation", generation);
     context.figure("segments", textures.len());
@@ -403,6 +398,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     let mut inputs = vec![args.exemplar.as_path()];
     inputs.extend(args.masking.inputs());
     context.check_output(&args.out, &inputs)?;
+    check_debug(args.debug_dir.as_deref(), &inputs, context)?;
     let exemplar = style_image_channels(&load(&args.exemplar)?);
     let mask = args.masking.read(exemplar.channels())?;
     let job = TextureJob {
