@@ -13,6 +13,10 @@ use crate::{IoError, Result, write_with};
 /// message instead of exhausting memory.
 pub const MAX_PIXELS: u64 = 16_384 * 16_384;
 
+/// The largest tone map (density, scale or rotation map) accepted, in pixels (8192 × 8192): a
+/// map is a smooth field stretched over the target, and a larger one only costs memory.
+pub const MAX_MAP_PIXELS: u64 = 8192 * 8192;
+
 /// What reading one image may cost, checked against the size its header declares before any
 /// pixel is decoded.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -36,6 +40,11 @@ impl ImageBudget {
     /// [`MAX_PIXELS`] and at most `bytes`, which come from `--max-memory`.
     pub fn max_memory(bytes: u64) -> Self {
         Self { max_bytes: bytes, bytes_from: "--max-memory", ..Self::default() }
+    }
+
+    /// The budget of a tone map: [`MAX_MAP_PIXELS`] and at most `bytes` from `--max-memory`.
+    pub fn map(bytes: u64) -> Self {
+        Self::max_memory(bytes).with_max_pixels(MAX_MAP_PIXELS)
     }
 
     /// The same budget with at most `pixels` pixels.

@@ -450,7 +450,10 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     let job = PointsJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed)? };
     let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
     let read_map = |file: &Option<PathBuf>| -> anyhow::Result<Option<motif_core::ToneMap>> {
-        file.as_deref().map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image(file)?))).transpose()
+        let budget = motif_io::ImageBudget::map(context.max_memory);
+        file.as_deref()
+            .map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image_within(file, budget)?)))
+            .transpose()
     };
     let maps = FieldMaps { rotation: read_map(&args.rotation_map)?, scale: read_map(&args.scale_map)? };
     // Checked here so that the error names the files.

@@ -32,10 +32,10 @@ impl MaskOptions {
         self.mask.iter().chain(&self.keep).map(PathBuf::as_path)
     }
 
-    /// The mask for a style of `channels` channels, when one is given.
-    pub fn read(&self, channels: usize) -> anyhow::Result<Option<Mask<ByteImage>>> {
+    /// The mask for a style of `channels` channels, when one is given, read within `max_memory`.
+    pub fn read(&self, channels: usize, max_memory: u64) -> anyhow::Result<Option<Mask<ByteImage>>> {
         let (Some(mask_path), Some(keep_path)) = (&self.mask, &self.keep) else { return Ok(None) };
-        let (mask, keep) = (load(mask_path)?, load(keep_path)?);
+        let (mask, keep) = (load(mask_path, max_memory)?, load(keep_path, max_memory)?);
         same_size(&mask, mask_path, &keep, keep_path)?;
         Ok(Some(Mask { keep: kept_image(&keep, channels), hole: hole_of(&mask), exclude_hole_from_style: false }))
     }
@@ -89,7 +89,7 @@ pub struct InpaintArgs {
 /// Runs `motif inpaint`.
 pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.image, &args.mask])?;
-    let (image, mask) = (load(&args.image)?, load(&args.mask)?);
+    let (image, mask) = (load(&args.image, context.max_memory)?, load(&args.mask, context.max_memory)?);
     same_size(&mask, &args.mask, &image, &args.image)?;
     let image = style_image_channels(&image);
     let hole = hole_of(&mask);
@@ -147,7 +147,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
             context.check_output(name, &[&args.exemplar])?;
         }
     }
-    let exemplar = style_image_channels(&load(&args.exemplar)?).to_float();
+    let exemplar = style_image_channels(&load(&args.exemplar, context.max_memory)?).to_float();
     let job = ZoomJob {
         factor: Some(args.factor),
         levels: Some(args.levels),
