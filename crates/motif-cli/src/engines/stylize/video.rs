@@ -71,7 +71,7 @@ fn read_frame(path: &Path, size: Option<(usize, usize)>, max_memory: u64) -> any
 pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> {
     let pattern = FramePattern::parse(&args.frames).context("--frames")?;
     let out = FramePattern::parse(&args.out).context("--out")?;
-    let frames = pattern.find().context("--frames")?;
+    let frames = pattern.find_consecutive().context("--frames")?;
     let numbers: Vec<u64> = frames.iter().map(|(number, _)| *number).collect();
     let describe_range = || {
         format!("{} frames numbered {}–{} match {}", numbers.len(), numbers[0], numbers[numbers.len() - 1], args.frames)
