@@ -124,10 +124,10 @@ pub struct ZoomArgs {
     #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: (usize, usize),
     /// How much closer each level is than the one before, 1.05–8.
-    #[arg(long, value_name = "F", default_value_t = 2.0)]
+    #[arg(long, value_name = "F", default_value_t = 2.0, allow_negative_numbers = true)]
     pub factor: f64,
     /// Zoom levels, the first unzoomed, 1–64.
-    #[arg(long, value_name = "N", default_value_t = 4)]
+    #[arg(long, value_name = "N", default_value_t = 4, allow_negative_numbers = true)]
     pub levels: usize,
     /// Synthesis options.
     #[command(flatten)]
