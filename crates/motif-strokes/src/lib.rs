@@ -234,8 +234,6 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
         Ok(region) if region.is_simple() => Ok(region),
         Ok(_) => Err(Error::SelfIntersectingRegion),
         Err(error) => {
-            // Only reached for rejected outlines, so the quadratic scan is bounded by input size
-            // and never runs on a valid region.
             let mut kept: Vec<Point> = Vec::with_capacity(points.len());
             for p in points {
                 if kept.last().is_none_or(|last: &Point| vector::distance(*last, p) > 1e-9) {
@@ -245,19 +243,7 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
             if kept.len() > 1 && vector::distance(kept[0], kept[kept.len() - 1]) <= 1e-9 {
                 kept.pop();
             }
-            let n = kept.len();
-            let crossing = n >= 4
-                && (0..n).any(|i| {
-                    (i + 2..n).any(|j| {
-                        (j + 1) % n != i
-                            && motif_core::geometry::segments_intersect(
-                                kept[i],
-                                kept[(i + 1) % n],
-                                kept[j],
-                                kept[(j + 1) % n],
-                            )
-                    })
-                });
+            let crossing = motif_core::geometry::outline_crosses_itself(&kept);
             if crossing { Err(Error::SelfIntersectingRegion) } else { Err(error.into()) }
         }
     }
