@@ -96,6 +96,19 @@ def prepare(folder, binary):
         handle.write("x,y\n0.2,0.2\n1.8,0.2\n1.0,1.8\n")
     with open(os.path.join(folder, "bad-elements.csv"), "w") as handle:
         handle.write("x,y,element\n" + "".join(f"{i % 10},{i // 10},{i / 3}\n" for i in range(100)))
+    # One point whose extent overflows the set's area (it looped forever), and a set of doubled points.
+    with open(os.path.join(folder, "overflowing-points.csv"), "w") as handle:
+        handle.write("x,y\n" + "".join(f"{i % 10},{i // 10}\n" for i in range(99)) + "1e200,-1e200\n")
+    with open(os.path.join(folder, "doubled-points.csv"), "w") as handle:
+        handle.write("x,y\n" + "".join(f"{i % 10},{i // 10}\n" * 2 for i in range(100)))
+    # A 3D sheet with normals and a radius.
+    with open(os.path.join(folder, "sheet-normals.csv"), "w") as handle:
+        handle.write("x,y,z,nx,ny,nz,radius\n" + "".join(f"{i % 6},{i // 6 % 6},{i // 36},0,0,1,{0.1 + i % 7 / 100}\n" for i in range(216)))
+    shutil.copy(os.path.join(ROOT, "crates", "motif-io", "tests", "regressions", "jpeg-cut-before-its-end.jpg"), os.path.join(folder, "truncated.jpg"))
+    # Video frames numbered with a gap (the demo's frames, then 0050).
+    shutil.copytree(os.path.join(folder, "video-in"), os.path.join(folder, "gap-video"))
+    first = sorted(os.listdir(os.path.join(folder, "gap-video")))[0]
+    shutil.copy(os.path.join(folder, "gap-video", first), os.path.join(folder, "gap-video", "0050.png"))
     with open(os.path.join(folder, "long-stroke.json"), "w") as handle:
         json.dump([[float(i), 0.0] for i in range(0, 200_001, 1000)], handle)
     # Previous outputs that a failed run must leave as they were (issue 32).
@@ -164,6 +177,7 @@ CASES = [
     ("video keyframe of another size", ["video", "--frames", "video-in/%04d.png", "--key", "0:texture-exemplar.png", "--out", "video-out/%04d.png"], "clean-error"),
     ("video frames pattern without a number", ["video", "--frames", "video-in/0000.png", "--key", "0:video-key-0000.png", "--out", "video-out/%04d.png"], "clean-error"),
     ("video output over its own frames", ["video", "--frames", "video-in/%04d.png", "--key", "0:video-key-0000.png", "--out", "video-in/%04d.png"], "clean-error"),
+    ("video frames with a numbering gap", ["video", "--frames", "gap-video/%04d.png", "--key", "0:video-key-0000.png", "--out", "out-%04d.png"], "clean-error"),
     ("video frame of 16384^2 header", ["video", "--frames", "huge-%d.png", "--key", "0:video-key-0000.png", "--out", "out-%d.png"], "clean-error"),
     ("inpaint with a mask of another size", ["inpaint", "--image", "stylize-A1.png", "--mask", "texture-exemplar.png", "--out", "out.png"], "clean-error"),
     ("presynth 4096x4096", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "4096x4096", "--out-dir", "out-presynth"], "clean-error"),
@@ -178,12 +192,21 @@ CASES = [
     ("points sigma 1e300", POINTS + ["--domain", "box:8,8", "--sigma", "1e300", "--out", "out.ply"], "clean-error"),
     ("points non-integer elements", ["points", "--exemplar", "bad-elements.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
     ("truncated image", TEXTURE[:-1] + ["truncated.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
+    ("truncated JPEG", TEXTURE[:-1] + ["truncated.jpg", "--size", "64x64", "--out", "out.png"], "clean-error"),
+    ("points exemplar at 1e200,-1e200", ["points", "--exemplar", "overflowing-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
+    ("points exemplar of doubled points", ["points", "--exemplar", "doubled-points.csv", "--neighbourhood", "2", "--domain", "box:20,20", "--out", "out.ply"], "clean-error"),
+    ("points scale-along 1e300,1", POINTS + ["--along", "points-stroke.svg", "--brush-width", "3", "--scale-along", "1e300,1", "--out", "out.ply"], "clean-error"),
+    ("points scale-map with a 16384^2 header", POINTS + ["--domain", "box:6,6", "--scale-map", "huge-header.png", "--out", "out.ply"], "clean-error"),
+    ("inpaint image with a 16384^2 header over --max-memory 50M", ["--max-memory", "50M", "inpaint", "--image", "huge-header.png", "--mask", "huge-header.png", "--out", "out.png"], "clean-error"),
+    ("points surface-out without normals among the attributes", ["points", "--exemplar", "sheet-normals.csv", "--neighbourhood", "1.2", "--domain", "box:6,6,6", "--attributes", "radius", "--out", "out.csv", "--surface-out", "out.obj"], "clean-error"),
     ("curve canvas 1x1", CURVE + ["--canvas", "1x1", "--out", "out.png"], "clean-error"),
     # Caches: a partial presynth folder is detected, not used.
     ("stylize with a mixed presynth cache", STYLE + ["--presynth", "mixed-presynth", "--out", "out.png"], "clean-error"),
     # Messages name the flag, for negatives too.
     ("negative width", CURVE[:6] + ["-40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("negative scale", STROKES[:4] + ["-6", "--rect", "100,100", "--out", "out.svg"], "clean-error"),
+    ("negative zoom factor", ["zoom", "--exemplar", "texture-exemplar.png", "--size", "64x64", "--factor", "-5", "--out-dir", "out-zoom"], "clean-error"),
+    ("negative global seed", ["--seed", "-5"] + TEXTURE + ["--size", "64x64", "--out", "out.png"], "clean-error"),
     ("segment guide 2 of 1", STYLE + ["--segments", "--segment-guide", "2", "--out", "out.png"], "clean-error"),
     # One output plan, checked before work, committed last (issue 32).
     ("D1 report in /proc", ["--report", "/proc/r.json"] + TEXTURE + ["--size", "64x64", "--out", "previous.png"], "clean-error"),

@@ -34,6 +34,27 @@ fn bad_usage_exits_2_with_a_message() {
 }
 
 #[test]
+fn a_negative_number_is_named_with_its_flag() {
+    // Each said "unexpected argument '-5' found", without the flag.
+    let cases: [&[&str]; 5] = [
+        &["--seed", "-5", "texture", "--exemplar", "ex.png", "--size", "8x8", "--out", "out.png"],
+        &["--threads", "-5", "texture", "--exemplar", "ex.png", "--size", "8x8", "--out", "out.png"],
+        &["--max-memory", "-5", "texture", "--exemplar", "ex.png", "--size", "8x8", "--out", "out.png"],
+        &["zoom", "--exemplar", "ex.png", "--size", "8x8", "--out-dir", "out", "--factor", "-5"],
+        &["zoom", "--exemplar", "ex.png", "--size", "8x8", "--out-dir", "out", "--levels", "-5"],
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    motif_io::write_png(&dir.path().join("ex.png"), &motif_core::RgbaImage::filled(16, 16, [90, 60, 30, 255])).unwrap();
+    for args in cases {
+        let output = motif().current_dir(dir.path()).args(args).output().unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        let flag = args.windows(2).find(|pair| pair[1] == "-5").map(|pair| pair[0].trim_start_matches('-')).unwrap();
+        assert!(!output.status.success(), "{args:?}");
+        assert!(stderr.contains(flag) && !stderr.contains("unexpected argument"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
 fn a_failed_run_exits_1_and_names_the_problem() {
     let dir = tempfile::tempdir().unwrap();
     let blocker = dir.path().join("file");

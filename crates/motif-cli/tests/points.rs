@@ -317,6 +317,23 @@ fn painted_rotation_and_scale_maps_guide_a_2d_synthesis() {
 }
 
 #[test]
+fn a_map_declaring_16384_squared_is_refused_from_its_header() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();
+    // 40 bytes of PNG whose header declares 16384 × 16384: it was decoded (3 GB) and accepted.
+    let crafted = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../motif-io/tests/regressions/png-header-declares-16384x16384.png");
+    std::fs::copy(crafted, dir.path().join("huge.png")).unwrap();
+    let base = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.2", "--domain", "box:6,6"];
+    let error = error_of(&motif(dir.path(), &[&base[..], &["--scale-map", "huge.png", "--out", "never.csv"]].concat()));
+    assert!(error.contains("huge.png") && error.contains("16384×16384") && error.contains("67108864"), "{error}");
+    let small = ["--max-memory", "50M", "stylize", "--style", "huge.png", "--guide", "huge.png", "huge.png"];
+    let error = error_of(&motif(dir.path(), &[&small[..], &["--out", "never.png"]].concat()));
+    assert!(error.contains("huge.png") && error.contains("--max-memory"), "{error}");
+    assert!(!dir.path().join("never.csv").exists() && !dir.path().join("never.png").exists());
+}
+
+#[test]
 fn a_rotation_map_turns_the_pattern_where_it_is_grey() {
     // Rows of points 1 apart along x, 3 apart along y: nearest neighbours lie along x.
     let mut rows = String::from("x,y\n");

@@ -117,6 +117,37 @@ fn surface_out_reconstructs_points_with_normals_and_refuses_points_without() {
 }
 
 #[test]
+fn surface_out_without_normals_among_the_attributes_is_refused_before_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut sheet = String::from("x,y,z,nx,ny,nz,radius\n");
+    for i in 0..216 {
+        let (x, y, z) = ((i % 6) as f64, ((i / 6) % 6) as f64, (i / 36) as f64);
+        let _ = writeln!(sheet, "{x},{y},{z},0,0,1,{}", 0.1 + 0.01 * (i % 7) as f64);
+    }
+    std::fs::write(dir.path().join("sheet.csv"), sheet).unwrap();
+    let args = [
+        "points",
+        "--exemplar",
+        "sheet.csv",
+        "--neighbourhood",
+        "1.2",
+        "--domain",
+        "box:6,6,6",
+        "--attributes",
+        "radius",
+    ];
+    let output = motif(dir.path(), &[&args[..], &["--out", "never.csv", "--surface-out", "never.obj"]].concat());
+    // It panicked after the whole run; now it is an error, and no run.
+    let error = error_of(&output);
+    assert!(
+        error.contains("--surface-out") && error.contains("--attributes radius") && error.contains("nx"),
+        "{error}"
+    );
+    assert!(!String::from_utf8_lossy(&output.stderr).contains("panicked"));
+    assert!(!dir.path().join("never.csv").exists() && !dir.path().join("never.obj").exists());
+}
+
+#[test]
 fn surface_domains_keep_points_on_the_mesh_and_refuse_bad_fields() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("grid.csv"), grid_csv()).unwrap();

@@ -164,6 +164,11 @@ fn bad_sequences_and_keyframes_are_refused_with_the_file_or_flag_named() {
     assert!(message.contains("also an input"), "{message}");
     let message = run(&base("in/%04d.png", "0:key.png", "missing/%04d.png"));
     assert!(message.contains("missing") && message.contains("does not exist"), "{message}");
+    // A gap in the numbering was taken as consecutive frames without a word.
+    std::fs::copy(d.join("in/0006.png"), d.join("in/0050.png")).unwrap();
+    let message = run(&base("in/%04d.png", "0:key.png", "out/%04d.png"));
+    assert!(message.contains("--frames") && message.contains("jump from 6 to 50"), "{message}");
+    std::fs::remove_file(d.join("in/0050.png")).unwrap();
     motif_io::write_png(&d.join("small.png"), &RgbaImage::new(40, 30)).unwrap();
     let message = run(&base("in/%04d.png", "0:small.png", "out/%04d.png"));
     assert!(message.contains("small.png") && message.contains("40×30") && message.contains("96×64"), "{message}");

@@ -104,6 +104,27 @@ impl FramePattern {
         frames.sort();
         Ok(frames)
     }
+
+    /// [`find`](Self::find), refusing a gap in the numbering: a video's frames follow each other,
+    /// and frames 2 and 50 taken as neighbours would be stylized as if nothing moved between them.
+    pub fn find_consecutive(&self) -> Result<Vec<(u64, PathBuf)>> {
+        let frames = self.find()?;
+        if let Some(pair) = frames.windows(2).find(|pair| pair[1].0 != pair[0].0 + 1) {
+            let (before, after) = (pair[0].0, pair[1].0);
+            return Err(IoError::format(
+                Path::new(&self.pattern),
+                format!(
+                    "the frames jump from {} to {} ({} numbers missing, e.g. {}); the frames must be numbered \
+                     without gaps: renumber them, or move the other run of frames to its own folder",
+                    before,
+                    after,
+                    after - before - 1,
+                    self.path(before + 1).display()
+                ),
+            ));
+        }
+        Ok(frames)
+    }
 }
 
 #[cfg(test)]
@@ -127,6 +148,13 @@ mod tests {
             let error = FramePattern::parse(bad).unwrap_err().to_string();
             assert!(error.contains(bad) && error.contains("%0Nd"), "{error}");
         }
+        let gap = pattern.find_consecutive().unwrap_err().to_string();
+        assert!(
+            gap.contains("jump from 2 to 10") && gap.contains("7 numbers missing") && gap.contains("f0003.png"),
+            "{gap}"
+        );
+        std::fs::remove_file(dir.path().join("f0010.png")).unwrap();
+        assert_eq!(pattern.find_consecutive().unwrap().len(), 2);
         let none = FramePattern::parse(&format!("{}/h%03d.png", dir.path().display())).unwrap();
         assert!(none.find().unwrap_err().to_string().contains("no file"));
     }

@@ -32,7 +32,10 @@ pub use frames::FramePattern;
 pub use json::{read_json, write_json};
 pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
-pub use raster::{Rgba16, decode_image, read_image, read_png16, write_png, write_png16};
+pub use raster::{
+    ImageBudget, MAX_MAP_PIXELS, MAX_PIXELS, Rgba16, decode_image, decode_image_within, read_image, read_image_within,
+    read_png16, read_png16_within, write_png, write_png16,
+};
 pub(crate) use staging::write_with;
 pub use staging::{begin_outputs, check_folder_writable, commit_outputs, create_folder, discard_outputs, stop_outputs};
 pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};

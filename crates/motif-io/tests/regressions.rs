@@ -5,7 +5,7 @@
 
 use std::path::{Path, PathBuf};
 
-use motif_io::{read_image, read_points, read_svg};
+use motif_io::{ImageBudget, read_image_within, read_points, read_svg};
 
 fn file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/regressions").join(name)
@@ -14,7 +14,9 @@ fn file(name: &str) -> PathBuf {
 /// (file, what the error must say).
 const CASES: &[(&str, &str)] = &[
     ("png-header-declares-20000x20000.png", "20000×20000"),
+    ("png-header-declares-16384x16384.png", "16384×16384; decoding it needs about 3.00 GiB, more than the 50.00 MiB"),
     ("png-cut-to-a-third.png", "cannot decode"),
+    ("jpeg-cut-before-its-end.jpg", "the JPEG is truncated"),
     ("png-zero-width.png", "Invalid image dimensions"),
     ("text-named-png.png", "is not a PNG or JPEG"),
     ("ply-declares-two-billion-vertices.ply", "not a valid PLY"),
@@ -33,7 +35,8 @@ const CASES: &[(&str, &str)] = &[
 fn read(path: &Path) -> Result<(), String> {
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("");
     let result = match extension {
-        "png" => read_image(path).map(drop),
+        // Images are read as under `--max-memory 50M`: a large declared size is refused from its header.
+        "png" | "jpg" => read_image_within(path, ImageBudget::max_memory(50 << 20)).map(drop),
         "ply" | "csv" => read_points(path).map(drop),
         "svg" => read_svg(path).map(drop),
         other => panic!("no reader for .{other}"),

@@ -27,6 +27,11 @@ pub enum Region<const D: usize> {
     Surface { surface: Box<MeshSurface>, band: f64 },
 }
 
+/// The scales along a stroke lie in `[1 / MAX_STROKE_SCALE, MAX_STROKE_SCALE]`: the scale is
+/// interpolated between the stroke's two ends, and a ratio wider than 1e12 between them rounds the
+/// smaller end away (1e300 to 1 gives 0 at the far end).
+pub const MAX_STROKE_SCALE: f64 = 1e6;
+
 /// Where along a stroke a position projects.
 #[derive(Debug, Clone, Copy)]
 pub struct StrokeProjection<const D: usize> {
@@ -64,7 +69,7 @@ impl<const D: usize> Region<D> {
                     return Err(DomainProblem::BrushWidth(stroke.width));
                 }
                 for s in [stroke.scale_start, stroke.scale_end] {
-                    if !(s.is_finite() && s > 0.0) {
+                    if !((1.0 / MAX_STROKE_SCALE..=MAX_STROKE_SCALE).contains(&s)) {
                         return Err(DomainProblem::StrokeScale(s));
                     }
                 }

@@ -35,6 +35,18 @@ pub enum Error {
     /// Every exemplar point lies at one place.
     #[error("the exemplar's points all coincide; they need a positive spacing")]
     CoincidentPoints,
+    /// Every exemplar point has another at the same place (a doubled set), so no point has a
+    /// positive distance to its nearest neighbour.
+    #[error(
+        "every exemplar point has a duplicate at the same place (points {first} and {second} coincide, for one), so \
+         the nearest-neighbour spacing is 0: remove the duplicated points"
+    )]
+    DuplicatedPoints {
+        /// One point of a coinciding pair.
+        first: usize,
+        /// The other point of that pair.
+        second: usize,
+    },
     /// An attribute named in the parameters (or needed by the existing points) is not there.
     #[error("{}", role.message(name, available))]
     UnknownAttribute {
@@ -131,6 +143,19 @@ pub enum PointSetProblem {
         /// The point's index.
         point: usize,
     },
+    /// A coordinate so large that distances, areas and volumes of the set would overflow.
+    #[error(
+        "point {point} has coordinate {value:e}; coordinates must lie within ±{limit:e} (beyond it the set's \
+         distances, areas and volumes overflow)"
+    )]
+    CoordinateOutOfRange {
+        /// The point's index.
+        point: usize,
+        /// The coordinate.
+        value: f64,
+        /// [`MAX_COORDINATE`](crate::MAX_COORDINATE).
+        limit: f64,
+    },
     /// An attribute value is NaN or infinite.
     #[error(
         "point {point} has a non-finite value (NaN or infinity) in attribute {name:?}; every attribute needs a number \
@@ -168,8 +193,12 @@ pub enum DomainProblem {
     /// A brush width that is not a positive number.
     #[error("brush width {0} must be > 0")]
     BrushWidth(f64),
-    /// A stroke scale that is not a positive number.
-    #[error("stroke scale {0} must be > 0")]
+    /// A stroke scale outside `[1 / MAX_STROKE_SCALE, MAX_STROKE_SCALE]` ([`crate::MAX_STROKE_SCALE`]).
+    #[error(
+        "stroke scale (scale-along) {0:e} must lie between {min:e} and {max:e}",
+        min = 1.0 / crate::MAX_STROKE_SCALE,
+        max = crate::MAX_STROKE_SCALE
+    )]
     StrokeScale(f64),
     /// A stroke vertex with the wrong number of coordinates.
     #[error("a stroke vertex has {coordinates} coordinates but the exemplar is {exemplar}D")]

@@ -382,8 +382,10 @@ pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
     let grid = StaticGrid::new(points, radius);
     let mut total = 0.0;
     for (i, p) in points.iter().enumerate() {
+        // Twenty doublings reach a million times the start: a bounded count, so that a radius or
+        // a distance that overflows to infinity cannot keep the search going.
         let mut r = radius;
-        loop {
+        for _ in 0..20 {
             let mut nearest = f64::INFINITY;
             grid.for_each_within(p, r, |j, q, _| {
                 if j != i {
@@ -395,9 +397,6 @@ pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
                 break;
             }
             r *= 2.0;
-            if r > 1e6 * radius {
-                break;
-            }
         }
     }
     total / points.len() as f64
@@ -414,6 +413,15 @@ mod tests {
         assert!((wasserstein(&a, &b) - 0.5).abs() < 1e-12);
         assert_eq!(wasserstein(&a, &a), 0.0);
         assert!((wasserstein(&[1.0], &[1.0, 3.0]) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mean_spacing_ends_on_a_set_whose_extent_overflows() {
+        // The area of this set overflows, so the search radius is infinite; it looped forever.
+        let points = [[0.0, 0.0], [1.0, 0.0], [1e200, -1e200]];
+        assert!(mean_spacing(&points).is_finite());
+        let far = [[0.0, 0.0], [1e308, -1e308], [-1e308, 1e308]];
+        mean_spacing(&far);
     }
 
     fn uniform(count: usize, side: f64, seed: u64) -> Vec<Vector<2>> {

@@ -113,6 +113,7 @@ mod tests_synthesis;
 mod triangles;
 mod volume;
 
+pub use domain::MAX_STROKE_SCALE;
 pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};
 pub use pair_statistics::StatisticsRefinement;
@@ -120,7 +121,7 @@ pub use params::{
     Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, SurfaceDirections,
     Window,
 };
-pub use points::PointSet;
+pub use points::{MAX_COORDINATE, PointSet};
 pub use solver::{
     EnergyCase, EvaluatorComparison, IterationEnergy, Output, Report, SurfaceFigures, compare_evaluators, synthesize,
 };

@@ -2,6 +2,10 @@
 
 use crate::{Error, PointSetProblem};
 
+/// The largest coordinate magnitude a point set may hold: the extent of a set within ±1e100 is
+/// at most 2e100, so its squared distances and its volume (at most 8e300 in 3D) stay finite.
+pub const MAX_COORDINATE: f64 = 1e100;
+
 /// A set of points `x_i ∈ R^d` (d = 2 or 3) with float attributes `a_i` and optional element ids.
 ///
 /// Points that share an element id form one discrete element (§6.1) and move rigidly; points with
@@ -71,6 +75,13 @@ impl PointSet {
         }
         if let Some(i) = (0..n).find(|&i| self.position(i).iter().any(|v| !v.is_finite())) {
             return Err(problem(PointSetProblem::NonFiniteCoordinate { point: i }));
+        }
+        if let Some((i, &value)) = self.positions.iter().enumerate().find(|(_, v)| v.abs() > MAX_COORDINATE) {
+            return Err(problem(PointSetProblem::CoordinateOutOfRange {
+                point: i / self.dimension,
+                value,
+                limit: MAX_COORDINATE,
+            }));
         }
         if let Some(i) = (0..n).find(|&i| self.attributes_of(i).iter().any(|v| !v.is_finite())) {
             let column = self.attributes_of(i).iter().position(|v| !v.is_finite()).unwrap_or(0);

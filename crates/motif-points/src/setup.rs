@@ -214,7 +214,7 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
     }
     let spacing = fidelity::mean_spacing(&positions);
     if spacing <= 0.0 || !spacing.is_finite() {
-        return Err(Error::CoincidentPoints);
+        return Err(zero_spacing_error(&positions));
     }
     let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
     let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
@@ -568,5 +568,18 @@ pub(crate) fn to_point_set<const D: usize>(setup: &Setup<D>, state: &State<D>) -
         attribute_names: map.names.clone(),
         attributes,
         elements: setup.has_elements.then(|| state.element_id.clone()),
+    }
+}
+
+/// Why an exemplar has no positive spacing: all its points at one place, or each doubled.
+fn zero_spacing_error<const D: usize>(positions: &[Vector<D>]) -> Error {
+    if positions.iter().all(|p| *p == positions[0]) {
+        return Error::CoincidentPoints;
+    }
+    let mut order: Vec<usize> = (0..positions.len()).collect();
+    order.sort_by(|&a, &b| positions[a].partial_cmp(&positions[b]).expect("coordinates are finite"));
+    match order.windows(2).find(|w| positions[w[0]] == positions[w[1]]) {
+        Some(w) => Error::DuplicatedPoints { first: w[0].min(w[1]), second: w[0].max(w[1]) },
+        None => Error::CoincidentPoints,
     }
 }

@@ -339,6 +339,33 @@ fn three_dimensional_boxes_are_filled_at_the_exemplar_density() {
 }
 
 #[test]
+fn extreme_exemplars_and_stroke_scales_are_refused_by_name() {
+    let run = |exemplar: PointSet, domain: Domain| {
+        synthesize(&Input { exemplar, domain, existing: None }, &quick_params(), &mut NoProgress)
+    };
+    // One point whose coordinates overflow the set's area: it looped forever in mean_spacing.
+    let mut far = jittered_grid(5, 0.1, 1);
+    far.positions.extend([1e200, -1e200]);
+    far.attributes.extend(vec![0.5; far.attribute_names.len()]);
+    let error = run(far, box_domain(5.0, 5.0)).unwrap_err();
+    assert!(error.to_string().contains("1e200") && error.to_string().contains("±1e100"), "{error}");
+    // Each point doubled: they do not all coincide, and the message says what they do.
+    let mut doubled = PointSet::new(2, Vec::new());
+    for p in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]] {
+        doubled.positions.extend(p.iter().chain(&p));
+    }
+    let error = run(doubled, box_domain(5.0, 5.0)).unwrap_err();
+    assert!(matches!(error, Error::DuplicatedPoints { .. }) && error.to_string().contains("duplicate"), "{error}");
+    let same = PointSet::new(2, vec![2.0; 8]);
+    assert!(matches!(run(same, box_domain(5.0, 5.0)).unwrap_err(), Error::CoincidentPoints));
+    // A scale ratio of 1e300 along a stroke rounded the far end to scale 0.
+    let stroke =
+        Stroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1e300, scale_end: 1.0 };
+    let error = run(jittered_grid(5, 0.1, 1), Domain::Stroke(stroke)).unwrap_err();
+    assert!(error.to_string().contains("scale-along") && error.to_string().contains("1e300"), "{error}");
+}
+
+#[test]
 fn bad_input_gives_clear_errors() {
     let domain = box_domain(5.0, 5.0);
     let run = |exemplar: PointSet, params: Params, domain: Domain| {

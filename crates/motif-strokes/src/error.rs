@@ -29,6 +29,22 @@ pub enum Error {
         /// The limit ([`crate::Params::max_elements`]).
         limit: usize,
     },
+    /// Matching would compare too many neighbourhoods ([`crate::MAX_COMPARISONS`]).
+    #[error(
+        "matching {outputs} output elements against {references} reference elements would take about {minutes:.0} \
+         minutes (its time grows with their product; at most about {limit_minutes:.0} minutes are allowed): use a \
+         smaller target, a larger scale or a smaller reference"
+    )]
+    TooMuchMatching {
+        /// Elements to synthesize.
+        outputs: usize,
+        /// Elements found in the reference.
+        references: usize,
+        /// The estimated matching time, minutes.
+        minutes: f64,
+        /// The time [`crate::MAX_COMPARISONS`] stands for, minutes.
+        limit_minutes: f64,
+    },
     /// The density map leaves the whole target blank.
     #[error(
         "the density map is white (or nearly) over the whole target, so no element would be drawn: \

@@ -234,8 +234,6 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
         Ok(region) if region.is_simple() => Ok(region),
         Ok(_) => Err(Error::SelfIntersectingRegion),
         Err(error) => {
-            // Only reached for rejected outlines, so the quadratic scan is bounded by input size
-            // and never runs on a valid region.
             let mut kept: Vec<Point> = Vec::with_capacity(points.len());
             for p in points {
                 if kept.last().is_none_or(|last: &Point| vector::distance(*last, p) > 1e-9) {
@@ -245,22 +243,33 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
             if kept.len() > 1 && vector::distance(kept[0], kept[kept.len() - 1]) <= 1e-9 {
                 kept.pop();
             }
-            let n = kept.len();
-            let crossing = n >= 4
-                && (0..n).any(|i| {
-                    (i + 2..n).any(|j| {
-                        (j + 1) % n != i
-                            && motif_core::geometry::segments_intersect(
-                                kept[i],
-                                kept[(i + 1) % n],
-                                kept[j],
-                                kept[(j + 1) % n],
-                            )
-                    })
-                });
+            let crossing = motif_core::geometry::outline_crosses_itself(&kept);
             if crossing { Err(Error::SelfIntersectingRegion) } else { Err(error.into()) }
         }
     }
+}
+
+/// The most neighbourhood comparisons a synthesis may make: each output element is compared with
+/// every reference element's neighbourhood (all of them, since the match is drawn among every
+/// one that passes), so matching grows with outputs × reference elements; 2·10⁸ take about five
+/// minutes.
+pub const MAX_COMPARISONS: f64 = 2e8;
+
+/// Seconds one neighbourhood comparison takes, about (measured at two rings: 3.3 million in 4.7 s).
+const SECONDS_PER_COMPARISON: f64 = 1.5e-6;
+
+/// Refuses a synthesis whose matching would pass [`MAX_COMPARISONS`], with its estimated time.
+fn check_matching_cost(outputs: usize, references: usize) -> Result<(), Error> {
+    let comparisons = outputs as f64 * references as f64;
+    if comparisons <= MAX_COMPARISONS {
+        return Ok(());
+    }
+    Err(Error::TooMuchMatching {
+        outputs,
+        references,
+        minutes: comparisons * SECONDS_PER_COMPARISON / 60.0,
+        limit_minutes: MAX_COMPARISONS * SECONDS_PER_COMPARISON / 60.0,
+    })
 }
 
 const MEMORY_ADVICE: &str = "use a smaller target, a larger scale or a simpler reference";
@@ -333,6 +342,7 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
         });
     }
     let count = (expected.round() as usize).max(1);
+    check_matching_cost(count, analysis.elements.len())?;
     let estimated_memory_bytes =
         memory_estimate(&analysis, &input.strokes, count).check(params.max_memory, MEMORY_ADVICE)?;
     progress.report("seeds", 0.0);
@@ -472,4 +482,19 @@ fn shifted_positions(layout: &Layout, assigned: &[u32], analysis: &Analysis, tar
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matching_past_its_limit_is_refused_with_its_estimated_time() {
+        assert!(check_matching_cost(5_000, 40_000).is_ok());
+        // A reference of 113 k strokes (38 k elements) grown over a target as large.
+        let error = check_matching_cost(38_000, 38_000).unwrap_err();
+        let message = error.to_string();
+        assert!(matches!(error, Error::TooMuchMatching { .. }), "{message}");
+        assert!(message.contains("about 36 minutes") && message.contains("38000 reference elements"), "{message}");
+    }
 }

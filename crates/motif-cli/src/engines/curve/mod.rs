@@ -232,9 +232,12 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     for output in std::iter::once(&args.out).chain(&args.pieces).chain(&args.debug_overlay) {
         context.check_output(output, &inputs)?;
     }
-    let exemplar = motif_io::read_image(&args.exemplar[0])?;
-    let more_exemplars =
-        args.exemplar[1..].iter().map(|path| motif_io::read_image(path)).collect::<Result<Vec<_>, _>>()?;
+    let budget = motif_io::ImageBudget::max_memory(context.max_memory);
+    let exemplar = motif_io::read_image_within(&args.exemplar[0], budget)?;
+    let more_exemplars = args.exemplar[1..]
+        .iter()
+        .map(|path| motif_io::read_image_within(path, budget))
+        .collect::<Result<Vec<_>, _>>()?;
     if !(args.tolerance.is_finite() && (0.001..=100.0).contains(&args.tolerance)) {
         bail!(
             "invalid tolerance = {}: must be between 0.001 and 100 pixels",
@@ -242,7 +245,7 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         );
     }
     let curve = read_curve(&args.path, args.tolerance)?;
-    let avoidance = args.avoid.as_deref().map(motif_io::read_image).transpose()?;
+    let avoidance = args.avoid.as_deref().map(|path| motif_io::read_image_within(path, budget)).transpose()?;
     let inputs = CurveInputs {
         exemplar: &exemplar,
         more_exemplars: &more_exemplars,

@@ -443,6 +443,15 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             exemplar.attribute_names.join(", ")
         );
     }
+    if let (Some(_), None, Some(chosen)) = (&args.surface_out, &element, &args.attributes)
+        && let Some(missing) = ["nx", "ny", "nz"].iter().find(|name| !chosen.iter().any(|c| c == *name))
+    {
+        bail!(
+            "--surface-out needs the normals nx, ny, nz among the synthesized attributes, but --attributes {} leaves \
+             out {missing}: add nx,ny,nz to --attributes or drop --surface-out",
+            chosen.join(",")
+        );
+    }
     let existing = match &args.existing {
         Some(path) => Some(read_set(path, "existing points")?.0),
         None => None,
@@ -450,7 +459,10 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     let job = PointsJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed)? };
     let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
     let read_map = |file: &Option<PathBuf>| -> anyhow::Result<Option<motif_core::ToneMap>> {
-        file.as_deref().map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image(file)?))).transpose()
+        let budget = motif_io::ImageBudget::map(context.max_memory);
+        file.as_deref()
+            .map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image_within(file, budget)?)))
+            .transpose()
     };
     let maps = FieldMaps { rotation: read_map(&args.rotation_map)?, scale: read_map(&args.scale_map)? };
     // Checked here so that the error names the files.
@@ -476,7 +488,9 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_io::write_obj(path, &placed, "element meshes placed by motif points")?;
         surface = Some(placed);
     } else if let Some(path) = &args.surface_out {
-        let columns = normal_columns(&output.points).expect("checked on the exemplar");
+        let Some(columns) = normal_columns(&output.points) else {
+            bail!("--surface-out {}: the synthesized points have no normals (nx, ny, nz)", path.display());
+        };
         let positions: Vec<[f64; 3]> =
             (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
         let normals: Vec<[f64; 3]> =

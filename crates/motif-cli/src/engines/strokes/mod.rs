@@ -220,10 +220,10 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
     Ok((TargetSpec::Rect([width, height]), width, height))
 }
 
-/// A density or scale map read from `file`, checked against the job's target.
-fn read_map(file: Option<&Path>, flag: &str, job: &StrokesJob) -> anyhow::Result<Option<ToneMap>> {
+/// A density or scale map read from `file` within `max_memory`, checked against the job's target.
+fn read_map(file: Option<&Path>, flag: &str, job: &StrokesJob, max_memory: u64) -> anyhow::Result<Option<ToneMap>> {
     let Some(file) = file else { return Ok(None) };
-    let map = ToneMap::from_image(&motif_io::read_image(file)?);
+    let map = ToneMap::from_image(&motif_io::read_image_within(file, motif_io::ImageBudget::map(max_memory))?);
     match job.engine_target()? {
         Target::Region(region) => {
             map.check_fits(&region.bounds(), &format!("{flag} {}", file.display())).map_err(anyhow::Error::from)?
@@ -340,8 +340,8 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     }
     let (target, width, height) = read_target(args)?;
     let job = StrokesJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed, target) };
-    let density_map = read_map(args.density_map.as_deref(), "--density-map", &job)?;
-    let scale_map = read_map(args.scale_map.as_deref(), "--scale-map", &job)?;
+    let density_map = read_map(args.density_map.as_deref(), "--density-map", &job, context.max_memory)?;
+    let scale_map = read_map(args.scale_map.as_deref(), "--scale-map", &job, context.max_memory)?;
     let shown_strokes = args.analysis.as_ref().map(|_| strokes.clone());
     let run = job
         .run_with_maps(strokes, density_map, scale_map, context.progress())

@@ -32,10 +32,10 @@ impl MaskOptions {
         self.mask.iter().chain(&self.keep).map(PathBuf::as_path)
     }
 
-    /// The mask for a style of `channels` channels, when one is given.
-    pub fn read(&self, channels: usize) -> anyhow::Result<Option<Mask<ByteImage>>> {
+    /// The mask for a style of `channels` channels, when one is given, read within `max_memory`.
+    pub fn read(&self, channels: usize, max_memory: u64) -> anyhow::Result<Option<Mask<ByteImage>>> {
         let (Some(mask_path), Some(keep_path)) = (&self.mask, &self.keep) else { return Ok(None) };
-        let (mask, keep) = (load(mask_path)?, load(keep_path)?);
+        let (mask, keep) = (load(mask_path, max_memory)?, load(keep_path, max_memory)?);
         same_size(&mask, mask_path, &keep, keep_path)?;
         Ok(Some(Mask { keep: kept_image(&keep, channels), hole: hole_of(&mask), exclude_hole_from_style: false }))
     }
@@ -90,7 +90,7 @@ pub struct InpaintArgs {
 pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.image, &args.mask])?;
     super::check_debug(args.debug_dir.as_deref(), &[&args.image, &args.mask], context)?;
-    let (image, mask) = (load(&args.image)?, load(&args.mask)?);
+    let (image, mask) = (load(&args.image, context.max_memory)?, load(&args.mask, context.max_memory)?);
     same_size(&mask, &args.mask, &image, &args.image)?;
     let image = style_image_channels(&image);
     let hole = hole_of(&mask);
@@ -125,10 +125,10 @@ pub struct ZoomArgs {
     #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: (usize, usize),
     /// How much closer each level is than the one before, 1.05–8.
-    #[arg(long, value_name = "F", default_value_t = 2.0)]
+    #[arg(long, value_name = "F", default_value_t = 2.0, allow_negative_numbers = true)]
     pub factor: f64,
     /// Zoom levels, the first unzoomed, 1–64.
-    #[arg(long, value_name = "N", default_value_t = 4)]
+    #[arg(long, value_name = "N", default_value_t = 4, allow_negative_numbers = true)]
     pub levels: usize,
     /// Synthesis options.
     #[command(flatten)]
@@ -144,7 +144,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
         (1..=args.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
     // The folder is made after the run, if missing.
     context.check_outputs_in(&args.out_dir, &names, &[&args.exemplar])?;
-    let exemplar = style_image_channels(&load(&args.exemplar)?).to_float();
+    let exemplar = style_image_channels(&load(&args.exemplar, context.max_memory)?).to_float();
     let job = ZoomJob {
         factor: Some(args.factor),
         levels: Some(args.levels),

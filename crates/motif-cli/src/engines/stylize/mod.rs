@@ -241,8 +241,9 @@ fn parse_size(text: &str) -> Result<(usize, usize), String> {
     Ok((w, h))
 }
 
-fn load(path: &Path) -> anyhow::Result<RgbaImage> {
-    let image = motif_io::read_image(path)?;
+/// Reads an image within `max_memory` (bytes): a larger declared size is refused from its header.
+fn load(path: &Path, max_memory: u64) -> anyhow::Result<RgbaImage> {
+    let image = motif_io::read_image_within(path, motif_io::ImageBudget::max_memory(max_memory))?;
     if image.is_empty() {
         bail!("{}: the image is empty", path.display());
     }
@@ -285,7 +286,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     context.check_output(out, &inputs)?;
     check_debug(args.debug_dir.as_deref(), &inputs, context)?;
     // Only the 8-bit channels the engine takes are kept (not the decoded RGBA).
-    let style = style_image_channels(&load(style_path)?);
+    let style = style_image_channels(&load(style_path, context.max_memory)?);
     let job = StylizeJob {
         weight: args.weight.clone(),
         segments: args.segment.segments,
@@ -300,10 +301,13 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     let params = job.params(args.presynth.is_some())?;
     if let Some(field_path) = &args.apply_nnf {
         let (width, height, patch) = (style.width(), style.height(), params.patch_size);
-        let field = match motif_io::read_png16(field_path)? {
-            Some(nnf) => NearestNeighbourField::from_rgba16(nnf.width, nnf.height, &nnf.pixels, width, height, patch)?,
-            None => NearestNeighbourField::from_rgba(&load(field_path)?, width, height, patch)?,
-        };
+        let field =
+            match motif_io::read_png16_within(field_path, motif_io::ImageBudget::max_memory(context.max_memory))? {
+                Some(nnf) => {
+                    NearestNeighbourField::from_rgba16(nnf.width, nnf.height, &nnf.pixels, width, height, patch)?
+                }
+                None => NearestNeighbourField::from_rgba(&load(field_path, context.max_memory)?, width, height, patch)?,
+            };
         let image = apply_field(&field, &style)?;
         motif_io::write_png(out, &RgbaImage::from_float(&image))?;
         context.figure("output_size", [image.width(), image.height()]);
@@ -326,8 +330,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     }
     let mut guides = Vec::with_capacity(pairs.len());
     for (source_path, target_path) in &pairs {
-        let source = load(source_path)?;
-        let target = load(target_path)?;
+        let source = load(source_path, context.max_memory)?;
+        let target = load(target_path, context.max_memory)?;
         guides.push(guide_pair(&source, &target));
     }
     let mut textures = None;
@@ -338,7 +342,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
         }
         textures = Some(loaded);
     }
-    let mask = args.masking.read(style.channels())?;
+    let mask = args.masking.read(style.channels(), context.max_memory)?;
     let run = job.run_masked(style, guides, textures, mask, context.progress()).with_context(|| {
         let guides: Vec<String> = pairs.iter().map(|(a, b)| format!("{} → {}", a.display(), b.display())).collect();
         format!("cannot stylize {} with guides {}{}", style_path.display(), guides.join(", "), args.masking.describe())
@@ -365,8 +369,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
 pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
     // The folder's files are replaced: no input may live there, and it must be a folder.
     context.check_output_folder("--out-dir", &args.out_dir, &[&args.style, &args.guide])?;
-    let style_image = load(&args.style)?;
-    let guide_image = load(&args.guide)?;
+    let style_image = load(&args.style, context.max_memory)?;
+    let guide_image = load(&args.guide, context.max_memory)?;
     let job = PresynthJob {
         size: Some([args.size.0, args.size.1]),
         segment_count: args.segment_count,
@@ -399,8 +403,8 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     inputs.extend(args.masking.inputs());
     context.check_output(&args.out, &inputs)?;
     check_debug(args.debug_dir.as_deref(), &inputs, context)?;
-    let exemplar = style_image_channels(&load(&args.exemplar)?);
-    let mask = args.masking.read(exemplar.channels())?;
+    let exemplar = style_image_channels(&load(&args.exemplar, context.max_memory)?);
+    let mask = args.masking.read(exemplar.channels(), context.max_memory)?;
     let job = TextureJob {
         tileable: args.tileable,
         ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context)

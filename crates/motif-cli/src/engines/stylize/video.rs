@@ -56,9 +56,9 @@ pub struct VideoArgs {
     pub out: String,
 }
 
-/// A frame read as the engine takes it (colour channels), with its size checked.
-fn read_frame(path: &Path, size: Option<(usize, usize)>) -> anyhow::Result<FloatImage> {
-    let image = load(path)?;
+/// A frame read as the engine takes it (colour channels) within `max_memory`, with its size checked.
+fn read_frame(path: &Path, size: Option<(usize, usize)>, max_memory: u64) -> anyhow::Result<FloatImage> {
+    let image = load(path, max_memory)?;
     if let Some((width, height)) = size
         && (image.width(), image.height()) != (width, height)
     {
@@ -71,7 +71,7 @@ fn read_frame(path: &Path, size: Option<(usize, usize)>) -> anyhow::Result<Float
 pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> {
     let pattern = FramePattern::parse(&args.frames).context("--frames")?;
     let out = FramePattern::parse(&args.out).context("--out")?;
-    let frames = pattern.find().context("--frames")?;
+    let frames = pattern.find_consecutive().context("--frames")?;
     let numbers: Vec<u64> = frames.iter().map(|(number, _)| *number).collect();
     let describe_range = || {
         format!("{} frames numbered {}–{} match {}", numbers.len(), numbers[0], numbers[numbers.len() - 1], args.frames)
@@ -110,11 +110,11 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         context.check_output(&out.path(numbers[position]), &inputs)?;
     }
 
-    let first = read_frame(&frames[0].1, None)?;
+    let first = read_frame(&frames[0].1, None, context.max_memory)?;
     let size = (first.width(), first.height());
     let mut styles: Vec<RgbaImage> = Vec::new();
     for (_, path) in &keys {
-        let style = load(path)?;
+        let style = load(path, context.max_memory)?;
         if (style.width(), style.height()) != size {
             bail!(
                 "keyframe {} is {}×{} but the frames are {}×{}",
@@ -130,7 +130,7 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
     let styles = video_styles(&styles);
     let mask = match &args.mask {
         Some(path) => {
-            let image = load(path)?;
+            let image = load(path, context.max_memory)?;
             if (image.width(), image.height()) != size {
                 bail!(
                     "the mask {} is {}×{} but the frames are {}×{}",
@@ -162,7 +162,7 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         let interval = intervals[i];
         let mut interval_frames = Vec::with_capacity(interval.last - interval.first + 1);
         for (_, path) in &frames[interval.first..=interval.last] {
-            interval_frames.push(read_frame(path, Some(size))?);
+            interval_frames.push(read_frame(path, Some(size), context.max_memory)?);
         }
         let (first_number, last_number) = (numbers[interval.first], numbers[interval.last]);
         let progress = context.progress();
