@@ -123,6 +123,11 @@ def prepare(folder, binary):
     shutil.copytree(os.path.join(folder, "stylize-presynth"), os.path.join(folder, "linked-presynth"))
     os.replace(os.path.join(folder, "linked-presynth", "segment-1.png"), os.path.join(folder, "outside-segment.png"))
     os.symlink(os.path.join("..", "outside-segment.png"), os.path.join(folder, "linked-presynth", "segment-1.png"))
+    # Bad files for the sweep of every input of every subcommand (`input_sweep`).
+    os.makedirs(os.path.join(folder, "a-folder"))
+    open(os.path.join(folder, "empty.bin"), "wb").close()
+    with open(os.path.join(folder, "garbage.bin"), "wb") as handle:
+        handle.write(bytes((i * 7919 + 13) % 256 for i in range(4096)))
     # The temporary file of a run killed with SIGKILL (its pid above Linux's largest: gone).
     os.makedirs(os.path.join(folder, "stale"))
     stale = os.path.join(folder, "stale", ".motif-999999999-a1b2c3.tmp")
@@ -229,6 +234,52 @@ CASES = [
     ("temporary file of a killed run", TEXTURE + ["--size", "64x64", "--out", "stale/out.png"], "success", ["stale/.motif-999999999-a1b2c3.tmp"]),
 ]
 
+# Every file input of every subcommand, in a command that succeeds with the demo's files: the
+# index of the input's value in the arguments, and the kind prefix it carries (`volume:`).
+SWEPT = [
+    ("curve", CURVE + ["--avoid", "stylize-A.png", "--out", "out.png"], ["--exemplar", "--path", "--avoid"]),
+    ("points", POINTS + ["--domain", "box:8,8", "--rotation-map", "strokes-photo.png", "--scale-map", "strokes-photo.png", "--out", "out.ply"], ["--exemplar", "--rotation-map", "--scale-map"]),
+    ("points region", POINTS + ["--domain", "strokes-blob.svg", "--scale", "40", "--out", "out.ply"], ["--domain"]),
+    ("points volume", ["points", "--exemplar", "points-protein-atoms.csv", "--neighbourhood", "4", "--domain", "volume:points-bull-78.obj", "--out", "out.ply"], ["--domain"]),
+    ("points surface", ["points", "--exemplar", "points-swedishpines.csv", "--neighbourhood", "32", "--domain", "surface:points-bull-400.obj", "--out", "out.ply"], ["--domain"]),
+    ("points stroke", POINTS + ["--along", "points-stroke.svg", "--brush-width", "3", "--existing", "points-hex-box.ply", "--out", "out.ply"], ["--along", "--existing"]),
+    ("points element mesh", POINTS + ["--domain", "box:6,6,2", "--out", "out.ply", "--surface-out", "out.obj", "--element-mesh", "points-tripod.obj"], ["--element-mesh"]),
+    ("strokes along", STROKES + ["--along", "strokes-wave.svg", "--out", "out.svg"], ["--reference", "--along"]),
+    ("strokes region", STROKES + ["--region", "strokes-blob.svg", "--density-map", "strokes-photo.png", "--scale-map", "strokes-photo.png", "--out", "out.svg"], ["--region", "--density-map", "--scale-map"]),
+    ("stylize", STYLE + ["--out", "out.png"], ["--style", "--guide", "--guide+2"]),
+    ("stylize masked", STYLE + ["--mask", "stylize-B.png", "--keep", "stylize-B1.png", "--out", "out.png"], ["--mask", "--keep"]),
+    ("stylize apply-nnf", ["stylize", "--style", "stylize-A1.png", "--apply-nnf", "stylize-debug/nnf.png", "--out", "out.png"], ["--apply-nnf"]),
+    ("presynth", ["presynth", "--style", "stylize-A1.png", "--guide", "stylize-A.png", "--size", "32x32", "--out-dir", "out-presynth"], ["--style", "--guide"]),
+    ("texture", TEXTURE + ["--size", "64x64", "--out", "out.png"], ["--exemplar"]),
+    ("inpaint", ["inpaint", "--image", "inpaint-stone.png", "--mask", "inpaint-stone-mask.png", "--out", "out.png"], ["--image", "--mask"]),
+    ("zoom", ZOOM + ["--out-dir", "out-zoom"], ["--exemplar"]),
+    ("video", ["video", "--frames", "video-in/%04d.png", "--key", "0:video-key-0000.png", "--out", "out-%04d.png"], ["--key"]),
+]
+
+# What each swept input is replaced by: a missing file, a folder, an empty file, random bytes, a
+# truncated image and a PNG whose header declares 16384 x 16384 pixels.
+BAD_FILES = [("missing", "missing.png"), ("a folder", "a-folder"), ("empty", "empty.bin"), ("garbage", "garbage.bin"),
+             ("truncated image", "truncated.png"), ("16384^2 header", "huge-header.png")]
+
+
+def input_sweep():
+    """A clean error for every bad file in place of every input of every subcommand."""
+    cases = []
+    for name, arguments, inputs in SWEPT:
+        for input_flag in inputs:
+            flag, _, nth = input_flag.partition("+")
+            index = arguments.index(flag) + int(nth or 1)
+            value = arguments[index]
+            kind = value.split(":", 1)[0] + ":" if ":" in value and not value[0].isdigit() else ""
+            key = value.split(":", 1)[0] + ":" if value[0].isdigit() else ""
+            for what, bad in BAD_FILES:
+                swept = arguments[:index] + [kind + key + bad] + arguments[index + 1:]
+                cases.append((f"sweep {name} {input_flag} {what}", swept, "clean-error"))
+    return cases
+
+
+SWEEP_CASES = input_sweep()
+
 
 def classify(result, timed_out, changed, leftovers, expected):
     if timed_out:
@@ -256,7 +307,9 @@ def main():
     inputs = os.path.join(base, "inputs")
     prepare(inputs, binary)
     counts, unexpected, rows = {}, [], []
-    for name, arguments, expected, *removed in CASES:
+    cases = [case for case in CASES] + [("sweep works: " + name, arguments, "success") for name, arguments, _ in SWEPT]
+    cases += SWEEP_CASES
+    for name, arguments, expected, *removed in cases:
         removed = removed[0] if removed else []
         folder = os.path.join(base, "case")
         shutil.rmtree(folder, ignore_errors=True)
@@ -290,7 +343,7 @@ def main():
         print(f"{outcome:12} {seconds:6.1f} s  {name}: {message}", flush=True)
     shutil.rmtree(base, ignore_errors=True)
     print("\noutcomes: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items())))
-    print(f"unexpected: {len(unexpected)} of {len(CASES)}")
+    print(f"unexpected: {len(unexpected)} of {len(cases)}")
     for row in unexpected:
         print(f"  {row['case']}: {row['outcome']} (expected {row['expected']}): {row['command']}")
     if args.json:
