@@ -99,7 +99,7 @@ pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
-pub use segments::{MAX_PALETTE, SegmentLabels, label_guides};
+pub use segments::{MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
     Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, intervals,
@@ -419,8 +419,15 @@ pub fn synthesize<I: ChannelImage>(
                 .into()
             }
         })?;
-        let mode = params.segments.unwrap_or(Segmentation::Palette);
-        Some(label_guides(&guide.source.to_float_image(), &guide.target.to_float_image(), mode, params.seed)?)
+        let (source, target) = (guide.source.to_float_image(), guide.target.to_float_image());
+        match (params.segments, &input.textures) {
+            // Quantized guides with a cache: the cache's colours are the segments, and each pixel
+            // (anti-aliased edges included) belongs to the nearest (Texler et al. §3.7).
+            (Some(Segmentation::KMeans(_)), Some(textures)) => {
+                Some(label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect()))
+            }
+            (mode, _) => Some(label_guides(&source, &target, mode.unwrap_or(Segmentation::Palette), params.seed)?),
+        }
     } else {
         None
     };

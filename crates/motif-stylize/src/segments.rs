@@ -70,6 +70,14 @@ pub fn label_guides(
         }
         Segmentation::KMeans(k) => kmeans(&unique, channels, k, seed),
     };
+    Ok(label_by_colours(source, target, colours))
+}
+
+/// Labels every pixel of both guides with its nearest colour of `colours` (squared distance in
+/// the guides' channels): the segments of a pre-synthesized cache, whose colours were fixed when
+/// it was made, for guides whose anti-aliased or compressed edges hold colours of their own.
+pub fn label_by_colours(source: &FloatImage, target: &FloatImage, colours: Vec<Vec<f32>>) -> SegmentLabels {
+    let channels = source.channels();
     let label_of = |pixel: &[f32]| -> u16 {
         let mut best = (f32::INFINITY, 0);
         for (label, colour) in colours.iter().enumerate() {
@@ -96,7 +104,7 @@ pub fn label_guides(
             })
             .collect()
     };
-    Ok(SegmentLabels { source: label_image(source), target: label_image(target), colours })
+    SegmentLabels { source: label_image(source), target: label_image(target), colours }
 }
 
 /// Weighted k-means over the distinct colours (k-means++ seeding from one seeded stream, then
@@ -198,6 +206,17 @@ mod tests {
         assert_eq!(labels.source[0], labels.source[2]);
         assert_ne!(labels.source[0], labels.source[1]);
         assert_eq!(labels.target, vec![labels.source[1], labels.source[0]]);
+    }
+
+    #[test]
+    fn fixed_colours_take_each_pixel_to_the_nearest() {
+        let source = image(&[[1.0, 0.0, 0.0], [0.55, 0.0, 0.45], [0.0, 0.0, 1.0]]);
+        let target = image(&[[0.4, 0.0, 0.6], [0.9, 0.05, 0.0]]);
+        let colours = vec![vec![0.0, 0.0, 1.0], vec![1.0, 0.0, 0.0]];
+        let labels = label_by_colours(&source, &target, colours.clone());
+        assert_eq!(labels.colours, colours);
+        assert_eq!(labels.source, vec![1, 1, 0]);
+        assert_eq!(labels.target, vec![0, 1]);
     }
 
     #[test]

@@ -195,6 +195,39 @@ fn band_mode_keeps_textures_outside_the_band() {
     assert!(output.report.searched_pixels > 0 && output.report.searched_pixels < 50 * 44);
 }
 
+/// Quantized segments with a cache: a target guide whose disc edge is anti-aliased (blends of the
+/// two segment colours the cache does not hold, and a blue that k-means over source and target
+/// would move) takes each pixel to the nearest texture's colour instead of failing.
+#[test]
+fn quantized_segments_with_a_cache_accept_anti_aliased_guides() {
+    let mut input = two_segment_case();
+    let params = Params { segments: Some(Segmentation::KMeans(2)), band: 2, ..Default::default() };
+    let presynth = PresynthInput { style: input.style.clone(), guide: input.guides[0].source.clone(), size: (32, 32) };
+    let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
+    assert_eq!(textures.len(), 2);
+    // Coverage of the disc of radius 15 on a 4 × 4 grid inside each pixel: blends on its edge.
+    input.guides[0].target = flat(50, 44, |x, y| {
+        let inside = (0..16)
+            .filter(|i| {
+                let (dx, dy) = (x as f32 + 0.125 + 0.25 * (i % 4) as f32, y as f32 + 0.125 + 0.25 * (i / 4) as f32);
+                (dx - 25.5).powi(2) + (dy - 22.5).powi(2) < 225.0
+            })
+            .count() as f32
+            / 16.0;
+        [1.0 - inside, 0.0, 0.9 * inside + 0.1 * (1.0 - inside)]
+    });
+    let blends = input.guides[0].target.data().chunks_exact(3).filter(|p| p[0] > 0.02 && p[0] < 0.98).count();
+    assert!(blends > 20, "{blends} anti-aliased pixels");
+    input.textures = Some(textures);
+    let output = synthesize(&input, &params, &mut NoProgress).unwrap();
+    // Far from the edge each pixel keeps its segment's colours.
+    let (centre, corner) = (output.image.pixel(25, 22), output.image.pixel(2, 2));
+    assert!(centre[2] > centre[0] && corner[0] > corner[2], "{centre:?} {corner:?}");
+    // The exact palette still refuses colours the cache does not hold.
+    let palette = Params { segments: Some(Segmentation::Palette), ..params };
+    assert!(matches!(synthesize(&input, &palette, &mut NoProgress), Err(Error::MissingTexture { .. })));
+}
+
 /// The specialized kernels (row length fixed at compile time) give exactly the generic sums, and
 /// so the very same PatchMatch field.
 #[test]
