@@ -13,10 +13,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
 use motif_core::Progress;
+use motif_core::memory::Bytes;
 use serde::Serialize;
 use serde_json::{Map, Value};
 
 use crate::progress::CliProgress;
+
+/// What a run holds beyond the resident size at its start and the job's estimate, whatever the
+/// job: files read and written, the report, the worker threads' allocator state (measured 2.0–2.6
+/// MiB for runs whose job estimate is under 0.3 MiB, at 1 to 16 threads).
+pub const WORKING_OVERHEAD: u64 = 2 << 20;
 
 /// The environment of one engine run: seed, threads, progress and the figures for the report.
 pub struct Context {
@@ -26,8 +32,16 @@ pub struct Context {
     pub threads: usize,
     /// True with `--quiet`: engines print no summary.
     pub quiet: bool,
-    /// `--max-memory` in bytes (default: half of the machine's memory), passed to every job.
+    /// The share of `--max-memory` passed to every job: the limit less what the process held
+    /// when the run started (see [`Context::with_max_memory`]).
     pub max_memory: u64,
+    /// `--max-memory` in bytes (default: half of the machine's memory).
+    pub memory_limit: u64,
+    /// Resident bytes when the run started (the program, its threads, the allocator): counted in
+    /// every estimate compared with `--max-memory`.
+    pub resident_at_start: u64,
+    /// What the CLI itself holds beside the job (see [`Context::reserve`]), bytes.
+    pub reserved: u64,
     progress: CliProgress,
     figures: Map<String, Value>,
     /// `--report`, checked against every input the engine names.
@@ -76,6 +90,9 @@ impl Context {
             threads,
             quiet,
             max_memory: motif_core::DEFAULT_MAX_MEMORY,
+            memory_limit: motif_core::DEFAULT_MAX_MEMORY,
+            resident_at_start: 0,
+            reserved: WORKING_OVERHEAD,
             progress: CliProgress::new(visible),
             figures: Map::new(),
             report: None,
@@ -83,10 +100,96 @@ impl Context {
         }
     }
 
-    /// The same context with a memory limit for every job.
-    pub fn with_max_memory(mut self, bytes: u64) -> Self {
-        self.max_memory = bytes;
+    /// The same context with the memory limit `bytes` for the whole process, `resident` of which
+    /// the process holds before the run: the jobs get the rest (at least the smallest limit they
+    /// take; [`Context::check_resident`] refuses a limit below that first).
+    pub fn with_max_memory(mut self, bytes: u64, resident: u64) -> Self {
+        self.memory_limit = bytes;
+        self.resident_at_start = resident;
+        self.share();
         self
+    }
+
+    /// Counts `bytes` the CLI holds beside the job (a rendered preview, decoded maps) in the
+    /// estimate compared with `--max-memory`: the jobs built after this get that much less.
+    pub fn reserve(&mut self, bytes: u64) {
+        self.reserved = self.reserved.saturating_add(bytes);
+        self.share();
+    }
+
+    /// Counts rendering `svg` at `scale` (its parsed tree, about 1 KiB an element; its text; its
+    /// pixels about three times: canvas, image, encoding) in the estimate, and refuses it before
+    /// it starts when that and the job's estimate pass `--max-memory`.
+    pub fn check_render(&mut self, job_estimate: u64, svg: &str, scale: f64) -> anyhow::Result<()> {
+        let elements = svg.bytes().filter(|&b| b == b'<').count() as f64;
+        let pixels = svg_size(svg).map_or(0.0, |(width, height)| width * height * scale * scale);
+        let bytes = (elements * 1024.0 + svg.len() as f64 + pixels * 12.0).min(u64::MAX as f64) as u64;
+        self.reserve(bytes);
+        let needed = self.held_beside_job().saturating_add(job_estimate);
+        if needed > self.memory_limit {
+            bail!(
+                "rendering the PNG would bring the run to about {} of memory, more than the {} allowed \
+                 (--max-memory): {} for the rendering; render at a smaller scale or raise --max-memory",
+                Bytes(needed),
+                Bytes(self.memory_limit),
+                Bytes(bytes)
+            );
+        }
+        Ok(())
+    }
+
+    /// What the process holds beside the job's estimate: at the start, and reserved.
+    pub fn held_beside_job(&self) -> u64 {
+        self.resident_at_start.saturating_add(self.reserved)
+    }
+
+    fn share(&mut self) {
+        let held = self.held_beside_job();
+        self.max_memory = self.memory_limit.saturating_sub(held).max(motif_core::memory::MIN_MAX_MEMORY);
+    }
+
+    /// Refuses a `--max-memory` that leaves the run less than 1 MiB after what the process holds
+    /// before any work.
+    pub fn check_resident(&self) -> anyhow::Result<()> {
+        let (limit, held) = (self.memory_limit, self.held_beside_job());
+        if held.saturating_add(motif_core::memory::MIN_MAX_MEMORY) > limit {
+            bail!(
+                "--max-memory {} leaves no room for the run: this program holds about {} before any work (raise \
+                 --max-memory)",
+                Bytes(limit),
+                Bytes(held)
+            );
+        }
+        Ok(())
+    }
+
+    /// `error` with a memory refusal of a job restated for the whole process: the estimate plus
+    /// what the process held at the start, against `--max-memory` itself.
+    pub fn whole_process_memory(&self, error: anyhow::Error) -> anyhow::Error {
+        let refusal = error.chain().find_map(|cause| {
+            cause.downcast_ref::<motif_core::TooMuchMemory>().or_else(|| {
+                cause.downcast_ref::<motif_jobs::JobError>().and_then(motif_jobs::JobError::too_much_memory)
+            })
+        });
+        let Some(refusal) = refusal else { return error };
+        let whole = motif_core::TooMuchMemory {
+            needed: refusal.needed.saturating_add(self.held_beside_job()),
+            limit: self.memory_limit,
+            ..refusal.clone()
+        };
+        let message = format!(
+            "{whole} (--max-memory; the estimate counts the {} this program holds beside the run: {} at its \
+             start, {} for files and its own images)",
+            Bytes(self.held_beside_job()),
+            Bytes(self.resident_at_start),
+            Bytes(self.reserved)
+        );
+        let outer = error.to_string();
+        if outer == refusal.to_string() || error.chain().count() == 1 {
+            anyhow::anyhow!(message)
+        } else {
+            anyhow::anyhow!(message).context(outer)
+        }
     }
 
     /// The same context with `--report` to check against the inputs.
@@ -292,4 +395,16 @@ impl Context {
 /// `(stage, milliseconds)` pairs as a JSON object, in order.
 pub fn stages_object(stages: &[(String, f64)]) -> Value {
     Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect())
+}
+
+/// The `width` and `height` of an SVG's root element, in user units.
+fn svg_size(svg: &str) -> Option<(f64, f64)> {
+    let start = svg.find("<svg")?;
+    let tag = &svg[start..start + svg[start..].find('>')?];
+    let attribute = |name: &str| -> Option<f64> {
+        let at = tag.find(&format!(" {name}=\""))? + name.len() + 3;
+        let value = &tag[at..at + tag[at..].find('"')?];
+        value.trim_end_matches("px").parse().ok().filter(|v: &f64| v.is_finite() && *v >= 0.0)
+    };
+    Some((attribute("width")?, attribute("height")?))
 }

@@ -130,17 +130,24 @@ fn print_error(error: &anyhow::Error) {
 /// the run's outputs.
 fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> anyhow::Result<()> {
     let start = std::time::Instant::now();
+    // The peak is measured from here; what the process holds now counts in every estimate
+    // compared with --max-memory (small runs are mostly the program itself).
+    motif_io::reset_peak_memory();
+    let resident = motif_io::resident_memory().unwrap_or(0);
     let mut context = Context::new(global.seed, threads, global.quiet)
-        .with_max_memory(options::max_memory(global))
+        .with_max_memory(options::max_memory(global), resident)
         .with_report(global.report.as_deref());
     motif_io::begin_outputs();
-    let mut result = match &global.report {
-        Some(path) => context.check_writable(path),
-        None => Ok(()),
-    };
-    if result.is_ok() {
-        result = command.run(&mut context);
+    let mut result = context.check_resident();
+    if result.is_ok()
+        && let Some(path) = &global.report
+    {
+        result = context.check_writable(path);
     }
+    if result.is_ok() {
+        result = command.run(&mut context).map_err(|error| context.whole_process_memory(error));
+    }
+    let peak = motif_io::peak_memory();
     let report_path = global.report.as_deref().filter(|path| !context.is_input_or_output(path));
     let failed_report = report_path.filter(|path| context.check_writable(path).is_ok());
     let mut report = Map::new();
@@ -150,7 +157,17 @@ fn run_engine(command: &EngineCommand, global: &GlobalArgs, threads: usize) -> a
     report.insert("seed".into(), Value::from(global.seed));
     report.insert("threads".into(), Value::from(threads));
     report.insert("total_ms".into(), Value::from(start.elapsed().as_secs_f64() * 1000.0));
+    report.insert("max_memory_bytes".into(), Value::from(context.memory_limit));
+    report.insert("resident_at_start_bytes".into(), Value::from(resident));
+    report.insert("reserved_memory_bytes".into(), Value::from(context.reserved));
+    report.insert("peak_resident_bytes".into(), peak.map_or(Value::Null, Value::from));
+    let held = context.held_beside_job();
     report.extend(context.into_figures());
+    // The estimate compared with --max-memory: the job's, what the process held at the start and
+    // what the CLI holds beside the job.
+    if let Some(estimate) = report.get("estimated_memory_bytes").and_then(Value::as_u64) {
+        report.insert("estimated_peak_bytes".into(), Value::from(estimate.saturating_add(held)));
+    }
     let with_status = |mut report: Map<String, Value>, result: &anyhow::Result<()>| {
         report.insert("status".into(), Value::from(if result.is_ok() { "ok" } else { "failed" }));
         if let Err(error) = result {

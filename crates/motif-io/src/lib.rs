@@ -124,8 +124,19 @@ pub fn reset_peak_memory() -> bool {
 /// This process's peak resident memory, bytes (`VmHWM` in `/proc/self/status`); `None` on
 /// other systems.
 pub fn peak_memory() -> Option<u64> {
+    status_bytes("VmHWM:")
+}
+
+/// This process's resident memory now, bytes (`VmRSS` in `/proc/self/status`: the program, its
+/// threads' stacks and the allocator's pages); `None` on other systems.
+pub fn resident_memory() -> Option<u64> {
+    status_bytes("VmRSS:")
+}
+
+/// A `kB` figure of `/proc/self/status`, in bytes.
+fn status_bytes(key: &str) -> Option<u64> {
     let text = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = text.lines().find(|line| line.starts_with("VmHWM:"))?;
+    let line = text.lines().find(|line| line.starts_with(key))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     kib.checked_mul(1024)
 }

@@ -22,3 +22,17 @@ pub enum JobError {
     #[error(transparent)]
     Stylize(#[from] motif_stylize::Error),
 }
+
+impl JobError {
+    /// The engine's memory refusal, when this is one (a front end restates it with what it
+    /// holds itself).
+    pub fn too_much_memory(&self) -> Option<&motif_core::TooMuchMemory> {
+        match self {
+            Self::Curve(motif_curve::Error::TooMuchMemory(error))
+            | Self::Points(motif_points::Error::TooMuchMemory(error))
+            | Self::Strokes(motif_strokes::Error::TooMuchMemory(error))
+            | Self::Stylize(motif_stylize::Error::TooMuchMemory(error)) => Some(error),
+            _ => None,
+        }
+    }
+}

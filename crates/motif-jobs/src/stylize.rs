@@ -418,6 +418,14 @@ impl ZoomJob {
         described(json!({ "size": [width, height] }))
     }
 
+    /// The whole run's estimated peak memory for `exemplar`, bytes (checked by [`ZoomJob::run`]
+    /// before the first level).
+    pub fn memory_bytes(&self, exemplar: &motif_core::FloatImage) -> u64 {
+        let style = (exemplar.width(), exemplar.height(), exemplar.channels());
+        let levels = self.levels.unwrap_or(4);
+        motif_stylize::zoom_memory(style, 0, (self.size[0], self.size[1]), levels).total()
+    }
+
     /// Synthesizes the zoom levels of a texture of `exemplar`, outermost first.
     pub fn run(
         &self,

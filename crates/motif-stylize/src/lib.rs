@@ -102,10 +102,10 @@ pub use params::{NnfMethod, Params, Segmentation};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
-    Interval, IntervalOutput, IntervalReport, Keyframe, VideoInput, VideoOutput, VideoParams, VideoReport, intervals,
-    mean_flicker, stylize_interval, stylize_video,
+    Interval, IntervalOutput, IntervalReport, Keyframe, VIDEO_MEMORY_ADVICE, VideoInput, VideoOutput, VideoParams,
+    VideoReport, intervals, mean_flicker, stylize_interval, stylize_video, video_memory,
 };
-pub use zoom::zoom;
+pub use zoom::{zoom, zoom_memory};
 
 /// One guide pair: a source guide (aligned with the style) and the matching target guide.
 ///
@@ -261,7 +261,7 @@ fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
 /// patch stacks, the output with the vote's weights and change flags, the field with its costs
 /// and the occurrence counts with the search workers' changes (the public field made at the end
 /// replaces the stacks).
-fn memory_estimate(
+pub(crate) fn memory_estimate(
     style_pixels: usize,
     style_channels: usize,
     guide_channels: usize,
@@ -379,14 +379,19 @@ pub fn synthesize<I: ChannelImage>(
     check_work(target_size.0 * target_size.1, params.max_pixels)?;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
     let style_pixels = style.width() * style.height();
-    let estimated_memory_bytes = memory_estimate(
+    let mut estimate = memory_estimate(
         style_pixels,
         style.channels(),
         guide_channels,
         target_size.0 * target_size.1,
         sample_bytes(style),
-    )
-    .check(params.max_memory, MEMORY_ADVICE)?;
+    );
+    if input.mask.is_some() {
+        // The kept image with its pyramid, the hole per level and its dilations, and the fill's
+        // start (measured: 46–48 bytes a pixel beyond the rest, 77 k to 1.2 M pixels).
+        estimate.add("mask and fill", (target_size.0 * target_size.1) as f64, 48.0);
+    }
+    let estimated_memory_bytes = estimate.check(params.max_memory, MEMORY_ADVICE)?;
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
             "guide",
@@ -500,6 +505,20 @@ pub fn synthesize<I: ChannelImage>(
     Ok(output)
 }
 
+/// The peak memory of [`presynthesize`] (floats): one segment's synthesis at a time, and the
+/// finished textures with their fields.
+pub fn presynth_memory(
+    style: (usize, usize, usize),
+    size: (usize, usize),
+    segments: usize,
+) -> motif_core::MemoryEstimate {
+    let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
+    let pixels = size.0.saturating_mul(size.1);
+    let mut estimate = memory_estimate(style_pixels, channels, 0, pixels, 4);
+    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0);
+    estimate
+}
+
 /// What [`presynthesize`] makes textures from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PresynthInput {
@@ -549,14 +568,8 @@ pub fn presynthesize(
     let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
     check_work(width * height * labels.colours.len(), params.max_pixels)?;
     let (sw, sh) = (input.style.width(), input.style.height());
-    // Segments are synthesized one after the other; each keeps its texture and field.
-    let mut estimate = memory_estimate(sw * sh, input.style.channels(), 0, width * height, 4);
-    estimate.add(
-        "finished textures",
-        (width * height * labels.colours.len()) as f64,
-        (input.style.channels() + 3) as f64 * 4.0,
-    );
-    estimate.check(params.max_memory, MEMORY_ADVICE)?;
+    presynth_memory((sw, sh, input.style.channels()), (width, height), labels.colours.len())
+        .check(params.max_memory, MEMORY_ADVICE)?;
     let r = patch / 2;
     let mut textures = Vec::with_capacity(labels.colours.len());
     let style_weights: Vec<f32> =

@@ -170,6 +170,23 @@ impl VideoInput {
     }
 }
 
+/// What to change when a video needs too much memory.
+pub const VIDEO_MEMORY_ADVICE: &str = "use fewer frames between keyframes or smaller frames";
+
+/// The peak memory of stylizing `frames` frames of `size` at once (one interval), floats of
+/// `channels` channels: the frames, the forward and backward passes' results and errors, and the
+/// two motion fields.
+pub fn video_memory(frames: usize, size: (usize, usize), channels: usize) -> motif_core::MemoryEstimate {
+    let pixels = frames as f64 * size.0 as f64 * size.1 as f64;
+    let channels = channels as f64;
+    let mut estimate = motif_core::MemoryEstimate::new();
+    estimate
+        .add("frames", pixels, 4.0 * channels)
+        .add("forward and backward results", 2.0 * pixels, 4.0 * (channels + 1.0))
+        .add("motion fields", 2.0 * pixels, 8.0);
+    estimate
+}
+
 fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
     let first = input.frames.first().ok_or(Error::NoFrames)?;
     let (width, height) = (first.width(), first.height());
@@ -182,13 +199,8 @@ fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
     if pixels > params.max_pixels {
         return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
     }
-    let frame_count = input.frames.len() as f64;
-    let channels = first.channels().max(input.keys.first().map_or(3, |k| k.style.channels())) as f64;
-    motif_core::memory::MemoryEstimate::new()
-        .add("frames", frame_count * pixels as f64, 4.0 * channels)
-        .add("forward and backward results", 2.0 * frame_count * pixels as f64, 4.0 * (channels + 1.0))
-        .add("motion fields", 2.0 * frame_count * pixels as f64, 8.0)
-        .check(params.max_memory, "use fewer frames between keyframes, smaller frames, or raise max-memory")?;
+    let channels = first.channels().max(input.keys.first().map_or(3, |k| k.style.channels()));
+    video_memory(input.frames.len(), (width, height), channels).check(params.max_memory, VIDEO_MEMORY_ADVICE)?;
     for (index, frame) in input.frames.iter().enumerate() {
         if !matches!(frame.channels(), 1 | 3 | 4) {
             return Err(Error::UnsupportedChannels { what: format!("frame {index}"), channels: frame.channels() });

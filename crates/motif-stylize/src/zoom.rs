@@ -42,6 +42,28 @@ pub fn blurred_by(image: &FloatImage, factor: f64) -> FloatImage {
     reduced.resize_bilinear(small.0, small.1).resize_bilinear(width, height)
 }
 
+/// The peak memory of a whole zoom run of `levels` levels (floats): the largest level's synthesis
+/// (the finer ones have one more guide, the coarser level's centre against the blurred style), the
+/// style's blurred copy and the style and guides each level is given, and the finished levels kept
+/// until the end (image, field with weights, error map). `guide_channels` are the user's guides'.
+pub fn zoom_memory(
+    style: (usize, usize, usize),
+    guide_channels: usize,
+    target: (usize, usize),
+    levels: usize,
+) -> motif_core::MemoryEstimate {
+    let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
+    let target_pixels = target.0.saturating_mul(target.1);
+    let finer_guides = if levels > 1 { guide_channels + channels } else { guide_channels };
+    let mut estimate = crate::memory_estimate(style_pixels, channels, finer_guides, target_pixels, 4);
+    let (style_pixels, target_pixels, channels) = (style_pixels as f64, target_pixels as f64, channels as f64);
+    estimate
+        .add("blurred style and the level's copies", style_pixels, 4.0 * (2.0 * channels + guide_channels as f64))
+        .add("user guides zoomed", target_pixels, 4.0 * guide_channels as f64)
+        .add("finished levels", target_pixels * levels.saturating_sub(1) as f64, 4.0 * channels + 18.0);
+    estimate
+}
+
 /// Synthesizes `levels` zoom levels of `input` (a texture or a guided stylization), each `factor`
 /// times closer than the one before, all of the output's size. Level 0 is `input` as it is.
 pub fn zoom(
@@ -67,6 +89,13 @@ pub fn zoom(
         if pixels > params.max_pixels {
             return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
         }
+    }
+    // The whole run is checked before the first level (each level checks its own part again).
+    if let Some(target) = size {
+        let guide_channels = input.guides.iter().map(|g| g.source.channels()).sum();
+        let style = (input.style.width(), input.style.height(), input.style.channels());
+        zoom_memory(style, guide_channels, target, levels)
+            .check(params.max_memory, "use fewer or smaller zoom levels, or a smaller exemplar")?;
     }
     let mut outputs: Vec<Output> = Vec::with_capacity(levels);
     let blurred_style = blurred_by(&input.style, factor);

@@ -54,6 +54,36 @@ impl VideoJob {
         Ok((params, video))
     }
 
+    /// The peak memory of running the intervals of `lengths` frames (of `size`, `channels`
+    /// floats) one after the other, as `motif video` does: the longest interval's (see
+    /// [`motif_stylize::video_memory`]) with its frames as read and the copy its check makes,
+    /// and the `keyframes` styles and the mask, kept throughout.
+    pub fn memory(
+        lengths: impl IntoIterator<Item = usize>,
+        size: (usize, usize),
+        channels: usize,
+        keyframes: usize,
+        mask: bool,
+    ) -> motif_core::MemoryEstimate {
+        let longest = lengths.into_iter().max().unwrap_or(0);
+        let pixels = size.0 as f64 * size.1 as f64;
+        let mut estimate = motif_stylize::video_memory(longest, size, channels);
+        estimate
+            .add("frames as read and checked", 2.0 * longest as f64 * pixels, 4.0 * channels as f64)
+            .add("keyframe styles", keyframes as f64 * pixels, 4.0 * channels as f64)
+            .add("mask", if mask { pixels } else { 0.0 }, 1.0);
+        estimate
+    }
+
+    /// Refuses a whole run whose estimate (see [`VideoJob::memory`]) passes `max-memory`, before
+    /// any frame is stylized; the estimate in bytes otherwise.
+    pub fn check_memory(&self, estimate: &motif_core::MemoryEstimate) -> Result<u64, JobError> {
+        let (params, _) = self.params()?;
+        estimate
+            .check(params.max_memory, motif_stylize::VIDEO_MEMORY_ADVICE)
+            .map_err(|error| JobError::Stylize(error.into()))
+    }
+
     /// The independent intervals of `frame_count` frames with keyframes at `key_frames`
     /// (positions from 0, increasing).
     pub fn intervals(frame_count: usize, key_frames: &[usize]) -> Vec<Interval> {

@@ -501,7 +501,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         surface = Some(mesh);
     }
     if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
-        let image = preview::preview_image(
+        let svg = preview::preview_svg(
             exemplar,
             &output.points,
             &output.report.fidelity,
@@ -513,6 +513,8 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
                 _ => None,
             },
         )?;
+        context.check_render(output.report.estimated_memory_bytes, &svg, 1.0)?;
+        let image = motif_io::render_svg(&svg, 1.0, Path::new("preview"))?;
         motif_io::write_png(preview, &image)?;
     }
     context.job_figures(run.figures);

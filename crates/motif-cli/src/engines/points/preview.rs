@@ -7,7 +7,6 @@ use motif_core::TriangleMesh;
 use motif_io::{Stroke as SvgStroke, SvgWriter};
 use motif_points::Fidelity;
 use motif_points::PointSet;
-use std::path::Path;
 
 /// A colour for `t` in [0, 1] (dark blue → teal → yellow).
 fn ramp(t: f64) -> [u8; 4] {
@@ -232,15 +231,16 @@ fn draw_statistics(svg: &mut SvgWriter, fidelity: &Fidelity, left: f64, size: f6
     }
 }
 
-/// The preview image: exemplar and output side by side, then their statistics.
-pub fn preview_image(
+/// The preview image's SVG (rendered at scale 1): exemplar and output side by side, then their
+/// statistics.
+pub fn preview_svg(
     exemplar: &PointSet,
     output: &PointSet,
     fidelity: &Fidelity,
     colour_by: Option<&str>,
     surface: Option<&TriangleMesh>,
     backdrop: Option<&TriangleMesh>,
-) -> anyhow::Result<motif_core::RgbaImage> {
+) -> anyhow::Result<String> {
     let size = 420.0;
     let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
     let (exemplar_colours, range) = colours(exemplar, colour_by, None)?;
@@ -257,5 +257,5 @@ pub fn preview_image(
         }
     }
     draw_statistics(&mut svg, fidelity, 2.0 * size + 20.0, size);
-    Ok(motif_io::render_svg(&svg.finish(), 1.0, Path::new("preview"))?)
+    Ok(svg.finish())
 }

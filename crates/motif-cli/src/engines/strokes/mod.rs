@@ -350,6 +350,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     let svg = output_svg(&output, width, height);
     motif_io::write_text(&args.out, &svg)?;
     if let Some(png) = &args.png {
+        context.check_render(output.report.estimated_memory_bytes, &svg, args.png_scale)?;
         let image = motif_io::render_svg(&svg, args.png_scale, &args.out)?;
         motif_io::write_png(png, &image)?;
     }

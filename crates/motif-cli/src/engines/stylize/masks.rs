@@ -150,6 +150,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
         levels: Some(args.levels),
         ..super::with_synthesis!(ZoomJob::new(args.size.0, args.size.1), &args.synthesis, context)
     };
+    let estimate = job.memory_bytes(&exemplar);
     let runs = job
         .run(exemplar, context.progress())
         .with_context(|| format!("cannot zoom into {}", args.exemplar.display()))?;
@@ -158,6 +159,7 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_io::write_png(name, &RgbaImage::from_float(&run.output.image))?;
     }
     let total_ms: f64 = runs.iter().map(|run| run.output.report.total_ms).sum();
+    context.figure("estimated_memory_bytes", estimate);
     context.figure("levels", runs.len());
     context.figure("factor", args.factor);
     context.figure("level_ms", runs.iter().map(|run| run.output.report.total_ms).collect::<Vec<_>>());

@@ -377,11 +377,11 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
         ..with_synthesis!(PresynthJob::new(), &args.synthesis, context)
     };
     let params = job.params()?;
-    let textures = job.run(
-        style_image_channels(&style_image).to_float(),
-        guide_image_channels(&guide_image).to_float(),
-        context.progress(),
-    )?;
+    let style = style_image_channels(&style_image).to_float();
+    let style_shape = (style.width(), style.height(), style.channels());
+    let textures = job.run(style, guide_image_channels(&guide_image).to_float(), context.progress())?;
+    let estimate = motif_stylize::presynth_memory(style_shape, args.size, textures.len());
+    context.figure("estimated_memory_bytes", estimate.total());
     motif_io::create_folder(&args.out_dir)?;
     let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
     context.figure("generation", generation);

@@ -154,6 +154,11 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         ..super::with_synthesis!(VideoJob::new(), &args.synthesis, context)
     };
     job.params()?;
+    // The whole run, checked before the first frame is stylized.
+    let channels = first.channels().max(styles.first().map_or(3, FloatImage::channels));
+    let lengths = chosen.iter().map(|&i| intervals[i].last - intervals[i].first + 1);
+    let estimate = job.check_memory(&VideoJob::memory(lengths, size, channels, styles.len(), mask.is_some()))?;
+    context.figure("estimated_memory_bytes", estimate);
     let style_at = |position: usize| keys.iter().position(|(p, _)| *p == position).map(|k| &styles[k]);
     let mut reports = Vec::new();
     let mut written: Vec<usize> = Vec::new();
