@@ -376,9 +376,13 @@ pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
         return 0.0;
     }
     let (low, high) = crate::grid::bounds(points);
-    let volume: f64 = (0..D).map(|a| (high[a] - low[a]).max(1e-12)).product();
-    // Start from the spacing a uniform set of this size would have, and widen until found.
-    let radius = 2.0 * math::powf(volume / points.len() as f64, 1.0 / D as f64);
+    // Over the axes the set spans: a flat set in 3D (a 2D exemplar lifted onto a surface) has no
+    // volume, and a start radius from it made a grid of millions of empty cells.
+    let extents: Vec<f64> = (0..D).map(|a| high[a] - low[a]).filter(|extent| *extent > 0.0).collect();
+    let volume: f64 = extents.iter().product::<f64>().max(1e-12);
+    // Start from the spacing a uniform set of this size would have, and widen until found (the
+    // start changes the work, never the nearest distances found).
+    let radius = 2.0 * math::powf(volume / points.len() as f64, 1.0 / extents.len().max(1) as f64);
     let grid = StaticGrid::new(points, radius);
     let mut total = 0.0;
     for (i, p) in points.iter().enumerate() {
@@ -422,6 +426,14 @@ mod tests {
         assert!(mean_spacing(&points).is_finite());
         let far = [[0.0, 0.0], [1e308, -1e308], [-1e308, 1e308]];
         mean_spacing(&far);
+    }
+
+    #[test]
+    fn a_flat_set_in_3d_has_the_spacing_of_its_plane() {
+        let plane = uniform(300, 20.0, 4);
+        let lifted: Vec<Vector<3>> = plane.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        // The same distances (the memory its search took is `tests/memory.rs`'s surface case).
+        assert_eq!(mean_spacing(&lifted), mean_spacing(&plane));
     }
 
     fn uniform(count: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
