@@ -22,9 +22,9 @@ use crate::warnings::samples_to_hold;
 /// Share of the smallest width that holds the pattern added to the inferred width.
 pub const WIDTH_MARGIN: f64 = 0.15;
 /// Inferred piece length as a share of the pattern's period.
-pub const PERIOD_FRACTION: f64 = 0.5;
+pub const PERIOD_FRACTION: f64 = 0.55;
 /// Inferred piece length as a share of the pattern's height when no period is found.
-pub const FALLBACK_FRACTION: f64 = 1.0 / 3.0;
+pub const FALLBACK_FRACTION: f64 = 0.3;
 /// Shortest inferred piece length from a period, as a share of the pattern's height.
 pub const MIN_HEIGHT_FRACTION: f64 = 0.25;
 /// Longest inferred piece length from a period, as a share of the pattern's height.
@@ -267,7 +267,7 @@ mod tests {
     #[test]
     fn real_exemplars_infer_values_near_the_hand_picked_ones() {
         let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/curve");
-        let cases = [("chain_round.png", 108.0, 25.0), ("rope.png", 72.0, 25.0), ("beads.png", 44.0, 20.0)];
+        let cases = [("chain_round.png", 108.0, 25.0), ("chain_small.png", 82.0, 24.0), ("beads.png", 44.0, 20.0)];
         for (file, width, piece_length) in cases {
             let exemplar = motif_io::read_image(&folder.join(file)).unwrap();
             let d = Dimensions::resolve(&exemplar, None, None, 1.0, 8).unwrap();

@@ -34,9 +34,9 @@ pub struct CurveArgs {
     #[arg(long, value_name = "B", allow_negative_numbers = true)]
     pub width: Option<f64>,
     /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
-    /// Default: inferred from the first exemplar, half the pattern's period along x (the first
+    /// Default: inferred from the first exemplar, 0.55 of the pattern's period along x (the first
     /// strong peak of the autocorrelation of its columns), kept between a quarter and 0.6 of the
-    /// pattern's height, divided by the scale; a third of the pattern's height when it has no
+    /// pattern's height, divided by the scale; 0.3 of the pattern's height when it has no
     /// period.
     #[arg(long, value_name = "D", allow_negative_numbers = true)]
     pub piece_length: Option<f64>,
