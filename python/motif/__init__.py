@@ -290,8 +290,8 @@ def stylize(
 def curve(
     exemplar: ArrayLike,
     path: ArrayLike,
-    width: float,
-    piece_length: float,
+    width: Optional[float] = None,
+    piece_length: Optional[float] = None,
     *,
     more_exemplars: Iterable[ArrayLike] = (),
     avoid: Optional[ArrayLike] = None,
@@ -302,7 +302,8 @@ def curve(
 ) -> Any:
     """Lays the pattern of ``exemplar`` along ``path``, an (N, 2) array of points (closed when the
     last repeats the first), in a ribbon ``width`` wide cut into pieces of ``piece_length``
-    (``motif curve``).
+    (``motif curve``). Either left out (``None``) is inferred from ``exemplar``, as the CLI does:
+    the width from the pattern's height, the piece length from its period along x.
 
     Options: ``scale``, ``closed``, ``method``, ``solver``, ``alpha``, ``gamma``, ``stitch``,
     ``canvas`` ((W, H)), ``margin``, ``samples``, ``variety``, ``pieces_shape``, ``width_profile``,
@@ -313,7 +314,8 @@ def curve(
     points = np.ascontiguousarray(np.asarray(path, dtype=np.float64))
     if points.ndim != 2 or points.shape[1] != 2:
         raise ValueError(f"path must be an (N, 2) array of points, not shape {points.shape}")
-    job = _job("curve", {"width": float(width), "piece-length": float(piece_length)}, options)
+    fixed = {"width": width, "piece-length": piece_length}
+    job = _job("curve", {k: float(v) for k, v in fixed.items() if v is not None}, options)
     more = [_image(m, f"exemplar {i + 2}") for i, m in enumerate(more_exemplars)]
     avoid_image = None if avoid is None else _image(avoid, "avoid")
     image, pieces, report_text = _motif.curve(_image(exemplar, "exemplar"), points, job, more, avoid_image, threads)

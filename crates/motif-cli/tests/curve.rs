@@ -361,3 +361,52 @@ fn min_coverage_keeps_the_pattern_instead_of_a_free_sliver() {
     // The band is 7.5 times as tall as the bar: far more of the ribbon is drawn.
     assert!(costs[1].1 > 4 * costs[0].1, "{costs:?}");
 }
+
+/// Issue 34: `--exemplar` and `--path` alone run, with the width and piece length inferred from
+/// the exemplar and named in the report and the summary; a given value still wins.
+#[test]
+fn width_and_piece_length_are_inferred_from_the_exemplar() {
+    let dir = tempfile::tempdir().unwrap();
+    let corpus = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/curve");
+    let (exemplar, heart) = (corpus.join("chain_round.png"), corpus.join("heart.svg"));
+    let args = ["curve", "--exemplar", exemplar.to_str().unwrap(), "--path", heart.to_str().unwrap(), "--out", "x.png"];
+    let output = motif().current_dir(dir.path()).args(args).args(["--report", "r.json"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let figures = report(&dir.path().join("r.json"));
+    assert_eq!(
+        (figures["width_inferred"].as_bool(), figures["piece_length_inferred"].as_bool()),
+        (Some(true), Some(true))
+    );
+    let (width, piece_length) = (figures["width"].as_f64().unwrap(), figures["piece_length"].as_f64().unwrap());
+    // The hand-picked values of the corpus case are 108 and 25.
+    assert!((95.0..=120.0).contains(&width) && (18.0..=40.0).contains(&piece_length), "{figures}");
+    assert!(figures["pattern_period"].as_u64().is_some(), "{figures}");
+    assert!(stderr.contains(&format!("width {width} (inferred), piece length {piece_length} (inferred)")), "{stderr}");
+
+    let files = Files::new();
+    let given = run(
+        &[
+            "curve",
+            "--exemplar",
+            "chain.png",
+            "--path",
+            "line.svg",
+            "--width",
+            "20",
+            "--out",
+            "o.png",
+            "--report",
+            "r.json",
+        ],
+        &files,
+    );
+    assert!(given.status.success(), "{}", String::from_utf8_lossy(&given.stderr));
+    let figures = report(&files.path("r.json"));
+    assert_eq!((figures["width"].as_f64(), figures["width_inferred"].as_bool()), (Some(20.0), Some(false)));
+    assert_eq!(figures["piece_length_inferred"].as_bool(), Some(true));
+
+    motif_io::write_png(&files.path("clear.png"), &RgbaImage::new(20, 10)).unwrap();
+    let e = failure(&["curve", "--exemplar", "clear.png", "--path", "line.svg", "--out", "o.png"], &files);
+    assert!(e.contains("no pattern found"), "{e}");
+}

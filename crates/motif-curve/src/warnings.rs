@@ -6,6 +6,14 @@ use crate::params::Params;
 /// Valid fraction below which the run warns that the pieces hardly fit the pattern.
 const FEW_VALID: f64 = 0.01;
 
+/// The fewest samples per piece edge (width × scale) that hold the pattern's rows `(top, bottom)`
+/// whole, 0 without a pattern. The top edge reads the row above the corner's and the bottom edge
+/// the row below the last, so a piece holds the pattern's whole height only with two clear rows to
+/// spare.
+pub(crate) fn samples_to_hold(pattern_rows: Option<(i32, i32)>) -> usize {
+    pattern_rows.map_or(0, |(top, bottom)| (bottom - top + 3) as usize)
+}
+
 /// What looks wrong with a run before it is solved, with what to change.
 pub(crate) fn warnings(
     exemplar: &Exemplar,
@@ -15,9 +23,7 @@ pub(crate) fn warnings(
     empty: usize,
 ) -> Vec<String> {
     let mut warnings = Vec::new();
-    // The top edge reads the row above the corner's and the bottom edge the row below the last,
-    // so a piece holds the pattern's whole height only with two clear rows to spare.
-    let needed = exemplar.pattern_rows.map_or(0, |(top, bottom)| (bottom - top + 3) as usize);
+    let needed = samples_to_hold(exemplar.pattern_rows);
     let smallest_width = needed as f64 / params.scale;
     if samples < needed {
         warnings.push(format!(

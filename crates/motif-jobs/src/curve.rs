@@ -1,10 +1,11 @@
 //! `curve` jobs: structured raster patterns along curves (`motif_curve`).
 //!
-//! Field names are the flags of `motif curve`; only the width and the piece length are required.
+//! Field names are the flags of `motif curve`; none is required: a missing width or piece length
+//! is inferred from the first exemplar (`motif_curve::Dimensions::resolve`).
 //! The exemplars, the curve and the avoidance map come decoded (the CLI reads PNG and SVG).
 
 use motif_core::{Polyline, Progress, RgbaImage};
-use motif_curve::{AlphaMode, Canvas, ClosedMode, Input, Method, Output, Params, PieceShape, Solver};
+use motif_curve::{AlphaMode, Canvas, ClosedMode, Dimensions, Input, Method, Output, Params, PieceShape, Solver};
 use motif_curve::{PatchFidelity, patch_fidelity};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
@@ -12,13 +13,17 @@ use serde_json::{Map, Value, json};
 use crate::JobError;
 
 /// Every option of `motif curve` that is not a file (or the flattening tolerance of one).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
 pub struct CurveJob {
-    /// Ribbon width in canvas pixels (> 0).
-    pub width: f64,
-    /// Piece length along the curve in canvas pixels (> 0).
-    pub piece_length: f64,
+    /// Ribbon width in canvas pixels (> 0); inferred from the exemplar's pattern height when
+    /// missing.
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// Piece length along the curve in canvas pixels (> 0); inferred from the exemplar's period
+    /// when missing.
+    #[serde(default)]
+    pub piece_length: Option<f64>,
     /// Exemplar pixels per canvas pixel.
     #[serde(default)]
     pub scale: Option<f64>,
@@ -96,6 +101,8 @@ pub struct CurveJob {
 pub struct CurveRun {
     /// The engine's output (image, pieces and its `Report`).
     pub output: Output,
+    /// The width and piece length the run used, each given or inferred.
+    pub dimensions: Dimensions,
     /// Patch fidelity, when the job asked for it.
     pub fidelity: Option<PatchFidelity>,
     /// The report's figures as one JSON object, the keys every front end writes.
@@ -116,39 +123,37 @@ pub struct CurveInputs<'a> {
 }
 
 impl CurveJob {
-    /// A job with every option at its default.
+    /// A job with the given width and piece length and every other option at its default
+    /// ([`default`](Default::default) leaves the width and piece length to be inferred).
     pub fn new(width: f64, piece_length: f64) -> Self {
-        Self {
-            width,
-            piece_length,
-            scale: None,
-            closed: None,
-            method: None,
-            solver: None,
-            alpha: None,
-            gamma: None,
-            stitch: false,
-            stitch_penalty: None,
-            no_foldover_avoidance: false,
-            pin_first: None,
-            canvas: None,
-            margin: None,
-            samples: None,
-            cut_alpha: None,
-            min_coverage: None,
-            variety: None,
-            variety_radius: None,
-            pieces_shape: None,
-            width_profile: Vec::new(),
-            round_bends: None,
-            closed_max_starts: None,
-            fidelity: false,
-            max_memory: None,
-        }
+        Self { width: Some(width), piece_length: Some(piece_length), ..Self::default() }
     }
 
-    /// The engine's parameters.
-    pub fn params(&self) -> Result<Params, JobError> {
+    /// The engine's parameters for `inputs`, with the width and piece length each given or
+    /// inferred from the first exemplar (an inferred piece length is capped at the curve's length).
+    pub fn params(&self, inputs: &CurveInputs<'_>) -> Result<(Params, Dimensions), JobError> {
+        let dimensions = self.dimensions(inputs)?;
+        let params = self.params_with(dimensions.width.value, dimensions.piece_length.value)?;
+        Ok((params, dimensions))
+    }
+
+    /// The width and piece length: the job's, or inferred where it has none.
+    fn dimensions(&self, inputs: &CurveInputs<'_>) -> Result<Dimensions, JobError> {
+        let d = Params::default();
+        let (scale, cut_alpha) = (self.scale.unwrap_or(d.scale), self.cut_alpha.unwrap_or(d.cut_alpha));
+        if cut_alpha == 255 {
+            return Err(motif_core::InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
+        }
+        let mut dimensions = Dimensions::resolve(inputs.exemplar, self.width, self.piece_length, scale, cut_alpha)?;
+        let length = inputs.curve.length();
+        if dimensions.piece_length.inferred && dimensions.piece_length.value > length {
+            dimensions.piece_length.value = length;
+        }
+        Ok(dimensions)
+    }
+
+    /// The engine's parameters with this width and piece length.
+    fn params_with(&self, width: f64, piece_length: f64) -> Result<Params, JobError> {
         let d = Params::default();
         let margin = match d.canvas {
             Canvas::Fit { margin } => margin,
@@ -160,8 +165,8 @@ impl CurveJob {
         };
         let params = d
             .clone()
-            .with_width(self.width)
-            .with_piece_length(self.piece_length)
+            .with_width(width)
+            .with_piece_length(piece_length)
             .with_scale(self.scale.unwrap_or(d.scale))
             .with_closed(self.closed.unwrap_or(d.closed))
             .with_method(self.method.unwrap_or(d.method))
@@ -210,7 +215,7 @@ impl CurveJob {
         session: Option<&mut motif_curve::Incremental>,
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
-        let params = self.params()?;
+        let (params, dimensions) = self.params(&inputs)?;
         let input = Input {
             exemplar: inputs.exemplar,
             curve: inputs.curve,
@@ -225,11 +230,27 @@ impl CurveJob {
             patch_fidelity(inputs.exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         });
         let mut figures = figures(&output.report);
+        figures.extend(dimension_figures(&dimensions));
         if let Some(fidelity) = fidelity {
             figures.insert("fidelity".into(), json!(fidelity));
         }
-        Ok(CurveRun { output, fidelity, figures })
+        Ok(CurveRun { output, dimensions, fidelity, figures })
     }
+}
+
+/// The width and piece length under the keys of `motif curve --report`: `width` and
+/// `piece_length` (canvas pixels), `width_inferred` and `piece_length_inferred`, and what the
+/// inference measured, `pattern_height` and `pattern_period` (exemplar pixels; null when not
+/// measured or no period was found).
+pub fn dimension_figures(dimensions: &Dimensions) -> Map<String, Value> {
+    let mut figures = Map::new();
+    figures.insert("width".into(), json!(dimensions.width.value));
+    figures.insert("width_inferred".into(), json!(dimensions.width.inferred));
+    figures.insert("piece_length".into(), json!(dimensions.piece_length.value));
+    figures.insert("piece_length_inferred".into(), json!(dimensions.piece_length.inferred));
+    figures.insert("pattern_height".into(), json!(dimensions.pattern_height));
+    figures.insert("pattern_period".into(), json!(dimensions.period));
+    figures
 }
 
 /// The figures of a curve run under the keys of `motif curve --report`.
@@ -288,6 +309,18 @@ mod tests {
 
     use super::*;
 
+    fn rings() -> RgbaImage {
+        RgbaImage::from_fn(96, 24, |x, y| {
+            let (dx, dy) = ((x % 16) as f64 - 7.5, y as f64 - 11.5);
+            if (4.0..7.0).contains(&dx.hypot(dy)) { [210, 170, 40, 255] } else { [0; 4] }
+        })
+    }
+
+    fn line() -> Polyline {
+        let points = (0..=20).map(|i| Point::new(20.0 + 10.0 * f64::from(i), 60.0)).collect();
+        Polyline::new(points, false).unwrap()
+    }
+
     #[test]
     fn a_described_job_runs_with_the_flag_names() {
         let job: CurveJob = serde_json::from_value(json!({
@@ -301,33 +334,56 @@ mod tests {
             "fidelity": true,
         }))
         .unwrap();
-        let params = job.params().unwrap();
+        let (exemplar, curve) = (rings(), line());
+        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let (params, dimensions) = job.params(&inputs).unwrap();
+        assert_eq!((params.width, params.piece_length), (24.0, 12.0));
+        assert!(!dimensions.width.inferred && !dimensions.piece_length.inferred);
         assert_eq!(params.closed, ClosedMode::Open);
         assert_eq!(params.method, Method::Synthesis);
         assert_eq!(params.piece_shape, PieceShape::Bent);
         assert_eq!(params.width_profile, vec![(0.0, 1.0), (1.0, 1.5)]);
         assert_eq!(params.canvas, Canvas::Size { width: 260, height: 120 });
         assert_eq!(params.mismatch_penalty, Params::default().mismatch_penalty);
-        let exemplar = RgbaImage::from_fn(96, 24, |x, y| {
-            let (dx, dy) = ((x % 16) as f64 - 7.5, y as f64 - 11.5);
-            if (4.0..7.0).contains(&dx.hypot(dy)) { [210, 170, 40, 255] } else { [0; 4] }
-        });
-        let points = (0..=20).map(|i| Point::new(20.0 + 10.0 * f64::from(i), 60.0)).collect();
-        let curve = Polyline::new(points, false).unwrap();
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
         let run = job.run(inputs, &mut NoProgress).unwrap();
         assert!(run.output.report.pieces > 10);
         assert_eq!(run.figures["pieces"], run.output.report.pieces);
+        assert_eq!(run.figures["width_inferred"], false);
         assert!(run.fidelity.is_some() && run.figures.contains_key("fidelity"));
+    }
+
+    #[test]
+    fn a_job_without_width_and_piece_length_infers_them() {
+        let (exemplar, curve) = (rings(), line());
+        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let job: CurveJob = serde_json::from_value(json!({ "closed": "no" })).unwrap();
+        let run = job.run(inputs, &mut NoProgress).unwrap();
+        // Rings 16 px apart, 14 rows tall: the inferred width holds 16 rows with a margin.
+        assert_eq!(run.dimensions.period, Some(16));
+        assert_eq!(run.dimensions.pattern_height, Some(14));
+        assert_eq!(run.figures["width"], 19.0);
+        assert_eq!(run.figures["width_inferred"], true);
+        assert_eq!(run.figures["piece_length"], 8.0);
+        assert_eq!(run.figures["piece_length_inferred"], true);
+        let given = CurveJob { width: Some(30.0), ..job };
+        let (params, dimensions) = given.params(&inputs).unwrap();
+        assert_eq!((params.width, params.piece_length), (30.0, 8.0));
+        assert!(!dimensions.width.inferred && dimensions.piece_length.inferred);
     }
 
     #[test]
     fn bad_descriptions_name_what_is_wrong() {
         let error = serde_json::from_value::<CurveJob>(json!({ "width": 24, "piece-length": 12, "closed": "maybe" }));
         assert!(error.unwrap_err().to_string().contains("maybe"));
-        let error = serde_json::from_value::<CurveJob>(json!({ "width": 24 })).unwrap_err();
-        assert!(error.to_string().contains("piece-length"), "{error}");
+        let (exemplar, curve) = (rings(), line());
+        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
         let job = CurveJob { scale: Some(0.0), ..CurveJob::new(24.0, 12.0) };
-        assert!(job.params().unwrap_err().to_string().contains("scale"));
+        assert!(job.params(&inputs).unwrap_err().to_string().contains("scale"));
+        let job = CurveJob { scale: Some(0.0), ..CurveJob::default() };
+        assert!(job.params(&inputs).unwrap_err().to_string().contains("scale"));
+        let clear = RgbaImage::from_fn(40, 20, |_, _| [0; 4]);
+        let inputs = CurveInputs { exemplar: &clear, ..inputs };
+        let error = CurveJob::default().params(&inputs).unwrap_err().to_string();
+        assert!(error.contains("no pattern found"), "{error}");
     }
 }

@@ -72,6 +72,21 @@ fn description_with(base: Value, most: usize) -> impl Strategy<Value = Value> {
     })
 }
 
+/// A small diamond chain and a wavy line for curve jobs.
+fn curve_exemplar_and_line() -> (RgbaImage, Polyline) {
+    let exemplar =
+        RgbaImage::from_fn(
+            48,
+            16,
+            |x, y| {
+                if (x % 12).abs_diff(6) + y.abs_diff(8) < 6 { [200, 150, 40, 255] } else { [0; 4] }
+            },
+        );
+    let points: Vec<Point> =
+        (0..=20).map(|i| Point::new(20.0 + 8.0 * i as f64, 60.0 + 20.0 * (i as f64 * 0.3).sin())).collect();
+    (exemplar, Polyline::new(points, false).unwrap())
+}
+
 fn curve_base() -> Value {
     serde_json::to_value(CurveJob::new(24.0, 12.0)).unwrap()
 }
@@ -98,9 +113,15 @@ proptest! {
 
     #[test]
     fn curve_descriptions(description in description(curve_base())) {
+        let (exemplar, curve) = curve_exemplar_and_line();
         match serde_json::from_value::<CurveJob>(description) {
-            Ok(job) => match job.params() {
-                Ok(params) => prop_assert!(params.validate().is_ok()),
+            Ok(job) => match job.params(&CurveInputs {
+                exemplar: &exemplar,
+                more_exemplars: &[],
+                curve: &curve,
+                avoidance: None,
+            }) {
+                Ok((params, _)) => prop_assert!(params.validate().is_ok()),
                 Err(error) => check_message(&error.to_string()),
             },
             Err(error) => check_message(&error.to_string()),
@@ -188,12 +209,7 @@ proptest! {
         }
         description["max-memory"] = json!("64M");
         let Ok(job) = serde_json::from_value::<CurveJob>(description) else { return Ok(()) };
-        let exemplar = RgbaImage::from_fn(48, 16, |x, y| {
-            if (x % 12).abs_diff(6) + y.abs_diff(8) < 6 { [200, 150, 40, 255] } else { [0; 4] }
-        });
-        let points: Vec<Point> =
-            (0..=20).map(|i| Point::new(20.0 + 8.0 * i as f64, 60.0 + 20.0 * (i as f64 * 0.3).sin())).collect();
-        let curve = Polyline::new(points, false).unwrap();
+        let (exemplar, curve) = curve_exemplar_and_line();
         let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
         if let Err(error) = job.run(inputs, &mut NoProgress) {
             check_message(&error.to_string());

@@ -28,12 +28,18 @@ pub struct CurveArgs {
     #[arg(long, value_name = "CURVE.svg")]
     pub path: PathBuf,
     /// Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece
-    /// edge (C) and should exceed the pattern's height in the exemplar.
+    /// edge (C) and should exceed the pattern's height in the exemplar. Default: inferred from
+    /// the first exemplar, the pattern's height (rows with alpha above --cut-alpha) plus the
+    /// clear row above and below, 15% wider, divided by the scale.
     #[arg(long, value_name = "B", allow_negative_numbers = true)]
-    pub width: f64,
+    pub width: Option<f64>,
     /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
+    /// Default: inferred from the first exemplar, 0.55 of the pattern's period along x (the first
+    /// strong peak of the autocorrelation of its columns), kept between a quarter and 0.6 of the
+    /// pattern's height, divided by the scale; 0.3 of the pattern's height when it has no
+    /// period.
     #[arg(long, value_name = "D", allow_negative_numbers = true)]
-    pub piece_length: f64,
+    pub piece_length: Option<f64>,
     /// Scale s: exemplar pixels per canvas pixel, 0.05–20 (2 draws the pattern at half size).
     #[arg(long, value_name = "S", default_value_t = 1.0, allow_negative_numbers = true)]
     pub scale: f64,
@@ -220,7 +226,9 @@ fn job_of(args: &CurveArgs) -> CurveJob {
         round_bends: Some(args.round_bends),
         closed_max_starts: Some(args.closed_max_starts),
         fidelity: args.fidelity,
-        ..CurveJob::new(args.width, args.piece_length)
+        width: args.width,
+        piece_length: args.piece_length,
+        max_memory: None,
     }
 }
 
@@ -282,8 +290,11 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
             100.0 * figures.exemplar_coverage
         )
     });
+    let dimension = |d: motif_curve::Dimension| format!("{}{}", d.value, if d.inferred { " (inferred)" } else { "" });
     context.summary(&format!(
-        "curve: {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
+        "curve: width {}, piece length {}, {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
+        dimension(run.dimensions.width),
+        dimension(run.dimensions.piece_length),
         output.report.pieces,
         output.report.total_cost,
         output.report.mean_seam_cost,
