@@ -51,6 +51,6 @@ fn zoom_levels_are_written_and_agree_with_their_parents() {
     }
     let bad = motif(d, &["zoom", "--exemplar", stone, "--size", "96x80", "--factor", "30", "--out-dir", "never"]);
     assert!(!bad.status.success());
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("zoom-factor"));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("invalid factor"));
     assert!(!d.join("never").exists());
 }

@@ -74,7 +74,7 @@ pub fn zoom(
     progress: &mut dyn Progress,
 ) -> Result<Vec<Output>, Error> {
     if !(factor.is_finite() && (1.05..=8.0).contains(&factor)) {
-        return Err(InvalidParameter::new("zoom-factor", motif_core::error::number(factor), "must be 1.05–8").into());
+        return Err(InvalidParameter::new("factor", motif_core::error::number(factor), "must be 1.05–8").into());
     }
     if !(1..=64).contains(&levels) {
         return Err(InvalidParameter::new("zoom-levels", levels, "must be 1–64").into());
@@ -114,7 +114,7 @@ pub fn zoom(
                     || (height as f64) / factor < params.patch_size as f64
                 {
                     return Err(InvalidParameter::new(
-                        "zoom-factor",
+                        "factor",
                         motif_core::error::number(factor),
                         format!(
                             "leaves less than one {0}×{0} patch of the {width}×{height} output to zoom into",
@@ -188,6 +188,6 @@ mod tests {
             );
         }
         let error = zoom(&Input::texture(exemplar, 64, 64), 20.0, 2, &params, &mut NoProgress).unwrap_err();
-        assert!(error.to_string().contains("zoom-factor"), "{error}");
+        assert!(error.to_string().contains("invalid factor"), "{error}");
     }
 }
