@@ -20,6 +20,7 @@
 //!   upsampling (§3.5), the optional 3×3 pass, the report.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
+//! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7).
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
@@ -71,6 +72,7 @@ mod mask;
 mod motion;
 mod occurrence;
 mod params;
+mod presynth;
 mod quilting;
 pub mod samples;
 mod search;
@@ -99,6 +101,7 @@ pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
+pub use presynth::{PresynthInput, presynth_memory, presynthesize};
 pub use segments::{MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
@@ -503,104 +506,4 @@ pub fn synthesize<I: ChannelImage>(
         output.report.total_ms += ms;
     }
     Ok(output)
-}
-
-/// The peak memory of [`presynthesize`] (floats): one segment's synthesis at a time, and the
-/// finished textures with their fields.
-pub fn presynth_memory(
-    style: (usize, usize, usize),
-    size: (usize, usize),
-    segments: usize,
-) -> motif_core::MemoryEstimate {
-    let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
-    let pixels = size.0.saturating_mul(size.1);
-    let mut estimate = memory_estimate(style_pixels, channels, 0, pixels, 4);
-    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0);
-    estimate
-}
-
-/// What [`presynthesize`] makes textures from.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PresynthInput {
-    /// The style A'.
-    pub style: FloatImage,
-    /// The source segment guide A (the style's size): its colours are the segments.
-    pub guide: FloatImage,
-    /// Size of every texture `(width, height)`; they tile, so any size ≥ a few patches works.
-    pub size: (usize, usize),
-}
-
-/// Synthesizes one seamless texture per segment of the source guide from the style patches of
-/// that segment (§3.7), for [`Input::textures`]. Segments are the guide's colours
-/// ([`Params::segments`], palette by default). The textures tile (`tileable` is forced).
-pub fn presynthesize(
-    input: &PresynthInput,
-    params: &Params,
-    progress: &mut dyn Progress,
-) -> Result<Vec<SegmentTexture>, Error> {
-    params.validate()?;
-    check_image(&input.style, "style")?;
-    check_image(&input.guide, "source guide")?;
-    if input.guide.width() != input.style.width() || input.guide.height() != input.style.height() {
-        return Err(Error::SizeMismatch {
-            what: "the source guide must have the style's size".into(),
-            first: "the style".into(),
-            first_size: size_of(&input.style),
-            second: "the source guide".into(),
-            second_size: size_of(&input.guide),
-        });
-    }
-    let patch = params.patch_size;
-    if input.style.width() < patch || input.style.height() < patch {
-        return Err(Error::StyleTooSmall { width: input.style.width(), height: input.style.height(), patch });
-    }
-    let (width, height) = input.size;
-    if width < patch || height < patch || width > 1 << 14 || height > 1 << 14 {
-        return Err(InvalidParameter::new(
-            "size",
-            format!("{width}×{height}"),
-            format!("must be between {patch} and 16384 a side"),
-        )
-        .into());
-    }
-    check_work(width * height, params.max_pixels)?;
-    let mode = params.segments.unwrap_or(Segmentation::Palette);
-    let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
-    check_work(width * height * labels.colours.len(), params.max_pixels)?;
-    let (sw, sh) = (input.style.width(), input.style.height());
-    presynth_memory((sw, sh, input.style.channels()), (width, height), labels.colours.len())
-        .check(params.max_memory, MEMORY_ADVICE)?;
-    let r = patch / 2;
-    let mut textures = Vec::with_capacity(labels.colours.len());
-    let style_weights: Vec<f32> =
-        channel_weights(params.style_weight.max(f32::MIN_POSITIVE), input.style.channels()).collect();
-    for (label, colour) in labels.colours.iter().enumerate() {
-        let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(labels.source[y * sw + x]) == label));
-        if !has_centre {
-            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::SegmentTooThin { colour: hex, patch });
-        }
-        let problem = synthesis::Problem {
-            style: &input.style,
-            source_guides: Vec::new(),
-            target_guides: Vec::new(),
-            style_weights: style_weights.clone(),
-            guide_weights: Vec::new(),
-            target_size: input.size,
-            labels: Some((labels.source.clone(), vec![label as u16; width * height], labels.colours.len())),
-            tileable: true,
-            composition: None,
-            seeds: None,
-            mask: None,
-            structure_weight: None,
-        };
-        let mut segment_params = params.clone();
-        segment_params.seed = motif_core::SeedStreams::new(params.seed).child("presynth", label as u64).seed();
-        let mut report = |stage: &str, fraction: f64| {
-            progress.report(&format!("segment {} of {}: {stage}", label + 1, labels.colours.len()), fraction)
-        };
-        let output = synthesis::run(&problem, &segment_params, &mut report)?;
-        textures.push(SegmentTexture { colour: colour.clone(), image: output.image, field: Some(output.field) });
-    }
-    Ok(textures)
 }
