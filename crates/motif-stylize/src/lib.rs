@@ -30,6 +30,8 @@
 //! - `motion` and `video`: video stylization from keyframes (Jamriška et al. 2019): motion by
 //!   the engine's own PatchMatch, edge, positional and temporal guides, forward and backward
 //!   passes blended between keyframes, in independent keyframe intervals.
+//! - `video_pass`: one pass of video synthesis from a keyframe along the motion, and the blend of
+//!   the passes from an interval's two keyframes (Jamriška et al. §3).
 //! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
 //!   texture keeps its exemplar's structure.
 //! - `feature_distance`: Kaspar et al. 2015's automatic structure guidance for texture synthesis
@@ -80,6 +82,7 @@ mod segments;
 mod structure;
 mod synthesis;
 mod video;
+mod video_pass;
 mod vote;
 mod zoom;
 
