@@ -133,7 +133,7 @@ fn inferred_piece_length(period: Option<usize>, height: usize, scale: f64) -> f6
 
 /// The pattern's period along x in exemplar pixels: the first lag at which the normalized
 /// autocorrelation of the columns (premultiplied colour and alpha summed in row bands, their mean
-/// removed) peaks at [`PEAK_MIN`] or more, [`PROMINENCE`] above a valley at a smaller lag,
+/// removed) peaks at 0.4 or more, 0.3 above a valley at a smaller lag,
 /// searched up to half the pattern's width. `None` when the exemplar holds no pattern or no such peak exists.
 pub fn pattern_period(exemplar: &RgbaImage, cut_alpha: u8) -> Option<usize> {
     let columns = column_profiles(exemplar, cut_alpha)?;
