@@ -1,7 +1,8 @@
 //! `motif`: one command line for every motif engine.
 //!
 //! Modules, from the bottom up (each uses only those above it; `main` wires them together):
-//! - [`options`]: the options every command accepts; [`progress`]: progress bars on stderr.
+//! - [`options`]: the options every command accepts; [`job_args`]: a job's declared options as
+//!   flags; [`progress`]: progress bars on stderr.
 //! - [`context`]: what a running command gets (seed, threads, progress, report figures, the
 //!   checks that keep outputs off inputs).
 //! - [`gallery`]: the cases of `motif demo` and their HTML page; [`suite`]: what a benchmark gets.
@@ -18,6 +19,7 @@ mod context;
 mod demo;
 mod engines;
 mod gallery;
+mod job_args;
 mod options;
 mod progress;
 #[cfg(test)]
@@ -242,6 +244,30 @@ mod tests {
         );
     }
 
+    /// Every option a job declares is a flag of its subcommand with the declared default and
+    /// help, and is in `docs/cli.md`; a command line without it gives the job's default options.
+    #[test]
+    fn every_declared_option_is_a_flag_and_documented() {
+        let mut command = Cli::command();
+        command.build();
+        let reference = crate::reference::markdown(&command);
+        for job in motif_jobs::JOBS {
+            let sub = command.find_subcommand(job.name).unwrap_or_else(|| panic!("no subcommand {}", job.name));
+            for spec in (job.options)() {
+                let arg = sub
+                    .get_arguments()
+                    .find(|arg| arg.get_long() == Some(spec.name.as_str()))
+                    .unwrap_or_else(|| panic!("motif {} has no --{}", job.name, spec.name));
+                if spec.kind != motif_jobs::options::Kind::Flag {
+                    let default = arg.get_default_values().first().map(|v| v.to_string_lossy().into_owned());
+                    assert_eq!(default, spec.default, "motif {} --{}", job.name, spec.name);
+                }
+                assert_eq!(arg.get_help().map(ToString::to_string), Some(spec.described()), "--{}", spec.name);
+                assert!(reference.contains(&format!("--{}", spec.name)), "docs/cli.md lacks --{}", spec.name);
+            }
+        }
+    }
+
     /// Every command's help lists the global options under their own heading, after its own.
     #[test]
     fn global_options_have_their_own_heading() {
@@ -283,7 +309,6 @@ mod tests {
         let inferred: &[(&str, &str, f64)] = &[
             ("points", "keep-margin", motif_points::Params::DEFAULT_KEEP_MARGIN),
             ("points", "attribute-weight", points.attribute_weight),
-            ("points", "window", points.window_cutoff),
             ("points", "quadrature-spacing", motif_points::Params::DEFAULT_QUADRATURE_SPACING),
             ("points", "shrink", all.effective_shrink()),
             ("strokes", "rings", strokes.rings_for(true) as f64),

@@ -34,11 +34,27 @@ pub mod columns;
 pub mod curve;
 mod error;
 mod memory_size;
+pub mod options;
 pub mod points;
 pub mod strokes;
 pub mod stylize;
 
 pub use error::JobError;
+
+/// One job every front end offers: its name (the CLI subcommand, the Python function) and its
+/// declared options.
+#[derive(Debug, Clone, Copy)]
+pub struct JobEntry {
+    /// The name a front end calls it by.
+    pub name: &'static str,
+    /// Every option, as declared (see [`options`]).
+    pub options: fn() -> Vec<options::OptionSpec>,
+}
+
+/// Every job whose options are declared in one place, in the order front ends list them. The
+/// CLI's subcommands, Python's keywords and `docs/cli.md` are checked against it.
+pub const JOBS: &[JobEntry] =
+    &[JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options }];
 
 /// Per-stage milliseconds as a JSON object, in order.
 fn stages(stages: &[(String, f64)]) -> serde_json::Value {

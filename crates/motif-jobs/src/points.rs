@@ -74,98 +74,163 @@ fn default_seed() -> u64 {
     1
 }
 
-/// Every option of `motif points` that is not a file.
+crate::choice_option!(Initialization: "random", "patches");
+crate::choice_option!(Refinement: "seams", "everywhere", "none");
+crate::choice_option!(Window: "gaussian", "box");
+
+crate::declare_options! {
+    /// Every option of `motif points` that is neither a file nor the domain, declared once.
+    pub struct PointsOptions {
+        /// Refuse domains that ask for more points than this at the exemplar's density (a guard
+        /// against a unit mix-up; about 2 minutes of work per 150 000 points on two cores).
+        [value_name: "N", range: (1.0, 1e8)]
+        max_points: usize = DEFAULTS.max_points,
+        /// Initialization: exemplar patches (default; each starts matched to where it came from) or
+        /// random points (the paper's robustness claim does not hold on real, irregular exemplars).
+        [value_name: "random|patches"]
+        init: Initialization = DEFAULTS.initialization,
+        /// Side of the copied patches, in units of the neighbourhood δ (capped at 0.7 of the
+        /// exemplar's smallest side).
+        [value_name: "F", range: (1.0, 20.0)]
+        patch_size: f64 = DEFAULTS.patch_size,
+        /// Candidate sources judged for each patch: the one whose surroundings agree best with the
+        /// points already placed around the patch is copied. 1 copies a random source.
+        [value_name: "N", range: (1.0, 256.0)]
+        patch_candidates: usize = DEFAULTS.patch_candidates,
+        /// Balancing of patch sources (0 takes the best-scored candidate): of the candidates scored
+        /// within this fraction of the best, the one whose exemplar points were copied least so far
+        /// is taken, so that every part of the exemplar is copied about equally often.
+        [value_name: "F", range: (0.0, 10.0)]
+        patch_balance: f64 = DEFAULTS.patch_balance,
+        /// Which points the optimization moves after a patch initialization: the seams between
+        /// patches (default; on real exemplars moving the copies' interiors lowered fidelity), every
+        /// point, or none (the patches are the output).
+        [value_name: "seams|everywhere|none"]
+        refine: Refinement = DEFAULTS.refinement,
+        /// Gradient steps of the pair-statistics refinement after the optimization (0 turns it off):
+        /// the points the optimization moved move again so that the output's pair distances and
+        /// nearest-neighbour distances follow the exemplar's. Flat domains at a uniform scale only.
+        [value_name: "N", range: (0.0, 1000.0)]
+        statistics_iterations: usize = DEFAULTS.statistics_iterations,
+        /// The window the exemplar was observed in: `W,H[,D]` from the origin, or its corners
+        /// `X0,Y0,X1,Y1` (`X0,Y0,Z0,X1,Y1,Z1` in 3D). It must hold every point. The exemplar's
+        /// density is its count over this window; without it, the bounding box grown by one mean
+        /// spacing per axis (right for lattices, too dense for sparse irregular patterns).
+        [value_name: "W,H[,D]"]
+        exemplar_window: Option<Vec<f64>> = None,
+        /// Attributes to synthesize (default: every float column other than x, y, z, element, plus
+        /// integer columns).
+        [value_name: "a,b,..."]
+        attributes: Option<Vec<String>> = None,
+        /// Attributes with discrete values (snapped to the exemplar's values after each step).
+        /// Integer columns are always discrete.
+        [value_name: "a,b,..."]
+        discrete: Vec<String> = Vec::new(),
+        /// Attributes never treated as discrete. Without it, attributes whose exemplar values are
+        /// all whole numbers (at most 32 distinct) are detected as discrete labels.
+        [value_name: "a,b,..."]
+        continuous: Vec<String> = Vec::new(),
+        /// Weight of an attribute against point density, `NAME=W` (repeatable). Every attribute is
+        /// divided by its exemplar standard deviation first, so units and ranges do not matter; the
+        /// default weight is 1.
+        [value_name: "NAME=W", range: (0.0, 100.0)]
+        attribute_weight: BTreeMap<String, f64> = BTreeMap::new(),
+        /// Window shape: Gaussian, truncated at --window-cutoff × δ, or the box |s| < δ.
+        [value_name: "gaussian|box"]
+        window: Window = DEFAULTS.window,
+        /// Gaussian width σ (exemplar units, > 0). Default: half the exemplar's mean
+        /// nearest-neighbour spacing.
+        [value_name: "SIGMA"]
+        sigma: Option<f64> = DEFAULTS.sigma,
+        /// Uniform rotation field in degrees (counter-clockwise in the xy-plane), added to a
+        /// stroke's tangent orientation.
+        [value_name: "DEG"]
+        rotation: f64 = 0.0,
+        /// Uniform scale field (> 0), multiplied with --scale-along.
+        [value_name: "S"]
+        scale: f64 = 1.0,
+        /// Quadrature grid spacing in units of σ (2 = the exemplar's point spacing). Default: 2, or
+        /// an eighth of the neighbourhood when that is coarser (wide windows).
+        [value_name: "H", range: (0.25, 4.0)]
+        quadrature_spacing: Option<f64> = DEFAULTS.quadrature_spacing,
+        /// Truncation radius of the Gaussian window, in units of the neighbourhood δ (its weight
+        /// there is exp(-c²)). Smaller is faster.
+        [value_name: "C", range: (1.5, 4.0)]
+        window_cutoff: f64 = DEFAULTS.window_cutoff,
+        /// Sampling-control rounds per window size.
+        [value_name: "N", range: (1.0, 20.0)]
+        sampling_rounds: usize = DEFAULTS.sampling_rounds,
+        /// Gradient iterations of each position merging step (§7.1 uses 30).
+        [value_name: "N", range: (1.0, 1000.0)]
+        merge_iterations: usize = DEFAULTS.merge_iterations,
+        /// Random starts of each quadrature point's matching search.
+        [value_name: "N", range: (1.0, 64.0)]
+        matching_starts: usize = DEFAULTS.matching_starts,
+        /// Descent iterations per matching start.
+        [value_name: "N", range: (1.0, 200.0)]
+        matching_iterations: usize = DEFAULTS.matching_iterations,
+        /// Window shrink factor per scale α. Default: 0.9 (§7.1), or 0.8 after patches with
+        /// --refine seams (the same fidelity in less time on the real-data corpus).
+        [value_name: "ALPHA", range: (0.5, 0.99)]
+        shrink: Option<f64> = DEFAULTS.shrink,
+        /// Turn sampling control (adding and removing points, Eq. 7) off.
+        no_sampling_control: bool = !DEFAULTS.sampling_control,
+        /// Use the plain reference implementation of the energy (slow; for comparisons).
+        reference: bool = false,
+        /// Progressive synthesis: existing points farther than this from the new domain stay fixed
+        /// (output units; default 3δ).
+        [value_name: "M", range: (0.0, f64::MAX), requires: "existing"]
+        keep_margin: Option<f64> = DEFAULTS.keep_margin,
+    }
+}
+
+/// The engine's defaults, which the options take theirs from.
+const DEFAULTS: Params = Params::DEFAULT;
+
+/// A points job: the structure's neighbourhood and domain, the run's seed and memory bound, and
+/// every other option ([`PointsOptions`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(try_from = "crate::options::Described<PointsJobFields>")]
 pub struct PointsJob {
     /// Neighbourhood size δ in exemplar units (> 0).
     pub neighbourhood: f64,
     /// Where the output grows.
     pub domain: DomainSpec,
     /// Seed of every random choice (default 1, as on the command line).
-    #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Initialization: `patches` (default) or `random`.
-    #[serde(default)]
-    pub init: Option<Initialization>,
-    /// Side of the copied patches in δ.
-    #[serde(default)]
-    pub patch_size: Option<f64>,
-    /// Candidate sources judged per patch.
-    #[serde(default)]
-    pub patch_candidates: Option<usize>,
-    /// Balancing of patch sources: tolerance above the best candidate's score (default 0.5).
-    pub patch_balance: Option<f64>,
-    /// Which points move after a patch initialization: `seams`, `everywhere` or `none`.
-    #[serde(default)]
-    pub refine: Option<Refinement>,
-    /// Gradient steps of the pair-statistics refinement (default 40; 0 turns it off).
-    #[serde(default)]
-    pub statistics_iterations: Option<usize>,
-    /// The exemplar's observation window: sizes from the origin (one per axis) or both corners.
-    #[serde(default)]
-    pub exemplar_window: Option<Vec<f64>>,
-    /// Attributes to synthesize (default: all).
-    #[serde(default)]
-    pub attributes: Option<Vec<String>>,
-    /// Attributes snapped to the exemplar's values.
-    #[serde(default)]
-    pub discrete: Vec<String>,
-    /// Attributes never detected as discrete.
-    #[serde(default)]
-    pub continuous: Vec<String>,
-    /// Per-attribute weights against point density.
-    #[serde(default)]
-    pub attribute_weight: BTreeMap<String, f64>,
-    /// Window shape: `gaussian` or `box`.
-    #[serde(default)]
-    pub window: Option<Window>,
-    /// Gaussian width σ (default half the exemplar's mean spacing).
-    #[serde(default)]
-    pub sigma: Option<f64>,
-    /// Uniform rotation field, degrees (default 0).
-    #[serde(default)]
-    pub rotation: Option<f64>,
-    /// Uniform scale field (default 1).
-    #[serde(default)]
-    pub scale: Option<f64>,
-    /// Quadrature grid spacing in σ.
-    #[serde(default)]
-    pub quadrature_spacing: Option<f64>,
-    /// Sampling-control rounds per window size.
-    #[serde(default)]
-    pub sampling_rounds: Option<usize>,
-    /// Merging iterations per step.
-    #[serde(default)]
-    pub merge_iterations: Option<usize>,
-    /// Truncation radius of the Gaussian window, in δ (default 3).
-    #[serde(default)]
-    pub window_cutoff: Option<f64>,
-    /// Random starts of each quadrature point's matching search (default 5).
-    #[serde(default)]
-    pub matching_starts: Option<usize>,
-    /// Descent iterations per matching start (default 8).
-    #[serde(default)]
-    pub matching_iterations: Option<usize>,
-    /// Window shrink factor per scale.
-    #[serde(default)]
-    pub shrink: Option<f64>,
-    /// Turn sampling control off.
-    #[serde(default)]
-    pub no_sampling_control: bool,
-    /// Use the plain reference energy.
-    #[serde(default)]
-    pub reference: bool,
-    /// Progressive synthesis: existing points farther than this from the new domain stay fixed.
-    #[serde(default)]
-    pub keep_margin: Option<f64>,
-    /// Refuse domains that ask for more points than this.
-    #[serde(default)]
-    pub max_points: Option<usize>,
     /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
     /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
-    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    #[serde(rename = "max-memory", skip_serializing_if = "Option::is_none")]
     pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: PointsOptions,
+}
+
+/// The fields of a [`PointsJob`] outside its options, as a description holds them.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct PointsJobFields {
+    neighbourhood: f64,
+    domain: DomainSpec,
+    #[serde(default = "default_seed")]
+    seed: u64,
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    max_memory: Option<u64>,
+}
+
+impl TryFrom<crate::options::Described<PointsJobFields>> for PointsJob {
+    type Error = String;
+    fn try_from(described: crate::options::Described<PointsJobFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self {
+            neighbourhood: fields.neighbourhood,
+            domain: fields.domain,
+            seed: fields.seed,
+            max_memory: fields.max_memory,
+            options,
+        })
+    }
 }
 
 /// A finished points job.
@@ -180,38 +245,7 @@ pub struct PointsRun {
 impl PointsJob {
     /// A job with every option at its default.
     pub fn new(neighbourhood: f64, domain: DomainSpec) -> Self {
-        Self {
-            neighbourhood,
-            domain,
-            seed: default_seed(),
-            init: None,
-            patch_size: None,
-            patch_candidates: None,
-            patch_balance: None,
-            refine: None,
-            statistics_iterations: None,
-            exemplar_window: None,
-            attributes: None,
-            discrete: Vec::new(),
-            continuous: Vec::new(),
-            attribute_weight: BTreeMap::new(),
-            window: None,
-            sigma: None,
-            rotation: None,
-            scale: None,
-            quadrature_spacing: None,
-            sampling_rounds: None,
-            merge_iterations: None,
-            window_cutoff: None,
-            matching_starts: None,
-            matching_iterations: None,
-            shrink: None,
-            no_sampling_control: false,
-            reference: false,
-            keep_margin: None,
-            max_points: None,
-            max_memory: None,
-        }
+        Self { neighbourhood, domain, seed: default_seed(), max_memory: None, options: PointsOptions::default() }
     }
 
     /// The engine's domain.
@@ -257,15 +291,17 @@ impl PointsJob {
     /// The engine's parameters for an exemplar of `dimension` whose `integer_columns` (labels read
     /// as integers) are discrete unless listed as continuous or left out of `attributes`.
     pub fn params(&self, dimension: usize, integer_columns: &[String]) -> Result<Params, JobError> {
-        let defaults = Params::default();
-        let mut discrete = self.discrete.clone();
+        use crate::options::Declared;
+        let options = &self.options;
+        options.check_ranges()?;
+        let mut discrete = options.discrete.clone();
         for name in integer_columns {
-            let used = self.attributes.as_ref().is_none_or(|list| list.contains(name));
-            if used && !discrete.contains(name) && !self.continuous.contains(name) {
+            let used = options.attributes.as_ref().is_none_or(|list| list.contains(name));
+            if used && !discrete.contains(name) && !options.continuous.contains(name) {
                 discrete.push(name.clone());
             }
         }
-        let exemplar_window = match &self.exemplar_window {
+        let exemplar_window = match &options.exemplar_window {
             None => None,
             Some(values) if values.len() == dimension => Some((vec![0.0; dimension], values.clone())),
             Some(values) if values.len() == 2 * dimension => {
@@ -278,36 +314,35 @@ impl PointsJob {
                 return Err(InvalidParameter::new("exemplar-window", shown, allowed).into());
             }
         };
-        let params = defaults
-            .clone()
+        let params = Params::DEFAULT
             .with_neighbourhood(Some(self.neighbourhood))
-            .with_window(self.window.unwrap_or(defaults.window))
-            .with_sigma(self.sigma)
-            .with_rotation(self.rotation.filter(|&r| r != 0.0).map_or(Field::None, Field::Uniform))
-            .with_scale(self.scale.filter(|&s| s != 1.0).map_or(Field::None, Field::Uniform))
-            .with_quadrature_spacing(self.quadrature_spacing.or(defaults.quadrature_spacing))
-            .with_sampling_rounds(self.sampling_rounds.unwrap_or(defaults.sampling_rounds))
-            .with_merge_iterations(self.merge_iterations.unwrap_or(defaults.merge_iterations))
-            .with_window_cutoff(self.window_cutoff.unwrap_or(defaults.window_cutoff))
-            .with_matching_starts(self.matching_starts.unwrap_or(defaults.matching_starts))
-            .with_matching_iterations(self.matching_iterations.unwrap_or(defaults.matching_iterations))
-            .with_shrink(self.shrink)
-            .with_sampling_control(!self.no_sampling_control)
-            .with_evaluator(if self.reference { Evaluator::Reference } else { Evaluator::Fast })
-            .with_initialization(self.init.unwrap_or(defaults.initialization))
-            .with_attributes(self.attributes.clone())
+            .with_window(options.window)
+            .with_sigma(options.sigma)
+            .with_rotation(Some(options.rotation).filter(|&r| r != 0.0).map_or(Field::None, Field::Uniform))
+            .with_scale(Some(options.scale).filter(|&s| s != 1.0).map_or(Field::None, Field::Uniform))
+            .with_quadrature_spacing(options.quadrature_spacing)
+            .with_sampling_rounds(options.sampling_rounds)
+            .with_merge_iterations(options.merge_iterations)
+            .with_window_cutoff(options.window_cutoff)
+            .with_matching_starts(options.matching_starts)
+            .with_matching_iterations(options.matching_iterations)
+            .with_shrink(options.shrink)
+            .with_sampling_control(!options.no_sampling_control)
+            .with_evaluator(if options.reference { Evaluator::Reference } else { Evaluator::Fast })
+            .with_initialization(options.init)
+            .with_attributes(options.attributes.clone())
             .with_discrete_attributes(discrete)
-            .with_patch_size(self.patch_size.unwrap_or(defaults.patch_size))
-            .with_patch_candidates(self.patch_candidates.unwrap_or(defaults.patch_candidates))
-            .with_patch_balance(self.patch_balance.unwrap_or(defaults.patch_balance))
-            .with_refinement(self.refine.unwrap_or(defaults.refinement))
-            .with_statistics_iterations(self.statistics_iterations.unwrap_or(defaults.statistics_iterations))
+            .with_patch_size(options.patch_size)
+            .with_patch_candidates(options.patch_candidates)
+            .with_patch_balance(options.patch_balance)
+            .with_refinement(options.refine)
+            .with_statistics_iterations(options.statistics_iterations)
             .with_exemplar_window(exemplar_window)
-            .with_continuous_attributes(self.continuous.clone())
-            .with_attribute_weights(self.attribute_weight.iter().map(|(name, w)| (name.clone(), *w)).collect())
-            .with_keep_margin(self.keep_margin)
-            .with_max_points(self.max_points.unwrap_or(defaults.max_points))
-            .with_max_memory(self.max_memory.unwrap_or(defaults.max_memory))
+            .with_continuous_attributes(options.continuous.clone())
+            .with_attribute_weights(options.attribute_weight.iter().map(|(name, w)| (name.clone(), *w)).collect())
+            .with_keep_margin(options.keep_margin)
+            .with_max_points(options.max_points)
+            .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory))
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)
@@ -386,7 +421,8 @@ mod tests {
         // Left half black, right half white (rotation), left black right mid-grey (scale).
         let rotation = ToneMap::from_grey(4, 2, vec![0.0, 0.0, 0.25, 0.25, 0.0, 0.0, 0.25, 0.25]).unwrap();
         let scale = ToneMap::from_grey(4, 2, vec![0.0, 0.0, 0.5, 0.5, 0.0, 0.0, 0.5, 0.5]).unwrap();
-        let job = PointsJob { rotation: Some(10.0), ..PointsJob::new(2.0, DomainSpec::Box(vec![40.0, 20.0])) };
+        let mut job = PointsJob::new(2.0, DomainSpec::Box(vec![40.0, 20.0]));
+        job.options.rotation = 10.0;
         let mut params = job.params(2, &[]).unwrap();
         let maps = FieldMaps { rotation: Some(rotation), scale: Some(scale) };
         maps.apply(&job.engine_domain().unwrap(), 2, &mut params).unwrap();
@@ -425,7 +461,8 @@ mod tests {
         assert_eq!(params.patch_size, defaults.patch_size);
         assert_eq!(params.merge_iterations, defaults.merge_iterations);
         // Corners instead of sizes, and a round trip through JSON.
-        let corners = PointsJob { exemplar_window: Some(vec![1.0, 2.0, 5.0, 6.0]), ..job.clone() };
+        let mut corners = job.clone();
+        corners.options.exemplar_window = Some(vec![1.0, 2.0, 5.0, 6.0]);
         let params = corners.params(2, &[]).unwrap();
         assert_eq!(params.exemplar_window, Some((vec![1.0, 2.0], vec![5.0, 6.0])));
         let text = serde_json::to_string(&corners).unwrap();
@@ -454,12 +491,11 @@ mod tests {
         assert!(bad(json!({ "neighbourhood": 1, "domain": { "box": [4, 4] }, "refine": "most" })).contains("most"));
         let job = PointsJob::new(1.0, DomainSpec::Box(vec![4.0]));
         assert!(job.engine_domain().unwrap_err().to_string().contains("domain"));
-        let job = PointsJob {
-            exemplar_window: Some(vec![1.0, 2.0, 3.0]),
-            ..PointsJob::new(1.0, DomainSpec::Box(vec![4.0, 4.0]))
-        };
+        let mut job = PointsJob::new(1.0, DomainSpec::Box(vec![4.0, 4.0]));
+        job.options.exemplar_window = Some(vec![1.0, 2.0, 3.0]);
         assert!(job.params(2, &[]).unwrap_err().to_string().contains("exemplar-window"));
-        let job = PointsJob { patch_size: Some(0.0), ..PointsJob::new(1.0, DomainSpec::Box(vec![4.0, 4.0])) };
+        let mut job = PointsJob::new(1.0, DomainSpec::Box(vec![4.0, 4.0]));
+        job.options.patch_size = 0.0;
         assert!(job.params(2, &[]).unwrap_err().to_string().contains("patch-size"));
     }
 }

@@ -13,12 +13,13 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
-use motif_jobs::points::{DirectionsSpec, DomainSpec, FieldMaps, PointsJob, StrokeSpec, SurfaceSpec};
-use motif_points::{Initialization, PointSet, Refinement, Window};
+use motif_jobs::points::{DirectionsSpec, DomainSpec, FieldMaps, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec};
+use motif_points::PointSet;
 use serde_json::Value;
 
 use crate::context::Context;
 use crate::gallery::Demo;
+use crate::job_args::JobArgs;
 
 /// Options of `motif points`.
 #[derive(Args, Debug)]
@@ -55,82 +56,13 @@ pub struct PointsArgs {
     /// Exemplar scale at the start and end of the stroke, varying linearly along it (each > 0).
     #[arg(long, value_name = "A,B", requires = "along")]
     pub scale_along: Option<String>,
+    /// Every option of the synthesis, declared in `motif_jobs::points::PointsOptions`.
+    #[command(flatten)]
+    pub options: JobArgs<PointsOptions>,
     /// Progressive synthesis: a previous result (PLY/CSV) to extend. Its points stay fixed except
     /// within --keep-margin of the new domain.
     #[arg(long, value_name = "PREVIOUS.ply")]
     pub existing: Option<PathBuf>,
-    /// Existing points farther than this from the new domain stay fixed (output units, ≥ 0;
-    /// default 3δ).
-    #[arg(long, value_name = "M", requires = "existing")]
-    pub keep_margin: Option<f64>,
-    /// Refuse domains that ask for more points than this at the exemplar's density (a guard
-    /// against a unit mix-up; about 2 minutes of work per 150 000 points on two cores).
-    #[arg(long, value_name = "N", default_value_t = 150_000)]
-    pub max_points: usize,
-    /// Initialization: exemplar patches (default; each starts matched to where it came from) or
-    /// random points (the paper's robustness claim does not hold on real, irregular exemplars).
-    #[arg(long, value_enum, default_value = "patches")]
-    pub init: Initialization,
-    /// Side of the copied patches, in units of the neighbourhood δ (1–20; capped at 0.7 of the
-    /// exemplar's smallest side).
-    #[arg(long, value_name = "F", default_value_t = 6.0)]
-    pub patch_size: f64,
-    /// Candidate sources judged for each patch (1–256): the one whose surroundings agree best with
-    /// the points already placed around the patch is copied. 1 copies a random source.
-    #[arg(long, value_name = "N", default_value_t = 48)]
-    pub patch_candidates: usize,
-    /// Balancing of patch sources (0–10; 0 takes the best-scored candidate): of the candidates
-    /// scored within this fraction of the best, the one whose exemplar points were copied least so
-    /// far is taken, so that every part of the exemplar is copied about equally often.
-    #[arg(long, value_name = "F", default_value_t = 0.5)]
-    pub patch_balance: f64,
-    /// Which points the optimization moves after a patch initialization: the seams between patches
-    /// (default; on real exemplars moving the copies' interiors lowered fidelity), every point, or
-    /// none (the patches are the output).
-    #[arg(long, value_enum, default_value = "seams")]
-    pub refine: Refinement,
-    /// Gradient steps of the pair-statistics refinement after the optimization (0–1000; 0 turns it
-    /// off): the points the optimization moved move again so that the output's pair distances and
-    /// nearest-neighbour distances follow the exemplar's. Flat domains at a uniform scale only.
-    #[arg(long, value_name = "N", default_value_t = 40)]
-    pub statistics_iterations: usize,
-    /// The window the exemplar was observed in: `W,H[,D]` from the origin, or its corners
-    /// `X0,Y0,X1,Y1` (`X0,Y0,Z0,X1,Y1,Z1` in 3D). It must hold every point. The exemplar's density
-    /// is its count over this window; without it, the bounding box grown by one mean spacing per
-    /// axis (right for lattices, too dense for sparse irregular patterns).
-    #[arg(long, value_name = "W,H[,D]", value_delimiter = ',', num_args = 1..)]
-    pub exemplar_window: Option<Vec<f64>>,
-    /// Attributes to synthesize, comma-separated (default: every float column other than x, y, z,
-    /// element, plus integer columns).
-    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
-    pub attributes: Option<Vec<String>>,
-    /// Attributes with discrete values (snapped to the exemplar's values after each step),
-    /// comma-separated. Integer columns are always discrete.
-    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
-    pub discrete: Vec<String>,
-    /// Attributes never treated as discrete, comma-separated. Without it, attributes whose exemplar
-    /// values are all whole numbers (at most 32 distinct) are detected as discrete labels.
-    #[arg(long, value_name = "a,b,...", value_delimiter = ',')]
-    pub continuous: Vec<String>,
-    /// Weight of an attribute against point density, `NAME=W` (0–100; repeatable). Every attribute
-    /// is divided by its exemplar standard deviation first, so units and ranges do not matter;
-    /// the default weight is 1.
-    #[arg(long, value_name = "NAME=W")]
-    pub attribute_weight: Vec<String>,
-    /// Window shape.
-    #[arg(long, value_enum, default_value = "gaussian")]
-    pub window: Window,
-    /// Gaussian width σ (exemplar units, > 0). Default: half the exemplar's mean nearest-neighbour
-    /// spacing.
-    #[arg(long, value_name = "SIGMA")]
-    pub sigma: Option<f64>,
-    /// Uniform rotation field in degrees (counter-clockwise in the xy-plane), added to a stroke's
-    /// tangent orientation.
-    #[arg(long, value_name = "DEG", default_value_t = 0.0, allow_hyphen_values = true)]
-    pub rotation: f64,
-    /// Uniform scale field (> 0), multiplied with --scale-along.
-    #[arg(long, value_name = "S", default_value_t = 1.0)]
-    pub scale: f64,
     /// Also reconstruct the output as a surface (3D points with normals `nx`, `ny`, `nz`): an
     /// implicit MLS surface polygonized with surface nets, written as OBJ.
     #[arg(long, value_name = "OUT.obj")]
@@ -161,30 +93,6 @@ pub struct PointsArgs {
     /// (black 0.5, mid-grey 1, white 2), times --scale.
     #[arg(long, value_name = "MAP.png")]
     pub scale_map: Option<PathBuf>,
-    /// Quadrature grid spacing in units of σ (0.25–4; 2 = the exemplar's point spacing). Default:
-    /// 2, or an eighth of the neighbourhood when that is coarser (wide windows)
-    #[arg(long, value_name = "H")]
-    pub quadrature_spacing: Option<f64>,
-    /// Truncation radius of the Gaussian window, in units of the neighbourhood δ (1.5–4; its
-    /// weight there is exp(-c²)). Smaller is faster
-    #[arg(long, value_name = "C", default_value_t = 2.0)]
-    pub window_cutoff: f64,
-    /// Sampling-control rounds per window size (1–20).
-    #[arg(long, value_name = "N", default_value_t = 1)]
-    pub sampling_rounds: usize,
-    /// Gradient iterations of each position merging step (1–1000; §7.1 uses 30).
-    #[arg(long, value_name = "N", default_value_t = 30)]
-    pub merge_iterations: usize,
-    /// Window shrink factor per scale α (0.5–0.99). Default: 0.9 (§7.1), or 0.8 after patches
-    /// with --refine seams (the same fidelity in less time on the real-data corpus).
-    #[arg(long, value_name = "ALPHA")]
-    pub shrink: Option<f64>,
-    /// Turn sampling control (adding/removing points, Eq. 7) off.
-    #[arg(long)]
-    pub no_sampling_control: bool,
-    /// Use the plain reference implementation of the energy (slow; for comparisons).
-    #[arg(long)]
-    pub reference: bool,
     /// Output points (PLY binary unless the name ends in .csv).
     #[arg(long, value_name = "OUT.ply")]
     pub out: PathBuf,
@@ -342,45 +250,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
             }
         }
     };
-    let attribute_weight = args
-        .attribute_weight
-        .iter()
-        .map(|spec| {
-            let parsed =
-                spec.split_once('=').and_then(|(name, w)| Some((name.trim().to_string(), w.trim().parse().ok()?)));
-            parsed.ok_or_else(|| {
-                anyhow::anyhow!("--attribute-weight {spec:?}: give NAME=W with a number W, e.g. diameter=0.5")
-            })
-        })
-        .collect::<anyhow::Result<_>>()?;
-    Ok(PointsJob {
-        seed,
-        init: Some(args.init),
-        patch_size: Some(args.patch_size),
-        patch_candidates: Some(args.patch_candidates),
-        patch_balance: Some(args.patch_balance),
-        refine: Some(args.refine),
-        statistics_iterations: Some(args.statistics_iterations),
-        exemplar_window: args.exemplar_window.clone(),
-        attributes: args.attributes.clone(),
-        discrete: args.discrete.clone(),
-        continuous: args.continuous.clone(),
-        attribute_weight,
-        window: Some(args.window),
-        sigma: args.sigma,
-        rotation: Some(args.rotation),
-        scale: Some(args.scale),
-        quadrature_spacing: args.quadrature_spacing,
-        window_cutoff: Some(args.window_cutoff),
-        sampling_rounds: Some(args.sampling_rounds),
-        merge_iterations: Some(args.merge_iterations),
-        shrink: args.shrink,
-        no_sampling_control: args.no_sampling_control,
-        reference: args.reference,
-        keep_margin: args.keep_margin,
-        max_points: Some(args.max_points),
-        ..PointsJob::new(args.neighbourhood, domain)
-    })
+    Ok(PointsJob { seed, options: args.options.options.clone(), ..PointsJob::new(args.neighbourhood, domain) })
 }
 
 /// Runs `motif points`.
@@ -443,7 +313,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             exemplar.attribute_names.join(", ")
         );
     }
-    if let (Some(_), None, Some(chosen)) = (&args.surface_out, &element, &args.attributes)
+    if let (Some(_), None, Some(chosen)) = (&args.surface_out, &element, &args.options.attributes)
         && let Some(missing) = ["nx", "ny", "nz"].iter().find(|name| !chosen.iter().any(|c| c == *name))
     {
         bail!(
@@ -556,6 +426,7 @@ impl crate::registry::Engine for Points {
 #[cfg(test)]
 mod tests {
     use clap::Parser;
+    use motif_points::Refinement;
 
     use super::*;
 
