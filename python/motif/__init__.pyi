@@ -4,6 +4,9 @@ from typing import Any, Dict, Iterable, List, Literal, Optional, Sequence, Tuple
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import Unpack
+
+from motif._options import PointsOptions
 
 ImageArray = npt.NDArray[np.uint8]
 PointData = Union[npt.ArrayLike, Dict[str, npt.ArrayLike]]
@@ -78,7 +81,7 @@ def points(
     surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,
     existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
     scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
-    report: Literal[False] = ..., **options: Any
+    report: Literal[False] = ..., **options: Unpack[PointsOptions]
 ) -> Dict[str, np.ndarray]: ...
 @overload
 def points(
@@ -88,7 +91,7 @@ def points(
     surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,
     existing: Optional[PointData] = ..., rotation_map: Optional[npt.ArrayLike] = ...,
     scale_map: Optional[npt.ArrayLike] = ..., seed: int = ..., threads: Optional[int] = ...,
-    report: Literal[True], **options: Any
+    report: Literal[True], **options: Unpack[PointsOptions]
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 @overload
 def strokes(

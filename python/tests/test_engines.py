@@ -139,6 +139,18 @@ def test_options_list_the_cli_flags():
     assert "pieces_shape" in motif.options("curve")
 
 
+def test_every_declared_option_is_a_keyword():
+    """The typed options rendered from motif-jobs' declarations are exactly the keywords taken."""
+    from motif import _options
+
+    for name, declared in vars(_options).items():
+        if not name.endswith("Options") or name == "TypedDict":
+            continue
+        engine = name[: -len("Options")].lower()
+        keywords = set(motif.options(engine))
+        assert set(declared.__annotations__) <= keywords, (engine, set(declared.__annotations__) - keywords)
+
+
 def test_strokes_maps_equal_the_cli(cli, tmp_path):
     strokes_dir = ROOT / "data" / "real" / "strokes"
     reference = (strokes_dir / "arkansas_stars.svg").read_text()

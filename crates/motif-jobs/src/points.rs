@@ -200,7 +200,7 @@ pub struct PointsJob {
     pub seed: u64,
     /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
     /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
-    #[serde(rename = "max-memory", skip_serializing_if = "Option::is_none")]
+    #[serde(rename = "max-memory")]
     pub max_memory: Option<u64>,
     /// Every other option.
     #[serde(flatten)]

@@ -1,0 +1,103 @@
+//! The declarations of `motif_jobs::JOBS` are the single source of the Python package's typed
+//! keywords: `python/motif/_options.py` is rendered from them (`MOTIF_BLESS=1` rewrites it), and
+//! every declaration is checked for what front ends rely on.
+
+use std::fmt::Write as _;
+
+use motif_jobs::JOBS;
+use motif_jobs::options::{Kind, OptionSpec};
+
+const STUB: &str = "python/motif/_options.py";
+
+/// The Python type of an option's value.
+fn python_type(kind: Kind) -> String {
+    match kind {
+        Kind::Flag => "bool".into(),
+        Kind::Integer => "int".into(),
+        Kind::Number => "float".into(),
+        Kind::Choice(names) => {
+            let quoted: Vec<String> = names.iter().map(|name| format!("{name:?}")).collect();
+            format!("Literal[{}]", quoted.join(", "))
+        }
+        Kind::Numbers => "Sequence[float]".into(),
+        Kind::Names => "Sequence[str]".into(),
+        Kind::Weights => "Mapping[str, float]".into(),
+        _ => "Any".into(),
+    }
+}
+
+/// `points` → `PointsOptions`.
+fn class_name(job: &str) -> String {
+    let mut chars = job.chars();
+    chars.next().map(|first| first.to_uppercase().chain(chars).collect::<String>() + "Options").unwrap_or_default()
+}
+
+fn render_option(out: &mut String, spec: &OptionSpec) {
+    let mut line = String::from("    #:");
+    for word in spec.described().split_whitespace() {
+        if line.len() + word.len() > 110 {
+            let _ = writeln!(out, "{line}");
+            line = String::from("    #:");
+        }
+        line.push(' ');
+        line.push_str(word);
+    }
+    if let Some(default) = &spec.default {
+        line.push_str(&format!(" Default: {default}."));
+    }
+    let _ = writeln!(out, "{line}");
+    let _ = writeln!(out, "    {}: {}", spec.name.replace('-', "_"), python_type(spec.kind));
+}
+
+fn render() -> String {
+    let mut out = String::from(
+        "\"\"\"The keyword options of each engine, rendered from motif-jobs' declarations (do not edit).\n\n\
+         Regenerate with `MOTIF_BLESS=1 cargo test --release -p motif-jobs --test declarations`.\n\"\"\"\n\n\
+         from typing import Any, Literal, Mapping, Sequence, TypedDict\n",
+    );
+    for job in JOBS {
+        let _ = write!(out, "\n\nclass {}(TypedDict, total=False):\n", class_name(job.name));
+        let _ = writeln!(out, "    \"\"\"Options of `motif.{}()` and `motif {}`.\"\"\"\n", job.name, job.name);
+        for spec in (job.options)() {
+            render_option(&mut out, &spec);
+        }
+    }
+    out
+}
+
+#[test]
+fn python_options_are_rendered_from_the_declarations() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(STUB);
+    let rendered = render();
+    if std::env::var_os("MOTIF_BLESS").is_some() {
+        std::fs::write(&path, &rendered).unwrap();
+    }
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        committed == rendered,
+        "{STUB} is stale: regenerate it with `MOTIF_BLESS=1 cargo test --release -p motif-jobs --test declarations`"
+    );
+}
+
+/// Names are unique, kebab-case and documented; ranges are ordered; a default is inside its range.
+#[test]
+fn every_declaration_is_complete() {
+    for job in JOBS {
+        let specs = (job.options)();
+        let mut names: Vec<&str> = specs.iter().map(|spec| spec.name.as_str()).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), specs.len(), "{}: duplicate option names", job.name);
+        for spec in &specs {
+            let what = format!("{} --{}", job.name, spec.name);
+            assert!(spec.name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'), "{what}");
+            assert!(spec.help.len() > 20, "{what}: no help");
+            if let Some((low, high)) = spec.range {
+                assert!(low <= high, "{what}: range {low}..{high}");
+                if let Some(default) = spec.default.as_deref().and_then(|d| d.parse::<f64>().ok()) {
+                    assert!((low..=high).contains(&default), "{what}: default {default} outside {low}..{high}");
+                }
+            }
+        }
+    }
+}
