@@ -75,7 +75,8 @@ async function decodePng(blob) {
   } catch {
     throw new Error("the file is not an image the browser can decode (give a PNG)");
   }
-  if (bitmap.width > 4096 || bitmap.height > 4096) throw new Error(`the image is ${bitmap.width}×${bitmap.height}; give at most 4096 pixels a side`);
+  const { maxImageSide } = await request("limits");
+  if (bitmap.width > maxImageSide || bitmap.height > maxImageSide) throw new Error(`the image is ${bitmap.width}×${bitmap.height}; give at most ${maxImageSide} pixels a side`);
   const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
   const context = canvas.getContext("2d");
   context.drawImage(bitmap, 0, 0);

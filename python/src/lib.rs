@@ -50,8 +50,9 @@ fn image_of(array: &PyReadonlyArrayDyn<'_, u8>, what: &str) -> PyResult<RgbaImag
     if width == 0 || height == 0 {
         return Err(value_error(format!("{what}: the image is empty ({height}×{width})")));
     }
-    if (width as u64) * (height as u64) > motif_io::raster::MAX_PIXELS {
-        return Err(value_error(format!("{what}: {height}×{width} is larger than 16384×16384 pixels")));
+    if (width as u64) * (height as u64) > motif_core::limits::MAX_IMAGE_PIXELS {
+        let side = motif_core::limits::MAX_IMAGE_SIDE;
+        return Err(value_error(format!("{what}: {height}×{width} is larger than {side}×{side} pixels")));
     }
     // Contiguous arrays are read in place; others (slices, transposes) through numpy's view.
     let view = array.as_array();

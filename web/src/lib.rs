@@ -72,9 +72,16 @@ fn image_result(
     }
 }
 
+/// The largest image side the page accepts, in pixels (the page checks decoded files against it).
+#[wasm_bindgen]
+pub fn max_image_side() -> usize {
+    motif_core::limits::MAX_BROWSER_IMAGE_SIDE
+}
+
 fn rgba_image(rgba: &[u8], width: usize, height: usize, what: &str) -> Result<RgbaImage, JsError> {
-    if width == 0 || height == 0 || width > 4096 || height > 4096 {
-        return Err(error(format!("{what}: {width}×{height} pixels; give an image of 1–4096 pixels a side")));
+    let side = motif_core::limits::MAX_BROWSER_IMAGE_SIDE;
+    if width == 0 || height == 0 || width > side || height > side {
+        return Err(error(format!("{what}: {width}×{height} pixels; give an image of 1–{side} pixels a side")));
     }
     if rgba.len() != width * height * 4 {
         return Err(error(format!("{what}: {} bytes for {width}×{height} RGBA pixels", rgba.len())));

@@ -33,6 +33,7 @@ pub mod channel_image;
 pub mod error;
 pub mod geometry;
 pub mod image;
+pub mod limits;
 pub mod math;
 pub mod memory;
 mod mesh;

@@ -9,13 +9,7 @@ use motif_core::memory::Bytes;
 
 use crate::{IoError, Result, write_with};
 
-/// The largest image accepted, in pixels (16 384 × 16 384); larger files are refused with a
-/// message instead of exhausting memory.
-pub const MAX_PIXELS: u64 = 16_384 * 16_384;
-
-/// The largest tone map (density, scale or rotation map) accepted, in pixels (8192 × 8192): a
-/// map is a smooth field stretched over the target, and a larger one only costs memory.
-pub const MAX_MAP_PIXELS: u64 = 8192 * 8192;
+pub use motif_core::limits::{MAX_IMAGE_PIXELS as MAX_PIXELS, MAX_MAP_PIXELS};
 
 /// What reading one image may cost, checked against the size its header declares before any
 /// pixel is decoded.

@@ -124,7 +124,10 @@ pub fn render_svg(text: &str, scale: f64, name: &Path) -> Result<RgbaImage> {
     if u64::from(width) * u64::from(height) > crate::raster::MAX_PIXELS {
         return Err(IoError::format(
             name,
-            format!("rendering at {width}×{height} exceeds the 16384×16384 pixel limit"),
+            format!(
+                "rendering at {width}×{height} exceeds the {side}×{side} pixel limit",
+                side = motif_core::limits::MAX_IMAGE_SIDE
+            ),
         ));
     }
     let mut pixmap = tiny_skia::Pixmap::new(width, height)
