@@ -312,7 +312,7 @@ mod tests {
     fn rings() -> RgbaImage {
         RgbaImage::from_fn(96, 24, |x, y| {
             let (dx, dy) = ((x % 16) as f64 - 7.5, y as f64 - 11.5);
-            if (4.0..7.0).contains(&dx.hypot(dy)) { [210, 170, 40, 255] } else { [0; 4] }
+            if (4.0..7.0).contains(&motif_core::math::hypot(dx, dy)) { [210, 170, 40, 255] } else { [0; 4] }
         })
     }
 

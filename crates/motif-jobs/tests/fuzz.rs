@@ -82,8 +82,9 @@ fn curve_exemplar_and_line() -> (RgbaImage, Polyline) {
                 if (x % 12).abs_diff(6) + y.abs_diff(8) < 6 { [200, 150, 40, 255] } else { [0; 4] }
             },
         );
-    let points: Vec<Point> =
-        (0..=20).map(|i| Point::new(20.0 + 8.0 * i as f64, 60.0 + 20.0 * (i as f64 * 0.3).sin())).collect();
+    let points: Vec<Point> = (0..=20)
+        .map(|i| Point::new(20.0 + 8.0 * i as f64, 60.0 + 20.0 * motif_core::math::sin(i as f64 * 0.3)))
+        .collect();
     (exemplar, Polyline::new(points, false).unwrap())
 }
 
