@@ -147,7 +147,8 @@ def test_every_declared_option_is_a_keyword():
         if not name.endswith("Options") or name == "TypedDict":
             continue
         engine = name[: -len("Options")].lower()
-        keywords = set(motif.options(engine))
+        # Every name the job takes, keywords and the positional arguments alike.
+        keywords = {flag.replace("-", "_") for flag in motif._motif.options(engine)}
         assert set(declared.__annotations__) <= keywords, (engine, set(declared.__annotations__) - keywords)
 
 
