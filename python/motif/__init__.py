@@ -357,7 +357,7 @@ def _surface_directions(directions: Any) -> Any:
 
 def points(
     exemplar: PointData,
-    neighbourhood: float,
+    neighbourhood: Optional[float] = None,
     *,
     domain: Any = None,
     along: Optional[ArrayLike] = None,
@@ -383,7 +383,8 @@ def points(
     (the inside of a closed triangle mesh: (V, 3) floats and (T, 3) integers), or
     ``surface=(vertices, triangles)`` (a 2D exemplar laid on the mesh, 3D output on it, oriented
     by ``surface_directions``: ``"curvature"``, one (3,) direction, or a (V, 3) array of one vector
-    per vertex). ``neighbourhood`` is δ.
+    per vertex). ``neighbourhood`` is δ (default: inferred from the exemplar, 4 times its mean
+    nearest-neighbour spacing in 2D and 2 times in 3D; the report states it).
     Options: ``sigma``, ``init``, ``refine``, ``statistics_iterations`` (40; 0: off), ``patch_size``, ``exemplar_window``,
     ``attribute_weight``, ``max_points``, ``max_memory``, ... ``rotation_map`` and ``scale_map``
     (2D) are uint8 images over the domain's bounding box, as ``--rotation-map`` (360° × grey) and
@@ -420,7 +421,10 @@ def points(
     else:
         shape = np.asarray(domain, dtype=np.float64)
         spec = {"box": shape.tolist()} if shape.ndim == 1 else {"region": shape.tolist()}
-    job = _job("points", {"neighbourhood": float(neighbourhood), "domain": spec, "seed": _seed(seed)}, options)
+    fixed: Dict[str, Any] = {"domain": spec, "seed": _seed(seed)}
+    if neighbourhood is not None:
+        fixed["neighbourhood"] = float(neighbourhood)
+    job = _job("points", fixed, options)
     existing_columns = None if existing is None else _columns(existing, "existing")
     maps = [None if m is None else _image(m, name) for m, name in ((rotation_map, "rotation_map"), (scale_map, "scale_map"))]
     columns, report_text = _motif.points(_columns(exemplar, "exemplar"), job, existing_columns, threads, *maps)

@@ -75,7 +75,7 @@ def curve(
 ) -> Tuple[Tuple[ImageArray, List[Dict[str, Any]]], Dict[str, Any]]: ...
 @overload
 def points(
-    exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
+    exemplar: PointData, neighbourhood: Optional[float] = ..., *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
     volume: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
     surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,
@@ -85,7 +85,7 @@ def points(
 ) -> Dict[str, np.ndarray]: ...
 @overload
 def points(
-    exemplar: PointData, neighbourhood: float, *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
+    exemplar: PointData, neighbourhood: Optional[float] = ..., *, domain: Any = ..., along: Optional[npt.ArrayLike] = ...,
     brush_width: Optional[float] = ..., scale_along: Optional[Tuple[float, float]] = ...,
     volume: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ...,
     surface: Optional[Tuple[npt.ArrayLike, npt.ArrayLike]] = ..., surface_directions: Any = ...,

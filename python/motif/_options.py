@@ -3,17 +3,18 @@
 Regenerate with `MOTIF_BLESS=1 cargo test --release -p motif-jobs --test declarations`.
 """
 
-from typing import Any, Mapping, Sequence
-
-try:
-    from typing import Literal, TypedDict
-except ImportError:  # pragma: no cover
-    from typing_extensions import Literal, TypedDict  # type: ignore
+from typing import Any, Literal, Mapping, Sequence, TypedDict
 
 
 class PointsOptions(TypedDict, total=False):
     """Options of `motif.points()` and `motif points`."""
 
+    #: Neighbourhood size δ in exemplar units (> 0): the width of the Gaussian window (truncated at
+    #: --window-cutoff × δ) or the radius of the box window. Larger keeps larger structures; it shrinks to
+    #: δ/2 during the synthesis. Default: 4 times the exemplar's mean nearest-neighbour spacing in 2D, 2 times
+    #: in 3D (reported as `neighbourhood` and `exemplar_spacing`); continuous structures such as contours need
+    #: about the size of their features.
+    neighbourhood: float
     #: Refuse domains that ask for more points than this at the exemplar's density (a guard against a unit
     #: mix-up; about 2 minutes of work per 150 000 points on two cores). Allowed: 1–100000000. Default: 150000.
     max_points: int

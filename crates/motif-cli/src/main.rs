@@ -308,6 +308,7 @@ mod tests {
         let strokes = motif_strokes::Params::default();
         let inferred: &[(&str, &str, f64)] = &[
             ("points", "keep-margin", motif_points::Params::DEFAULT_KEEP_MARGIN),
+            ("points", "neighbourhood", motif_points::Params::NEIGHBOURHOOD_SPACINGS[0]),
             ("points", "attribute-weight", points.attribute_weight),
             ("points", "quadrature-spacing", motif_points::Params::DEFAULT_QUADRATURE_SPACING),
             ("points", "shrink", all.effective_shrink()),

@@ -398,3 +398,46 @@ fn a_rotation_map_turns_the_pattern_where_it_is_grey() {
     let (left, right) = (along_x(3.0, 16.0), along_x(24.0, 37.0));
     assert!(left > 0.8 && right < 0.2, "left {left}, right {right}");
 }
+
+/// Without `--neighbourhood`, δ is inferred from the exemplar (4 mean nearest-neighbour spacings
+/// in 2D), reported, and a real clustered pattern keeps its density and statistics: the nearest-
+/// neighbour and pair-distance distances stay within 1.5× a tiled copy's and well under random's.
+#[test]
+fn the_neighbourhood_is_inferred_from_a_real_exemplar() {
+    let dir = tempfile::tempdir().unwrap();
+    let longleaf = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/points/longleaf.csv");
+    let longleaf = longleaf.to_str().unwrap();
+    let args = ["points", "--exemplar", longleaf, "--exemplar-window", "200,200", "--domain", "box:300,300"];
+    let output = motif(dir.path(), &[&args[..], &["--out", "out.csv", "--report", "report.json"]].concat());
+    ok(&output);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report.json")).unwrap()).unwrap();
+    let (delta, spacing) = (report["neighbourhood"].as_f64().unwrap(), report["exemplar_spacing"].as_f64().unwrap());
+    assert_eq!(report["neighbourhood_inferred"], true);
+    assert!((delta - 4.0 * spacing).abs() < 1e-9 && (3.0..4.0).contains(&spacing), "δ {delta}, spacing {spacing}");
+    let fidelity = &report["fidelity"];
+    let density = fidelity["density_ratio"].as_f64().unwrap();
+    assert!((0.9..1.1).contains(&density), "density ratio {density}");
+    for measure in ["nearest_neighbour", "radial_distribution"] {
+        let of = |set: &str| fidelity[set][measure].as_f64().unwrap();
+        assert!(
+            of("output") <= 1.5 * of("tiled").max(0.02),
+            "{measure}: {} against tiled {}",
+            of("output"),
+            of("tiled")
+        );
+        assert!(of("output") < 0.5 * of("random"), "{measure}: {} against random {}", of("output"), of("random"));
+    }
+    // A given value still wins.
+    let given = motif(
+        dir.path(),
+        &[&args[..], &["--neighbourhood", "10", "--out", "given.csv", "--report", "given.json"]].concat(),
+    );
+    ok(&given);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("given.json")).unwrap()).unwrap();
+    assert_eq!(
+        (report["neighbourhood"].as_f64(), report["neighbourhood_inferred"].as_bool()),
+        (Some(10.0), Some(false))
+    );
+}

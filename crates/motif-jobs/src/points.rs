@@ -1,7 +1,7 @@
 //! `points` jobs: repetitive structures from point samples (`motif_points`).
 //!
 //! Field names are the flags of `motif points` (kebab-case). An option left out takes the engine's
-//! default ([`motif_points::Params::default`]); only the neighbourhood and the domain are required.
+//! default ([`motif_points::Params::default`]); only the domain is required (δ is inferred from the exemplar when not given).
 
 use std::collections::BTreeMap;
 
@@ -81,6 +81,14 @@ crate::choice_option!(Window: "gaussian", "box");
 crate::declare_options! {
     /// Every option of `motif points` that is neither a file nor the domain, declared once.
     pub struct PointsOptions {
+        /// Neighbourhood size δ in exemplar units (> 0): the width of the Gaussian window
+        /// (truncated at --window-cutoff × δ) or the radius of the box window. Larger keeps larger
+        /// structures; it shrinks to δ/2 during the synthesis. Default: 4 times the exemplar's mean
+        /// nearest-neighbour spacing in 2D, 2 times in 3D (reported as `neighbourhood` and
+        /// `exemplar_spacing`); continuous structures such as contours need about the size of
+        /// their features.
+        [value_name: "DELTA"]
+        neighbourhood: Option<f64> = DEFAULTS.neighbourhood,
         /// Refuse domains that ask for more points than this at the exemplar's density (a guard
         /// against a unit mix-up; about 2 minutes of work per 150 000 points on two cores).
         [value_name: "N", range: (1.0, 1e8)]
@@ -187,13 +195,11 @@ crate::declare_options! {
 /// The engine's defaults, which the options take theirs from.
 const DEFAULTS: Params = Params::DEFAULT;
 
-/// A points job: the structure's neighbourhood and domain, the run's seed and memory bound, and
+/// A points job: the domain, the run's seed and memory bound, and
 /// every other option ([`PointsOptions`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "crate::options::Described<PointsJobFields>")]
 pub struct PointsJob {
-    /// Neighbourhood size δ in exemplar units (> 0).
-    pub neighbourhood: f64,
     /// Where the output grows.
     pub domain: DomainSpec,
     /// Seed of every random choice (default 1, as on the command line).
@@ -211,7 +217,6 @@ pub struct PointsJob {
 #[derive(Debug, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub struct PointsJobFields {
-    neighbourhood: f64,
     domain: DomainSpec,
     #[serde(default = "default_seed")]
     seed: u64,
@@ -223,13 +228,7 @@ impl TryFrom<crate::options::Described<PointsJobFields>> for PointsJob {
     type Error = String;
     fn try_from(described: crate::options::Described<PointsJobFields>) -> Result<Self, String> {
         let (fields, options) = described.split()?;
-        Ok(Self {
-            neighbourhood: fields.neighbourhood,
-            domain: fields.domain,
-            seed: fields.seed,
-            max_memory: fields.max_memory,
-            options,
-        })
+        Ok(Self { domain: fields.domain, seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
@@ -243,9 +242,16 @@ pub struct PointsRun {
 }
 
 impl PointsJob {
-    /// A job with every option at its default.
+    /// A job with the neighbourhood δ and every option at its default.
     pub fn new(neighbourhood: f64, domain: DomainSpec) -> Self {
-        Self { neighbourhood, domain, seed: default_seed(), max_memory: None, options: PointsOptions::default() }
+        let mut job = Self::with_domain(domain);
+        job.options.neighbourhood = Some(neighbourhood);
+        job
+    }
+
+    /// A job with δ inferred from the exemplar and every option at its default.
+    pub fn with_domain(domain: DomainSpec) -> Self {
+        Self { domain, seed: default_seed(), max_memory: None, options: PointsOptions::default() }
     }
 
     /// The engine's domain.
@@ -315,7 +321,7 @@ impl PointsJob {
             }
         };
         let params = Params::DEFAULT
-            .with_neighbourhood(Some(self.neighbourhood))
+            .with_neighbourhood(options.neighbourhood)
             .with_window(options.window)
             .with_sigma(options.sigma)
             .with_rotation(Some(options.rotation).filter(|&r| r != 0.0).map_or(Field::None, Field::Uniform))
@@ -402,6 +408,8 @@ pub fn figures(report: &motif_points::Report) -> Map<String, Value> {
         "shrink": report.shrink,
         "sigma": report.sigma,
         "neighbourhood": report.neighbourhood,
+        "neighbourhood_inferred": report.neighbourhood_inferred,
+        "exemplar_spacing": report.exemplar_spacing,
         "quadrature_points": report.quadrature_points,
         "fidelity": report.fidelity,
     });
@@ -487,7 +495,9 @@ mod tests {
     fn bad_descriptions_name_the_option() {
         let bad = |value: Value| serde_json::from_value::<PointsJob>(value).unwrap_err().to_string();
         assert!(bad(json!({ "neighbourhood": 1, "domain": { "box": [4, 4] }, "patchsize": 3 })).contains("patchsize"));
-        assert!(bad(json!({ "domain": { "box": [4, 4] } })).contains("neighbourhood"));
+        assert!(bad(json!({ "neighbourhood": 1 })).contains("domain"));
+        let inferred: PointsJob = serde_json::from_value(json!({ "domain": { "box": [4, 4] } })).unwrap();
+        assert_eq!(inferred.params(2, &[]).unwrap().neighbourhood, None);
         assert!(bad(json!({ "neighbourhood": 1, "domain": { "box": [4, 4] }, "refine": "most" })).contains("most"));
         let job = PointsJob::new(1.0, DomainSpec::Box(vec![4.0]));
         assert!(job.engine_domain().unwrap_err().to_string().contains("domain"));

@@ -220,7 +220,9 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         return Err(zero_spacing_error(&positions));
     }
     let sigma = params.sigma.unwrap_or(params.spacing_fraction * spacing);
-    let delta = params.neighbourhood.unwrap_or(2.0 * sigma);
+    let delta = params
+        .neighbourhood
+        .unwrap_or_else(|| crate::Params::inferred_neighbourhood(input.exemplar.dimension, spacing));
     // Measured against the exemplar: a window narrower than half a spacing holds no neighbour, a
     // Gaussian wider than ten spacings blurs every structure away, and both only cost time.
     let relative = |name: &str, value: f64, low: f64, high: f64| -> Result<(), Error> {

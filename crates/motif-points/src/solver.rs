@@ -50,6 +50,11 @@ pub struct Report {
     pub sigma: f64,
     /// The starting window size δ.
     pub neighbourhood: f64,
+    /// Whether δ was inferred from the exemplar (no neighbourhood given).
+    pub neighbourhood_inferred: bool,
+    /// The exemplar's mean nearest-neighbour spacing (exemplar units), which σ and an inferred δ
+    /// are multiples of.
+    pub exemplar_spacing: f64,
     /// The window shrink factor α used.
     pub shrink: f64,
     /// Number of quadrature points.
@@ -367,6 +372,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             estimated_memory_bytes: setup.estimated_memory_bytes,
             sigma: setup.sigma,
             neighbourhood: setup.delta,
+            neighbourhood_inferred: params.neighbourhood.is_none(),
+            exemplar_spacing: setup.exemplar.spacing,
             shrink: params.effective_shrink(),
             quadrature_points: setup.quadrature.len(),
             initial_points,

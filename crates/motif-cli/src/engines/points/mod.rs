@@ -28,11 +28,6 @@ pub struct PointsArgs {
     /// `element` column (points sharing an id form a rigid element) and any float attributes.
     #[arg(long, value_name = "EX.ply")]
     pub exemplar: PathBuf,
-    /// Neighbourhood size δ in exemplar units, > 0: the width of the Gaussian window (truncated at
-    /// --window-cutoff × δ) or the radius of the box window. Larger keeps larger structures; it
-    /// shrinks to δ/2 during the synthesis.
-    #[arg(long, value_name = "DELTA", allow_hyphen_values = true)]
-    pub neighbourhood: f64,
     /// Output domain: `box:W,H` (2D) or `box:W,H,D` (3D) from the origin, an SVG file whose first
     /// path's outline is the region (2D), `volume:MESH.obj|ply`, the inside of a closed triangle
     /// mesh (3D; non-manifold meshes are fine, open ones are refused), or `surface:MESH.obj|ply`,
@@ -250,7 +245,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
             }
         }
     };
-    Ok(PointsJob { seed, options: args.options.options.clone(), ..PointsJob::new(args.neighbourhood, domain) })
+    Ok(PointsJob { seed, options: args.options.options.clone(), ..PointsJob::with_domain(domain) })
 }
 
 /// Runs `motif points`.
