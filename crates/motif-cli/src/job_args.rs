@@ -2,8 +2,9 @@
 //! option, named, typed, documented and defaulted as the job declares it, read back into the
 //! job's options struct. No option of a job is written in this crate.
 //!
-//! The parsers here check only the type (a whole number, a finite number, one of the names); the
-//! ranges are checked by the job, once, for every front end.
+//! The parsers here check only the type (a whole number, a finite number, one of the names, a
+//! size `WxH`, a position `X,Y`, pairs `A:B,...`); the ranges are checked by the job, once, for
+//! every front end.
 
 use std::marker::PhantomData;
 
@@ -47,6 +48,32 @@ fn weight(text: &str) -> Result<(String, f64), String> {
     Ok((name.trim().to_string(), number(value).map_err(|error| format!("{text:?}: {error}"))?))
 }
 
+/// `WxH`: two whole numbers.
+fn size(text: &str) -> Result<Value, String> {
+    let (w, h) = text.split_once(['x', 'X']).ok_or("expected WxH, for example 800x600")?;
+    let parse = |v: &str| v.trim().parse::<u64>().map_err(|_| format!("`{v}` is not a positive integer"));
+    Ok(Value::from(vec![parse(w)?, parse(h)?]))
+}
+
+/// `X,Y`: two integers.
+fn position(text: &str) -> Result<Value, String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    let [x, y] = parts.as_slice() else { return Err("expected X,Y (two integers)".into()) };
+    let parse = |v: &str| v.parse::<i64>().map_err(|_| format!("`{v}` is not an integer"));
+    Ok(Value::from(vec![parse(x)?, parse(y)?]))
+}
+
+/// `A:B,...`: pairs of finite numbers.
+fn pairs(text: &str) -> Result<Value, String> {
+    text.split(',')
+        .map(|pair| {
+            let (a, b) = pair.split_once(':').ok_or_else(|| format!("{pair:?} is not A:B (e.g. 0.5:2)"))?;
+            let parse = |v: &str| number(v).map_err(|error| format!("{pair:?}: {error}"));
+            Ok(Value::from(vec![parse(a)?, parse(b)?]))
+        })
+        .collect()
+}
+
 /// The clap argument of one declared option.
 fn arg_of(spec: &OptionSpec) -> Arg {
     let mut arg = Arg::new(id(spec)).long(spec.name.clone()).help(spec.described());
@@ -67,6 +94,9 @@ fn arg_of(spec: &OptionSpec) -> Arg {
         Kind::Numbers => arg.value_parser(number).value_delimiter(',').num_args(1..),
         Kind::Names => arg.value_delimiter(','),
         Kind::Weights => arg.value_parser(weight).action(ArgAction::Append),
+        Kind::Size => arg.value_parser(size),
+        Kind::Position => arg.value_parser(position).allow_hyphen_values(true),
+        Kind::Pairs => arg.value_parser(pairs),
         _ => arg,
     }
 }
@@ -86,8 +116,25 @@ fn value_of(spec: &OptionSpec, matches: &ArgMatches) -> Value {
                 .unwrap_or_default(),
         ),
         Kind::Names => matches.get_many::<String>(&id).map_or(Value::Null, |v| v.cloned().collect()),
+        Kind::Size | Kind::Position | Kind::Pairs => matches.get_one::<Value>(&id).cloned().unwrap_or(Value::Null),
         _ => matches.get_one::<String>(&id).map_or(Value::Null, |v| Value::from(v.clone())),
     }
+}
+
+/// The options given on the command line, read as the job reads them; a value the job refuses
+/// (an integer too large for its type) is named by its flag.
+fn read<O: Declared>(given: Map<String, Value>) -> Result<O, clap::Error> {
+    serde_json::from_value(Value::Object(given.clone())).map_err(|error| {
+        let refused = given.into_iter().find(|(name, value)| {
+            let alone = Map::from_iter([(name.clone(), value.clone())]);
+            serde_json::from_value::<O>(Value::Object(alone)).is_err()
+        });
+        let message = match refused {
+            Some((name, value)) => format!("invalid value '{value}' for '--{name}': {error}\n"),
+            None => format!("{error}\n"),
+        };
+        clap::Error::raw(clap::error::ErrorKind::ValueValidation, message)
+    })
 }
 
 impl<O: Declared> FromArgMatches for JobArgs<O> {
@@ -98,9 +145,7 @@ impl<O: Declared> FromArgMatches for JobArgs<O> {
                 given.insert(spec.name.clone(), value_of(&spec, matches));
             }
         }
-        let options = serde_json::from_value(Value::Object(given))
-            .map_err(|error| clap::Error::raw(clap::error::ErrorKind::ValueValidation, format!("{error}\n")))?;
-        Ok(Self { options, declared: PhantomData })
+        Ok(Self { options: read(given)?, declared: PhantomData })
     }
 
     fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
@@ -122,6 +167,8 @@ impl<O: Declared> Args for JobArgs<O> {
 #[cfg(test)]
 mod tests {
     use clap::Parser;
+    use motif_curve::{ClosedMode, Method};
+    use motif_jobs::curve::CurveOptions;
     use motif_jobs::points::PointsOptions;
     use motif_points::{Initialization, Window};
 
@@ -136,6 +183,18 @@ mod tests {
 
     fn parse(args: &[&str]) -> Result<PointsOptions, clap::Error> {
         Command::try_parse_from(std::iter::once("motif").chain(args.iter().copied())).map(|c| c.options.options)
+    }
+
+    #[derive(Parser, Debug)]
+    #[command(allow_negative_numbers = true)]
+    struct CurveCommand {
+        #[command(flatten)]
+        options: JobArgs<CurveOptions>,
+    }
+
+    fn parse_curve(args: &[&str]) -> Result<CurveOptions, clap::Error> {
+        let args = std::iter::once("motif").chain(args.iter().copied());
+        CurveCommand::try_parse_from(args).map(|c| c.options.options)
     }
 
     #[test]
@@ -182,5 +241,48 @@ mod tests {
             assert!(error.contains(flag), "{flag} {value}: {error}");
         }
         assert!(parse(&["--attribute-weight", "a"]).unwrap_err().to_string().contains("NAME=W"));
+    }
+
+    #[test]
+    fn sizes_positions_pairs_and_choices_read_back_into_the_options() {
+        assert_eq!(parse_curve(&[]).unwrap(), CurveOptions::default());
+        let options = parse_curve(&[
+            "--canvas",
+            "800x600",
+            "--pin-first",
+            "-3,4",
+            "--width-profile",
+            "0:0.5,1:1.5",
+            "--closed",
+            "no",
+            "--method",
+            "synth",
+            "--cut-alpha",
+            "12",
+            "--width",
+            "-2",
+        ])
+        .unwrap();
+        assert_eq!((options.canvas, options.pin_first), (Some([800, 600]), Some([-3, 4])));
+        assert_eq!(options.width_profile, vec![[0.0, 0.5], [1.0, 1.5]]);
+        assert_eq!((options.closed, options.method), (ClosedMode::Open, Method::Synthesis));
+        assert_eq!((options.cut_alpha, options.width), (12, Some(-2.0)));
+    }
+
+    #[test]
+    fn malformed_sizes_positions_and_pairs_name_the_flag() {
+        let cases = [
+            ("--canvas", "800", "WxH"),
+            ("--canvas", "8x-1", "positive integer"),
+            ("--pin-first", "1,2,3", "X,Y"),
+            ("--width-profile", "0.5", "A:B"),
+            ("--width-profile", "0:NaN", "NaN"),
+            ("--closed", "approximate", "approx"),
+            ("--cut-alpha", "300", "u8"),
+        ];
+        for (flag, value, words) in cases {
+            let error = parse_curve(&[flag, value]).unwrap_err().to_string();
+            assert!(error.contains(flag) && error.contains(words), "{flag} {value}: {error}");
+        }
     }
 }

@@ -249,8 +249,11 @@ fn bad_input_gives_clear_errors() {
     assert!(e.contains("invalid width"), "{e}");
     let e = failure(&with(&["--width", "20", "--piece-length", "500"]), &files);
     assert!(e.contains("piece-length") && e.contains("curve's length"), "{e}");
-    let e = failure(&with(&["--width", "NaN", "--piece-length", "10"]), &files);
-    assert!(e.contains("invalid width"), "{e}");
+    // A value that is not a finite number is a usage error naming the flag (exit 2).
+    let output = run(&with(&["--width", "NaN", "--piece-length", "10"]), &files);
+    let e = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{e}");
+    assert!(e.contains("--width") && e.contains("NaN"), "{e}");
     let e = failure(&with(&["--width", "20", "--piece-length", "10", "--min-coverage", "1.5"]), &files);
     assert!(e.contains("invalid min-coverage"), "{e}");
     // Tiny and huge values are refused before any allocation, with readable numbers and the flag

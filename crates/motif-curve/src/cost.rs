@@ -30,7 +30,6 @@ use crate::piece::{PieceFrame, Position};
 pub const COST_SCALE: f64 = 8.0;
 
 /// How alpha enters the matching cost ξ.
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum AlphaMode {

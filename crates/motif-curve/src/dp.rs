@@ -34,7 +34,6 @@ use crate::piece::{PieceFrame, Position};
 use crate::profile_tree::exact_row;
 
 /// Which dynamic-programming solver to run.
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Solver {

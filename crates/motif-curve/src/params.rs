@@ -9,39 +9,33 @@ use crate::dp::Solver;
 use crate::{Error, Input};
 
 /// How a closed curve is treated (§1.5).
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ClosedMode {
     /// `Approximate` (`approx`) for a closed curve, `Open` (`no`) for an open one.
     Auto,
     /// The paper's single DP with backtracking from every terminal position.
-    #[cfg_attr(feature = "clap", value(name = "approx"))]
-    #[serde(alias = "approx")]
+    #[serde(rename = "approx", alias = "approximate")]
     Approximate,
     /// Branch and bound over start positions with a certificate of optimality.
     Exact,
     /// Treat the curve as open (a closed curve is cut at its first point).
-    #[cfg_attr(feature = "clap", value(name = "no"))]
-    #[serde(alias = "no")]
+    #[serde(rename = "no", alias = "open")]
     Open,
 }
 
 /// Which pattern generator to run.
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Method {
     /// The paper's synthesis: undistorted pieces placed by dynamic programming.
-    #[cfg_attr(feature = "clap", value(name = "synth"))]
-    #[serde(alias = "synth")]
+    #[serde(rename = "synth", alias = "synthesis")]
     Synthesis,
     /// The classic baseline: the exemplar repeated along the arc length and bent with the ribbon.
     Repeat,
 }
 
 /// How a piece maps the exemplar onto the ribbon.
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum PieceShape {

@@ -1,8 +1,10 @@
 //! `curve` jobs: structured raster patterns along curves (`motif_curve`).
 //!
-//! Field names are the flags of `motif curve`; none is required: a missing width or piece length
-//! is inferred from the first exemplar (`motif_curve::Dimensions::resolve`).
-//! The exemplars, the curve and the avoidance map come decoded (the CLI reads PNG and SVG).
+//! Option names are the flags of `motif curve` ([`CurveOptions`], declared once); none is
+//! required: a missing width or piece length is inferred from the first exemplar
+//! (`motif_curve::Dimensions::resolve`), every other option takes the engine's default
+//! ([`motif_curve::Params::DEFAULT`]). The exemplars, the curve and the avoidance map come
+//! decoded (the CLI reads PNG and SVG).
 
 use motif_core::{Polyline, Progress, RgbaImage};
 use motif_curve::{AlphaMode, Canvas, ClosedMode, Dimensions, Input, Method, Output, Params, PieceShape, Solver};
@@ -11,89 +13,158 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::JobError;
+use crate::options::{Declared, Described};
 
-/// Every option of `motif curve` that is not a file (or the flattening tolerance of one).
+crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
+crate::choice_option!(Method: "synth", "repeat");
+crate::choice_option!(Solver: "exact", "reference");
+crate::choice_option!(AlphaMode: "binary", "continuous");
+crate::choice_option!(PieceShape: "rigid", "bent");
+
+crate::declare_options! {
+    /// Every option of `motif curve` that is neither a file nor the flattening tolerance of one,
+    /// declared once.
+    pub struct CurveOptions {
+        /// Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece
+        /// edge (C) and should exceed the pattern's height in the exemplar. Default: inferred from
+        /// the first exemplar, the pattern's height (rows with alpha above --cut-alpha) plus the
+        /// clear row above and below, 15% wider, divided by the scale.
+        [value_name: "B"]
+        width: Option<f64> = None,
+        /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
+        /// Default: inferred from the first exemplar, 0.55 of the pattern's period along x (the
+        /// first strong peak of the autocorrelation of its columns), kept between a quarter and
+        /// 0.6 of the pattern's height, divided by the scale; 0.3 of the pattern's height when it
+        /// has no period.
+        [value_name: "D"]
+        piece_length: Option<f64> = None,
+        /// Scale s: exemplar pixels per canvas pixel (2 draws the pattern at half size).
+        [value_name: "S", range: (0.05, 20.0)]
+        scale: f64 = DEFAULTS.scale,
+        /// Closed-curve handling: auto (approx for a closed curve, no for an open one); approx, the
+        /// paper's single dynamic program with backtracking from every terminal position; exact,
+        /// branch and bound over start positions with a certificate of optimality; no, the curve
+        /// treated as open (a closed curve is cut at its first point).
+        [value_name: "auto|approx|exact|no"]
+        closed: ClosedMode = DEFAULTS.closed,
+        /// Do not detect fold-overs and overlaps of the ribbon (by default the pattern avoids them).
+        no_foldover_avoidance: bool = !DEFAULTS.foldover_avoidance,
+        /// Stitch piece boundaries (edge alignment with penalty P, propagated inside the pieces).
+        stitch: bool = DEFAULTS.stitch,
+        /// Stitching penalty P for moving opaque samples.
+        [value_name: "P", range: (0.0, 100_000.0)]
+        stitch_penalty: f64 = DEFAULTS.stitch_penalty,
+        /// Pattern generator: synth, the paper's synthesis (undistorted pieces placed by dynamic
+        /// programming), or repeat, the classic baseline (the exemplar repeated along the arc length
+        /// and bent with the ribbon).
+        [value_name: "synth|repeat"]
+        method: Method = DEFAULTS.method,
+        /// Dynamic-programming solver: exact (merged identical edges, branch and bound over a
+        /// profile tree, lower bounds and early exit) or reference (the plain O(V²C) dynamic
+        /// program); both find the same optimum.
+        [value_name: "exact|reference"]
+        solver: Solver = DEFAULTS.solver,
+        /// Alpha in the matching cost: binary, the paper's ξ (alpha thresholded at 128, opaque or
+        /// transparent), or continuous, ξ blended by alpha for anti-aliased and semi-transparent
+        /// exemplars.
+        [value_name: "binary|continuous"]
+        alpha: AlphaMode = DEFAULTS.alpha_mode,
+        /// γ, the matching cost of an opaque against a transparent pixel.
+        [value_name: "GAMMA", range: (1.0, 100_000.0)]
+        gamma: f64 = DEFAULTS.mismatch_penalty,
+        /// Pin the first piece's exemplar position (top-left corner, pixels; must be a valid
+        /// position).
+        [value_name: "X,Y"]
+        pin_first: Option<[i32; 2]> = DEFAULTS.pin_first,
+        /// Canvas size in pixels (document origin at the top-left); default: fitted to the ribbon.
+        [value_name: "WxH"]
+        canvas: Option<[usize; 2]> = None,
+        /// Margin around the ribbon when the canvas is fitted, pixels.
+        [value_name: "PX", range: (0.0, 4096.0)]
+        margin: f64 = fitted_margin(),
+        /// Anti-aliasing: render samples per pixel along each axis.
+        [value_name: "N", range: (1.0, 8.0)]
+        samples: usize = DEFAULTS.samples_per_axis,
+        /// Alpha at or below which a pixel counts as transparent when checking that a piece slices
+        /// the pattern completely.
+        [value_name: "A", range: (0.0, 254.0)]
+        cut_alpha: u8 = DEFAULTS.cut_alpha,
+        /// Minimum coverage: a piece position is valid only if it holds at least this share of the
+        /// pattern pixels a typical piece holds (the median over exemplar windows spanning the
+        /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule.
+        [value_name: "F", range: (0.0, 1.0)]
+        min_coverage: f64 = DEFAULTS.min_coverage,
+        /// Repetition penalty W (not in the paper), in seam-cost units: each pair of pieces at most
+        /// --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the
+        /// paper's energy, which may alternate two windows along a straight line.
+        [value_name: "W", range: (0.0, 1e6)]
+        variety: f64 = DEFAULTS.variety,
+        /// How many pieces apart a repeated window is penalised by --variety.
+        [value_name: "R", range: (1.0, 1000.0)]
+        variety_radius: usize = DEFAULTS.variety_radius,
+        /// Piece shape: bent pieces follow the ribbon (seams compare vertical columns, so the
+        /// exemplar continues across them; stretched outside bends); rigid pieces are the paper's
+        /// undistorted, rotated copies.
+        [value_name: "rigid|bent"]
+        pieces_shape: PieceShape = DEFAULTS.piece_shape,
+        /// Width profile: comma-separated T:F pairs, T the fraction of the curve's length (0–1,
+        /// ascending) and F the factor (0.1–10) multiplying --width there, interpolated in between;
+        /// the pattern scales with the width (e.g. 0:0.5,0.5:1.5,1:0.5 swells in the middle).
+        /// Needs bent pieces.
+        [value_name: "T:F,..."]
+        width_profile: Vec<[f64; 2]> = Vec::new(),
+        /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
+        /// not fold at cusps and corners (where the paper leaves pieces empty); 0 keeps the curve
+        /// as given.
+        [value_name: "F", range: (0.0, 8.0)]
+        round_bends: f64 = DEFAULTS.round_bends,
+        /// Measure the result against the exemplar (patches read back along the curve, nearest
+        /// exemplar patch) and add the figures to the report and the summary.
+        fidelity: bool = false,
+        /// Exact closed mode: start positions tried at most before giving up the certificate.
+        [value_name: "N", range: (1.0, 100_000.0)]
+        closed_max_starts: usize = DEFAULTS.closed_max_starts,
+    }
+}
+
+/// The engine's defaults, which the options take theirs from.
+const DEFAULTS: Params = Params::DEFAULT;
+
+/// The margin of the engine's default canvas, fitted to the ribbon.
+fn fitted_margin() -> f64 {
+    match DEFAULTS.canvas {
+        Canvas::Fit { margin } => margin,
+        Canvas::Size { .. } => 0.0,
+    }
+}
+
+/// A curve job: the run's memory bound and every option ([`CurveOptions`]).
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(try_from = "Described<CurveJobFields>")]
 pub struct CurveJob {
-    /// Ribbon width in canvas pixels (> 0); inferred from the exemplar's pattern height when
-    /// missing.
-    #[serde(default)]
-    pub width: Option<f64>,
-    /// Piece length along the curve in canvas pixels (> 0); inferred from the exemplar's period
-    /// when missing.
-    #[serde(default)]
-    pub piece_length: Option<f64>,
-    /// Exemplar pixels per canvas pixel.
-    #[serde(default)]
-    pub scale: Option<f64>,
-    /// Closed curves: `auto` (default), `approx`, `exact` or `no`.
-    #[serde(default)]
-    pub closed: Option<ClosedMode>,
-    /// `synth` (the paper, default) or `repeat` (the baseline).
-    #[serde(default)]
-    pub method: Option<Method>,
-    /// `exact` (default) or `reference`.
-    #[serde(default)]
-    pub solver: Option<Solver>,
-    /// How alpha enters the seam cost: `continuous` (default) or `binary`.
-    #[serde(default)]
-    pub alpha: Option<AlphaMode>,
-    /// Mismatch penalty γ.
-    #[serde(default)]
-    pub gamma: Option<f64>,
-    /// Align the seams after the solve.
-    #[serde(default)]
-    pub stitch: bool,
-    /// Cost per stitched pixel.
-    #[serde(default)]
-    pub stitch_penalty: Option<f64>,
-    /// Turn fold-over avoidance off.
-    #[serde(default)]
-    pub no_foldover_avoidance: bool,
-    /// Pin the first piece to this exemplar position `[x, y]`.
-    #[serde(default)]
-    pub pin_first: Option<[i32; 2]>,
-    /// A fixed canvas `[W, H]` (default: fitted to the ribbon).
-    #[serde(default)]
-    pub canvas: Option<[usize; 2]>,
-    /// Border of a fitted canvas, pixels.
-    #[serde(default)]
-    pub margin: Option<f64>,
-    /// Render samples per pixel along each axis.
-    #[serde(default)]
-    pub samples: Option<usize>,
-    /// Alpha below which a pixel counts as background.
-    #[serde(default)]
-    pub cut_alpha: Option<u8>,
-    /// Least share of pattern a piece's window must hold.
-    #[serde(default)]
-    pub min_coverage: Option<f64>,
-    /// Weight of the penalty on repeated exemplar windows.
-    #[serde(default)]
-    pub variety: Option<f64>,
-    /// Windows closer than this (exemplar pixels) count as repeats.
-    #[serde(default)]
-    pub variety_radius: Option<usize>,
-    /// `bent` (default) or `rigid` pieces.
-    #[serde(default)]
-    pub pieces_shape: Option<PieceShape>,
-    /// Width factor along the curve, `[[t, factor], ...]` with t in [0, 1].
-    #[serde(default)]
-    pub width_profile: Vec<[f64; 2]>,
-    /// Bends tighter than this many widths are rounded.
-    #[serde(default)]
-    pub round_bends: Option<f64>,
-    /// Start positions tried by the exact closed solver.
-    #[serde(default)]
-    pub closed_max_starts: Option<usize>,
-    /// Also measure patch fidelity (the result read back along the curve against the exemplar).
-    #[serde(default)]
-    pub fidelity: bool,
     /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
     /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
-    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    #[serde(rename = "max-memory")]
     pub max_memory: Option<u64>,
+    /// Every option.
+    #[serde(flatten)]
+    pub options: CurveOptions,
+}
+
+/// The fields of a [`CurveJob`] outside its options, as a description holds them.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct CurveJobFields {
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    max_memory: Option<u64>,
+}
+
+impl TryFrom<Described<CurveJobFields>> for CurveJob {
+    type Error = String;
+    fn try_from(described: Described<CurveJobFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { max_memory: fields.max_memory, options })
+    }
 }
 
 /// A finished curve job.
@@ -126,12 +197,14 @@ impl CurveJob {
     /// A job with the given width and piece length and every other option at its default
     /// ([`default`](Default::default) leaves the width and piece length to be inferred).
     pub fn new(width: f64, piece_length: f64) -> Self {
-        Self { width: Some(width), piece_length: Some(piece_length), ..Self::default() }
+        let options = CurveOptions { width: Some(width), piece_length: Some(piece_length), ..CurveOptions::default() };
+        Self { max_memory: None, options }
     }
 
     /// The engine's parameters for `inputs`, with the width and piece length each given or
     /// inferred from the first exemplar (an inferred piece length is capped at the curve's length).
     pub fn params(&self, inputs: &CurveInputs<'_>) -> Result<(Params, Dimensions), JobError> {
+        self.options.check_ranges()?;
         let dimensions = self.dimensions(inputs)?;
         let params = self.params_with(dimensions.width.value, dimensions.piece_length.value)?;
         Ok((params, dimensions))
@@ -139,12 +212,14 @@ impl CurveJob {
 
     /// The width and piece length: the job's, or inferred where it has none.
     fn dimensions(&self, inputs: &CurveInputs<'_>) -> Result<Dimensions, JobError> {
-        let d = Params::default();
-        let (scale, cut_alpha) = (self.scale.unwrap_or(d.scale), self.cut_alpha.unwrap_or(d.cut_alpha));
-        if cut_alpha == 255 {
-            return Err(motif_core::InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254").into());
-        }
-        let mut dimensions = Dimensions::resolve(inputs.exemplar, self.width, self.piece_length, scale, cut_alpha)?;
+        let options = &self.options;
+        let mut dimensions = Dimensions::resolve(
+            inputs.exemplar,
+            options.width,
+            options.piece_length,
+            options.scale,
+            options.cut_alpha,
+        )?;
         let length = inputs.curve.length();
         if dimensions.piece_length.inferred && dimensions.piece_length.value > length {
             dimensions.piece_length.value = length;
@@ -154,40 +229,35 @@ impl CurveJob {
 
     /// The engine's parameters with this width and piece length.
     fn params_with(&self, width: f64, piece_length: f64) -> Result<Params, JobError> {
-        let d = Params::default();
-        let margin = match d.canvas {
-            Canvas::Fit { margin } => margin,
-            Canvas::Size { .. } => 0.0,
-        };
-        let canvas = match self.canvas {
+        let options = &self.options;
+        let canvas = match options.canvas {
             Some([width, height]) => Canvas::Size { width, height },
-            None => Canvas::Fit { margin: self.margin.unwrap_or(margin) },
+            None => Canvas::Fit { margin: options.margin },
         };
-        let params = d
-            .clone()
+        let params = Params::DEFAULT
             .with_width(width)
             .with_piece_length(piece_length)
-            .with_scale(self.scale.unwrap_or(d.scale))
-            .with_closed(self.closed.unwrap_or(d.closed))
-            .with_method(self.method.unwrap_or(d.method))
-            .with_solver(self.solver.unwrap_or(d.solver))
-            .with_alpha_mode(self.alpha.unwrap_or(d.alpha_mode))
-            .with_mismatch_penalty(self.gamma.unwrap_or(d.mismatch_penalty))
-            .with_stitch(self.stitch)
-            .with_stitch_penalty(self.stitch_penalty.unwrap_or(d.stitch_penalty))
-            .with_foldover_avoidance(!self.no_foldover_avoidance)
-            .with_pin_first(self.pin_first)
+            .with_scale(options.scale)
+            .with_closed(options.closed)
+            .with_method(options.method)
+            .with_solver(options.solver)
+            .with_alpha_mode(options.alpha)
+            .with_mismatch_penalty(options.gamma)
+            .with_stitch(options.stitch)
+            .with_stitch_penalty(options.stitch_penalty)
+            .with_foldover_avoidance(!options.no_foldover_avoidance)
+            .with_pin_first(options.pin_first)
             .with_canvas(canvas)
-            .with_samples_per_axis(self.samples.unwrap_or(d.samples_per_axis))
-            .with_cut_alpha(self.cut_alpha.unwrap_or(d.cut_alpha))
-            .with_min_coverage(self.min_coverage.unwrap_or(d.min_coverage))
-            .with_closed_max_starts(self.closed_max_starts.unwrap_or(d.closed_max_starts))
-            .with_variety(self.variety.unwrap_or(d.variety))
-            .with_variety_radius(self.variety_radius.unwrap_or(d.variety_radius))
-            .with_round_bends(self.round_bends.unwrap_or(d.round_bends))
-            .with_width_profile(self.width_profile.iter().map(|&[t, f]| (t, f)).collect())
-            .with_piece_shape(self.pieces_shape.unwrap_or(d.piece_shape))
-            .with_max_memory(self.max_memory.unwrap_or(d.max_memory));
+            .with_samples_per_axis(options.samples)
+            .with_cut_alpha(options.cut_alpha)
+            .with_min_coverage(options.min_coverage)
+            .with_closed_max_starts(options.closed_max_starts)
+            .with_variety(options.variety)
+            .with_variety_radius(options.variety_radius)
+            .with_round_bends(options.round_bends)
+            .with_width_profile(options.width_profile.iter().map(|&[t, f]| (t, f)).collect())
+            .with_piece_shape(options.pieces_shape)
+            .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory));
         params.validate()?;
         Ok(params)
     }
@@ -226,7 +296,7 @@ impl CurveJob {
             Some(session) => session.synthesize(&input, &params, progress)?,
             None => motif_curve::synthesize(&input, &params, progress)?,
         };
-        let fidelity = self.fidelity.then(|| {
+        let fidelity = self.options.fidelity.then(|| {
             patch_fidelity(inputs.exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         });
         let mut figures = figures(&output.report);
@@ -365,7 +435,8 @@ mod tests {
         assert_eq!(run.figures["width_inferred"], true);
         assert_eq!(run.figures["piece_length"], 8.0);
         assert_eq!(run.figures["piece_length_inferred"], true);
-        let given = CurveJob { width: Some(30.0), ..job };
+        let mut given = job;
+        given.options.width = Some(30.0);
         let (params, dimensions) = given.params(&inputs).unwrap();
         assert_eq!((params.width, params.piece_length), (30.0, 8.0));
         assert!(!dimensions.width.inferred && dimensions.piece_length.inferred);
@@ -377,13 +448,43 @@ mod tests {
         assert!(error.unwrap_err().to_string().contains("maybe"));
         let (exemplar, curve) = (rings(), line());
         let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
-        let job = CurveJob { scale: Some(0.0), ..CurveJob::new(24.0, 12.0) };
-        assert!(job.params(&inputs).unwrap_err().to_string().contains("scale"));
-        let job = CurveJob { scale: Some(0.0), ..CurveJob::default() };
-        assert!(job.params(&inputs).unwrap_err().to_string().contains("scale"));
+        for mut job in [CurveJob::new(24.0, 12.0), CurveJob::default()] {
+            job.options.scale = 0.0;
+            assert!(job.params(&inputs).unwrap_err().to_string().contains("invalid scale = 0"));
+        }
+        let unknown = serde_json::from_value::<CurveJob>(json!({ "widht": 24 })).unwrap_err().to_string();
+        assert!(unknown.contains("widht"), "{unknown}");
+        let job =
+            CurveJob { options: CurveOptions { cut_alpha: 255, ..CurveOptions::default() }, ..CurveJob::default() };
+        assert!(job.params(&inputs).unwrap_err().to_string().contains("invalid cut-alpha = 255"));
         let clear = RgbaImage::from_fn(40, 20, |_, _| [0; 4]);
         let inputs = CurveInputs { exemplar: &clear, ..inputs };
         let error = CurveJob::default().params(&inputs).unwrap_err().to_string();
         assert!(error.contains("no pattern found"), "{error}");
+    }
+
+    /// The choices are named as on the command line, and a description may also use the engine's
+    /// longer names; the defaults are the engine's, the memory bound stays a field of the job.
+    #[test]
+    fn options_are_named_as_the_flags_and_default_to_the_engine() {
+        let job: CurveJob = serde_json::from_value(json!({
+            "closed": "approximate",
+            "method": "synthesis",
+            "max-memory": "64M",
+        }))
+        .unwrap();
+        assert_eq!((job.options.closed, job.options.method), (ClosedMode::Approximate, Method::Synthesis));
+        assert_eq!(job.max_memory, Some(64 << 20));
+        let written = serde_json::to_value(&job).unwrap();
+        assert_eq!((written["closed"].as_str(), written["method"].as_str()), (Some("approx"), Some("synth")));
+        let written = serde_json::to_value(CurveJob::new(24.0, 12.0)).unwrap();
+        assert!(written.get("max-memory").is_some_and(Value::is_null), "{written}");
+        let (exemplar, curve) = (rings(), line());
+        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let (params, _) = CurveJob::new(24.0, 12.0).params(&inputs).unwrap();
+        assert_eq!(params, Params::DEFAULT.with_width(24.0).with_piece_length(12.0));
+        let names: Vec<String> = CurveOptions::options().into_iter().map(|spec| spec.name).collect();
+        assert_eq!(names[..2], ["width", "piece-length"]);
+        assert!(names.iter().all(|name| written.get(name).is_some()), "{names:?}");
     }
 }

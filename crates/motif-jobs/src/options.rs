@@ -1,12 +1,12 @@
 //! Options declared once: name, type, range, default and help of every option of a job.
 //!
-//! A job's options are one struct written with [`declare_options!`]: each field's doc comment is
-//! its help, its `= expression` its default (the engine's `Params::DEFAULT` where the engine has
-//! one), and `[value_name: "N", range: (1.0, 256.0)]` what a command line shows and accepts. The
-//! macro derives the struct's serde form (kebab-case names, unknown names refused, every field
-//! optional) and [`Declared::options`], the list every front end reads: the CLI builds its flags
-//! from it, Python its keywords, type stubs and `motif.options()`, the page its controls, and
-//! `docs/cli.md` is generated from the CLI. Nothing else names an option.
+//! A job's options are one struct written with [`declare_options!`](crate::declare_options): each
+//! field's doc comment is its help, its `= expression` its default (the engine's `Params::DEFAULT`
+//! where the engine has one), and `[value_name: "N", range: (1.0, 256.0)]` what a command line
+//! shows and accepts. The macro derives the struct's serde form (kebab-case names, unknown names
+//! refused, every field optional) and [`Declared::options`], the list every front end reads: the
+//! CLI builds its flags from it, Python its keywords, type stubs and `motif.options()`, the page
+//! its controls, and `docs/cli.md` is generated from the CLI. Nothing else names an option.
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -35,6 +35,12 @@ pub enum Kind {
     Names,
     /// Named weights, `NAME=W` (repeatable on the command line; a dict in Python).
     Weights,
+    /// A size in whole numbers, `[W, H]` (`WxH` on the command line).
+    Size,
+    /// A position in integers, `[X, Y]` (`X,Y` on the command line).
+    Position,
+    /// A list of number pairs, `[[A, B], ...]` (`A:B,...` on the command line).
+    Pairs,
 }
 
 /// One option of a job, as declared.
@@ -141,6 +147,13 @@ impl OptionValue for usize {
     }
 }
 
+impl OptionValue for u8 {
+    const KIND: Kind = Kind::Integer;
+    fn shown(&self) -> Option<String> {
+        Some(self.to_string())
+    }
+}
+
 impl OptionValue for u32 {
     const KIND: Kind = Kind::Integer;
     fn shown(&self) -> Option<String> {
@@ -181,6 +194,28 @@ impl OptionValue for std::collections::BTreeMap<String, f64> {
     fn shown(&self) -> Option<String> {
         (!self.is_empty())
             .then(|| self.iter().map(|(k, v)| format!("{k}={}", number(*v))).collect::<Vec<_>>().join(","))
+    }
+}
+
+impl OptionValue for [usize; 2] {
+    const KIND: Kind = Kind::Size;
+    fn shown(&self) -> Option<String> {
+        Some(format!("{}x{}", self[0], self[1]))
+    }
+}
+
+impl OptionValue for [i32; 2] {
+    const KIND: Kind = Kind::Position;
+    fn shown(&self) -> Option<String> {
+        Some(format!("{},{}", self[0], self[1]))
+    }
+}
+
+impl OptionValue for Vec<[f64; 2]> {
+    const KIND: Kind = Kind::Pairs;
+    fn shown(&self) -> Option<String> {
+        (!self.is_empty())
+            .then(|| self.iter().map(|[a, b]| format!("{}:{}", number(*a), number(*b))).collect::<Vec<_>>().join(","))
     }
 }
 

@@ -9,14 +9,15 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Point, Polyline};
-use motif_curve::{AlphaMode, ClosedMode, Method, PieceShape, Solver};
-use motif_jobs::curve::{CurveInputs, CurveJob};
+use motif_jobs::curve::{CurveInputs, CurveJob, CurveOptions};
 use serde_json::json;
 
 use crate::context::Context;
 use crate::gallery::Demo;
+use crate::job_args::JobArgs;
 
-/// Options of `motif curve`.
+/// Options of `motif curve`: its files, the flattening tolerance of an SVG curve, and the job's
+/// options ([`CurveOptions`], declared in `motif_jobs::curve`).
 #[derive(Args, Debug)]
 pub struct CurveArgs {
     /// Exemplar image (PNG/JPEG) with alpha: opaque pixels are the pattern, on a transparent
@@ -27,102 +28,13 @@ pub struct CurveArgs {
     /// or PLY point list with x and y columns (closed if its last point repeats the first).
     #[arg(long, value_name = "CURVE.svg")]
     pub path: PathBuf,
-    /// Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece
-    /// edge (C) and should exceed the pattern's height in the exemplar. Default: inferred from
-    /// the first exemplar, the pattern's height (rows with alpha above --cut-alpha) plus the
-    /// clear row above and below, 15% wider, divided by the scale.
-    #[arg(long, value_name = "B", allow_negative_numbers = true)]
-    pub width: Option<f64>,
-    /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
-    /// Default: inferred from the first exemplar, 0.55 of the pattern's period along x (the first
-    /// strong peak of the autocorrelation of its columns), kept between a quarter and 0.6 of the
-    /// pattern's height, divided by the scale; 0.3 of the pattern's height when it has no
-    /// period.
-    #[arg(long, value_name = "D", allow_negative_numbers = true)]
-    pub piece_length: Option<f64>,
-    /// Scale s: exemplar pixels per canvas pixel, 0.05–20 (2 draws the pattern at half size).
-    #[arg(long, value_name = "S", default_value_t = 1.0, allow_negative_numbers = true)]
-    pub scale: f64,
-    /// Closed-curve handling.
-    #[arg(long, value_enum, default_value = "auto")]
-    pub closed: ClosedMode,
     /// Avoidance map over the canvas (PNG): opaque white pixels are forbidden to the pattern. It
     /// sets the canvas size (canvas origin = document origin).
     #[arg(long, value_name = "MASK.png")]
     pub avoid: Option<PathBuf>,
-    /// Do not detect fold-overs and overlaps of the ribbon (by default the pattern avoids them).
-    #[arg(long)]
-    pub no_foldover_avoidance: bool,
-    /// Stitch piece boundaries (edge alignment with penalty P, propagated inside the pieces).
-    #[arg(long)]
-    pub stitch: bool,
-    /// Stitching penalty P for moving opaque samples, 0–100000.
-    #[arg(long, value_name = "P", default_value_t = 32.0)]
-    pub stitch_penalty: f64,
-    /// Pattern generator.
-    #[arg(long, value_enum, default_value = "synth")]
-    pub method: Method,
-    /// Dynamic-programming solver.
-    #[arg(long, value_enum, default_value = "exact")]
-    pub solver: Solver,
-    /// Alpha in the matching cost.
-    #[arg(long, value_enum, default_value = "continuous")]
-    pub alpha: AlphaMode,
-    /// γ, the matching cost of an opaque against a transparent pixel, 1–100000.
-    #[arg(long, value_name = "GAMMA", default_value_t = 1024.0)]
-    pub gamma: f64,
-    /// Pin the first piece's exemplar position (top-left corner, pixels; must be a valid position).
-    #[arg(long, value_name = "X,Y", value_parser = parse_pin, allow_hyphen_values = true)]
-    pub pin_first: Option<[i32; 2]>,
-    /// Canvas size in pixels (document origin at the top-left); default: fitted to the ribbon.
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
-    pub canvas: Option<[usize; 2]>,
-    /// Margin around the ribbon when the canvas is fitted, pixels, 0–4096.
-    #[arg(long, value_name = "PX", default_value_t = 4.0)]
-    pub margin: f64,
-    /// Anti-aliasing: render samples per pixel along each axis, 1–8.
-    #[arg(long, value_name = "N", default_value_t = 3)]
-    pub samples: usize,
-    /// Alpha (0–254) at or below which a pixel counts as transparent when checking that a piece
-    /// slices the pattern completely.
-    #[arg(long, value_name = "A", default_value_t = 8)]
-    pub cut_alpha: u8,
-    /// Minimum coverage, 0–1: a piece position is valid only if it holds at least this share of
-    /// the pattern pixels a typical piece holds (the median over exemplar windows spanning the
-    /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule.
-    #[arg(long, value_name = "F", default_value_t = 0.5)]
-    pub min_coverage: f64,
-    /// Repetition penalty W (not in the paper), in seam-cost units, 0–10^6: each pair of pieces at
-    /// most --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the
-    /// paper's energy, which may alternate two windows along a straight line.
-    #[arg(long, value_name = "W", default_value_t = 0.0, allow_hyphen_values = true)]
-    pub variety: f64,
-    /// How many pieces apart a repeated window is penalised by --variety, 1–1000.
-    #[arg(long, value_name = "R", default_value_t = 8)]
-    pub variety_radius: usize,
-    /// Piece shape: bent pieces follow the ribbon (seams compare vertical columns, so the
-    /// exemplar continues across them; stretched outside bends); rigid pieces are the paper's
-    /// undistorted, rotated copies.
-    #[arg(long, value_enum, default_value = "bent")]
-    pub pieces_shape: PieceShape,
-    /// Width profile: comma-separated T:F pairs, T the fraction of the curve's length (0–1,
-    /// ascending) and F the factor (0.1–10) multiplying --width there, interpolated in between;
-    /// the pattern scales with the width (e.g. 0:0.5,0.5:1.5,1:0.5 swells in the middle). Needs
-    /// bent pieces.
-    #[arg(long, value_name = "T:F,...", value_parser = parse_profile)]
-    pub width_profile: Option<WidthProfile>,
-    /// Round bends of the curve tighter than F × width to that radius, so that the ribbon does
-    /// not fold at cusps and corners (where the paper leaves pieces empty), 0–8; 0 keeps the
-    /// curve as given.
-    #[arg(long, value_name = "F", default_value_t = 0.6, allow_hyphen_values = true)]
-    pub round_bends: f64,
-    /// Measure the result against the exemplar (patches read back along the curve, nearest
-    /// exemplar patch) and add the figures to the report and the summary.
-    #[arg(long)]
-    pub fidelity: bool,
-    /// Exact closed mode: start positions tried at most before giving up the certificate.
-    #[arg(long, value_name = "N", default_value_t = 64)]
-    pub closed_max_starts: usize,
+    /// Every option of the job.
+    #[command(flatten)]
+    pub options: JobArgs<CurveOptions>,
     /// Curve flattening tolerance for SVG paths, pixels, 0.001–100.
     #[arg(long, value_name = "T", default_value_t = 0.1)]
     pub tolerance: f64,
@@ -137,38 +49,6 @@ pub struct CurveArgs {
     /// stitch remapping T.
     #[arg(long, value_name = "OUT.json")]
     pub pieces: Option<PathBuf>,
-}
-
-/// A parsed `--width-profile` (a newtype, so that clap takes it as one value).
-#[derive(Debug, Clone)]
-pub struct WidthProfile(pub Vec<(f64, f64)>);
-
-fn parse_profile(text: &str) -> Result<WidthProfile, String> {
-    text.split(',')
-        .map(|pair| {
-            let (t, f) = pair.split_once(':').ok_or_else(|| format!("{pair:?} is not T:F (e.g. 0.5:2)"))?;
-            let number = |v: &str| v.trim().parse::<f64>().map_err(|_| format!("{v:?} in {pair:?} is not a number"));
-            Ok((number(t)?, number(f)?))
-        })
-        .collect::<Result<_, _>>()
-        .map(WidthProfile)
-}
-
-fn parse_pin(text: &str) -> Result<[i32; 2], String> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    match parts.as_slice() {
-        [x, y] => Ok([
-            x.parse().map_err(|_| format!("`{x}` is not an integer"))?,
-            y.parse().map_err(|_| format!("`{y}` is not an integer"))?,
-        ]),
-        _ => Err("expected X,Y (two integers)".into()),
-    }
-}
-
-fn parse_size(text: &str) -> Result<[usize; 2], String> {
-    let (w, h) = text.split_once(['x', 'X']).ok_or("expected WxH, for example 800x600")?;
-    let parse = |v: &str| v.trim().parse::<usize>().map_err(|_| format!("`{v}` is not a positive integer"));
-    Ok([parse(w)?, parse(h)?])
 }
 
 /// Reads the curve: an SVG path or a point list.
@@ -195,41 +75,6 @@ pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
         points.pop();
     }
     Polyline::new(points, closed).with_context(|| format!("{}: bad curve", path.display()))
-}
-
-/// The job the arguments describe (`motif_jobs::curve` turns it into engine parameters, as it
-/// does for every front end).
-fn job_of(args: &CurveArgs) -> CurveJob {
-    CurveJob {
-        scale: Some(args.scale),
-        closed: Some(args.closed),
-        method: Some(args.method),
-        solver: Some(args.solver),
-        alpha: Some(args.alpha),
-        gamma: Some(args.gamma),
-        stitch: args.stitch,
-        stitch_penalty: Some(args.stitch_penalty),
-        no_foldover_avoidance: args.no_foldover_avoidance,
-        pin_first: args.pin_first,
-        canvas: args.canvas,
-        margin: Some(args.margin),
-        samples: Some(args.samples),
-        cut_alpha: Some(args.cut_alpha),
-        min_coverage: Some(args.min_coverage),
-        variety: Some(args.variety),
-        variety_radius: Some(args.variety_radius),
-        pieces_shape: Some(args.pieces_shape),
-        width_profile: args
-            .width_profile
-            .as_ref()
-            .map_or_else(Vec::new, |p| p.0.iter().map(|&(t, f)| [t, f]).collect()),
-        round_bends: Some(args.round_bends),
-        closed_max_starts: Some(args.closed_max_starts),
-        fidelity: args.fidelity,
-        width: args.width,
-        piece_length: args.piece_length,
-        max_memory: None,
-    }
 }
 
 /// Runs `motif curve`.
@@ -260,7 +105,8 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         curve: &curve,
         avoidance: avoidance.as_ref(),
     };
-    let job = CurveJob { max_memory: Some(context.max_memory), ..job_of(args) };
+    // `motif_jobs::curve` turns the job into engine parameters, as it does for every front end.
+    let job = CurveJob { max_memory: Some(context.max_memory), options: args.options.options.clone() };
     let run = job.run(inputs, context.progress())?;
     let output = run.output;
     motif_io::write_png(&args.out, &output.image)?;
