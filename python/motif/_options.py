@@ -3,7 +3,82 @@
 Regenerate with `MOTIF_BLESS=1 cargo test --release -p motif-jobs --test declarations`.
 """
 
-from typing import Any, Literal, Mapping, Sequence, TypedDict
+from typing import Any, Literal, Mapping, Sequence, Tuple, TypedDict
+
+
+class CurveOptions(TypedDict, total=False):
+    """Options of `motif.curve()` and `motif curve`."""
+
+    #: Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece edge (C) and
+    #: should exceed the pattern's height in the exemplar. Default: inferred from the first exemplar, the
+    #: pattern's height (rows with alpha above --cut-alpha) plus the clear row above and below, 15% wider,
+    #: divided by the scale.
+    width: float
+    #: Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length. Default: inferred
+    #: from the first exemplar, 0.55 of the pattern's period along x (the first strong peak of the
+    #: autocorrelation of its columns), kept between a quarter and 0.6 of the pattern's height, divided by the
+    #: scale; 0.3 of the pattern's height when it has no period.
+    piece_length: float
+    #: Scale s: exemplar pixels per canvas pixel (2 draws the pattern at half size). Allowed: 0.05–20. Default: 1.
+    scale: float
+    #: Closed-curve handling: auto (approx for a closed curve, no for an open one); approx, the paper's single
+    #: dynamic program with backtracking from every terminal position; exact, branch and bound over start
+    #: positions with a certificate of optimality; no, the curve treated as open (a closed curve is cut at its
+    #: first point). Default: auto.
+    closed: Literal["auto", "approx", "exact", "no"]
+    #: Do not detect fold-overs and overlaps of the ribbon (by default the pattern avoids them).
+    no_foldover_avoidance: bool
+    #: Stitch piece boundaries (edge alignment with penalty P, propagated inside the pieces).
+    stitch: bool
+    #: Stitching penalty P for moving opaque samples. Allowed: 0–100000. Default: 32.
+    stitch_penalty: float
+    #: Pattern generator: synth, the paper's synthesis (undistorted pieces placed by dynamic programming), or
+    #: repeat, the classic baseline (the exemplar repeated along the arc length and bent with the ribbon). Default: synth.
+    method: Literal["synth", "repeat"]
+    #: Dynamic-programming solver: exact (merged identical edges, branch and bound over a profile tree, lower
+    #: bounds and early exit) or reference (the plain O(V²C) dynamic program); both find the same optimum. Default: exact.
+    solver: Literal["exact", "reference"]
+    #: Alpha in the matching cost: binary, the paper's ξ (alpha thresholded at 128, opaque or transparent), or
+    #: continuous, ξ blended by alpha for anti-aliased and semi-transparent exemplars. Default: continuous.
+    alpha: Literal["binary", "continuous"]
+    #: γ, the matching cost of an opaque against a transparent pixel. Allowed: 1–100000. Default: 1024.
+    gamma: float
+    #: Pin the first piece's exemplar position (top-left corner, pixels; must be a valid position).
+    pin_first: Tuple[int, int]
+    #: Canvas size in pixels (document origin at the top-left); default: fitted to the ribbon.
+    canvas: Tuple[int, int]
+    #: Margin around the ribbon when the canvas is fitted, pixels. Allowed: 0–4096. Default: 4.
+    margin: float
+    #: Anti-aliasing: render samples per pixel along each axis. Allowed: 1–8. Default: 3.
+    samples: int
+    #: Alpha at or below which a pixel counts as transparent when checking that a piece slices the pattern
+    #: completely. Allowed: 0–254. Default: 8.
+    cut_alpha: int
+    #: Minimum coverage: a piece position is valid only if it holds at least this share of the pattern pixels a
+    #: typical piece holds (the median over exemplar windows spanning the pattern's height). Keeps the optimum
+    #: from repeating a thin sliver; 0 = the paper's rule. Allowed: 0–1. Default: 0.5.
+    min_coverage: float
+    #: Repetition penalty W (not in the paper), in seam-cost units: each pair of pieces at most
+    #: --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the paper's energy, which
+    #: may alternate two windows along a straight line. Allowed: 0–1000000. Default: 0.
+    variety: float
+    #: How many pieces apart a repeated window is penalised by --variety. Allowed: 1–1000. Default: 8.
+    variety_radius: int
+    #: Piece shape: bent pieces follow the ribbon (seams compare vertical columns, so the exemplar continues
+    #: across them; stretched outside bends); rigid pieces are the paper's undistorted, rotated copies. Default: bent.
+    pieces_shape: Literal["rigid", "bent"]
+    #: Width profile: comma-separated T:F pairs, T the fraction of the curve's length (0–1, ascending) and F
+    #: the factor (0.1–10) multiplying --width there, interpolated in between; the pattern scales with the
+    #: width (e.g. 0:0.5,0.5:1.5,1:0.5 swells in the middle). Needs bent pieces.
+    width_profile: Sequence[Tuple[float, float]]
+    #: Round bends of the curve tighter than F × width to that radius, so that the ribbon does not fold at
+    #: cusps and corners (where the paper leaves pieces empty); 0 keeps the curve as given. Allowed: 0–8. Default: 0.6.
+    round_bends: float
+    #: Measure the result against the exemplar (patches read back along the curve, nearest exemplar patch) and
+    #: add the figures to the report and the summary.
+    fidelity: bool
+    #: Exact closed mode: start positions tried at most before giving up the certificate. Allowed: 1–100000. Default: 64.
+    closed_max_starts: int
 
 
 class PointsOptions(TypedDict, total=False):

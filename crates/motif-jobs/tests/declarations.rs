@@ -22,6 +22,9 @@ fn python_type(kind: Kind) -> String {
         Kind::Numbers => "Sequence[float]".into(),
         Kind::Names => "Sequence[str]".into(),
         Kind::Weights => "Mapping[str, float]".into(),
+        Kind::Size => "Tuple[int, int]".into(),
+        Kind::Position => "Tuple[int, int]".into(),
+        Kind::Pairs => "Sequence[Tuple[float, float]]".into(),
         _ => "Any".into(),
     }
 }
@@ -53,7 +56,7 @@ fn render() -> String {
     let mut out = String::from(
         "\"\"\"The keyword options of each engine, rendered from motif-jobs' declarations (do not edit).\n\n\
          Regenerate with `MOTIF_BLESS=1 cargo test --release -p motif-jobs --test declarations`.\n\"\"\"\n\n\
-         from typing import Any, Literal, Mapping, Sequence, TypedDict\n",
+         from typing import Any, Literal, Mapping, Sequence, Tuple, TypedDict\n",
     );
     for job in JOBS {
         let _ = write!(out, "\n\nclass {}(TypedDict, total=False):\n", class_name(job.name));
