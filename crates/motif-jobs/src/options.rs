@@ -140,26 +140,19 @@ impl OptionValue for f64 {
     }
 }
 
-impl OptionValue for usize {
-    const KIND: Kind = Kind::Integer;
-    fn shown(&self) -> Option<String> {
-        Some(self.to_string())
-    }
+/// Whole-number option types, shown as written.
+macro_rules! integer_option {
+    ($($type:ty),+) => {$(
+        impl OptionValue for $type {
+            const KIND: Kind = Kind::Integer;
+            fn shown(&self) -> Option<String> {
+                Some(self.to_string())
+            }
+        }
+    )+};
 }
 
-impl OptionValue for u8 {
-    const KIND: Kind = Kind::Integer;
-    fn shown(&self) -> Option<String> {
-        Some(self.to_string())
-    }
-}
-
-impl OptionValue for u32 {
-    const KIND: Kind = Kind::Integer;
-    fn shown(&self) -> Option<String> {
-        Some(self.to_string())
-    }
-}
+integer_option!(u8, u32, usize);
 
 impl OptionValue for bool {
     const KIND: Kind = Kind::Flag;
