@@ -1,12 +1,13 @@
 //! Options declared once: name, type, range, default and help of every option of a job.
 //!
-//! A job's options are one struct written with [`declare_options!`]: each field's doc comment is
-//! its help, its `= expression` its default (the engine's `Params::DEFAULT` where the engine has
-//! one), and `[value_name: "N", range: (1.0, 256.0)]` what a command line shows and accepts. The
-//! macro derives the struct's serde form (kebab-case names, unknown names refused, every field
-//! optional) and [`Declared::options`], the list every front end reads: the CLI builds its flags
-//! from it, Python its keywords, type stubs and `motif.options()`, the page its controls, and
-//! `docs/cli.md` is generated from the CLI. Nothing else names an option.
+//! A job's options are one struct written with [`declare_options!`](crate::declare_options):
+//! each field's doc comment is its help, its `= expression` its default (the engine's
+//! `Params::DEFAULT` where the engine has one), and `[value_name: "N", range: (1.0, 256.0)]`
+//! what a command line shows and accepts. The macro derives the struct's serde form (kebab-case
+//! names, unknown names refused, every field optional) and [`Declared::options`], the list every
+//! front end reads: the CLI builds its flags from it, Python its keywords, type stubs and
+//! `motif.options()`, the page its controls, and `docs/cli.md` is generated from the CLI. Nothing
+//! else names an option.
 
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -33,7 +34,8 @@ pub enum Kind {
     Numbers,
     /// A list of names (comma-separated on the command line).
     Names,
-    /// Named weights, `NAME=W` (repeatable on the command line; a dict in Python).
+    /// Named numbers, `NAME=W` (comma-separated or repeated on the command line; a dict in
+    /// Python).
     Weights,
 }
 
