@@ -165,3 +165,31 @@ class PointsOptions(TypedDict, total=False):
     #: Progressive synthesis: existing points farther than this from the new domain stay fixed (output units;
     #: default 3δ). Allowed: ≥ 0.
     keep_margin: float
+
+
+class StrokesOptions(TypedDict, total=False):
+    """Options of `motif.strokes()` and `motif strokes`."""
+
+    #: Points the element boxes are fitted to: the strokes' skeletons (the default; each gesture's own
+    #: polyline, ignoring its width) or their contours (the outline stroked at the stroke's width with round
+    #: caps, so that thick strokes give thick boxes). Default: skeleton.
+    fit: Literal["skeleton", "contour"]
+    #: Neighbourhood size in rings of the neighbour graph (default: 5 along a path, 2 in a region). Allowed:
+    #: 1–5.
+    rings: int
+    #: Parameter exchange amount: orientation, length, thickness and colour swapped with similar reference
+    #: elements within this fraction of the matching thresholds; 0 copies exactly. Allowed: 0–1. Default: 0.
+    variation: float
+    #: Reintroduce the reference's irregular spacing from its shift vectors.
+    position_variation: bool
+    #: Let elements overlap. By default an element whose ink meets an already placed one goes back to its seed,
+    #: drops its variation, is swapped for another matching element, moves slightly, or is removed (the
+    #: report's `overlap` says how many of each), unless the reference's own elements overlap.
+    allow_overlaps: bool
+    #: Override matching thresholds: shape and sup in units of the mean element length L (defaults 0.1), par in
+    #: radians (π/20), ov a length ratio > 1 (1.5), col an RGB distance in the unit cube (0.15), attr the
+    #: largest difference of relative stroke width and dash period, opacity, filled or dashed share and fill
+    #: colour (0.2). Example: shape=0.2,col=0.3.
+    thresholds: Mapping[str, float]
+    #: Lloyd relaxation iterations for the seeds (stops early once converged). Allowed: 1–1000. Default: 20.
+    lloyd_iterations: int

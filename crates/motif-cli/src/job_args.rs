@@ -44,7 +44,7 @@ fn whole(text: &str) -> Result<u64, String> {
 }
 
 fn weight(text: &str) -> Result<(String, f64), String> {
-    let (name, value) = text.split_once('=').ok_or_else(|| format!("{text:?}: give NAME=W, e.g. diameter=0.5"))?;
+    let (name, value) = text.split_once('=').ok_or_else(|| format!("{text:?}: give NAME=W, a name and a number"))?;
     Ok((name.trim().to_string(), number(value).map_err(|error| format!("{text:?}: {error}"))?))
 }
 
@@ -93,7 +93,7 @@ fn arg_of(spec: &OptionSpec) -> Arg {
         Kind::Choice(names) => arg.value_parser(PossibleValuesParser::new(names.iter().copied())),
         Kind::Numbers => arg.value_parser(number).value_delimiter(',').num_args(1..),
         Kind::Names => arg.value_delimiter(','),
-        Kind::Weights => arg.value_parser(weight).action(ArgAction::Append),
+        Kind::Weights => arg.value_parser(weight).value_delimiter(',').action(ArgAction::Append),
         Kind::Size => arg.value_parser(size),
         Kind::Position => arg.value_parser(position).allow_hyphen_values(true),
         Kind::Pairs => arg.value_parser(pairs),
@@ -232,6 +232,33 @@ mod tests {
         assert_eq!(options.attribute_weight.get("b"), Some(&2.0));
         assert_eq!(options.window, Window::Box);
         assert!(options.reference && !options.no_sampling_control);
+    }
+
+    #[test]
+    fn named_numbers_are_comma_separated_or_repeated() {
+        use motif_jobs::strokes::StrokesOptions;
+        #[derive(Parser, Debug)]
+        struct Strokes {
+            #[command(flatten)]
+            options: JobArgs<StrokesOptions>,
+        }
+        let strokes = |args: &[&str]| {
+            Strokes::try_parse_from(std::iter::once("motif").chain(args.iter().copied())).map(|c| c.options.options)
+        };
+        let options =
+            strokes(&["--thresholds", "shape=0.2,col=0.3", "--thresholds", "ov=2", "--fit", "contour"]).unwrap();
+        let thresholds = &options.thresholds;
+        assert_eq!(
+            [thresholds.get("shape"), thresholds.get("col"), thresholds.get("ov")],
+            [Some(0.2), Some(0.3), Some(2.0)]
+        );
+        assert_eq!(options.fit, motif_strokes::FitPoints::Contour);
+        assert_eq!(strokes(&[]).unwrap(), StrokesOptions::default());
+        let error = strokes(&["--thresholds", "shape=0.2,colour=0.3"]).unwrap_err().to_string();
+        assert!(error.contains("colour=0.3") && error.contains("col or attr"), "{error}");
+        assert!(strokes(&["--fit", "outline"]).unwrap_err().to_string().contains("--fit"));
+        let weights = parse(&["--attribute-weight", "a=0.5,b=2"]).unwrap().attribute_weight;
+        assert_eq!((weights.get("a"), weights.get("b")), (Some(&0.5), Some(&2.0)));
     }
 
     #[test]

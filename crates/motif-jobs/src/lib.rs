@@ -56,6 +56,7 @@ pub struct JobEntry {
 pub const JOBS: &[JobEntry] = &[
     JobEntry { name: "curve", options: <curve::CurveOptions as options::Declared>::options },
     JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options },
+    JobEntry { name: "strokes", options: <strokes::StrokesOptions as options::Declared>::options },
 ];
 
 /// Per-stage milliseconds as a JSON object, in order.

@@ -33,7 +33,8 @@ pub enum Kind {
     Numbers,
     /// A list of names (comma-separated on the command line).
     Names,
-    /// Named weights, `NAME=W` (repeatable on the command line; a dict in Python).
+    /// Named numbers, `NAME=W` (comma-separated or repeated on the command line; a dict in
+    /// Python).
     Weights,
     /// A size in whole numbers, `[W, H]` (`WxH` on the command line).
     Size,

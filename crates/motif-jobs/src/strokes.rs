@@ -1,6 +1,7 @@
 //! `strokes` jobs: vector stroke patterns along a path or in a region (`motif_strokes`).
 //!
 //! Field names are the flags of `motif strokes`; only the scale ε and the target are required.
+//! Every option is declared once, in [`StrokesOptions`].
 //! The reference strokes come decoded (the CLI reads them from SVG with its `--tolerance`).
 
 use std::collections::BTreeMap;
@@ -29,43 +30,158 @@ fn default_seed() -> u64 {
     1
 }
 
-/// Every option of `motif strokes` that is not a file (or the flattening tolerance of one).
+crate::choice_option!(FitPoints: "skeleton", "contour");
+
+crate::declare_options! {
+    /// Every option of `motif strokes` that is neither a file (nor the flattening tolerance of
+    /// one), the scale ε nor the target, declared once.
+    pub struct StrokesOptions {
+        /// Points the element boxes are fitted to: the strokes' skeletons (the default; each
+        /// gesture's own polyline, ignoring its width) or their contours (the outline stroked at
+        /// the stroke's width with round caps, so that thick strokes give thick boxes).
+        [value_name: "skeleton|contour"]
+        fit: FitPoints = DEFAULTS.fit,
+        /// Neighbourhood size in rings of the neighbour graph (default: 5 along a path, 2 in a
+        /// region).
+        [value_name: "K", range: (1.0, 5.0)]
+        rings: Option<usize> = DEFAULTS.rings,
+        /// Parameter exchange amount: orientation, length, thickness and colour swapped with
+        /// similar reference elements within this fraction of the matching thresholds; 0 copies
+        /// exactly.
+        [value_name: "V", range: (0.0, 1.0)]
+        variation: f64 = DEFAULTS.variation,
+        /// Reintroduce the reference's irregular spacing from its shift vectors.
+        position_variation: bool = DEFAULTS.position_variation,
+        /// Let elements overlap. By default an element whose ink meets an already placed one goes
+        /// back to its seed, drops its variation, is swapped for another matching element, moves
+        /// slightly, or is removed (the report's `overlap` says how many of each), unless the
+        /// reference's own elements overlap.
+        allow_overlaps: bool = !DEFAULTS.avoid_overlaps,
+        /// Override matching thresholds: shape and sup in units of the mean element length L
+        /// (defaults 0.1), par in radians (π/20), ov a length ratio > 1 (1.5), col an RGB distance
+        /// in the unit cube (0.15), attr the largest difference of relative stroke width and dash
+        /// period, opacity, filled or dashed share and fill colour (0.2). Example:
+        /// shape=0.2,col=0.3.
+        [value_name: "NAME=VALUE,..."]
+        thresholds: ThresholdOverrides = ThresholdOverrides::default(),
+        /// Lloyd relaxation iterations for the seeds (stops early once converged).
+        [value_name: "N", range: (1.0, 1000.0)]
+        lloyd_iterations: usize = DEFAULTS.lloyd_iterations,
+    }
+}
+
+/// The engine's defaults, which the options take theirs from.
+const DEFAULTS: Params = Params::DEFAULT;
+
+/// The field of one matching threshold in the engine's thresholds.
+type ThresholdField = fn(&mut Thresholds) -> &mut f64;
+
+/// Each matching threshold's name in a job (`--thresholds shape=0.2`) and its engine field.
+const THRESHOLDS: [(&str, ThresholdField); 6] = [
+    ("shape", |t| &mut t.shape),
+    ("par", |t| &mut t.parallelism),
+    ("ov", |t| &mut t.overlap),
+    ("sup", |t| &mut t.superimposition),
+    ("col", |t| &mut t.colour),
+    ("attr", |t| &mut t.attributes),
+];
+
+/// The matching thresholds a job sets, by name (`shape`, `par`, `ov`, `sup`, `col`, `attr`); the
+/// others keep the engine's. Its serde form is a map, `{"shape": 0.2, "col": 0.3}` (on the
+/// command line `shape=0.2,col=0.3`); other names are refused.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "BTreeMap<String, f64>", into = "BTreeMap<String, f64>")]
+pub struct ThresholdOverrides(BTreeMap<String, f64>);
+
+impl ThresholdOverrides {
+    /// The value set for the threshold `name`, if any.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.0.get(name).copied()
+    }
+
+    /// `thresholds` with the ones set here replaced.
+    pub fn applied_to(&self, mut thresholds: Thresholds) -> Thresholds {
+        for (name, field) in THRESHOLDS {
+            if let Some(value) = self.get(name) {
+                *field(&mut thresholds) = value;
+            }
+        }
+        thresholds
+    }
+}
+
+impl TryFrom<BTreeMap<String, f64>> for ThresholdOverrides {
+    type Error = InvalidParameter;
+    fn try_from(values: BTreeMap<String, f64>) -> Result<Self, InvalidParameter> {
+        let unknown = values.iter().find(|(name, _)| !THRESHOLDS.iter().any(|(known, _)| known == name));
+        if let Some((name, &value)) = unknown {
+            let shown = format!("{name}={}", number(value));
+            return Err(InvalidParameter::new(
+                "thresholds",
+                shown,
+                "a threshold named shape, par, ov, sup, col or attr",
+            ));
+        }
+        Ok(Self(values))
+    }
+}
+
+impl From<ThresholdOverrides> for BTreeMap<String, f64> {
+    fn from(overrides: ThresholdOverrides) -> Self {
+        overrides.0
+    }
+}
+
+impl crate::options::OptionValue for ThresholdOverrides {
+    const KIND: crate::options::Kind = crate::options::Kind::Weights;
+    fn shown(&self) -> Option<String> {
+        self.0.shown()
+    }
+}
+
+/// A strokes job: the pattern's scale ε and where it grows, the run's seed and memory bound, and
+/// every other option ([`StrokesOptions`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(rename_all = "kebab-case", try_from = "crate::options::Described<StrokesJobFields>")]
 pub struct StrokesJob {
     /// ε, the pattern's scale in drawing units (> 0).
     pub scale: f64,
     /// Where the pattern grows.
     pub target: TargetSpec,
     /// Seed of every random choice (default 1, as on the command line).
-    #[serde(default = "default_seed")]
     pub seed: u64,
-    /// Points the element boxes are fitted to: `skeleton` (default) or `contour`.
-    #[serde(default)]
-    pub fit: Option<FitPoints>,
-    /// Neighbourhood size in rings, 1–5 (default 5 along a path, 2 in a region).
-    #[serde(default)]
-    pub rings: Option<usize>,
-    /// Parameter exchange amount, 0–1 (default 0).
-    #[serde(default)]
-    pub variation: Option<f64>,
-    /// Reintroduce the reference's irregular spacing.
-    #[serde(default)]
-    pub position_variation: bool,
-    /// Let elements overlap (by default an element whose ink meets a placed one is changed, moved
-    /// or removed, unless the reference's own elements overlap).
-    #[serde(default)]
-    pub allow_overlaps: bool,
-    /// Matching thresholds to override by name: `shape`, `par`, `ov`, `sup`, `col`, `attr`.
-    #[serde(default)]
-    pub thresholds: BTreeMap<String, f64>,
-    /// Lloyd relaxation iterations for the seeds.
-    #[serde(default)]
-    pub lloyd_iterations: Option<usize>,
     /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
     /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
-    #[serde(default, deserialize_with = "crate::memory_size::optional")]
     pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: StrokesOptions,
+}
+
+/// The fields of a [`StrokesJob`] outside its options, as a description holds them.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct StrokesJobFields {
+    scale: f64,
+    target: TargetSpec,
+    #[serde(default = "default_seed")]
+    seed: u64,
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    max_memory: Option<u64>,
+}
+
+impl TryFrom<crate::options::Described<StrokesJobFields>> for StrokesJob {
+    type Error = String;
+    fn try_from(described: crate::options::Described<StrokesJobFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self {
+            scale: fields.scale,
+            target: fields.target,
+            seed: fields.seed,
+            max_memory: fields.max_memory,
+            options,
+        })
+    }
 }
 
 /// A finished strokes job.
@@ -80,55 +196,24 @@ pub struct StrokesRun {
 impl StrokesJob {
     /// A job with every option at its default.
     pub fn new(scale: f64, target: TargetSpec) -> Self {
-        Self {
-            scale,
-            target,
-            seed: default_seed(),
-            fit: None,
-            rings: None,
-            variation: None,
-            position_variation: false,
-            allow_overlaps: false,
-            thresholds: BTreeMap::new(),
-            lloyd_iterations: None,
-            max_memory: None,
-        }
+        Self { scale, target, seed: default_seed(), max_memory: None, options: StrokesOptions::default() }
     }
 
     /// The engine's parameters.
     pub fn params(&self) -> Result<Params, JobError> {
-        let defaults = Params::default();
-        let mut thresholds = Thresholds::default();
-        for (name, &value) in &self.thresholds {
-            let slot = match name.as_str() {
-                "shape" => &mut thresholds.shape,
-                "par" => &mut thresholds.parallelism,
-                "ov" => &mut thresholds.overlap,
-                "sup" => &mut thresholds.superimposition,
-                "col" => &mut thresholds.colour,
-                "attr" => &mut thresholds.attributes,
-                other => {
-                    return Err(InvalidParameter::new(
-                        "thresholds",
-                        format!("{other}={}", number(value)),
-                        "a threshold named shape, par, ov, sup, col or attr",
-                    )
-                    .into());
-                }
-            };
-            *slot = value;
-        }
-        let params = defaults
-            .clone()
+        use crate::options::Declared;
+        let options = &self.options;
+        options.check_ranges()?;
+        let params = Params::DEFAULT
             .with_scale(self.scale)
-            .with_fit(self.fit.unwrap_or(defaults.fit))
-            .with_rings(self.rings)
-            .with_thresholds(thresholds)
-            .with_variation(self.variation.unwrap_or(defaults.variation))
-            .with_position_variation(self.position_variation)
-            .with_avoid_overlaps(!self.allow_overlaps)
-            .with_lloyd_iterations(self.lloyd_iterations.unwrap_or(defaults.lloyd_iterations))
-            .with_max_memory(self.max_memory.unwrap_or(defaults.max_memory))
+            .with_fit(options.fit)
+            .with_rings(options.rings)
+            .with_thresholds(options.thresholds.applied_to(DEFAULTS.thresholds))
+            .with_variation(options.variation)
+            .with_position_variation(options.position_variation)
+            .with_avoid_overlaps(!options.allow_overlaps)
+            .with_lloyd_iterations(options.lloyd_iterations)
+            .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory))
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)
@@ -246,12 +331,39 @@ mod tests {
     }
 
     #[test]
+    fn options_default_to_the_engines_parameters() {
+        let params = StrokesJob::new(Params::DEFAULT.scale, TargetSpec::Rect([10.0, 10.0])).params().unwrap();
+        assert_eq!(params, Params::DEFAULT.with_seed(1));
+    }
+
+    #[test]
+    fn thresholds_are_a_map_of_the_names_set() {
+        use crate::options::{Declared, OptionValue};
+        let job: StrokesJob = serde_json::from_value(
+            json!({ "scale": 6, "target": { "rect": [9, 9] }, "thresholds": { "ov": 2, "par": 0.5 } }),
+        )
+        .unwrap();
+        let thresholds = &job.options.thresholds;
+        assert_eq!((thresholds.get("ov"), thresholds.get("shape")), (Some(2.0), None));
+        assert_eq!(thresholds.shown().as_deref(), Some("ov=2,par=0.5"));
+        let applied = thresholds.applied_to(Thresholds::DEFAULT);
+        assert_eq!((applied.overlap, applied.parallelism, applied.colour), (2.0, 0.5, Thresholds::DEFAULT.colour));
+        let again: StrokesJob = serde_json::from_str(&serde_json::to_string(&job).unwrap()).unwrap();
+        assert_eq!(again, job);
+        let spec = StrokesOptions::options().into_iter().find(|spec| spec.name == "thresholds").unwrap();
+        assert_eq!((spec.kind, spec.default), (crate::options::Kind::Weights, None));
+    }
+
+    #[test]
     fn bad_descriptions_name_what_is_wrong() {
-        let job = StrokesJob {
-            thresholds: BTreeMap::from([("colour".into(), 0.2)]),
-            ..StrokesJob::new(5.0, TargetSpec::Rect([10.0, 10.0]))
-        };
-        assert!(job.params().unwrap_err().to_string().contains("colour=0.2"));
+        let bad = |description: Value| serde_json::from_value::<StrokesJob>(description).unwrap_err().to_string();
+        let rect = json!({ "rect": [10, 10] });
+        let unknown = bad(json!({ "scale": 5, "target": rect, "thresholds": { "colour": 0.2 } }));
+        assert!(unknown.contains("colour=0.2"), "{unknown}");
+        assert!(bad(json!({ "scale": 5, "target": rect, "stiffness": 1 })).contains("stiffness"));
+        let mut job = StrokesJob::new(5.0, TargetSpec::Rect([10.0, 10.0]));
+        job.options.rings = Some(6);
+        assert!(job.params().unwrap_err().to_string().contains("rings"));
         assert!(StrokesJob::new(5.0, TargetSpec::Rect([0.0, 10.0])).engine_target().is_err());
         let crossed = TargetSpec::Region(vec![[0.0, 0.0], [10.0, 10.0], [10.0, 0.0], [0.0, 10.0]]);
         assert!(StrokesJob::new(5.0, crossed).engine_target().unwrap_err().to_string().contains("self-intersecting"));

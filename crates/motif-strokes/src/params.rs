@@ -4,7 +4,6 @@ use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 
 /// Which points an element's oriented box is fitted to (§2.1).
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FitPoints {
@@ -44,15 +43,20 @@ pub struct Thresholds {
 
 impl Default for Thresholds {
     fn default() -> Self {
-        Self {
-            shape: 0.1,
-            parallelism: std::f64::consts::PI / 20.0,
-            overlap: 1.5,
-            superimposition: 0.1,
-            colour: 0.15,
-            attributes: 0.2,
-        }
+        Self::DEFAULT
     }
+}
+
+impl Thresholds {
+    /// The paper's thresholds (and 0.2 for the attributes it does not compare).
+    pub const DEFAULT: Thresholds = Thresholds {
+        shape: 0.1,
+        parallelism: std::f64::consts::PI / 20.0,
+        overlap: 1.5,
+        superimposition: 0.1,
+        colour: 0.15,
+        attributes: 0.2,
+    };
 }
 
 /// Parameters of [`crate::synthesize`].
@@ -102,23 +106,26 @@ pub struct Params {
 
 impl Default for Params {
     fn default() -> Self {
-        Self {
-            scale: 10.0,
-            fit: FitPoints::Skeleton,
-            rings: None,
-            thresholds: Thresholds::default(),
-            variation: 0.0,
-            position_variation: false,
-            avoid_overlaps: true,
-            lloyd_iterations: 20,
-            max_elements: 200_000,
-            max_memory: motif_core::DEFAULT_MAX_MEMORY,
-            seed: 0,
-        }
+        Self::DEFAULT
     }
 }
 
 impl Params {
+    /// Every parameter at its default (the values the field documentation states).
+    pub const DEFAULT: Params = Params {
+        scale: 10.0,
+        fit: FitPoints::Skeleton,
+        rings: None,
+        thresholds: Thresholds::DEFAULT,
+        variation: 0.0,
+        position_variation: false,
+        avoid_overlaps: true,
+        lloyd_iterations: 20,
+        max_elements: 200_000,
+        max_memory: motif_core::DEFAULT_MAX_MEMORY,
+        seed: 0,
+    };
+
     /// Checks every field; the first bad one is returned.
     pub fn validate(&self) -> Result<(), InvalidParameter> {
         check_positive("scale", self.scale)?;

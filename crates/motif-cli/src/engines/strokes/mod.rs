@@ -5,7 +5,6 @@ mod bench;
 mod corpus;
 mod demo;
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
@@ -13,11 +12,12 @@ use clap::Args;
 use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
-use motif_jobs::strokes::{StrokesJob, TargetSpec};
-use motif_strokes::{Analysis, FitPoints, Output, Stroke, Target, ToneMap};
+use motif_jobs::strokes::{StrokesJob, StrokesOptions, TargetSpec};
+use motif_strokes::{Analysis, Output, Stroke, Target, ToneMap};
 
 use crate::context::Context;
 use crate::gallery::Demo;
+use crate::job_args::JobArgs;
 
 /// Options of `motif strokes`.
 #[derive(Args, Debug)]
@@ -41,31 +41,9 @@ pub struct StrokesArgs {
     /// Synthesize a 2D pattern inside the rectangle (0, 0)–(W, H), in drawing units.
     #[arg(long, value_name = "W,H", value_parser = parse_rect)]
     pub rect: Option<(f64, f64)>,
-    /// Points the element boxes are fitted to.
-    #[arg(long, value_enum, default_value = "skeleton")]
-    pub fit: FitPoints,
-    /// Neighbourhood size in rings, 1–5 [default: 5 along a path, 2 in a region].
-    #[arg(long, value_name = "K")]
-    pub rings: Option<usize>,
-    /// Parameter exchange amount, 0–1: orientation, length, thickness and colour swapped with
-    /// similar reference elements within this fraction of the matching thresholds; 0 copies exactly.
-    #[arg(long, value_name = "V", default_value_t = 0.0, allow_negative_numbers = true)]
-    pub variation: f64,
-    /// Reintroduce the reference's irregular spacing from its shift vectors.
-    #[arg(long)]
-    pub position_variation: bool,
-    /// Let elements overlap. By default an element whose ink meets an already placed one goes back
-    /// to its seed, drops its variation, is swapped for another matching element, moves slightly,
-    /// or is removed (the report's `overlap` says how many of each), unless the reference's own
-    /// elements overlap.
-    #[arg(long)]
-    pub allow_overlaps: bool,
-    /// Override matching thresholds: shape and sup in units of the mean element length L
-    /// (defaults 0.1), par in radians (π/20), ov a length ratio > 1 (1.5), col an RGB distance in
-    /// the unit cube (0.15), attr the largest difference of relative stroke width and dash period,
-    /// opacity, filled or dashed share and fill colour (0.2). Example: shape=0.2,col=0.3.
-    #[arg(long, value_name = "NAME=VALUE,...", value_parser = parse_thresholds)]
-    pub thresholds: Option<ThresholdOverrides>,
+    /// Every option of the synthesis, declared in `motif_jobs::strokes::StrokesOptions`.
+    #[command(flatten)]
+    pub options: JobArgs<StrokesOptions>,
     /// Density map (an image stretched over the target region's bounding box, with its aspect
     /// ratio): darkness sets the element density relative to the reference's (black: the
     /// reference's density, mid-grey: half, white: none), so a hatching or stippling can shade a
@@ -81,9 +59,6 @@ pub struct StrokesArgs {
     /// polyline), > 0.
     #[arg(long, value_name = "T", default_value_t = 0.1)]
     pub tolerance: f64,
-    /// Lloyd relaxation iterations for the seeds, 1–1000 (stops early once converged).
-    #[arg(long, value_name = "N", default_value_t = 20)]
-    pub lloyd_iterations: usize,
     /// Also draw the analysed reference here (SVG): each element's strokes in its cluster colour,
     /// its box, and the neighbourhood graph between element centres.
     #[arg(long, value_name = "ANALYSIS.svg")]
@@ -99,17 +74,6 @@ pub struct StrokesArgs {
     pub png_scale: f64,
 }
 
-/// Thresholds given on the command line; unset ones keep their defaults.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ThresholdOverrides {
-    shape: Option<f64>,
-    par: Option<f64>,
-    ov: Option<f64>,
-    sup: Option<f64>,
-    col: Option<f64>,
-    attr: Option<f64>,
-}
-
 fn parse_rect(text: &str) -> Result<(f64, f64), String> {
     let parts: Vec<&str> = text.split(',').collect();
     let [w, h] = parts.as_slice() else { return Err(format!("expected W,H (two numbers), got `{text}`")) };
@@ -117,49 +81,10 @@ fn parse_rect(text: &str) -> Result<(f64, f64), String> {
     Ok((number(w)?, number(h)?))
 }
 
-fn parse_thresholds(text: &str) -> Result<ThresholdOverrides, String> {
-    let mut overrides = ThresholdOverrides::default();
-    for item in text.split(',').filter(|s| !s.trim().is_empty()) {
-        let (name, value) = item.split_once('=').ok_or_else(|| format!("expected NAME=VALUE, got `{item}`"))?;
-        let value: f64 = value.trim().parse().map_err(|_| format!("`{value}` is not a number"))?;
-        let slot = match name.trim() {
-            "shape" => &mut overrides.shape,
-            "par" => &mut overrides.par,
-            "ov" => &mut overrides.ov,
-            "sup" => &mut overrides.sup,
-            "col" => &mut overrides.col,
-            "attr" => &mut overrides.attr,
-            other => return Err(format!("unknown threshold `{other}` (expected shape, par, ov, sup, col or attr)")),
-        };
-        *slot = Some(value);
-    }
-    Ok(overrides)
-}
-
 /// The job the arguments describe, for `target` (`motif_jobs::strokes` turns it into engine
 /// parameters, as it does for every front end).
 fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
-    let mut thresholds = BTreeMap::new();
-    if let Some(o) = args.thresholds {
-        for (name, value) in
-            [("shape", o.shape), ("par", o.par), ("ov", o.ov), ("sup", o.sup), ("col", o.col), ("attr", o.attr)]
-        {
-            if let Some(value) = value {
-                thresholds.insert(name.to_string(), value);
-            }
-        }
-    }
-    StrokesJob {
-        seed,
-        fit: Some(args.fit),
-        rings: args.rings,
-        variation: Some(args.variation),
-        position_variation: args.position_variation,
-        allow_overlaps: args.allow_overlaps,
-        thresholds,
-        lloyd_iterations: Some(args.lloyd_iterations),
-        ..StrokesJob::new(args.scale, target)
-    }
+    StrokesJob { seed, options: args.options.options.clone(), ..StrokesJob::new(args.scale, target) }
 }
 
 /// Every visible path of a drawing as strokes, in document order.
