@@ -53,8 +53,15 @@ pub struct JobEntry {
 
 /// Every job whose options are declared in one place, in the order front ends list them. The
 /// CLI's subcommands, Python's keywords and `docs/cli.md` are checked against it.
-pub const JOBS: &[JobEntry] =
-    &[JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options }];
+pub const JOBS: &[JobEntry] = &[
+    JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options },
+    JobEntry { name: "stylize", options: <stylize::StylizeJobOptions as options::Declared>::options },
+    JobEntry { name: "presynth", options: <stylize::PresynthJobOptions as options::Declared>::options },
+    JobEntry { name: "texture", options: <stylize::TextureJobOptions as options::Declared>::options },
+    JobEntry { name: "inpaint", options: <stylize::SynthesisOptions as options::Declared>::options },
+    JobEntry { name: "zoom", options: <stylize::ZoomJobOptions as options::Declared>::options },
+    JobEntry { name: "video", options: <stylize::VideoJobOptions as options::Declared>::options },
+];
 
 /// Per-stage milliseconds as a JSON object, in order.
 fn stages(stages: &[(String, f64)]) -> serde_json::Value {
