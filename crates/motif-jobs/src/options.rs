@@ -1,7 +1,7 @@
 //! Options declared once: name, type, range, default and help of every option of a job.
 //!
-//! A job's options are one struct written with [`declare_options!`]: each field's doc comment is
-//! its help, its `= expression` its default (the engine's `Params::DEFAULT` where the engine has
+//! A job's options are one struct written with [`declare_options!`](crate::declare_options): each
+//! field's doc comment is its help, its `= expression` its default (the engine's `Params::DEFAULT` where the engine has
 //! one), and `[value_name: "N", range: (1.0, 256.0)]` what a command line shows and accepts. The
 //! macro derives the struct's serde form (kebab-case names, unknown names refused, every field
 //! optional) and [`Declared::options`], the list every front end reads: the CLI builds its flags
