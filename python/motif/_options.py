@@ -193,3 +193,298 @@ class StrokesOptions(TypedDict, total=False):
     thresholds: Mapping[str, float]
     #: Lloyd relaxation iterations for the seeds (stops early once converged). Allowed: 1–1000. Default: 20.
     lloyd_iterations: int
+
+
+class StylizeOptions(TypedDict, total=False):
+    """Options of `motif.stylize()` and `motif stylize`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+    #: β: weight of a guide. Give none (each guide then weighs 1/number of guides, as in ebsynth) or one per
+    #: --guide, in the same order. Allowed: 0–1000.
+    weight: Sequence[float]
+    #: Treat the colours of the segment guide as segment labels: ω_best per segment (Eq. 6) and no match
+    #: across segments. Exact palette (at most 64 colours) unless --segment-count.
+    segments: bool
+    #: Quantize the segment guide into K colours by k-means (for anti-aliased guides); implies --segments.
+    #: Allowed: 2–64.
+    segment_count: int
+    #: Which --guide pair defines the segments, counted from 1. Allowed: ≥ 1. Default: 1.
+    segment_guide: int
+    #: Band half-width T in pixels for --presynth; 0 = pure bitmap composition. Allowed: 0–4096. Default: 4.
+    band: int
+    #: Search-vote iterations for the band when the textures carry their fields (caches made by this version):
+    #: the band starts at the textures' own matches, so fewer are needed. Older caches (no fields) use
+    #: --search-vote-iters. Allowed: 1–100. Default: 3.
+    band_iters: int
+    #: PatchMatch iterations per search for such a band (else --patchmatch-iters). Allowed: 1–100. Default: 2.
+    band_patchmatch_iters: int
+
+
+class PresynthOptions(TypedDict, total=False):
+    """Options of `motif.presynth()` and `motif presynth`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+    #: Quantize the guide into K colours by k-means instead of an exact palette. Allowed: 2–64.
+    segment_count: int
+
+
+class TextureOptions(TypedDict, total=False):
+    """Options of `motif.texture()` and `motif texture`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+    #: Wrap patches around the borders so the output tiles seamlessly.
+    tileable: bool
+
+
+class InpaintOptions(TypedDict, total=False):
+    """Options of `motif.inpaint()` and `motif inpaint`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+
+
+class ZoomOptions(TypedDict, total=False):
+    """Options of `motif.zoom()` and `motif zoom`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+    #: How much closer each level is than the one before. Allowed: 1.05–8. Default: 2.
+    factor: float
+    #: Zoom levels, the first unzoomed. Allowed: 1–64. Default: 4.
+    levels: int
+
+
+class VideoOptions(TypedDict, total=False):
+    """Options of `motif.video()` and `motif video`."""
+
+    #: α: weight of the style term (A' against B' patches). Allowed: 0–1000. Default: 1.
+    style_weight: float
+    #: λ: weight of the occurrence penalty that spreads the use of source patches evenly and prevents wash-out
+    #: (ebsynth's units: squared 8-bit differences); 0 = off. Allowed: 0–1000000. Default: 3500.
+    uniformity: float
+    #: Patch side in pixels, odd. Larger keeps bigger structures of the style. Allowed: 3–31. Default: 5.
+    patch_size: int
+    #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
+    #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
+    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    coarse_patch_size: int
+    #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
+    #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
+    #: and falling to 0 at the finest (Kaspar et al. 2015's structure guidance); 0 = off. Keeps the elements of
+    #: regular textures whole. Allowed: 0–1000. Default: 0.
+    structure_weight: float
+    #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
+    #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
+    #: 0–4096. Default: 0.
+    quilt_block: int
+    #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
+    pyramid_levels: int
+    #: Search-then-vote iterations per pyramid level (N of Algorithm 1). Allowed: 1–100. Default: 6.
+    search_vote_iters: int
+    #: PatchMatch iterations per search. Allowed: 1–100. Default: 4.
+    patchmatch_iters: int
+    #: Stop improving a pixel once a vote changes it by less than this (largest channel change, 8-bit units); 0
+    #: = search every pixel every time. Allowed: 0–1020. Default: 5.
+    stop_threshold: float
+    #: Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only). Default: patchmatch.
+    nnf: Literal["patchmatch", "exact"]
+    #: After the finest level, one more search-and-vote with 3×3 patches and no uniformity (ebsynth's
+    #: extrapass3x3): crisper fine detail.
+    extra_pass_3x3: bool
+    #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
+    #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
+    max_pixels: int
+    #: Weight of the frames' colours (keyframe against each frame). Allowed: 0–1000. Default: 1.
+    colour_weight: float
+    #: Weight of the edge guide (the frames' blurred edges). Allowed: 0–1000. Default: 1.
+    edge_weight: float
+    #: Weight of the positional guide (the keyframe's pixel positions carried along the motion, so the style
+    #: stays on the surfaces it was painted on). Allowed: 0–1000. Default: 4.
+    position_weight: float
+    #: Weight of the temporal guide (the previous output carried along the motion; against flicker); 0 stylizes
+    #: frames independently of each other. Allowed: 0–1000. Default: 2.
+    temporal_weight: float

@@ -414,7 +414,7 @@ impl StylizePanel {
     pub fn stylize(&self, rgba: &[u8], width: usize, height: usize, job: &str) -> Result<ImageResult, JsError> {
         let start = web_time::Instant::now();
         let mut job: StylizeJob = serde_json::from_str(job).map_err(|e| error(format!("stylize options: {e}")))?;
-        job.segments = true;
+        job.options.own.segments = true;
         let target = rgba_image(rgba, width, height, "target guide")?;
         let source = self.guide.clone();
         let guides = vec![motif_jobs::stylize::guide_pair(&source, &target)];

@@ -91,7 +91,7 @@ fn arg_of(spec: &OptionSpec) -> Arg {
         Kind::Integer => arg.value_parser(whole),
         Kind::Number => arg.value_parser(number).allow_hyphen_values(true),
         Kind::Choice(names) => arg.value_parser(PossibleValuesParser::new(names.iter().copied())),
-        Kind::Numbers => arg.value_parser(number).value_delimiter(',').num_args(1..),
+        Kind::Numbers => arg.value_parser(number).value_delimiter(',').num_args(1..).action(ArgAction::Append),
         Kind::Names => arg.value_delimiter(','),
         Kind::Weights => arg.value_parser(weight).value_delimiter(',').action(ArgAction::Append),
         Kind::Size => arg.value_parser(size),

@@ -34,7 +34,7 @@ fn main() {
     }
     let target = RgbaImage::from_pixels(SIDE, SIDE, pixels).expect("target");
     let mut job: StylizeJob = serde_json::from_str(r#"{"band": 4}"#).expect("job");
-    job.segments = true;
+    job.options.own.segments = true;
     let guides = vec![motif_jobs::stylize::guide_pair(&source, &target)];
     let run = job.run(style, guides, Some(textures), &mut NoProgress).expect("run");
     let image = RgbaImage::from_float(&run.output.image);

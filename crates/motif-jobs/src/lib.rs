@@ -57,6 +57,12 @@ pub const JOBS: &[JobEntry] = &[
     JobEntry { name: "curve", options: <curve::CurveOptions as options::Declared>::options },
     JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options },
     JobEntry { name: "strokes", options: <strokes::StrokesOptions as options::Declared>::options },
+    JobEntry { name: "stylize", options: <stylize::StylizeJobOptions as options::Declared>::options },
+    JobEntry { name: "presynth", options: <stylize::PresynthJobOptions as options::Declared>::options },
+    JobEntry { name: "texture", options: <stylize::TextureJobOptions as options::Declared>::options },
+    JobEntry { name: "inpaint", options: <stylize::SynthesisOptions as options::Declared>::options },
+    JobEntry { name: "zoom", options: <stylize::ZoomJobOptions as options::Declared>::options },
+    JobEntry { name: "video", options: <stylize::VideoJobOptions as options::Declared>::options },
 ];
 
 /// Per-stage milliseconds as a JSON object, in order.

@@ -141,6 +141,14 @@ impl OptionValue for f64 {
     }
 }
 
+impl OptionValue for f32 {
+    const KIND: Kind = Kind::Number;
+    fn shown(&self) -> Option<String> {
+        // The shortest decimal that reads back as this `f32` (not the `f64` widening's digits).
+        Some(number(self.to_string().parse().unwrap_or(f64::from(*self))))
+    }
+}
+
 /// Whole-number option types, shown as written.
 macro_rules! integer_option {
     ($($type:ty),+) => {$(
@@ -173,6 +181,13 @@ impl OptionValue for Vec<f64> {
     const KIND: Kind = Kind::Numbers;
     fn shown(&self) -> Option<String> {
         (!self.is_empty()).then(|| self.iter().map(|&v| number(v)).collect::<Vec<_>>().join(","))
+    }
+}
+
+impl OptionValue for Vec<f32> {
+    const KIND: Kind = Kind::Numbers;
+    fn shown(&self) -> Option<String> {
+        (!self.is_empty()).then(|| self.iter().filter_map(OptionValue::shown).collect::<Vec<_>>().join(","))
     }
 }
 
@@ -252,6 +267,54 @@ pub trait Declared: Default + Serialize + DeserializeOwned {
             }
         }
         Ok(())
+    }
+}
+
+/// Two declarations as one: the options of `A` (shared by several jobs) then those of `B` (one
+/// job's own). Its serde form is one flat map; a name neither declares is refused (by `B`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Joined<A, B> {
+    /// The shared options.
+    pub shared: A,
+    /// The job's own options.
+    pub own: B,
+}
+
+impl<A: Declared, B: Declared> Declared for Joined<A, B> {
+    fn options() -> Vec<OptionSpec> {
+        let mut options = A::options();
+        options.extend(B::options());
+        options
+    }
+}
+
+/// A value's fields as a JSON map (empty when it is not a map).
+fn fields_of<T: Serialize, E: serde::ser::Error>(value: &T) -> Result<serde_json::Map<String, Value>, E> {
+    match serde_json::to_value(value).map_err(E::custom)? {
+        Value::Object(map) => Ok(map),
+        _ => Ok(serde_json::Map::new()),
+    }
+}
+
+impl<A: Serialize, B: Serialize> Serialize for Joined<A, B> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = fields_of::<A, S::Error>(&self.shared)?;
+        map.extend(fields_of::<B, S::Error>(&self.own)?);
+        map.serialize(serializer)
+    }
+}
+
+impl<'de, A: Declared, B: Declared> serde::Deserialize<'de> for Joined<A, B> {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::Error as _;
+        let map = serde_json::Map::<String, Value>::deserialize(deserializer)?;
+        let shared_names: Vec<String> = A::options().into_iter().map(|spec| spec.name).collect();
+        let (shared, own): (serde_json::Map<String, Value>, serde_json::Map<String, Value>) =
+            map.into_iter().partition(|(name, _)| shared_names.contains(name));
+        Ok(Self {
+            shared: serde_json::from_value(Value::Object(shared)).map_err(D::Error::custom)?,
+            own: serde_json::from_value(Value::Object(own)).map_err(D::Error::custom)?,
+        })
     }
 }
 

@@ -13,6 +13,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::JobError;
+use crate::options::{Declared, Described, Joined};
 
 /// Channels of a decoded guide image: 4 with any transparency, else 1 when grey, else 3.
 fn guide_channel_count(image: &RgbaImage) -> usize {
@@ -59,203 +60,320 @@ fn default_seed() -> u64 {
     1
 }
 
-/// The synthesis options every stylize-family job shares, by flag name.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-struct Synthesis {
+crate::choice_option!(NnfMethod: "patchmatch", "exact");
+
+/// The engine's defaults, which the options take theirs from.
+const DEFAULTS: Params = Params::DEFAULT;
+
+crate::declare_options! {
+    /// The synthesis options every stylize-family job shares (ebsynth's names and defaults),
+    /// declared once.
+    pub struct SynthesisOptions {
+        /// α: weight of the style term (A' against B' patches).
+        [value_name: "W", range: (0.0, 1000.0)]
+        style_weight: f32 = DEFAULTS.style_weight,
+        /// λ: weight of the occurrence penalty that spreads the use of source patches evenly and
+        /// prevents wash-out (ebsynth's units: squared 8-bit differences); 0 = off.
+        [value_name: "U", range: (0.0, 1e6)]
+        uniformity: f32 = DEFAULTS.uniformity,
+        /// Patch side in pixels, odd. Larger keeps bigger structures of the style.
+        [value_name: "P", range: (3.0, 31.0)]
+        patch_size: usize = DEFAULTS.patch_size,
+        /// Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at
+        /// the finest: odd, or 0 for --patch-size everywhere. The coarse levels decide the
+        /// layout; larger patches there keep regular structures (bricks, weaves, parquet) whole.
+        [value_name: "P", range: (0.0, 31.0)]
+        coarse_patch_size: usize = DEFAULTS.coarse_patch_size,
+        /// Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps,
+        /// grooves; found by splitting its luminance in two) as one more channel, relative to a
+        /// colour channel, at the coarsest level and falling to 0 at the finest (Kaspar et al.
+        /// 2015's structure guidance); 0 = off. Keeps the elements of regular textures whole.
+        [value_name: "W", range: (0.0, 1000.0)]
+        structure_weight: f32 = DEFAULTS.structure_weight,
+        /// Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks
+        /// of B pixels, at most the exemplar's smaller side, and optimize at the finest level only:
+        /// blocks keep whole elements in continuous courses (bricks, tiles), the optimization mends
+        /// the seams. 0 = off, else at least 8.
+        [value_name: "B", range: (0.0, 4096.0)]
+        quilt_block: usize = DEFAULTS.quilt_block,
+        /// Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
+        [value_name: "L", range: (0.0, 32.0)]
+        pyramid_levels: usize = DEFAULTS.pyramid_levels,
+        /// Search-then-vote iterations per pyramid level (N of Algorithm 1).
+        [value_name: "N", range: (1.0, 100.0)]
+        search_vote_iters: usize = DEFAULTS.search_vote_iterations,
+        /// PatchMatch iterations per search.
+        [value_name: "K", range: (1.0, 100.0)]
+        patchmatch_iters: usize = DEFAULTS.patchmatch_iterations,
+        /// Stop improving a pixel once a vote changes it by less than this (largest channel change,
+        /// 8-bit units); 0 = search every pixel every time.
+        [value_name: "T", range: (0.0, 1020.0)]
+        stop_threshold: f32 = DEFAULTS.stop_threshold,
+        /// Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only).
+        [value_name: "patchmatch|exact"]
+        nnf: NnfMethod = DEFAULTS.nnf,
+        /// After the finest level, one more search-and-vote with 3×3 patches and no uniformity
+        /// (ebsynth's extrapass3x3): crisper fine detail.
+        extra_pass_3x3: bool = DEFAULTS.extra_pass_3x3,
+        /// Refuse runs that would synthesize more output pixels than this (summed over presynth's
+        /// textures): a guard against a typo in a size; about 15 CPU-seconds per megapixel.
+        [value_name: "N", range: (1.0, f64::MAX)]
+        max_pixels: usize = DEFAULTS.max_pixels,
+    }
+}
+
+impl SynthesisOptions {
+    /// The engine's parameters with these options, the run's `seed` and its memory bound
+    /// (`None`: the engine's).
+    pub fn params(&self, seed: u64, max_memory: Option<u64>) -> Params {
+        DEFAULTS
+            .with_style_weight(self.style_weight)
+            .with_uniformity(self.uniformity)
+            .with_patch_size(self.patch_size)
+            .with_coarse_patch_size(self.coarse_patch_size)
+            .with_structure_weight(self.structure_weight)
+            .with_quilt_block(self.quilt_block)
+            .with_pyramid_levels(self.pyramid_levels)
+            .with_search_vote_iterations(self.search_vote_iters)
+            .with_patchmatch_iterations(self.patchmatch_iters)
+            .with_stop_threshold(self.stop_threshold)
+            .with_nnf(self.nnf)
+            .with_extra_pass_3x3(self.extra_pass_3x3)
+            .with_max_pixels(self.max_pixels)
+            .with_max_memory(max_memory.unwrap_or(DEFAULTS.max_memory))
+            .with_seed(seed)
+    }
+}
+
+/// Validates `params` (the engine's ranges and messages first), then every declared range of
+/// `options`.
+fn checked<O: Declared>(params: Params, options: &O) -> Result<Params, JobError> {
+    params.validate()?;
+    options.check_ranges()?;
+    Ok(params)
+}
+
+crate::declare_options! {
+    /// The options of `motif stylize` of its own (besides [`SynthesisOptions`]), declared once.
+    pub struct StylizeOptions {
+        /// β: weight of a guide. Give none (each guide then weighs 1/number of guides, as in
+        /// ebsynth) or one per --guide, in the same order.
+        [value_name: "W", range: (0.0, 1000.0)]
+        weight: Vec<f32> = Vec::new(),
+        /// Treat the colours of the segment guide as segment labels: ω_best per segment (Eq. 6) and
+        /// no match across segments. Exact palette (at most 64 colours) unless --segment-count.
+        segments: bool = false,
+        /// Quantize the segment guide into K colours by k-means (for anti-aliased guides); implies
+        /// --segments.
+        [value_name: "K", range: (2.0, 64.0)]
+        segment_count: Option<usize> = None,
+        /// Which --guide pair defines the segments, counted from 1.
+        [value_name: "I", range: (1.0, f64::MAX)]
+        segment_guide: usize = DEFAULTS.segment_guide + 1,
+        /// Band half-width T in pixels for --presynth; 0 = pure bitmap composition.
+        [value_name: "T", range: (0.0, 4096.0)]
+        band: usize = DEFAULTS.band,
+        /// Search-vote iterations for the band when the textures carry their fields (caches made
+        /// by this version): the band starts at the textures' own matches, so fewer are needed.
+        /// Older caches (no fields) use --search-vote-iters.
+        [value_name: "N", range: (1.0, 100.0)]
+        band_iters: usize = DEFAULTS.band_search_vote_iterations,
+        /// PatchMatch iterations per search for such a band (else --patchmatch-iters).
+        [value_name: "K", range: (1.0, 100.0)]
+        band_patchmatch_iters: usize = DEFAULTS.band_patchmatch_iterations,
+    }
+}
+
+crate::declare_options! {
+    /// The options of `motif texture` of its own (besides [`SynthesisOptions`]), declared once.
+    pub struct TextureOptions {
+        /// Wrap patches around the borders so the output tiles seamlessly.
+        tileable: bool = DEFAULTS.tileable,
+    }
+}
+
+crate::declare_options! {
+    /// The options of `motif zoom` of its own (besides [`SynthesisOptions`]), declared once.
+    pub struct ZoomOptions {
+        /// How much closer each level is than the one before.
+        [value_name: "F", range: (1.05, 8.0)]
+        factor: f64 = 2.0,
+        /// Zoom levels, the first unzoomed.
+        [value_name: "N", range: (1.0, 64.0)]
+        levels: usize = 4,
+    }
+}
+
+crate::declare_options! {
+    /// The options of `motif presynth` of its own (besides [`SynthesisOptions`]), declared once.
+    pub struct PresynthOptions {
+        /// Quantize the guide into K colours by k-means instead of an exact palette.
+        [value_name: "K", range: (2.0, 64.0)]
+        segment_count: Option<usize> = None,
+    }
+}
+
+/// The fields of a stylize-family job outside its options, as a description holds them.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct RunFields {
+    #[serde(default = "default_seed")]
     seed: u64,
-    style_weight: Option<f32>,
-    uniformity: Option<f32>,
-    patch_size: Option<usize>,
-    coarse_patch_size: Option<usize>,
-    structure_weight: Option<f32>,
-    quilt_block: Option<usize>,
-    pyramid_levels: Option<usize>,
-    search_vote_iters: Option<usize>,
-    patchmatch_iters: Option<usize>,
-    stop_threshold: Option<f32>,
-    nnf: Option<NnfMethod>,
-    extra_pass_3x3: bool,
-    max_pixels: Option<usize>,
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
     max_memory: Option<u64>,
 }
 
-impl Synthesis {
-    fn params(self) -> Params {
-        let d = Params::default();
-        d.clone()
-            .with_style_weight(self.style_weight.unwrap_or(d.style_weight))
-            .with_uniformity(self.uniformity.unwrap_or(d.uniformity))
-            .with_patch_size(self.patch_size.unwrap_or(d.patch_size))
-            .with_coarse_patch_size(self.coarse_patch_size.unwrap_or(d.coarse_patch_size))
-            .with_structure_weight(self.structure_weight.unwrap_or(d.structure_weight))
-            .with_quilt_block(self.quilt_block.unwrap_or(d.quilt_block))
-            .with_pyramid_levels(self.pyramid_levels.unwrap_or(d.pyramid_levels))
-            .with_search_vote_iterations(self.search_vote_iters.unwrap_or(d.search_vote_iterations))
-            .with_patchmatch_iterations(self.patchmatch_iters.unwrap_or(d.patchmatch_iterations))
-            .with_stop_threshold(self.stop_threshold.unwrap_or(d.stop_threshold))
-            .with_nnf(self.nnf.unwrap_or(d.nnf))
-            .with_extra_pass_3x3(self.extra_pass_3x3)
-            .with_max_pixels(self.max_pixels.unwrap_or(d.max_pixels))
-            .with_max_memory(self.max_memory.unwrap_or(d.max_memory))
-            .with_seed(self.seed)
+/// The fields of a `texture` or `zoom` job outside its options: the output size too.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct SizedFields {
+    size: [usize; 2],
+    #[serde(default = "default_seed")]
+    seed: u64,
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    max_memory: Option<u64>,
+}
+
+/// The fields of a `presynth` job outside its options: the optional texture size too.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub struct PresynthFields {
+    #[serde(default)]
+    size: Option<[usize; 2]>,
+    #[serde(default = "default_seed")]
+    seed: u64,
+    #[serde(default, deserialize_with = "crate::memory_size::optional")]
+    max_memory: Option<u64>,
+}
+
+/// Every option of `motif stylize` that is not a file: the shared synthesis options and its own.
+pub type StylizeJobOptions = Joined<SynthesisOptions, StylizeOptions>;
+/// Every option of `motif texture` that is not a file or the size.
+pub type TextureJobOptions = Joined<SynthesisOptions, TextureOptions>;
+/// Every option of `motif zoom` that is not a file or the size.
+pub type ZoomJobOptions = Joined<SynthesisOptions, ZoomOptions>;
+/// Every option of `motif presynth` that is not a file or the size.
+pub type PresynthJobOptions = Joined<SynthesisOptions, PresynthOptions>;
+
+/// A `stylize` job: the run's seed and memory bound, and every option ([`StylizeJobOptions`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<RunFields>")]
+pub struct StylizeJob {
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
+    /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: StylizeJobOptions,
+}
+
+impl TryFrom<Described<RunFields>> for StylizeJob {
+    type Error = String;
+    fn try_from(described: Described<RunFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
-/// Declares a job struct with the shared synthesis options plus its own fields, and the
-/// conversion to [`Synthesis`] (serde cannot deny unknown fields across a flattened struct, and a
-/// misspelt option must be an error).
-macro_rules! job_with_synthesis {
-    ($(#[$meta:meta])* pub struct $name:ident { $($(#[$field_meta:meta])* pub $field:ident: $ty:ty,)* }) => {
-        $(#[$meta])*
-        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-        #[serde(rename_all = "kebab-case", deny_unknown_fields)]
-        pub struct $name {
-            $($(#[$field_meta])* pub $field: $ty,)*
-            /// Seed of every random choice (default 1, as on the command line).
-            #[serde(default = "default_seed")]
-            pub seed: u64,
-            /// α: weight of the style term.
-            #[serde(default)]
-            pub style_weight: Option<f32>,
-            /// λ: weight of the occurrence penalty (0 = off).
-            #[serde(default)]
-            pub uniformity: Option<f32>,
-            /// Patch side in pixels (odd).
-            #[serde(default)]
-            pub patch_size: Option<usize>,
-            /// Patch side at the coarsest level, shrinking to `patch-size` at the finest (0 = off).
-            #[serde(default)]
-            pub coarse_patch_size: Option<usize>,
-            /// Texture synthesis: weight of the exemplar's feature-distance channel at the
-            /// coarsest level (Kaspar et al.'s structure guidance; 0 = off).
-            #[serde(default)]
-            pub structure_weight: Option<f32>,
-            /// Texture synthesis: start from an image quilt of blocks of this side, optimized at
-            /// the finest level only (0 = off).
-            #[serde(default)]
-            pub quilt_block: Option<usize>,
-            /// Pyramid levels (0 = as many as fit).
-            #[serde(default)]
-            pub pyramid_levels: Option<usize>,
-            /// Search-then-vote iterations per level.
-            #[serde(default)]
-            pub search_vote_iters: Option<usize>,
-            /// PatchMatch iterations per search.
-            #[serde(default)]
-            pub patchmatch_iters: Option<usize>,
-            /// Per-pixel convergence threshold (8-bit units).
-            #[serde(default)]
-            pub stop_threshold: Option<f32>,
-            /// `patchmatch` (default) or `exact`.
-            #[serde(default)]
-            pub nnf: Option<NnfMethod>,
-            /// One more search-and-vote with 3×3 patches at the end.
-            #[serde(default, rename = "extra-pass-3x3")]
-            pub extra_pass_3x3: bool,
-            /// Refuse runs that would synthesize more output pixels than this.
-            #[serde(default)]
-            pub max_pixels: Option<usize>,
-            /// Refuse runs whose estimated peak memory passes this: bytes, or a size such as `"8G"`
-            /// (default: the engine's, 4 GiB; the CLI passes half of the machine's memory).
-            #[serde(default, deserialize_with = "crate::memory_size::optional")]
-            pub max_memory: Option<u64>,
-        }
-
-        impl $name {
-            fn synthesis(&self) -> Synthesis {
-                Synthesis {
-                    seed: self.seed,
-                    style_weight: self.style_weight,
-                    uniformity: self.uniformity,
-                    patch_size: self.patch_size,
-                    coarse_patch_size: self.coarse_patch_size,
-                    structure_weight: self.structure_weight,
-                    quilt_block: self.quilt_block,
-                    pyramid_levels: self.pyramid_levels,
-                    search_vote_iters: self.search_vote_iters,
-                    patchmatch_iters: self.patchmatch_iters,
-                    stop_threshold: self.stop_threshold,
-                    nnf: self.nnf,
-                    extra_pass_3x3: self.extra_pass_3x3,
-                    max_pixels: self.max_pixels,
-                    max_memory: self.max_memory,
-                }
-            }
-        }
-    };
+/// A `texture` job: the output size, the run's seed and memory bound, and every option.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<SizedFields>")]
+pub struct TextureJob {
+    /// Output size `[W, H]` in pixels.
+    pub size: [usize; 2],
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this (see [`StylizeJob::max_memory`]).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: TextureJobOptions,
 }
 
-job_with_synthesis! {
-    /// Every option of `motif stylize` that is not a file.
-    pub struct StylizeJob {
-        /// β per guide pair, in order (none: each guide weighs 1 / number of guides).
-        #[serde(default)]
-        pub weight: Vec<f32>,
-        /// Segment guidance with an exact palette of the segment guide's colours.
-        #[serde(default)]
-        pub segments: bool,
-        /// Segment guidance with the segment guide quantized into this many colours (2–64).
-        #[serde(default)]
-        pub segment_count: Option<usize>,
-        /// Which guide pair defines the segments, counted from 1 (default 1).
-        #[serde(default)]
-        pub segment_guide: Option<usize>,
-        /// Band half-width in pixels when pre-synthesized textures are given.
-        #[serde(default)]
-        pub band: Option<usize>,
-        /// Search-vote iterations of a band seeded by the textures' fields.
-        #[serde(default)]
-        pub band_iters: Option<usize>,
-        /// PatchMatch iterations per search of such a band.
-        #[serde(default)]
-        pub band_patchmatch_iters: Option<usize>,
+impl TryFrom<Described<SizedFields>> for TextureJob {
+    type Error = String;
+    fn try_from(described: Described<SizedFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { size: fields.size, seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
-job_with_synthesis! {
-    /// Every option of `motif texture` that is not a file.
-    pub struct TextureJob {
-        /// Output size `[W, H]` in pixels.
-        pub size: [usize; 2],
-        /// Wrap patches around the borders so the output tiles seamlessly.
-        #[serde(default)]
-        pub tileable: bool,
+/// An `inpaint` job: the run's seed and memory bound, and the synthesis options.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<RunFields>")]
+pub struct InpaintJob {
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this (see [`StylizeJob::max_memory`]).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: SynthesisOptions,
+}
+
+impl TryFrom<Described<RunFields>> for InpaintJob {
+    type Error = String;
+    fn try_from(described: Described<RunFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
-job_with_synthesis! {
-    /// Every option of `motif inpaint` that is not a file.
-    pub struct InpaintJob {}
+/// A `zoom` job: the size of every level, the run's seed and memory bound, and every option.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<SizedFields>")]
+pub struct ZoomJob {
+    /// Output size `[W, H]` in pixels, the same at every zoom level.
+    pub size: [usize; 2],
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this (see [`StylizeJob::max_memory`]).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: ZoomJobOptions,
 }
 
-job_with_synthesis! {
-    /// Every option of `motif zoom` that is not a file.
-    pub struct ZoomJob {
-        /// Output size `[W, H]` in pixels, the same at every zoom level.
-        pub size: [usize; 2],
-        /// How much closer each level is than the one before (1.05–8, default 2).
-        #[serde(default)]
-        pub factor: Option<f64>,
-        /// Zoom levels, the first unzoomed (1–64, default 4).
-        #[serde(default)]
-        pub levels: Option<usize>,
+impl TryFrom<Described<SizedFields>> for ZoomJob {
+    type Error = String;
+    fn try_from(described: Described<SizedFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { size: fields.size, seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
-job_with_synthesis! {
-    /// Every option of `motif presynth` that is not a file.
-    pub struct PresynthJob {
-        /// Texture size `[W, H]` in pixels (default 256 × 256).
-        #[serde(default)]
-        pub size: Option<[usize; 2]>,
-        /// Quantize the segment guide into this many colours instead of an exact palette.
-        #[serde(default)]
-        pub segment_count: Option<usize>,
+/// A `presynth` job: the texture size, the run's seed and memory bound, and every option.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<PresynthFields>")]
+pub struct PresynthJob {
+    /// Texture size `[W, H]` in pixels (default 256 × 256).
+    pub size: Option<[usize; 2]>,
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this (see [`StylizeJob::max_memory`]).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: PresynthJobOptions,
+}
+
+impl TryFrom<Described<PresynthFields>> for PresynthJob {
+    type Error = String;
+    fn try_from(described: Described<PresynthFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { size: fields.size, seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
 mod video;
-pub use video::{VideoJob, video_frame, video_styles};
+pub use video::{VideoJob, VideoJobOptions, VideoOptions, video_frame, video_styles};
 
 /// One decoded guide pair: source (the style's size) and target, with equal channel counts
 /// (8-bit as decoded by default; float images work too).
@@ -270,45 +388,38 @@ pub struct StylizeRun {
     pub figures: Map<String, Value>,
 }
 
-/// A job from its description's defaults (an empty description, plus `fields`), so that the
-/// defaults are stated once, in the serde attributes.
-fn described<T: serde::de::DeserializeOwned>(fields: Value) -> T {
-    serde_json::from_value(fields).expect("the defaults of a job describe a valid job")
-}
-
 impl StylizeJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
-        described(json!({}))
+        Self { seed: default_seed(), max_memory: None, options: StylizeJobOptions::default() }
     }
 
     /// The engine's parameters (`textures` tells whether pre-synthesized textures are given:
     /// they imply segment guidance).
     pub fn params(&self, textures: bool) -> Result<Params, JobError> {
-        let d = Params::default();
-        let segments = match (self.segments, self.segment_count) {
+        let own = &self.options.own;
+        let segments = match (own.segments, own.segment_count) {
             (_, Some(k)) => Some(Segmentation::KMeans(k)),
             (true, None) => Some(Segmentation::Palette),
             (false, None) if textures => Some(Segmentation::Palette),
             (false, None) => None,
         };
-        let segment_guide = match self.segment_guide {
-            Some(0) => {
+        let segment_guide = match own.segment_guide {
+            0 => {
                 return Err(InvalidParameter::new("segment-guide", 0, "guides are counted from 1").into());
             }
-            Some(index) => index - 1,
-            None => d.segment_guide,
+            index => index - 1,
         };
         let params = self
-            .synthesis()
-            .params()
+            .options
+            .shared
+            .params(self.seed, self.max_memory)
             .with_segments(segments)
             .with_segment_guide(segment_guide)
-            .with_band(self.band.unwrap_or(d.band))
-            .with_band_search_vote_iterations(self.band_iters.unwrap_or(d.band_search_vote_iterations))
-            .with_band_patchmatch_iterations(self.band_patchmatch_iters.unwrap_or(d.band_patchmatch_iterations));
-        params.validate()?;
-        Ok(params)
+            .with_band(own.band)
+            .with_band_search_vote_iterations(own.band_iters)
+            .with_band_patchmatch_iterations(own.band_patchmatch_iters);
+        checked(params, &self.options)
     }
 
     /// Runs the job: the style A', the guide pairs (A, B) and, for the band mode of §3.7, the
@@ -332,15 +443,16 @@ impl StylizeJob {
         mask: Option<Mask<I>>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
-        if !self.weight.is_empty() && self.weight.len() != guides.len() {
+        let weight = &self.options.own.weight;
+        if !weight.is_empty() && weight.len() != guides.len() {
             let allowed = format!("none or exactly one per guide ({} guides), in order", guides.len());
-            return Err(InvalidParameter::new("weight", format!("{} values", self.weight.len()), allowed).into());
+            return Err(InvalidParameter::new("weight", format!("{} values", weight.len()), allowed).into());
         }
         let params = self.params(textures.is_some())?;
         let guides = guides
             .into_iter()
             .enumerate()
-            .map(|(index, (source, target))| Guide { source, target, weight: self.weight.get(index).copied() })
+            .map(|(index, (source, target))| Guide { source, target, weight: weight.get(index).copied() })
             .collect();
         let mut input = Input::guided(style, guides);
         input.textures = textures;
@@ -360,14 +472,13 @@ impl Default for StylizeJob {
 impl TextureJob {
     /// A job for a `width × height` texture with every other option at its default.
     pub fn new(width: usize, height: usize) -> Self {
-        described(json!({ "size": [width, height] }))
+        Self { size: [width, height], seed: default_seed(), max_memory: None, options: TextureJobOptions::default() }
     }
 
     /// The engine's parameters.
     pub fn params(&self) -> Result<Params, JobError> {
-        let params = self.synthesis().params().with_tileable(self.tileable);
-        params.validate()?;
-        Ok(params)
+        let params = self.options.shared.params(self.seed, self.max_memory).with_tileable(self.options.own.tileable);
+        checked(params, &self.options)
     }
 
     /// Runs the job on the decoded exemplar.
@@ -394,7 +505,7 @@ impl TextureJob {
 impl InpaintJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
-        described(json!({}))
+        Self { seed: default_seed(), max_memory: None, options: SynthesisOptions::default() }
     }
 
     /// Fills the `hole` of `image` (per pixel, `true` = fill) from the rest of it.
@@ -404,8 +515,7 @@ impl InpaintJob {
         hole: Vec<bool>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
-        let params = self.synthesis().params();
-        params.validate()?;
+        let params = checked(self.options.params(self.seed, self.max_memory), &self.options)?;
         let output = motif_stylize::synthesize(&Input::inpaint(image, hole), &params, progress)?;
         let figures = figures(&output);
         Ok(StylizeRun { output, figures })
@@ -415,14 +525,14 @@ impl InpaintJob {
 impl ZoomJob {
     /// A job for `width × height` levels with every other option at its default.
     pub fn new(width: usize, height: usize) -> Self {
-        described(json!({ "size": [width, height] }))
+        Self { size: [width, height], seed: default_seed(), max_memory: None, options: ZoomJobOptions::default() }
     }
 
     /// The whole run's estimated peak memory for `exemplar`, bytes (checked by [`ZoomJob::run`]
     /// before the first level).
     pub fn memory_bytes(&self, exemplar: &motif_core::FloatImage) -> u64 {
         let style = (exemplar.width(), exemplar.height(), exemplar.channels());
-        let levels = self.levels.unwrap_or(4);
+        let levels = self.options.own.levels;
         motif_stylize::zoom_memory(style, 0, (self.size[0], self.size[1]), levels).total()
     }
 
@@ -432,10 +542,9 @@ impl ZoomJob {
         exemplar: motif_core::FloatImage,
         progress: &mut dyn Progress,
     ) -> Result<Vec<StylizeRun>, JobError> {
-        let params = self.synthesis().params();
-        params.validate()?;
+        let params = checked(self.options.shared.params(self.seed, self.max_memory), &self.options)?;
         let input = Input::texture(exemplar, self.size[0], self.size[1]);
-        let (factor, levels) = (self.factor.unwrap_or(2.0), self.levels.unwrap_or(4));
+        let (factor, levels) = (self.options.own.factor, self.options.own.levels);
         let outputs = motif_stylize::zoom(&input, factor, levels, &params, progress)?;
         Ok(outputs.into_iter().map(|output| StylizeRun { figures: figures(&output), output }).collect())
     }
@@ -467,7 +576,7 @@ pub fn kept_image(image: &RgbaImage, channels: usize) -> ByteImage {
 impl PresynthJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
-        described(json!({}))
+        Self { size: None, seed: default_seed(), max_memory: None, options: PresynthJobOptions::default() }
     }
 
     /// The texture size (256 × 256 unless given).
@@ -477,10 +586,9 @@ impl PresynthJob {
 
     /// The engine's parameters (segments by palette unless `segment-count` is given).
     pub fn params(&self) -> Result<Params, JobError> {
-        let segments = self.segment_count.map_or(Segmentation::Palette, Segmentation::KMeans);
-        let params = self.synthesis().params().with_segments(Some(segments));
-        params.validate()?;
-        Ok(params)
+        let segments = self.options.own.segment_count.map_or(Segmentation::Palette, Segmentation::KMeans);
+        let params = self.options.shared.params(self.seed, self.max_memory).with_segments(Some(segments));
+        checked(params, &self.options)
     }
 
     /// One seamless texture per segment of `guide` (the style's size) from `style`.

@@ -104,3 +104,46 @@ fn every_declaration_is_complete() {
         }
     }
 }
+
+/// The stylize family's jobs keep their flat JSON (shared and own options side by side, by flag
+/// name), refuse names neither declares, and start from the engine's defaults.
+#[test]
+fn stylize_jobs_join_shared_and_own_options() {
+    use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, VideoJob, ZoomJob};
+    use serde_json::json;
+
+    let job: StylizeJob = serde_json::from_value(json!({
+        "patch-size": 7, "weight": [0.5], "segment-count": 3, "search-vote-iters": 2, "seed": 4, "max-memory": "1G",
+    }))
+    .unwrap();
+    assert_eq!((job.options.shared.patch_size, job.options.shared.search_vote_iters), (7, 2));
+    assert_eq!((job.options.own.weight.clone(), job.options.own.segment_count), (vec![0.5], Some(3)));
+    assert_eq!((job.seed, job.max_memory), (4, Some(1 << 30)));
+    // Serialized flat: every option next to the job's own fields, and back to the same job.
+    let value = serde_json::to_value(&job).unwrap();
+    for name in ["patch-size", "weight", "segment-guide", "extra-pass-3x3", "seed", "max-memory"] {
+        assert!(value.get(name).is_some(), "{name} in {value}");
+    }
+    assert_eq!(serde_json::from_value::<StylizeJob>(value).unwrap(), job);
+    // A name of another job, or no job, is refused by name.
+    for (description, name) in [
+        (json!({ "size": [8, 8], "segments": true }), "segments"),
+        (json!({ "size": [8, 8], "patchsize": 5 }), "patchsize"),
+    ] {
+        let error = serde_json::from_value::<TextureJob>(description).unwrap_err().to_string();
+        assert!(error.contains(name), "{error}");
+    }
+    assert!(serde_json::from_value::<InpaintJob>(json!({ "tileable": true })).is_err());
+    assert!(serde_json::from_value::<VideoJob>(json!({ "band": 2 })).is_err());
+    let zoom: ZoomJob = serde_json::from_value(json!({ "size": [8, 8], "levels": 2 })).unwrap();
+    assert_eq!((zoom.options.own.levels, zoom.options.own.factor), (2, 2.0));
+    let presynth: PresynthJob = serde_json::from_value(json!({ "segment-count": 4 })).unwrap();
+    assert_eq!(presynth.texture_size(), [256, 256]);
+    // Defaults are the engine's.
+    let params = StylizeJob::new().params(false).unwrap();
+    let engine = motif_stylize::Params::DEFAULT.with_seed(1);
+    assert_eq!(params, engine);
+    // Declared ranges are checked with the option's name.
+    let job: TextureJob = serde_json::from_value(json!({ "size": [8, 8], "structure-weight": -1 })).unwrap();
+    assert!(job.params().unwrap_err().to_string().contains("structure-weight"));
+}

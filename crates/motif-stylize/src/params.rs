@@ -6,14 +6,12 @@ use motif_core::error::{check_count, check_range};
 use crate::Error;
 
 /// How the nearest-neighbour field is searched (paper §4.2; PatchMatch by Barnes et al. 2009).
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum NnfMethod {
     /// Randomized PatchMatch: propagation plus random search, deterministic under parallelism
     /// (row tiles with one seeded stream each). The default; near-linear in the image sizes.
     #[default]
-    #[cfg_attr(feature = "clap", value(name = "patchmatch"))]
     PatchMatch,
     /// Brute force over every source patch: the paper's own method (§4.2). Exact but
     /// `O(|target| · |source|)`, for small images and for tests.
@@ -118,30 +116,35 @@ pub struct Params {
 
 impl Default for Params {
     fn default() -> Self {
-        Self {
-            style_weight: 1.0,
-            uniformity: 3500.0,
-            patch_size: 5,
-            coarse_patch_size: 0,
-            structure_weight: 0.0,
-            quilt_block: 0,
-            pyramid_levels: 0,
-            search_vote_iterations: 6,
-            patchmatch_iterations: 4,
-            stop_threshold: 5.0,
-            nnf: NnfMethod::PatchMatch,
-            extra_pass_3x3: false,
-            segments: None,
-            segment_guide: 0,
-            band: 4,
-            band_search_vote_iterations: 3,
-            band_patchmatch_iterations: 2,
-            max_pixels: 64_000_000,
-            max_memory: motif_core::DEFAULT_MAX_MEMORY,
-            tileable: false,
-            seed: 0,
-        }
+        Self::DEFAULT
     }
+}
+
+impl Params {
+    /// The defaults (ebsynth's), as a constant: front ends declare their options' defaults from it.
+    pub const DEFAULT: Self = Self {
+        style_weight: 1.0,
+        uniformity: 3500.0,
+        patch_size: 5,
+        coarse_patch_size: 0,
+        structure_weight: 0.0,
+        quilt_block: 0,
+        pyramid_levels: 0,
+        search_vote_iterations: 6,
+        patchmatch_iterations: 4,
+        stop_threshold: 5.0,
+        nnf: NnfMethod::PatchMatch,
+        extra_pass_3x3: false,
+        segments: None,
+        segment_guide: 0,
+        band: 4,
+        band_search_vote_iterations: 3,
+        band_patchmatch_iterations: 2,
+        max_pixels: 64_000_000,
+        max_memory: motif_core::DEFAULT_MAX_MEMORY,
+        tileable: false,
+        seed: 0,
+    };
 }
 
 impl Params {

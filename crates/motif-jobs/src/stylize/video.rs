@@ -6,52 +6,79 @@
 
 use motif_core::{FloatImage, Progress, RgbaImage};
 use motif_stylize::{
-    Interval, IntervalOutput, Keyframe, NnfMethod, Params, VideoInput, VideoOutput, VideoParams, intervals,
-    stylize_interval,
+    Interval, IntervalOutput, Keyframe, Params, VideoInput, VideoOutput, VideoParams, intervals, stylize_interval,
 };
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
-use super::{Synthesis, default_seed, described};
+use super::{RunFields, SynthesisOptions, checked, default_seed};
 use crate::JobError;
+use crate::options::{Described, Joined};
 
-job_with_synthesis! {
-    /// Every option of `motif video` that is not a file.
-    pub struct VideoJob {
-        /// Weight of the frames' colours (default 1).
-        #[serde(default)]
-        pub colour_weight: Option<f32>,
-        /// Weight of the edge guide (default 1).
-        #[serde(default)]
-        pub edge_weight: Option<f32>,
-        /// Weight of the positional guide carried along the motion (default 4).
-        #[serde(default)]
-        pub position_weight: Option<f32>,
-        /// Weight of the temporal guide, the previous output carried along the motion (default 2;
-        /// 0 turns temporal coherence off).
-        #[serde(default)]
-        pub temporal_weight: Option<f32>,
+crate::declare_options! {
+    /// The options of `motif video` of its own (besides [`SynthesisOptions`]), declared once.
+    pub struct VideoOptions {
+        /// Weight of the frames' colours (keyframe against each frame).
+        [value_name: "W", range: (0.0, 1000.0)]
+        colour_weight: f32 = VideoParams::DEFAULT.colour_weight,
+        /// Weight of the edge guide (the frames' blurred edges).
+        [value_name: "W", range: (0.0, 1000.0)]
+        edge_weight: f32 = VideoParams::DEFAULT.edge_weight,
+        /// Weight of the positional guide (the keyframe's pixel positions carried along the
+        /// motion, so the style stays on the surfaces it was painted on).
+        [value_name: "W", range: (0.0, 1000.0)]
+        position_weight: f32 = VideoParams::DEFAULT.position_weight,
+        /// Weight of the temporal guide (the previous output carried along the motion; against
+        /// flicker); 0 stylizes frames independently of each other.
+        [value_name: "W", range: (0.0, 1000.0)]
+        temporal_weight: f32 = VideoParams::DEFAULT.temporal_weight,
+    }
+}
+
+/// Every option of `motif video` that is not a file: the shared synthesis options and its own.
+pub type VideoJobOptions = Joined<SynthesisOptions, VideoOptions>;
+
+/// A `video` job: the run's seed and memory bound, and every option ([`VideoJobOptions`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "crate::options::Described<RunFields>")]
+pub struct VideoJob {
+    /// Seed of every random choice (default 1, as on the command line).
+    pub seed: u64,
+    /// Refuse runs whose estimated peak memory passes this (see
+    /// [`StylizeJob::max_memory`](super::StylizeJob::max_memory)).
+    #[serde(rename = "max-memory")]
+    pub max_memory: Option<u64>,
+    /// Every other option.
+    #[serde(flatten)]
+    pub options: VideoJobOptions,
+}
+
+impl TryFrom<Described<RunFields>> for VideoJob {
+    type Error = String;
+    fn try_from(described: Described<RunFields>) -> Result<Self, String> {
+        let (fields, options) = described.split()?;
+        Ok(Self { seed: fields.seed, max_memory: fields.max_memory, options })
     }
 }
 
 impl VideoJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
-        described(json!({}))
+        Self { seed: default_seed(), max_memory: None, options: VideoJobOptions::default() }
     }
 
     /// The engine's parameters and guide weights, validated.
     pub fn params(&self) -> Result<(Params, VideoParams), JobError> {
-        let params = self.synthesis().params();
+        let params = self.options.shared.params(self.seed, self.max_memory);
         params.validate()?;
-        let d = VideoParams::default();
-        let video = VideoParams::default()
-            .with_colour_weight(self.colour_weight.unwrap_or(d.colour_weight))
-            .with_edge_weight(self.edge_weight.unwrap_or(d.edge_weight))
-            .with_position_weight(self.position_weight.unwrap_or(d.position_weight))
-            .with_temporal_weight(self.temporal_weight.unwrap_or(d.temporal_weight));
+        let own = &self.options.own;
+        let video = VideoParams::DEFAULT
+            .with_colour_weight(own.colour_weight)
+            .with_edge_weight(own.edge_weight)
+            .with_position_weight(own.position_weight)
+            .with_temporal_weight(own.temporal_weight);
         video.validate()?;
-        Ok((params, video))
+        Ok((checked(params, &self.options)?, video))
     }
 
     /// The peak memory of running the intervals of `lengths` frames (of `size`, `channels`

@@ -6,11 +6,14 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use clap::Args;
 use motif_core::{ByteImage, RgbaImage};
-use motif_jobs::stylize::{InpaintJob, ZoomJob, hole_of, kept_image, style_image_channels};
+use motif_jobs::stylize::{
+    InpaintJob, SynthesisOptions, ZoomJob, ZoomJobOptions, hole_of, kept_image, style_image_channels,
+};
 use motif_stylize::Mask;
 
-use super::{SynthesisOptions, load, write_debug};
+use super::{load, write_debug};
 use crate::context::Context;
+use crate::job_args::JobArgs;
 
 /// Synthesize only part of the output (ebsynth's masks).
 #[derive(Args, Debug, Clone)]
@@ -75,9 +78,9 @@ pub struct InpaintArgs {
     /// where it is kept; the image's size.
     #[arg(long, value_name = "HOLE.png")]
     pub mask: PathBuf,
-    /// Synthesis options.
+    /// Every option of the synthesis, declared in `motif_jobs::stylize::SynthesisOptions`.
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
+    pub options: JobArgs<SynthesisOptions>,
     /// Also write nnf.png and error.png into this directory (see `motif stylize --help`).
     #[arg(long, value_name = "DIR")]
     pub debug_dir: Option<PathBuf>,
@@ -95,7 +98,8 @@ pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<
     let image = style_image_channels(&image);
     let hole = hole_of(&mask);
     let holes = hole.iter().filter(|&&h| h).count();
-    let job = super::with_synthesis!(InpaintJob::new(), &args.synthesis, context);
+    let job =
+        InpaintJob { seed: context.seed, max_memory: Some(context.max_memory), options: args.options.options.clone() };
     let run = job
         .run(image, hole, context.progress())
         .with_context(|| format!("cannot fill {} with the hole {}", args.image.display(), args.mask.display()))?;
@@ -124,15 +128,10 @@ pub struct ZoomArgs {
     /// Size of every zoom level in pixels.
     #[arg(long, value_name = "WxH", value_parser = super::parse_size)]
     pub size: (usize, usize),
-    /// How much closer each level is than the one before, 1.05–8.
-    #[arg(long, value_name = "F", default_value_t = 2.0, allow_negative_numbers = true)]
-    pub factor: f64,
-    /// Zoom levels, the first unzoomed, 1–64.
-    #[arg(long, value_name = "N", default_value_t = 4, allow_negative_numbers = true)]
-    pub levels: usize,
-    /// Synthesis options.
+    /// Every option of the synthesis, declared in `motif_jobs::stylize` (`SynthesisOptions`,
+    /// `ZoomOptions`).
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
+    pub options: JobArgs<ZoomJobOptions>,
     /// Output folder (created if missing): zoom-01.png (unzoomed), zoom-02.png, …
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
@@ -141,15 +140,17 @@ pub struct ZoomArgs {
 /// Runs `motif zoom`.
 pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
     let names: Vec<PathBuf> =
-        (1..=args.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
+        (1..=args.options.own.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
     // The folder is made after the run, if missing.
     context.check_outputs_in(&args.out_dir, &names, &[&args.exemplar])?;
     let exemplar = style_image_channels(&load(&args.exemplar, context.max_memory)?).to_float();
     let job = ZoomJob {
-        factor: Some(args.factor),
-        levels: Some(args.levels),
-        ..super::with_synthesis!(ZoomJob::new(args.size.0, args.size.1), &args.synthesis, context)
+        size: [args.size.0, args.size.1],
+        seed: context.seed,
+        max_memory: Some(context.max_memory),
+        options: args.options.options.clone(),
     };
+    let factor = job.options.own.factor;
     let estimate = job.memory_bytes(&exemplar);
     let runs = job
         .run(exemplar, context.progress())
@@ -161,14 +162,14 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
     let total_ms: f64 = runs.iter().map(|run| run.output.report.total_ms).sum();
     context.figure("estimated_memory_bytes", estimate);
     context.figure("levels", runs.len());
-    context.figure("factor", args.factor);
+    context.figure("factor", factor);
     context.figure("level_ms", runs.iter().map(|run| run.output.report.total_ms).collect::<Vec<_>>());
     context.summary(&format!(
         "motif zoom: {} levels of {}×{}, each {}× closer, in {:.0} ms → {}",
         runs.len(),
         args.size.0,
         args.size.1,
-        args.factor,
+        factor,
         total_ms,
         args.out_dir.display()
     ));

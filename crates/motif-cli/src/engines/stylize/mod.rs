@@ -18,111 +18,14 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::RgbaImage;
 use motif_jobs::stylize::{
-    PresynthJob, StylizeJob, TextureJob, guide_image_channels, guide_pair, style_image_channels,
+    PresynthJob, PresynthJobOptions, StylizeJob, StylizeJobOptions, TextureJob, TextureJobOptions,
+    guide_image_channels, guide_pair, style_image_channels,
 };
-use motif_stylize::{NearestNeighbourField, NnfMethod, Output, apply_field};
+use motif_stylize::{NearestNeighbourField, Output, apply_field};
 
 use crate::context::Context;
 use crate::gallery::Demo;
-
-/// Synthesis options shared by `stylize`, `presynth` and `texture` (ebsynth's names and
-/// defaults).
-#[derive(Args, Debug, Clone)]
-pub struct SynthesisOptions {
-    /// α: weight of the style term (A' against B' patches), 0–1000.
-    #[arg(long, value_name = "W", default_value_t = 1.0, allow_negative_numbers = true)]
-    pub style_weight: f32,
-    /// λ: weight of the occurrence penalty that spreads the use of source patches evenly and
-    /// prevents wash-out (ebsynth's units: squared 8-bit differences), 0–1000000; 0 = off.
-    #[arg(long, value_name = "U", default_value_t = 3500.0, allow_negative_numbers = true)]
-    pub uniformity: f32,
-    /// Patch side in pixels: odd, 3–31. Larger keeps bigger structures of the style.
-    #[arg(long, value_name = "P", default_value_t = 5, allow_negative_numbers = true)]
-    pub patch_size: usize,
-    /// Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at
-    /// the finest: odd, up to 31, or 0 for --patch-size everywhere. The coarse levels decide the
-    /// layout; larger patches there keep regular structures (bricks, weaves, parquet) whole.
-    #[arg(long, value_name = "P", default_value_t = 0)]
-    pub coarse_patch_size: usize,
-    /// Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps,
-    /// grooves; found by splitting its luminance in two) as one more channel, relative to a colour
-    /// channel, at the coarsest level and falling to 0 at the finest (Kaspar et al. 2015's
-    /// structure guidance), 0–1000; 0 = off. Keeps the elements of regular textures whole.
-    #[arg(long, value_name = "W", default_value_t = 0.0, allow_negative_numbers = true)]
-    pub structure_weight: f32,
-    /// Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of
-    /// B pixels, at most the exemplar's smaller side, and optimize at the finest level only:
-    /// blocks keep whole elements in continuous courses (bricks, tiles), the optimization mends
-    /// the seams. 0 or 8–4096; 0 = off.
-    #[arg(long, value_name = "B", default_value_t = 0)]
-    pub quilt_block: usize,
-    /// Pyramid levels, 0–32; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
-    #[arg(long, value_name = "L", default_value_t = 0)]
-    pub pyramid_levels: usize,
-    /// Search-then-vote iterations per pyramid level (N of Algorithm 1), 1–100.
-    #[arg(long = "search-vote-iters", value_name = "N", default_value_t = 6)]
-    pub search_vote_iterations: usize,
-    /// PatchMatch iterations per search, 1–100.
-    #[arg(long = "patchmatch-iters", value_name = "K", default_value_t = 4)]
-    pub patchmatch_iterations: usize,
-    /// Stop improving a pixel once a vote changes it by less than this (largest channel change,
-    /// 8-bit units), 0–1020; 0 = search every pixel every time.
-    #[arg(long, value_name = "T", default_value_t = 5.0, allow_negative_numbers = true)]
-    pub stop_threshold: f32,
-    /// Nearest-neighbour search: patchmatch (fast) or exact (brute force, small images only).
-    #[arg(long, value_enum, default_value = "patchmatch")]
-    pub nnf: NnfMethod,
-    /// After the finest level, one more search-and-vote with 3×3 patches and no uniformity
-    /// (ebsynth's extrapass3x3): crisper fine detail.
-    #[arg(long = "extra-pass-3x3")]
-    pub extra_pass_3x3: bool,
-    /// Refuse runs that would synthesize more output pixels than this (summed over presynth's
-    /// textures): a guard against a typo in a size; about 15 CPU-seconds per megapixel.
-    #[arg(long, value_name = "N", default_value_t = 64_000_000)]
-    pub max_pixels: usize,
-}
-
-/// Sets the shared synthesis options of any stylize-family job (they have the same fields).
-macro_rules! with_synthesis_options {
-    ($job:expr, $options:expr, $context:expr) => {{
-        let mut job = $job;
-        let options: &SynthesisOptions = $options;
-        let context: &Context = $context;
-        job.seed = context.seed;
-        job.max_memory = Some(context.max_memory);
-        job.style_weight = Some(options.style_weight);
-        job.uniformity = Some(options.uniformity);
-        job.patch_size = Some(options.patch_size);
-        job.coarse_patch_size = Some(options.coarse_patch_size);
-        job.structure_weight = Some(options.structure_weight);
-        job.quilt_block = Some(options.quilt_block);
-        job.pyramid_levels = Some(options.pyramid_levels);
-        job.search_vote_iters = Some(options.search_vote_iterations);
-        job.patchmatch_iters = Some(options.patchmatch_iterations);
-        job.stop_threshold = Some(options.stop_threshold);
-        job.nnf = Some(options.nnf);
-        job.extra_pass_3x3 = options.extra_pass_3x3;
-        job.max_pixels = Some(options.max_pixels);
-        job
-    }};
-}
-pub(crate) use with_synthesis_options as with_synthesis;
-
-/// Segment guidance options (§3.6).
-#[derive(Args, Debug, Clone)]
-pub struct SegmentOptions {
-    /// Treat the colours of the segment guide as segment labels: ω_best per segment (Eq. 6) and
-    /// no match across segments. Exact palette (at most 64 colours) unless --segment-count.
-    #[arg(long)]
-    pub segments: bool,
-    /// Quantize the segment guide into K colours by k-means (for anti-aliased guides), 2–64;
-    /// implies --segments.
-    #[arg(long, value_name = "K")]
-    pub segment_count: Option<usize>,
-    /// Which --guide pair defines the segments, counted from 1.
-    #[arg(long, value_name = "I", default_value_t = 1)]
-    pub segment_guide: usize,
-}
+use crate::job_args::JobArgs;
 
 /// Options of `motif stylize`.
 #[derive(Args, Debug)]
@@ -136,16 +39,10 @@ pub struct StylizeArgs {
     /// pair is an error. At least one pair is required.
     #[arg(long, num_args = 2, value_names = ["A.png", "B.png"], action = clap::ArgAction::Append)]
     pub guide: Vec<PathBuf>,
-    /// β: weight of a guide, 0–1000. Give none (each guide then weighs 1/number of guides, as in
-    /// ebsynth) or one per --guide, in the same order.
-    #[arg(long, value_name = "W", action = clap::ArgAction::Append, allow_negative_numbers = true)]
-    pub weight: Vec<f32>,
-    /// Synthesis options.
+    /// Every option of the synthesis, declared in `motif_jobs::stylize` (`SynthesisOptions`,
+    /// `StylizeOptions`).
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
-    /// Segment guidance.
-    #[command(flatten)]
-    pub segment: SegmentOptions,
+    pub options: JobArgs<StylizeJobOptions>,
     /// Masks.
     #[command(flatten)]
     pub masking: masks::MaskOptions,
@@ -154,17 +51,6 @@ pub struct StylizeArgs {
     /// band (§3.7). Implies --segments.
     #[arg(long, value_name = "DIR")]
     pub presynth: Option<PathBuf>,
-    /// Band half-width T in pixels for --presynth, 0–4096; 0 = pure bitmap composition.
-    #[arg(long, value_name = "T", default_value_t = 4)]
-    pub band: usize,
-    /// Search-vote iterations for the band when the textures carry their fields (caches made
-    /// by this version): the band starts at the textures' own matches, so fewer are needed,
-    /// 1–100. Older caches (no fields) use --search-vote-iters.
-    #[arg(long = "band-iters", value_name = "N", default_value_t = 3)]
-    pub band_iterations: usize,
-    /// PatchMatch iterations per search for such a band, 1–100 (else --patchmatch-iters).
-    #[arg(long = "band-patchmatch-iters", value_name = "K", default_value_t = 2)]
-    pub band_patchmatch_iterations: usize,
     /// Also write nnf.png (the final nearest-neighbour field as a 16-bit PNG: red/green = source
     /// x/y, blue = the pixel's weight in the final vote × 65535; alpha 0 where not searched) and
     /// error.png (per-pixel energy, white = highest) into this directory.
@@ -194,12 +80,10 @@ pub struct PresynthArgs {
     /// Texture size in pixels; the textures tile, so it need not match the target.
     #[arg(long, value_name = "WxH", default_value = "256x256", value_parser = parse_size)]
     pub size: (usize, usize),
-    /// Synthesis options (use the same --patch-size as the later stylize run).
+    /// Every option of the synthesis (use the same --patch-size as the later stylize run),
+    /// declared in `motif_jobs::stylize` (`SynthesisOptions`, `PresynthOptions`).
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
-    /// Quantize the guide into K colours by k-means instead of an exact palette, 2–64.
-    #[arg(long, value_name = "K")]
-    pub segment_count: Option<usize>,
+    pub options: JobArgs<PresynthJobOptions>,
     /// Output directory (created if missing): segment-N.png and presynth.json.
     #[arg(long, value_name = "DIR")]
     pub out_dir: PathBuf,
@@ -214,12 +98,10 @@ pub struct TextureArgs {
     /// Output size in pixels.
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub size: (usize, usize),
-    /// Wrap patches around the borders so the output tiles seamlessly.
-    #[arg(long)]
-    pub tileable: bool,
-    /// Synthesis options.
+    /// Every option of the synthesis, declared in `motif_jobs::stylize` (`SynthesisOptions`,
+    /// `TextureOptions`).
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
+    pub options: JobArgs<TextureJobOptions>,
     /// Masks.
     #[command(flatten)]
     pub masking: masks::MaskOptions,
@@ -287,16 +169,8 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     check_debug(args.debug_dir.as_deref(), &inputs, context)?;
     // Only the 8-bit channels the engine takes are kept (not the decoded RGBA).
     let style = style_image_channels(&load(style_path, context.max_memory)?);
-    let job = StylizeJob {
-        weight: args.weight.clone(),
-        segments: args.segment.segments,
-        segment_count: args.segment.segment_count,
-        segment_guide: Some(args.segment.segment_guide),
-        band: Some(args.band),
-        band_iters: Some(args.band_iterations),
-        band_patchmatch_iters: Some(args.band_patchmatch_iterations),
-        ..with_synthesis!(StylizeJob::new(), &args.synthesis, context)
-    };
+    let job =
+        StylizeJob { seed: context.seed, max_memory: Some(context.max_memory), options: args.options.options.clone() };
     // The options are checked before the guides are read.
     let params = job.params(args.presynth.is_some())?;
     if let Some(field_path) = &args.apply_nnf {
@@ -321,10 +195,11 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
     if pairs.is_empty() {
         bail!("at least one --guide A.png B.png pair is required (for unguided synthesis use `motif texture`)");
     }
-    if !args.weight.is_empty() && args.weight.len() != pairs.len() {
+    let weight = &args.options.own.weight;
+    if !weight.is_empty() && weight.len() != pairs.len() {
         bail!(
             "{} --weight values for {} --guide pairs: give none or exactly one per guide, in order",
-            args.weight.len(),
+            weight.len(),
             pairs.len()
         );
     }
@@ -373,8 +248,9 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     let guide_image = load(&args.guide, context.max_memory)?;
     let job = PresynthJob {
         size: Some([args.size.0, args.size.1]),
-        segment_count: args.segment_count,
-        ..with_synthesis!(PresynthJob::new(), &args.synthesis, context)
+        seed: context.seed,
+        max_memory: Some(context.max_memory),
+        options: args.options.options.clone(),
     };
     let params = job.params()?;
     let style = style_image_channels(&style_image).to_float();
@@ -406,8 +282,10 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     let exemplar = style_image_channels(&load(&args.exemplar, context.max_memory)?);
     let mask = args.masking.read(exemplar.channels(), context.max_memory)?;
     let job = TextureJob {
-        tileable: args.tileable,
-        ..with_synthesis!(TextureJob::new(args.size.0, args.size.1), &args.synthesis, context)
+        size: [args.size.0, args.size.1],
+        seed: context.seed,
+        max_memory: Some(context.max_memory),
+        options: args.options.options.clone(),
     };
     let run = job
         .run_masked(exemplar, mask, context.progress())
@@ -422,7 +300,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
         "motif texture: {}×{}{} in {:.0} ms, energy {:.0} → {}",
         args.size.0,
         args.size.1,
-        if args.tileable { " (tileable)" } else { "" },
+        if args.options.own.tileable { " (tileable)" } else { "" },
         output.report.total_ms,
         output.report.energy.total,
         args.out.display()

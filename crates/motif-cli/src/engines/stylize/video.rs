@@ -7,12 +7,13 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_io::FramePattern;
-use motif_jobs::stylize::{VideoJob, hole_of, video_frame, video_styles};
+use motif_jobs::stylize::{VideoJob, VideoJobOptions, hole_of, video_frame, video_styles};
 use motif_stylize::{IntervalReport, mean_flicker};
 use serde_json::json;
 
-use super::{SynthesisOptions, load};
+use super::load;
 use crate::context::Context;
+use crate::job_args::JobArgs;
 
 /// Options of `motif video`.
 #[derive(Args, Debug)]
@@ -29,27 +30,14 @@ pub struct VideoArgs {
     /// half opaque, and keep the frames' own pixels elsewhere.
     #[arg(long, value_name = "MASK.png")]
     pub mask: Option<PathBuf>,
-    /// Weight of the frames' colours (keyframe against each frame), 0–1000.
-    #[arg(long, value_name = "W", default_value_t = 1.0, allow_negative_numbers = true)]
-    pub colour_weight: f32,
-    /// Weight of the edge guide (the frames' blurred edges), 0–1000.
-    #[arg(long, value_name = "W", default_value_t = 1.0, allow_negative_numbers = true)]
-    pub edge_weight: f32,
-    /// Weight of the positional guide (the keyframe's pixel positions carried along the
-    /// motion, so the style stays on the surfaces it was painted on), 0–1000.
-    #[arg(long, value_name = "W", default_value_t = 4.0, allow_negative_numbers = true)]
-    pub position_weight: f32,
-    /// Weight of the temporal guide (the previous output carried along the motion; against
-    /// flicker), 0–1000; 0 stylizes frames independently of each other.
-    #[arg(long, value_name = "W", default_value_t = 2.0, allow_negative_numbers = true)]
-    pub temporal_weight: f32,
     /// Run only this keyframe interval, counted from 1 (the report lists them): intervals are
     /// independent, so several machines can share a video and give the same frames.
     #[arg(long, value_name = "I")]
     pub interval: Option<usize>,
-    /// Synthesis options.
+    /// Every option of the synthesis, declared in `motif_jobs::stylize` (`SynthesisOptions`,
+    /// `VideoOptions`).
     #[command(flatten)]
-    pub synthesis: SynthesisOptions,
+    pub options: JobArgs<VideoJobOptions>,
     /// The stylized frames: a pattern like --frames, in an existing folder; each output frame
     /// has its input frame's number.
     #[arg(long, value_name = "PATTERN")]
@@ -146,13 +134,8 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         None => None,
     };
 
-    let job = VideoJob {
-        colour_weight: Some(args.colour_weight),
-        edge_weight: Some(args.edge_weight),
-        position_weight: Some(args.position_weight),
-        temporal_weight: Some(args.temporal_weight),
-        ..super::with_synthesis!(VideoJob::new(), &args.synthesis, context)
-    };
+    let job =
+        VideoJob { seed: context.seed, max_memory: Some(context.max_memory), options: args.options.options.clone() };
     job.params()?;
     // The whole run, checked before the first frame is stylized.
     let channels = first.channels().max(styles.first().map_or(3, FloatImage::channels));
