@@ -88,7 +88,7 @@ fn arg_of(spec: &OptionSpec) -> Arg {
     }
     match spec.kind {
         Kind::Flag => arg.action(ArgAction::SetTrue),
-        Kind::Integer => arg.value_parser(whole),
+        Kind::Integer => arg.value_parser(whole).allow_hyphen_values(true),
         Kind::Number => arg.value_parser(number).allow_hyphen_values(true),
         Kind::Choice(names) => arg.value_parser(PossibleValuesParser::new(names.iter().copied())),
         Kind::Numbers => arg.value_parser(number).value_delimiter(',').num_args(1..).action(ArgAction::Append),
