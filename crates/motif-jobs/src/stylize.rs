@@ -7,54 +7,13 @@
 //! keeps them as bytes (a quarter of the memory of floats). Zoom, video and presynth work on
 //! floats (their guides are computed) and convert.
 
-use motif_core::{ByteImage, ChannelImage, InvalidParameter, Progress, RgbaImage};
+use motif_core::{ByteImage, ChannelImage, InvalidParameter, Progress};
 use motif_stylize::{Guide, Input, Mask, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::JobError;
 use crate::options::{Declared, Described, Joined};
-
-/// Channels of a decoded guide image: 4 with any transparency, else 1 when grey, else 3.
-fn guide_channel_count(image: &RgbaImage) -> usize {
-    if !image.is_fully_opaque() {
-        4
-    } else if image.pixels().iter().all(|p| p[0] == p[1] && p[1] == p[2]) {
-        1
-    } else {
-        3
-    }
-}
-
-fn channel_list(channels: usize) -> Vec<usize> {
-    match channels {
-        1 => vec![0],
-        3 => vec![0, 1, 2],
-        _ => vec![0, 1, 2, 3],
-    }
-}
-
-/// A style (or texture exemplar) as the engine takes it: RGB when fully opaque, else RGBA.
-pub fn style_image_channels(image: &RgbaImage) -> ByteImage {
-    let channels = if image.is_fully_opaque() { 3 } else { 4 };
-    ByteImage::from_rgba_channels(image, &channel_list(channels))
-}
-
-/// A guide on its own (presynth's segment guide): grey, RGB or RGBA as its pixels are.
-pub fn guide_image_channels(image: &RgbaImage) -> ByteImage {
-    ByteImage::from_rgba_channels(image, &channel_list(guide_channel_count(image)))
-}
-
-/// A source and target guide pair with matching channels: equal counts stay; a grey image next
-/// to an RGB one is read as RGB (grey is a special RGB); transparency on one side only is a
-/// mismatch the engine reports.
-pub fn guide_pair(source: &RgbaImage, target: &RgbaImage) -> GuidePair {
-    let (a, b) = match (guide_channel_count(source), guide_channel_count(target)) {
-        (1, 3) | (3, 1) => (3, 3),
-        pair => pair,
-    };
-    (ByteImage::from_rgba_channels(source, &channel_list(a)), ByteImage::from_rgba_channels(target, &channel_list(b)))
-}
 
 fn default_seed() -> u64 {
     1
@@ -372,7 +331,9 @@ impl TryFrom<Described<PresynthFields>> for PresynthJob {
     }
 }
 
+mod images;
 mod video;
+pub use images::{guide_image_channels, guide_pair, hole_of, kept_image, style_image_channels};
 pub use video::{VideoJob, VideoJobOptions, VideoOptions, video_frame, video_styles};
 
 /// One decoded guide pair: source (the style's size) and target, with equal channel counts
@@ -556,23 +517,6 @@ impl Default for InpaintJob {
     }
 }
 
-/// A mask image read as a hole: pixels at least half white and half opaque are synthesized
-/// (white: synthesize, black or transparent: keep).
-pub fn hole_of(mask: &RgbaImage) -> Vec<bool> {
-    mask.pixels()
-        .iter()
-        .map(|&[r, g, b, a]| {
-            let luma = 0.299 * f32::from(r) + 0.587 * f32::from(g) + 0.114 * f32::from(b);
-            luma >= 127.5 && a >= 128
-        })
-        .collect()
-}
-
-/// The image kept outside a mask, with `channels` channels (the style's: 3 or 4; 1 for grey).
-pub fn kept_image(image: &RgbaImage, channels: usize) -> ByteImage {
-    ByteImage::from_rgba_channels(image, &channel_list(channels))
-}
-
 impl PresynthJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
@@ -628,55 +572,4 @@ pub fn figures(output: &Output) -> Map<String, Value> {
 }
 
 #[cfg(test)]
-mod tests {
-    use motif_core::NoProgress;
-    use motif_stylize::samples::{crayon_style, map_guide};
-
-    use super::*;
-
-    #[test]
-    fn described_jobs_run_with_the_flag_names() {
-        let job: StylizeJob = serde_json::from_value(json!({
-            "search-vote-iters": 2,
-            "patch-size": 7,
-            "segment-count": 3,
-            "segment-guide": 1,
-            "nnf": "patchmatch",
-            "extra-pass-3x3": true,
-            "seed": 4,
-        }))
-        .unwrap();
-        let params = job.params(false).unwrap();
-        assert_eq!(params.search_vote_iterations, 2);
-        assert_eq!(params.patch_size, 7);
-        assert_eq!(params.segments, Some(Segmentation::KMeans(3)));
-        assert_eq!(params.segment_guide, 0);
-        assert!(params.extra_pass_3x3);
-        assert_eq!(params.uniformity, Params::default().uniformity);
-        let source = map_guide(48, 40, 3, 1);
-        let style = crayon_style(&source, 2);
-        let target = map_guide(56, 44, 3, 3);
-        let run = job.run(style.clone(), vec![(source, target)], None, &mut NoProgress).unwrap();
-        assert_eq!(run.figures["output_size"], json!([56, 44]));
-        let texture: TextureJob = serde_json::from_value(json!({ "size": [40, 30], "tileable": true })).unwrap();
-        let run = texture.run(style, &mut NoProgress).unwrap();
-        assert_eq!((run.output.image.width(), run.output.image.height()), (40, 30));
-    }
-
-    #[test]
-    fn bad_descriptions_name_what_is_wrong() {
-        let error = serde_json::from_value::<StylizeJob>(json!({ "patchsize": 5 })).unwrap_err();
-        assert!(error.to_string().contains("patchsize"), "{error}");
-        let error = serde_json::from_value::<TextureJob>(json!({ "tileable": true })).unwrap_err();
-        assert!(error.to_string().contains("size"), "{error}");
-        let job: StylizeJob = serde_json::from_value(json!({ "segment-guide": 0 })).unwrap();
-        assert!(job.params(false).unwrap_err().to_string().contains("segment-guide"));
-        let job: StylizeJob = serde_json::from_value(json!({ "patch-size": 4 })).unwrap();
-        assert!(job.params(false).unwrap_err().to_string().contains("patch"));
-        let job: StylizeJob = serde_json::from_value(json!({ "weight": [0.5, 0.5] })).unwrap();
-        let source = map_guide(32, 32, 2, 1);
-        let style = crayon_style(&source, 2);
-        let error = job.run(style, vec![(source.clone(), source)], None, &mut NoProgress).unwrap_err();
-        assert!(error.to_string().contains("weight"), "{error}");
-    }
-}
+mod tests;
