@@ -31,6 +31,7 @@ __all__ = [
     "zoom",
     "video",
     "stylize",
+    "presynth",
     "curve",
     "points",
     "strokes",
@@ -38,7 +39,12 @@ __all__ = [
     "write_png",
     "read_points",
     "options",
+    "jobs",
+    "Textures",
 ]
+
+#: Pre-synthesized textures, one per segment colour (``presynth``'s result, for ``stylize``).
+Textures = _motif.Textures
 
 ArrayLike = Any
 
@@ -50,6 +56,7 @@ _ARGUMENTS = {
     "zoom": {"size", "factor", "levels", "seed"},
     "video": {"seed"},
     "stylize": {"weight", "seed"},
+    "presynth": {"size", "seed"},
     "curve": {"width", "piece-length"},
     "points": {"neighbourhood", "domain", "seed"},
     "strokes": {"scale", "target", "seed"},
@@ -257,6 +264,7 @@ def stylize(
     style: ArrayLike,
     guides: Sequence[Sequence[ArrayLike]],
     *,
+    textures: Optional[Any] = None,
     seed: int = 1,
     threads: Optional[int] = None,
     report: bool = False,
@@ -267,8 +275,13 @@ def stylize(
     The output has the target guides' size. Options: ``style_weight``, ``uniformity``,
     ``patch_size``, ``pyramid_levels``, ``search_vote_iters``, ``patchmatch_iters``,
     ``stop_threshold``, ``nnf``, ``extra_pass_3x3``, ``segments``, ``segment_count``,
-    ``segment_guide``, ``max_pixels``, ``max_memory``. Returns an H×W×4 uint8 array.
+    ``segment_guide``, ``band``, ``max_pixels``, ``max_memory``. ``textures``: the result of
+    :func:`presynth` for the style and its segment guide (``motif stylize --presynth``): the target
+    is filled from them and only a band along segment edges is optimized. Returns an H×W×4 uint8
+    array.
     """
+    if textures is not None and not isinstance(textures, Textures):
+        raise TypeError(f"textures must be the result of motif.presynth(), not {type(textures).__name__}")
     pairs = []
     weights = []
     for index, guide in enumerate(guides):
@@ -283,8 +296,33 @@ def stylize(
     if weights:
         fixed["weight"] = weights
     job = _job("stylize", fixed, options)
-    image, report_text = _motif.stylize(_image(style, "style"), pairs, job, threads)
+    image, report_text = _motif.stylize(_image(style, "style"), pairs, job, textures, threads)
     return _finish(image, report_text, report)
+
+
+def presynth(
+    style: ArrayLike,
+    guide: ArrayLike,
+    size: Optional[Tuple[int, int]] = None,
+    *,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    report: bool = False,
+    **options: Any,
+) -> Any:
+    """One seamless texture per segment colour of ``guide`` from ``style`` (``motif presynth``).
+
+    ``size`` = (width, height) of each texture (256 × 256 unless given). Options as
+    :func:`stylize`'s shared ones, plus ``segment_count`` (k-means colours, for anti-aliased
+    guides). Returns a :class:`Textures` (``len()``, ``colours()``, ``images()``) to pass to
+    ``stylize(textures=...)``.
+    """
+    fixed: Dict[str, Any] = {"seed": _seed(seed)}
+    if size is not None:
+        fixed["size"] = list(_size(size))
+    job = _job("presynth", fixed, options)
+    textures, report_text = _motif.presynth(_image(style, "style"), _image(guide, "guide"), job, threads)
+    return _finish(textures, report_text, report)
 
 
 def curve(
@@ -495,9 +533,13 @@ def read_points(path: str) -> Dict[str, np.ndarray]:
     return {name: (v.astype(np.int64) if integer else v) for name, integer, v in _motif.read_points(path)}
 
 
+def jobs() -> List[Tuple[str, str]]:
+    """Every job as (name, summary): each is a function of this module and a ``motif`` command."""
+    return list(_motif.jobs())
+
+
 def options(engine: str) -> List[str]:
-    """The option names an engine accepts (``'curve'``, ``'points'``, ``'strokes'``, ``'stylize'``,
-    ``'texture'``), as keyword names."""
+    """The option names a job accepts (a name from :func:`jobs`), as keyword names."""
     if engine not in _ARGUMENTS:
         raise ValueError(f"no engine named {engine!r}; engines: {', '.join(sorted(_ARGUMENTS))}")
     return sorted(name.replace("-", "_") for name in set(_motif.options(engine)) - _ARGUMENTS[engine])

@@ -6,7 +6,7 @@ import numpy as np
 import numpy.typing as npt
 from typing_extensions import Unpack
 
-from motif._options import PointsOptions
+from motif._options import PointsOptions, PresynthOptions
 
 ImageArray = npt.NDArray[np.uint8]
 PointData = Union[npt.ArrayLike, Dict[str, npt.ArrayLike]]
@@ -53,14 +53,29 @@ def video(
 ) -> Tuple[List[ImageArray], Dict[str, Any]]: ...
 @overload
 def stylize(
-    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
-    report: Literal[False] = ..., **options: Any
+    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, textures: Optional[Textures] = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
 ) -> ImageArray: ...
 @overload
 def stylize(
-    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, seed: int = ..., threads: Optional[int] = ...,
-    report: Literal[True], **options: Any
+    style: npt.ArrayLike, guides: Sequence[Sequence[Any]], *, textures: Optional[Textures] = ..., seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[True], **options: Any
 ) -> Tuple[ImageArray, Dict[str, Any]]: ...
+class Textures:
+    """Pre-synthesized textures, one per segment colour (``presynth``'s result, for ``stylize``)."""
+    def __len__(self) -> int: ...
+    def colours(self) -> List[List[int]]: ...
+    def images(self) -> List[ImageArray]: ...
+@overload
+def presynth(
+    style: npt.ArrayLike, guide: npt.ArrayLike, size: Optional[Tuple[int, int]] = ..., *, seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[False] = ..., **options: Unpack[PresynthOptions]
+) -> Textures: ...
+@overload
+def presynth(
+    style: npt.ArrayLike, guide: npt.ArrayLike, size: Optional[Tuple[int, int]] = ..., *, seed: int = ...,
+    threads: Optional[int] = ..., report: Literal[True], **options: Unpack[PresynthOptions]
+) -> Tuple[Textures, Dict[str, Any]]: ...
 @overload
 def curve(
     exemplar: npt.ArrayLike, path: npt.ArrayLike, width: float, piece_length: float, *,
@@ -113,3 +128,4 @@ def read_image(path: str) -> ImageArray: ...
 def write_png(path: str, image: npt.ArrayLike) -> None: ...
 def read_points(path: str) -> Dict[str, np.ndarray]: ...
 def options(engine: str) -> List[str]: ...
+def jobs() -> List[Tuple[str, str]]: ...

@@ -8,8 +8,8 @@
 //! be read or written is an `OSError`; nothing reaches the interpreter as a crash.
 
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
-use motif_jobs::JobError;
 use motif_jobs::columns::Column;
+use motif_jobs::{Job, JobError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
@@ -140,7 +140,8 @@ fn texture<'py>(
 ) -> PyResult<(Image<'py>, String)> {
     let job: motif_jobs::stylize::TextureJob = description(job)?;
     let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?);
-    let run = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
+    let inputs = motif_jobs::stylize::TextureInputs { exemplar, mask: None };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
@@ -166,7 +167,8 @@ fn inpaint<'py>(
     }
     let hole: Vec<bool> = hole.as_array().iter().copied().collect();
     let image = motif_jobs::stylize::style_image_channels(&image);
-    let run = detached(py, threads, || job.run(image, hole, &mut NoProgress))?.map_err(job_error)?;
+    let inputs = motif_jobs::stylize::InpaintInputs { image, hole };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
@@ -181,12 +183,12 @@ fn zoom<'py>(
 ) -> PyResult<(Vec<Image<'py>>, Vec<String>)> {
     let job: motif_jobs::stylize::ZoomJob = description(job)?;
     let exemplar = motif_jobs::stylize::style_image_channels(&image_of(&exemplar, "exemplar")?).to_float();
-    let runs = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
-    let mut images = Vec::with_capacity(runs.len());
-    for run in &runs {
-        images.push(array_of(py, &RgbaImage::from_float(&run.output.image))?);
+    let run = detached(py, threads, || job.run(exemplar, &mut NoProgress))?.map_err(job_error)?;
+    let mut images = Vec::with_capacity(run.levels.len());
+    for level in &run.levels {
+        images.push(array_of(py, &RgbaImage::from_float(&level.output.image))?);
     }
-    Ok((images, runs.iter().map(|run| report_json(&run.figures)).collect()))
+    Ok((images, run.levels.iter().map(|level| report_json(&level.figures)).collect()))
 }
 
 /// A mask array (H×W bool, true = synthesize) as a hole of `size`.
@@ -232,8 +234,9 @@ fn video<'py>(
     let mask = mask.map(|m| hole_array(&m, size, "mask")).transpose()?;
     let keys =
         keys.iter().zip(styles).map(|((frame, _), style)| motif_stylize::Keyframe { frame: *frame, style }).collect();
-    let (output, figures) =
-        detached(py, threads, || job.run(frames, keys, mask, &mut NoProgress))?.map_err(job_error)?;
+    let input = motif_stylize::VideoInput { frames, keys, mask };
+    let run = detached(py, threads, || job.run(input, &mut NoProgress))?.map_err(job_error)?;
+    let (output, figures) = (run.output, run.figures);
     let images = output.frames.iter().map(|f| array_of(py, &RgbaImage::from_float(f))).collect::<PyResult<Vec<_>>>()?;
     Ok((images, report_json(&figures)))
 }
@@ -289,14 +292,57 @@ fn video_interval<'py>(
     Ok((images, report.to_string()))
 }
 
-/// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs.
+/// The pre-synthesized textures of `motif presynth`, one per segment colour of a style's guide,
+/// kept whole (with the fields that start the band mode) for `stylize(textures=...)`.
+#[pyclass(frozen, module = "motif._motif")]
+struct Textures(Vec<motif_stylize::SegmentTexture>);
+
+#[pymethods]
+impl Textures {
+    /// The segment colours, 0–255 per channel of the guide.
+    fn colours(&self) -> Vec<Vec<u8>> {
+        let byte = |v: &f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        self.0.iter().map(|texture| texture.colour.iter().map(byte).collect()).collect()
+    }
+
+    /// The textures as H×W×4 uint8 arrays, in the order of `colours()`.
+    fn images<'py>(&self, py: Python<'py>) -> PyResult<Vec<Image<'py>>> {
+        self.0.iter().map(|texture| array_of(py, &RgbaImage::from_float(&texture.image))).collect()
+    }
+
+    fn __len__(&self) -> usize {
+        self.0.len()
+    }
+}
+
+/// `motif presynth`: (textures, report JSON) for `style` and its segment guide.
 #[pyfunction]
-#[pyo3(signature = (style, guides, job, threads=None))]
+#[pyo3(signature = (style, guide, job, threads=None))]
+fn presynth<'py>(
+    py: Python<'py>,
+    style: PyReadonlyArrayDyn<'py, u8>,
+    guide: PyReadonlyArrayDyn<'py, u8>,
+    job: &str,
+    threads: Option<usize>,
+) -> PyResult<(Textures, String)> {
+    let job: motif_jobs::stylize::PresynthJob = description(job)?;
+    let style = motif_jobs::stylize::style_image_channels(&image_of(&style, "style")?).to_float();
+    let guide = motif_jobs::stylize::guide_image_channels(&image_of(&guide, "guide")?).to_float();
+    let inputs = motif_jobs::stylize::PresynthInputs { style, guide };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
+    Ok((Textures(run.textures), report_json(&run.figures)))
+}
+
+/// `motif stylize`: (image, report JSON). `guides` are (source, target) pairs; `textures` the
+/// result of `presynth` for the band mode.
+#[pyfunction]
+#[pyo3(signature = (style, guides, job, textures=None, threads=None))]
 fn stylize<'py>(
     py: Python<'py>,
     style: PyReadonlyArrayDyn<'py, u8>,
     guides: Vec<(PyReadonlyArrayDyn<'py, u8>, PyReadonlyArrayDyn<'py, u8>)>,
     job: &str,
+    textures: Option<PyRef<'py, Textures>>,
     threads: Option<usize>,
 ) -> PyResult<(Image<'py>, String)> {
     let job: motif_jobs::stylize::StylizeJob = description(job)?;
@@ -307,7 +353,10 @@ fn stylize<'py>(
         let target = image_of(target, &format!("target guide {}", index + 1))?;
         pairs.push(motif_jobs::stylize::guide_pair(&source, &target));
     }
-    let run = detached(py, threads, || job.run(style, pairs, None, &mut NoProgress))?.map_err(job_error)?;
+    let textures = textures.map(|textures| textures.0.clone());
+    let inputs =
+        motif_jobs::stylize::StylizeInputs { textures, ..motif_jobs::stylize::StylizeInputs::new(style, pairs) };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
@@ -394,8 +443,8 @@ fn points<'py>(
         }
         None => None,
     };
-    let run = detached(py, threads, || job.run_with_maps(exemplar, existing, &integer, &maps, &mut NoProgress))?
-        .map_err(job_error)?;
+    let inputs = motif_jobs::points::PointsInputs { exemplar, existing, integer_columns: &integer, maps };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     let columns = motif_jobs::columns::columns(&run.output.points, &integer)
         .into_iter()
         .map(|column| (column.name, column.integer, PyArray1::from_vec(py, column.values)))
@@ -436,8 +485,8 @@ fn strokes(
     if reference.is_empty() {
         return Err(value_error("reference_svg: no stroked or filled path with a length > 0"));
     }
-    let run = detached(py, threads, || job.run_with_maps(reference, density_map, scale_map, &mut NoProgress))?
-        .map_err(job_error)?;
+    let inputs = motif_jobs::strokes::StrokesInputs { reference, density_map, scale_map };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     let mut writer = motif_io::SvgWriter::new(size.0, size.1);
     writer.begin_group("strokes");
     for stroke in &run.output.strokes {
@@ -454,29 +503,21 @@ fn strokes(
     Ok((writer.finish(), report_json(&run.figures)))
 }
 
-/// The option names (flag names) each engine's job accepts, for `help()` and error messages.
+/// Every name (flag name) a job's description holds, its fields then its options, from
+/// `motif_jobs::JOBS`.
 #[pyfunction]
 fn options<'py>(py: Python<'py>, engine: &str) -> PyResult<Bound<'py, PyList>> {
-    let job = match engine {
-        "curve" => serde_json::to_value(motif_jobs::curve::CurveJob::new(1.0, 1.0)),
-        "points" => serde_json::to_value(motif_jobs::points::PointsJob::new(
-            1.0,
-            motif_jobs::points::DomainSpec::Box(vec![1.0, 1.0]),
-        )),
-        "strokes" => serde_json::to_value(motif_jobs::strokes::StrokesJob::new(
-            1.0,
-            motif_jobs::strokes::TargetSpec::Rect([1.0, 1.0]),
-        )),
-        "stylize" => serde_json::to_value(motif_jobs::stylize::StylizeJob::new()),
-        "texture" => serde_json::to_value(motif_jobs::stylize::TextureJob::new(1, 1)),
-        "inpaint" => serde_json::to_value(motif_jobs::stylize::InpaintJob::new()),
-        "zoom" => serde_json::to_value(motif_jobs::stylize::ZoomJob::new(1, 1)),
-        "video" => serde_json::to_value(motif_jobs::stylize::VideoJob::new()),
-        other => return Err(value_error(format!("no engine named {other}"))),
-    }
-    .map_err(value_error)?;
-    let names: Vec<String> = job.as_object().map(|o| o.keys().cloned().collect()).unwrap_or_default();
-    PyList::new(py, names)
+    let entry = motif_jobs::JobEntry::named(engine).ok_or_else(|| {
+        let names: Vec<&str> = motif_jobs::JOBS.iter().map(|entry| entry.name).collect();
+        value_error(format!("no engine named {engine}; engines: {}", names.join(", ")))
+    })?;
+    PyList::new(py, entry.names())
+}
+
+/// Every job as (name, summary), in the order of `motif_jobs::JOBS`.
+#[pyfunction]
+fn jobs() -> Vec<(&'static str, &'static str)> {
+    motif_jobs::JOBS.iter().map(|entry| (entry.name, entry.summary)).collect()
 }
 
 #[pymodule]
@@ -490,10 +531,13 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(video, module)?)?;
     module.add_function(wrap_pyfunction!(video_intervals, module)?)?;
     module.add_function(wrap_pyfunction!(video_interval, module)?)?;
+    module.add_function(wrap_pyfunction!(presynth, module)?)?;
+    module.add_class::<Textures>()?;
     module.add_function(wrap_pyfunction!(stylize, module)?)?;
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(points, module)?)?;
     module.add_function(wrap_pyfunction!(strokes, module)?)?;
     module.add_function(wrap_pyfunction!(options, module)?)?;
+    module.add_function(wrap_pyfunction!(jobs, module)?)?;
     Ok(())
 }

@@ -40,6 +40,46 @@ def test_stylize_equals_the_cli_and_takes_weights(cli, tmp_path, photo):
     assert weighted.shape == image.shape
 
 
+def segment_guide(image, levels=3):
+    """The image's luminance in `levels` flat grey segments, as an H×W×3 guide."""
+    grey = grey_guide(image)[:, :, 0].astype(np.int32)
+    bands = np.minimum(grey * levels // 256, levels - 1)
+    flat = (bands * (255 // (levels - 1))).astype(np.uint8)
+    return np.repeat(flat[:, :, None], 3, axis=2)
+
+
+def test_presynth_and_band_stylize_equal_the_cli(cli, tmp_path, photo):
+    style = np.ascontiguousarray(photo[:96, :96, :3])
+    source = segment_guide(style)
+    target = segment_guide(np.ascontiguousarray(photo[100:180, 60:160, :3]))
+    for name, array in (("A1.png", style), ("A.png", source), ("B.png", target)):
+        motif.write_png(str(tmp_path / name), array)
+    cli(["--seed", "3", "presynth", "--style", "A1.png", "--guide", "A.png", "--size", "64x64", "--out-dir", "tex"], tmp_path)
+    arguments = ["stylize", "--style", "A1.png", "--guide", "A.png", "B.png", "--presynth", "tex", "--out", "B1.png"]
+    cli(["--seed", "3"] + arguments, tmp_path)
+    textures, report = motif.presynth(style, source, (64, 64), seed=3, report=True)
+    assert len(textures) == report["segments"] == len(np.unique(source[:, :, 0])) and report["texture_size"] == [64, 64]
+    assert sorted(c[0] for c in textures.colours()) == sorted(np.unique(source[:, :, 0]).tolist())
+    manifest = json.loads((tmp_path / "tex" / "presynth.json").read_text())
+    for colour, image, entry in zip(textures.colours(), textures.images(), manifest["segments"]):
+        assert entry["colour"] == "#" + "".join(f"{v:02x}" for v in colour)
+        assert np.array_equal(image, motif.read_image(str(tmp_path / "tex" / entry["file"])))
+    image = motif.stylize(style, [(source, target)], textures=textures, seed=3)
+    assert np.array_equal(image, motif.read_image(str(tmp_path / "B1.png")))
+    with pytest.raises(TypeError, match="presynth"):
+        motif.stylize(style, [(source, target)], textures=[image])
+
+
+def test_every_job_is_a_function_and_a_command(cli, tmp_path):
+    """`motif.jobs()` lists motif-jobs' JOBS: each is a function here and a `motif` command with its summary."""
+    names = [name for name, _ in motif.jobs()]
+    assert names == ["curve", "points", "strokes", "stylize", "presynth", "texture", "inpaint", "zoom", "video"]
+    for name, summary in motif.jobs():
+        assert name in motif.__all__ and callable(getattr(motif, name)), name
+        assert summary in cli([name, "--help"], tmp_path).stdout, name
+        assert set(motif.options(name)) <= {flag.replace("-", "_") for flag in motif._motif.options(name)}
+
+
 def test_curve_equals_the_cli(cli, tmp_path):
     exemplar = motif.read_image(str(CURVE / "chain_small.png"))
     t = np.linspace(0.0, 1.0, 40)

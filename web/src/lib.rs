@@ -4,10 +4,11 @@
 //! as flat arrays (RGBA bytes, coordinates) and the report as JSON text.
 
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob};
-use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
-use motif_jobs::strokes::{StrokesJob, TargetSpec};
-use motif_jobs::stylize::{PresynthJob, StylizeJob};
+use motif_jobs::points::{DomainSpec, PointsInputs, PointsJob, StrokeSpec};
+use motif_jobs::strokes::{StrokesInputs, StrokesJob, TargetSpec};
+use motif_jobs::stylize::{PresynthInputs, PresynthJob, StylizeInputs, StylizeJob};
 use motif_points::PointSet;
 use wasm_bindgen::prelude::*;
 
@@ -167,7 +168,12 @@ impl PointsPanel {
             width,
             scale_along: None,
         });
-        let run = job.run(self.exemplar.clone(), self.grown.clone(), &self.discrete, &mut NoProgress).map_err(error)?;
+        let inputs = PointsInputs {
+            existing: self.grown.clone(),
+            integer_columns: &self.discrete,
+            ..PointsInputs::new(self.exemplar.clone())
+        };
+        let run = job.run(inputs, &mut NoProgress).map_err(error)?;
         let points = run.output.points;
         let mut flat = Vec::with_capacity(points.len() * 3);
         for i in 0..points.len() {
@@ -352,7 +358,7 @@ impl StrokesPanel {
         let start = web_time::Instant::now();
         let mut job: StrokesJob = serde_json::from_str(job).map_err(|e| error(format!("strokes options: {e}")))?;
         job.target = TargetSpec::Rect([width, height]);
-        let run = job.run(self.reference.clone(), &mut NoProgress).map_err(error)?;
+        let run = job.run(StrokesInputs::new(self.reference.clone()), &mut NoProgress).map_err(error)?;
         Ok(serde_json::json!({
             "strokes": strokes_json(&run.output.strokes),
             "report": run.figures,
@@ -384,7 +390,8 @@ impl StylizePanel {
         let style = motif_stylize::samples::crayon_style(&guide, 1);
         let presynth: PresynthJob =
             serde_json::from_value(serde_json::json!({ "size": [size, size] })).map_err(error)?;
-        let textures = presynth.run(style.clone(), guide.clone(), &mut NoProgress).map_err(error)?;
+        let inputs = PresynthInputs { style: style.clone(), guide: guide.clone() };
+        let textures = presynth.run(inputs, &mut NoProgress).map_err(error)?.textures;
         Ok(StylizePanel { style, guide: RgbaImage::from_float(&guide), textures })
     }
 
@@ -420,7 +427,8 @@ impl StylizePanel {
         let guides = vec![motif_jobs::stylize::guide_pair(&source, &target)];
         // 8-bit, as every front end hands the engine its images.
         let style = motif_core::ByteImage::from_float(&self.style);
-        let run = job.run(style, guides, Some(self.textures.clone()), &mut NoProgress).map_err(error)?;
+        let inputs = StylizeInputs { textures: Some(self.textures.clone()), ..StylizeInputs::new(style, guides) };
+        let run = job.run(inputs, &mut NoProgress).map_err(error)?;
         Ok(image_result(&RgbaImage::from_float(&run.output.image), &run.figures, start))
     }
 }

@@ -268,6 +268,27 @@ mod tests {
         }
     }
 
+    /// Every job of `motif_jobs::JOBS` is a subcommand whose help opens with the job's summary,
+    /// has a section in `docs/cli.md`, and every subcommand but `demo`, `bench` and `help` is a job.
+    #[test]
+    fn every_job_is_a_subcommand_and_documented() {
+        let mut command = Cli::command();
+        command.build();
+        let reference = crate::reference::markdown(&command);
+        for job in motif_jobs::JOBS {
+            let sub = command.find_subcommand(job.name).unwrap_or_else(|| panic!("no subcommand {}", job.name));
+            assert_eq!(sub.get_about().map(ToString::to_string).as_deref(), Some(job.summary), "motif {}", job.name);
+            let long = sub.get_long_about().map(ToString::to_string).unwrap_or_default();
+            assert!(long.starts_with(job.summary) && long.ends_with(job.details), "motif {}: {long}", job.name);
+            let section = format!("## motif {}\n", job.name);
+            assert!(reference.contains(&section) && reference.contains(job.details), "docs/cli.md lacks {section}");
+        }
+        for sub in command.get_subcommands().map(|sub| sub.get_name()) {
+            let tools = ["demo", "bench", "help"];
+            assert!(tools.contains(&sub) || motif_jobs::JobEntry::named(sub).is_some(), "{sub} is not a job");
+        }
+    }
+
     /// Every command's help lists the global options under their own heading, after its own.
     #[test]
     fn global_options_have_their_own_heading() {

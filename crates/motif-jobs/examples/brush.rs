@@ -8,7 +8,8 @@ use std::io::Write;
 #[path = "shared/page.rs"]
 mod shared;
 
-use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
+use motif_jobs::Job;
+use motif_jobs::points::{DomainSpec, PointsInputs, PointsJob, StrokeSpec};
 
 fn main() {
     let (exemplar, discrete, spacing, scale) = shared::hex_panel();
@@ -43,7 +44,16 @@ fn main() {
         });
         let before = grown.as_ref().map_or(0, |g: &motif_points::PointSet| g.len());
         let start = std::time::Instant::now();
-        let run = job.run(exemplar.clone(), grown.clone(), &discrete, &mut motif_core::NoProgress).expect("run");
+        let run = job
+            .run(
+                PointsInputs {
+                    existing: grown.clone(),
+                    integer_columns: &discrete,
+                    ..PointsInputs::new(exemplar.clone())
+                },
+                &mut motif_core::NoProgress,
+            )
+            .expect("run");
         let ms = start.elapsed().as_secs_f64() * 1000.0;
         let added = run.output.points.len() as i64 - before as i64;
         let report = &run.output.report;

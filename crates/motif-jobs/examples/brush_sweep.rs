@@ -12,7 +12,8 @@ use std::io::Write;
 mod shared;
 
 use motif_core::random::Rng;
-use motif_jobs::points::{DomainSpec, PointsJob, StrokeSpec};
+use motif_jobs::Job;
+use motif_jobs::points::{DomainSpec, PointsInputs, PointsJob, StrokeSpec};
 
 fn main() {
     let seeds: u64 = std::env::args().nth(1).map_or(10, |a| a.parse().expect("a number of seeds"));
@@ -50,7 +51,16 @@ fn main() {
             });
             let before = grown.as_ref().map_or(0, |g| g.len());
             let start = std::time::Instant::now();
-            let run = job.run(exemplar.clone(), grown.clone(), &discrete, &mut motif_core::NoProgress).expect("run");
+            let run = job
+                .run(
+                    PointsInputs {
+                        existing: grown.clone(),
+                        integer_columns: &discrete,
+                        ..PointsInputs::new(exemplar.clone())
+                    },
+                    &mut motif_core::NoProgress,
+                )
+                .expect("run");
             let ms = start.elapsed().as_secs_f64() * 1000.0;
             if index < 2 {
                 fresh_ms.push(ms);

@@ -7,6 +7,7 @@
 use std::io::Write;
 
 use motif_core::{Point, Polyline};
+use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob};
 
 /// The job, as the page sends it (a JSON object of `motif curve` options).

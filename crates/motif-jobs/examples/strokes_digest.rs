@@ -6,7 +6,8 @@
 use std::io::Write;
 
 use motif_core::Point;
-use motif_jobs::strokes::{StrokesJob, TargetSpec};
+use motif_jobs::Job;
+use motif_jobs::strokes::{StrokesInputs, StrokesJob, TargetSpec};
 use motif_strokes::samples::{FigureField, figure_field};
 
 /// The job, as the page's determinism check sends it.
@@ -18,7 +19,7 @@ fn main() {
         figure_field(&FigureField { columns: 5, rows: 4, ..FigureField::default() }, Point::new(20.0, 20.0), 1);
     let mut job: StrokesJob = serde_json::from_str(JOB).expect("job");
     job.target = TargetSpec::Rect([300.0, 300.0]);
-    let run = job.run(reference, &mut motif_core::NoProgress).expect("run");
+    let run = job.run(StrokesInputs::new(reference), &mut motif_core::NoProgress).expect("run");
     let mut digest = 0xcbf2_9ce4_8422_2325_u64;
     for stroke in &run.output.strokes {
         for p in stroke.polyline.points() {

@@ -7,7 +7,8 @@
 use std::io::Write;
 
 use motif_core::{NoProgress, RgbaImage};
-use motif_jobs::stylize::{PresynthJob, StylizeJob};
+use motif_jobs::Job;
+use motif_jobs::stylize::{PresynthInputs, PresynthJob, StylizeInputs, StylizeJob};
 
 /// Side of the map, the painted rectangle `[x0, x1) × [y0, y1)`, the palette entry painted.
 const SIDE: usize = 96;
@@ -19,7 +20,8 @@ fn main() {
     let guide = motif_stylize::samples::map_guide(SIDE, SIDE, 4, 1);
     let style = motif_stylize::samples::crayon_style(&guide, 1);
     let presynth: PresynthJob = serde_json::from_value(serde_json::json!({ "size": [SIDE, SIDE] })).expect("job");
-    let textures = presynth.run(style.clone(), guide.clone(), &mut NoProgress).expect("presynth");
+    let inputs = PresynthInputs { style: style.clone(), guide: guide.clone() };
+    let textures = presynth.run(inputs, &mut NoProgress).expect("presynth").textures;
     // The front ends hand the engine 8-bit images.
     let style = motif_core::ByteImage::from_float(&style);
     let source = RgbaImage::from_float(&guide);
@@ -36,7 +38,9 @@ fn main() {
     let mut job: StylizeJob = serde_json::from_str(r#"{"band": 4}"#).expect("job");
     job.options.own.segments = true;
     let guides = vec![motif_jobs::stylize::guide_pair(&source, &target)];
-    let run = job.run(style, guides, Some(textures), &mut NoProgress).expect("run");
+    let run = job
+        .run(StylizeInputs { textures: Some(textures), ..StylizeInputs::new(style, guides) }, &mut NoProgress)
+        .expect("run");
     let image = RgbaImage::from_float(&run.output.image);
     let mut digest = 0xcbf2_9ce4_8422_2325_u64;
     for &byte in image.as_bytes() {

@@ -262,11 +262,6 @@ impl CurveJob {
         Ok(params)
     }
 
-    /// Runs the job on decoded inputs.
-    pub fn run(&self, inputs: CurveInputs<'_>, progress: &mut dyn Progress) -> Result<CurveRun, JobError> {
-        self.run_in(inputs, None, progress)
-    }
-
     /// [`run`](Self::run) within an editing session: what the session's previous run computed
     /// and still holds is reused (the playground calls this while a curve is dragged; the result
     /// is byte-identical to a fresh run).
@@ -305,6 +300,27 @@ impl CurveJob {
             figures.insert("fidelity".into(), json!(fidelity));
         }
         Ok(CurveRun { output, dimensions, fidelity, figures })
+    }
+}
+
+impl crate::Job for CurveJob {
+    const NAME: &'static str = "curve";
+    const FIELDS: &'static [&'static str] = &["max-memory"];
+    const SUMMARY: &'static str = "Grow a structured raster pattern (chain, lace, frieze) along a curve";
+    const DETAILS: &'static str = "Undistorted pieces of the exemplar placed by a globally optimal dynamic program \
+        (Zhou, Lasram, Lefebvre 2013).";
+    type Options = CurveOptions;
+    type Inputs<'a> = CurveInputs<'a>;
+    type Run = CurveRun;
+
+    fn run(&self, inputs: CurveInputs<'_>, progress: &mut dyn Progress) -> Result<CurveRun, JobError> {
+        self.run_in(inputs, None, progress)
+    }
+}
+
+impl crate::Finished for CurveRun {
+    fn figures(&self) -> &Map<String, Value> {
+        &self.figures
     }
 }
 
@@ -378,6 +394,7 @@ mod tests {
     use motif_core::{NoProgress, Point};
 
     use super::*;
+    use crate::Job;
 
     fn rings() -> RgbaImage {
         RgbaImage::from_fn(96, 24, |x, y| {

@@ -14,14 +14,15 @@
 //! `strokes` and `stylize` (with `texture` and `presynth`).
 //!
 //! ```
-//! use motif_jobs::points::PointsJob;
+//! use motif_jobs::Job;
+//! use motif_jobs::points::{PointsInputs, PointsJob};
 //! use motif_points::samples::hex_exemplar;
 //!
 //! // The JSON a front end sends: required fields, and any option by its flag name.
 //! let job: PointsJob = serde_json::from_str(
 //!     r#"{ "neighbourhood": 1.5, "domain": { "box": [10, 8] }, "seed": 7, "refine": "seams" }"#,
 //! ).unwrap();
-//! let run = job.run(hex_exemplar(8, 8, 0.05, 1), None, &[], &mut motif_core::NoProgress).unwrap();
+//! let run = job.run(PointsInputs::new(hex_exemplar(8, 8, 0.05, 1)), &mut motif_core::NoProgress).unwrap();
 //! assert!(run.output.points.len() > 60);
 //! assert_eq!(run.figures["command"], "points");
 //! assert!(run.figures["fidelity"]["density_ratio"].as_f64().unwrap() > 0.9);
@@ -33,6 +34,7 @@
 pub mod columns;
 pub mod curve;
 mod error;
+mod job;
 mod memory_size;
 pub mod options;
 pub mod points;
@@ -40,29 +42,20 @@ pub mod strokes;
 pub mod stylize;
 
 pub use error::JobError;
+pub use job::{Finished, Job, JobEntry};
 
-/// One job every front end offers: its name (the CLI subcommand, the Python function) and its
-/// declared options.
-#[derive(Debug, Clone, Copy)]
-pub struct JobEntry {
-    /// The name a front end calls it by.
-    pub name: &'static str,
-    /// Every option, as declared (see [`options`]).
-    pub options: fn() -> Vec<options::OptionSpec>,
-}
-
-/// Every job whose options are declared in one place, in the order front ends list them. The
-/// CLI's subcommands, Python's keywords and `docs/cli.md` are checked against it.
+/// Every job, in the order front ends list them. The CLI's subcommands, Python's functions and
+/// keywords, and `docs/cli.md` are checked against it.
 pub const JOBS: &[JobEntry] = &[
-    JobEntry { name: "curve", options: <curve::CurveOptions as options::Declared>::options },
-    JobEntry { name: "points", options: <points::PointsOptions as options::Declared>::options },
-    JobEntry { name: "strokes", options: <strokes::StrokesOptions as options::Declared>::options },
-    JobEntry { name: "stylize", options: <stylize::StylizeJobOptions as options::Declared>::options },
-    JobEntry { name: "presynth", options: <stylize::PresynthJobOptions as options::Declared>::options },
-    JobEntry { name: "texture", options: <stylize::TextureJobOptions as options::Declared>::options },
-    JobEntry { name: "inpaint", options: <stylize::SynthesisOptions as options::Declared>::options },
-    JobEntry { name: "zoom", options: <stylize::ZoomJobOptions as options::Declared>::options },
-    JobEntry { name: "video", options: <stylize::VideoJobOptions as options::Declared>::options },
+    JobEntry::of::<curve::CurveJob>(),
+    JobEntry::of::<points::PointsJob>(),
+    JobEntry::of::<strokes::StrokesJob>(),
+    JobEntry::of::<stylize::StylizeJob>(),
+    JobEntry::of::<stylize::PresynthJob>(),
+    JobEntry::of::<stylize::TextureJob>(),
+    JobEntry::of::<stylize::InpaintJob>(),
+    JobEntry::of::<stylize::ZoomJob>(),
+    JobEntry::of::<stylize::VideoJob>(),
 ];
 
 /// Per-stage milliseconds as a JSON object, in order.

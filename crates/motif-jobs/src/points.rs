@@ -353,28 +353,40 @@ impl PointsJob {
         params.validate()?;
         Ok(params)
     }
+}
 
-    /// Runs the job on decoded inputs: the exemplar, a previous result to extend, and the names
-    /// of the exemplar's integer columns (see [`PointsJob::params`]).
-    pub fn run(
-        &self,
-        exemplar: PointSet,
-        existing: Option<PointSet>,
-        integer_columns: &[String],
-        progress: &mut dyn Progress,
-    ) -> Result<PointsRun, JobError> {
-        self.run_with_maps(exemplar, existing, integer_columns, &FieldMaps::default(), progress)
+/// The decoded inputs of a points job.
+#[derive(Debug, Clone)]
+pub struct PointsInputs<'a> {
+    /// The exemplar.
+    pub exemplar: PointSet,
+    /// A previous result to extend (`--existing`).
+    pub existing: Option<PointSet>,
+    /// The exemplar's integer columns (see [`PointsJob::params`]).
+    pub integer_columns: &'a [String],
+    /// Rotation and scale maps painted as images (2D).
+    pub maps: FieldMaps,
+}
+
+impl PointsInputs<'_> {
+    /// The exemplar alone: nothing to extend, no integer columns, no maps.
+    pub fn new(exemplar: PointSet) -> Self {
+        Self { exemplar, existing: None, integer_columns: &[], maps: FieldMaps::default() }
     }
+}
 
-    /// [`PointsJob::run`] with rotation and scale maps painted as images (2D), see [`FieldMaps`].
-    pub fn run_with_maps(
-        &self,
-        exemplar: PointSet,
-        existing: Option<PointSet>,
-        integer_columns: &[String],
-        maps: &FieldMaps,
-        progress: &mut dyn Progress,
-    ) -> Result<PointsRun, JobError> {
+impl crate::Job for PointsJob {
+    const NAME: &'static str = "points";
+    const FIELDS: &'static [&'static str] = &["domain", "seed", "max-memory"];
+    const SUMMARY: &'static str = "Grow a repetitive structure of points with attributes, in 2D or 3D";
+    const DETAILS: &'static str = "Discrete elements, continuous structures and mixtures, in boxes, regions, brush \
+        strokes, mesh volumes or on mesh surfaces (Roveri et al. 2015).";
+    type Options = PointsOptions;
+    type Inputs<'a> = PointsInputs<'a>;
+    type Run = PointsRun;
+
+    fn run(&self, inputs: PointsInputs<'_>, progress: &mut dyn Progress) -> Result<PointsRun, JobError> {
+        let PointsInputs { exemplar, existing, integer_columns, maps } = inputs;
         let mut params = self.params(exemplar.dimension, integer_columns)?;
         let domain = self.engine_domain()?;
         maps.apply(&domain, exemplar.dimension, &mut params)?;
@@ -382,6 +394,12 @@ impl PointsJob {
         let output = motif_points::synthesize(&input, &params, progress)?;
         let figures = figures(&output.report);
         Ok(PointsRun { output, figures })
+    }
+}
+
+impl crate::Finished for PointsRun {
+    fn figures(&self) -> &Map<String, Value> {
+        &self.figures
     }
 }
 

@@ -252,26 +252,49 @@ impl StrokesJob {
             }
         })
     }
+}
 
-    /// Runs the job on the decoded reference strokes.
-    pub fn run(&self, strokes: Vec<Stroke>, progress: &mut dyn Progress) -> Result<StrokesRun, JobError> {
-        self.run_with_maps(strokes, None, None, progress)
+/// The decoded inputs of a strokes job.
+#[derive(Debug, Clone)]
+pub struct StrokesInputs {
+    /// The reference pattern's strokes.
+    pub reference: Vec<Stroke>,
+    /// A density map over the target region (see [`motif_strokes::ToneMap`]).
+    pub density_map: Option<ToneMap>,
+    /// A scale map over the target region.
+    pub scale_map: Option<ToneMap>,
+}
+
+impl StrokesInputs {
+    /// The reference strokes alone, without maps.
+    pub fn new(reference: Vec<Stroke>) -> Self {
+        Self { reference, density_map: None, scale_map: None }
     }
+}
 
-    /// Runs the job with a density map and a scale map (decoded images, see
-    /// [`motif_strokes::ToneMap`]) over the target region.
-    pub fn run_with_maps(
-        &self,
-        strokes: Vec<Stroke>,
-        density_map: Option<ToneMap>,
-        scale_map: Option<ToneMap>,
-        progress: &mut dyn Progress,
-    ) -> Result<StrokesRun, JobError> {
+impl crate::Job for StrokesJob {
+    const NAME: &'static str = "strokes";
+    const FIELDS: &'static [&'static str] = &["scale", "target", "seed", "max-memory"];
+    const SUMMARY: &'static str = "Grow a vector stroke pattern along a path or inside a region";
+    const DETAILS: &'static str = "Hatching, stippling, brush marks and small figures analysed into elements and \
+        synthesized by neighbourhood matching (Barla et al. 2006).";
+    type Options = StrokesOptions;
+    type Inputs<'a> = StrokesInputs;
+    type Run = StrokesRun;
+
+    fn run(&self, inputs: StrokesInputs, progress: &mut dyn Progress) -> Result<StrokesRun, JobError> {
         let params = self.params()?;
-        let input = Input { density_map, scale_map, ..Input::new(strokes, self.engine_target()?) };
+        let StrokesInputs { reference, density_map, scale_map } = inputs;
+        let input = Input { density_map, scale_map, ..Input::new(reference, self.engine_target()?) };
         let output = motif_strokes::synthesize(&input, &params, progress)?;
         let figures = figures(&output.report);
         Ok(StrokesRun { output, figures })
+    }
+}
+
+impl crate::Finished for StrokesRun {
+    fn figures(&self) -> &Map<String, Value> {
+        &self.figures
     }
 }
 
@@ -306,6 +329,7 @@ mod tests {
     use motif_strokes::samples::{HatchRow, hatch_row};
 
     use super::*;
+    use crate::Job;
 
     #[test]
     fn a_described_job_runs_with_the_flag_names() {
@@ -325,7 +349,7 @@ mod tests {
         assert_eq!(params.thresholds.shape, Thresholds::default().shape);
         let row = HatchRow { count: 12, ..HatchRow::default() };
         let strokes = hatch_row(&row, Point::new(10.0, 30.0), |i| 0.05 * i as f64, |_| [20, 20, 20, 255], 1);
-        let run = job.run(strokes, &mut NoProgress).unwrap();
+        let run = job.run(StrokesInputs::new(strokes), &mut NoProgress).unwrap();
         assert!(run.output.report.output_elements > 20);
         assert_eq!(run.figures["output_elements"], run.output.report.output_elements);
     }

@@ -7,10 +7,9 @@
 //! keeps them as bytes (a quarter of the memory of floats). Zoom, video and presynth work on
 //! floats (their guides are computed) and convert.
 
-use motif_core::{ByteImage, ChannelImage, InvalidParameter, Progress};
-use motif_stylize::{Guide, Input, Mask, NnfMethod, Output, Params, PresynthInput, SegmentTexture, Segmentation};
+use motif_core::{ByteImage, InvalidParameter};
+use motif_stylize::{NnfMethod, Params, Segmentation};
 use serde::{Deserialize, Serialize};
-use serde_json::{Map, Value, json};
 
 use crate::JobError;
 use crate::options::{Declared, Described, Joined};
@@ -332,22 +331,15 @@ impl TryFrom<Described<PresynthFields>> for PresynthJob {
 }
 
 mod images;
+mod run;
 mod video;
 pub use images::{guide_image_channels, guide_pair, hole_of, kept_image, style_image_channels};
-pub use video::{VideoJob, VideoJobOptions, VideoOptions, video_frame, video_styles};
+pub use run::{InpaintInputs, PresynthInputs, PresynthRun, StylizeInputs, StylizeRun, TextureInputs, ZoomRun, figures};
+pub use video::{VideoJob, VideoJobOptions, VideoOptions, VideoRun, video_frame, video_styles};
 
 /// One decoded guide pair: source (the style's size) and target, with equal channel counts
 /// (8-bit as decoded by default; float images work too).
 pub type GuidePair<I = ByteImage> = (I, I);
-
-/// A finished stylize or texture job.
-#[derive(Debug, Clone)]
-pub struct StylizeRun {
-    /// The engine's output (image, field, error map and its `Report`).
-    pub output: Output,
-    /// The report's figures as one JSON object, the keys every front end writes.
-    pub figures: Map<String, Value>,
-}
 
 impl StylizeJob {
     /// A job with every option at its default.
@@ -382,46 +374,6 @@ impl StylizeJob {
             .with_band_patchmatch_iterations(own.band_patchmatch_iters);
         checked(params, &self.options)
     }
-
-    /// Runs the job: the style A', the guide pairs (A, B) and, for the band mode of §3.7, the
-    /// pre-synthesized textures.
-    pub fn run<I: ChannelImage>(
-        &self,
-        style: I,
-        guides: Vec<GuidePair<I>>,
-        textures: Option<Vec<SegmentTexture>>,
-        progress: &mut dyn Progress,
-    ) -> Result<StylizeRun, JobError> {
-        self.run_masked(style, guides, textures, None, progress)
-    }
-
-    /// [`StylizeJob::run`] that synthesizes only the mask's hole and keeps the rest.
-    pub fn run_masked<I: ChannelImage>(
-        &self,
-        style: I,
-        guides: Vec<GuidePair<I>>,
-        textures: Option<Vec<SegmentTexture>>,
-        mask: Option<Mask<I>>,
-        progress: &mut dyn Progress,
-    ) -> Result<StylizeRun, JobError> {
-        let weight = &self.options.own.weight;
-        if !weight.is_empty() && weight.len() != guides.len() {
-            let allowed = format!("none or exactly one per guide ({} guides), in order", guides.len());
-            return Err(InvalidParameter::new("weight", format!("{} values", weight.len()), allowed).into());
-        }
-        let params = self.params(textures.is_some())?;
-        let guides = guides
-            .into_iter()
-            .enumerate()
-            .map(|(index, (source, target))| Guide { source, target, weight: weight.get(index).copied() })
-            .collect();
-        let mut input = Input::guided(style, guides);
-        input.textures = textures;
-        input.mask = mask;
-        let output = motif_stylize::synthesize(&input, &params, progress)?;
-        let figures = figures(&output);
-        Ok(StylizeRun { output, figures })
-    }
 }
 
 impl Default for StylizeJob {
@@ -441,45 +393,12 @@ impl TextureJob {
         let params = self.options.shared.params(self.seed, self.max_memory).with_tileable(self.options.own.tileable);
         checked(params, &self.options)
     }
-
-    /// Runs the job on the decoded exemplar.
-    pub fn run<I: ChannelImage>(&self, exemplar: I, progress: &mut dyn Progress) -> Result<StylizeRun, JobError> {
-        self.run_masked(exemplar, None, progress)
-    }
-
-    /// [`TextureJob::run`] that synthesizes only the mask's hole and keeps the rest.
-    pub fn run_masked<I: ChannelImage>(
-        &self,
-        exemplar: I,
-        mask: Option<Mask<I>>,
-        progress: &mut dyn Progress,
-    ) -> Result<StylizeRun, JobError> {
-        let params = self.params()?;
-        let mut input = Input::texture(exemplar, self.size[0], self.size[1]);
-        input.mask = mask;
-        let output = motif_stylize::synthesize(&input, &params, progress)?;
-        let figures = figures(&output);
-        Ok(StylizeRun { output, figures })
-    }
 }
 
 impl InpaintJob {
     /// A job with every option at its default.
     pub fn new() -> Self {
         Self { seed: default_seed(), max_memory: None, options: SynthesisOptions::default() }
-    }
-
-    /// Fills the `hole` of `image` (per pixel, `true` = fill) from the rest of it.
-    pub fn run<I: ChannelImage>(
-        &self,
-        image: I,
-        hole: Vec<bool>,
-        progress: &mut dyn Progress,
-    ) -> Result<StylizeRun, JobError> {
-        let params = checked(self.options.params(self.seed, self.max_memory), &self.options)?;
-        let output = motif_stylize::synthesize(&Input::inpaint(image, hole), &params, progress)?;
-        let figures = figures(&output);
-        Ok(StylizeRun { output, figures })
     }
 }
 
@@ -495,19 +414,6 @@ impl ZoomJob {
         let style = (exemplar.width(), exemplar.height(), exemplar.channels());
         let levels = self.options.own.levels;
         motif_stylize::zoom_memory(style, 0, (self.size[0], self.size[1]), levels).total()
-    }
-
-    /// Synthesizes the zoom levels of a texture of `exemplar`, outermost first.
-    pub fn run(
-        &self,
-        exemplar: motif_core::FloatImage,
-        progress: &mut dyn Progress,
-    ) -> Result<Vec<StylizeRun>, JobError> {
-        let params = checked(self.options.shared.params(self.seed, self.max_memory), &self.options)?;
-        let input = Input::texture(exemplar, self.size[0], self.size[1]);
-        let (factor, levels) = (self.options.own.factor, self.options.own.levels);
-        let outputs = motif_stylize::zoom(&input, factor, levels, &params, progress)?;
-        Ok(outputs.into_iter().map(|output| StylizeRun { figures: figures(&output), output }).collect())
     }
 }
 
@@ -534,41 +440,12 @@ impl PresynthJob {
         let params = self.options.shared.params(self.seed, self.max_memory).with_segments(Some(segments));
         checked(params, &self.options)
     }
-
-    /// One seamless texture per segment of `guide` (the style's size) from `style`.
-    pub fn run(
-        &self,
-        style: motif_core::FloatImage,
-        guide: motif_core::FloatImage,
-        progress: &mut dyn Progress,
-    ) -> Result<Vec<SegmentTexture>, JobError> {
-        let params = self.params()?;
-        let [width, height] = self.texture_size();
-        let input = PresynthInput { style, guide, size: (width, height) };
-        Ok(motif_stylize::presynthesize(&input, &params, progress)?)
-    }
 }
 
 impl Default for PresynthJob {
     fn default() -> Self {
         Self::new()
     }
-}
-
-/// The figures of a stylize or texture run under the keys of `--report`.
-pub fn figures(output: &Output) -> Map<String, Value> {
-    let report = &output.report;
-    let value = json!({
-        "energy": report.energy,
-        "estimated_memory_bytes": report.estimated_memory_bytes,
-        "source_coverage": report.source_coverage,
-        "stages_ms": crate::stages(&report.stages_ms),
-        "engine_ms": report.total_ms,
-        "levels": report.levels,
-        "searched_pixels": report.searched_pixels,
-        "output_size": [output.image.width(), output.image.height()],
-    });
-    crate::object(value)
 }
 
 #[cfg(test)]

@@ -147,3 +147,39 @@ fn stylize_jobs_join_shared_and_own_options() {
     let job: TextureJob = serde_json::from_value(json!({ "size": [8, 8], "structure-weight": -1 })).unwrap();
     assert!(job.params().unwrap_err().to_string().contains("structure-weight"));
 }
+
+/// Every job's entry names exactly what its description holds (its fields, then its options),
+/// so front ends list a job's names from `JOBS` alone.
+#[test]
+fn every_entry_names_what_its_description_holds() {
+    use motif_jobs::curve::CurveJob;
+    use motif_jobs::points::{DomainSpec, PointsJob};
+    use motif_jobs::strokes::{StrokesJob, TargetSpec};
+    use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, VideoJob, ZoomJob};
+    use motif_jobs::{Job, JobEntry};
+    use std::collections::BTreeSet;
+
+    fn held<J: Job>(job: &J) -> (&'static str, BTreeSet<String>) {
+        let value = serde_json::to_value(job).unwrap();
+        (J::NAME, value.as_object().unwrap().keys().cloned().collect())
+    }
+    let jobs = [
+        held(&CurveJob::new(1.0, 1.0)),
+        held(&PointsJob::new(1.0, DomainSpec::Box(vec![1.0, 1.0]))),
+        held(&StrokesJob::new(1.0, TargetSpec::Rect([1.0, 1.0]))),
+        held(&StylizeJob::new()),
+        held(&PresynthJob::new()),
+        held(&TextureJob::new(1, 1)),
+        held(&InpaintJob::new()),
+        held(&ZoomJob::new(1, 1)),
+        held(&VideoJob::new()),
+    ];
+    let listed: Vec<&str> = motif_jobs::JOBS.iter().map(|entry| entry.name).collect();
+    assert_eq!(jobs.iter().map(|(name, _)| *name).collect::<Vec<_>>(), listed, "JOBS lists every job, in order");
+    for (name, keys) in jobs {
+        let entry = JobEntry::named(name).unwrap();
+        let names: BTreeSet<String> = entry.names().into_iter().collect();
+        assert_eq!(keys, names, "{name}");
+        assert!(!entry.summary.is_empty() && !entry.details.is_empty(), "{name}");
+    }
+}

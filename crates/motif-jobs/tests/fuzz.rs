@@ -4,6 +4,7 @@
 //! accepts; never a panic. Curve jobs, the cheapest, also run to the end.
 
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
+use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob};
 use motif_jobs::points::{DomainSpec, PointsJob};
 use motif_jobs::strokes::{StrokesJob, TargetSpec};

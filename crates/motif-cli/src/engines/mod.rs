@@ -3,10 +3,15 @@
 //! struct that implements [`Engine`] with them.
 //!
 //! To add an engine `foo`: `pub mod foo;`, a variant `Foo(foo::FooArgs)` of [`EngineCommand`]
-//! whose doc comment is its help line (with its arms in `name` and `run`), and `&foo::Foo` in
+//! whose `about` is its job's summary (with its arms in `name` and `run`), and `&foo::Foo` in
 //! [`ENGINES`].
 
 use clap::Subcommand;
+use motif_jobs::Job;
+use motif_jobs::curve::CurveJob;
+use motif_jobs::points::PointsJob;
+use motif_jobs::strokes::StrokesJob;
+use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, VideoJob, ZoomJob};
 
 use crate::context::Context;
 use crate::registry::Engine;
@@ -16,61 +21,32 @@ pub mod points;
 pub mod strokes;
 pub mod stylize;
 
-/// The engine subcommands.
+/// A job's long help: its summary, then its details.
+fn long_about<J: Job>() -> String {
+    format!("{}\n\n{}", J::SUMMARY, J::DETAILS)
+}
+
+/// The engine subcommands: one per job of `motif_jobs::JOBS`, whose name, summary and details
+/// are the job's own.
 #[derive(Subcommand, Debug)]
 pub enum EngineCommand {
-    /// Grow a structured raster pattern (chain, lace, frieze) along a curve
-    ///
-    /// Undistorted pieces of the exemplar placed by a globally optimal dynamic program
-    /// (Zhou, Lasram, Lefebvre 2013).
-    #[command(allow_negative_numbers = true)]
+    #[command(about = CurveJob::SUMMARY, long_about = long_about::<CurveJob>(), allow_negative_numbers = true)]
     Curve(curve::CurveArgs),
-    /// Grow a repetitive structure of points with attributes, in 2D or 3D
-    ///
-    /// Discrete elements, continuous structures and mixtures, in boxes, regions, brush strokes,
-    /// mesh volumes or on mesh surfaces (Roveri et al. 2015).
-    #[command(allow_negative_numbers = true)]
+    #[command(about = PointsJob::SUMMARY, long_about = long_about::<PointsJob>(), allow_negative_numbers = true)]
     Points(Box<points::PointsArgs>),
-    /// Grow a vector stroke pattern along a path or inside a region
-    ///
-    /// Hatching, stippling, brush marks and small figures analysed into elements and synthesized
-    /// by neighbourhood matching (Barla et al. 2006).
-    #[command(allow_negative_numbers = true)]
+    #[command(about = StrokesJob::SUMMARY, long_about = long_about::<StrokesJob>(), allow_negative_numbers = true)]
     Strokes(strokes::StrokesArgs),
-    /// Paint a target guide in the style of an exemplar (A : A' :: B : B')
-    ///
-    /// Guided patch-based synthesis with occurrence penalty, segments and pre-synthesized
-    /// textures (Texler et al.); options mirror ebsynth's.
-    #[command(allow_negative_numbers = true)]
+    #[command(about = StylizeJob::SUMMARY, long_about = long_about::<StylizeJob>(), allow_negative_numbers = true)]
     Stylize(stylize::StylizeArgs),
-    /// Make one seamless texture per segment of a style's guide, for `motif stylize --presynth`
-    ///
-    /// The pre-synthesized textures of Texler et al. §3.7: the target is then filled from them
-    /// and only a band along segment edges is optimized.
-    #[command(allow_negative_numbers = true)]
+    #[command(about = PresynthJob::SUMMARY, long_about = long_about::<PresynthJob>(), allow_negative_numbers = true)]
     Presynth(stylize::PresynthArgs),
-    /// Grow a texture of any size from an exemplar image, optionally tileable
-    #[command(allow_negative_numbers = true)]
+    #[command(about = TextureJob::SUMMARY, long_about = long_about::<TextureJob>(), allow_negative_numbers = true)]
     Texture(stylize::TextureArgs),
-    /// Fill a hole in an image from the rest of it
-    ///
-    /// Patch-based synthesis whose kept pixels are the image outside the hole and whose sources
-    /// are its patches wholly outside it, with the occurrence penalty so the fill does not clone
-    /// one patch.
-    #[command(allow_negative_numbers = true)]
+    #[command(about = InpaintJob::SUMMARY, long_about = long_about::<InpaintJob>(), allow_negative_numbers = true)]
     Inpaint(stylize::InpaintArgs),
-    /// Zoom into a texture without end: every level synthesized at full resolution
-    ///
-    /// Each level is guided by the centre of the level above, scaled up, so zooming keeps both
-    /// the layout and the style's own detail (the map paper's §5.3).
+    #[command(about = ZoomJob::SUMMARY, long_about = long_about::<ZoomJob>())]
     Zoom(stylize::ZoomArgs),
-    /// Stylize a video from one or more keyframes painted by an artist
-    ///
-    /// Each frame is synthesized from the nearest keyframes with the frame's colours and edges,
-    /// the keyframe's positions carried along the motion and the previous output (against
-    /// flicker), forward and backward from keyframes and blended between them (Jamriška et al.
-    /// 2019). Keyframe intervals are independent (--interval).
-    #[command(allow_negative_numbers = true)]
+    #[command(about = VideoJob::SUMMARY, long_about = long_about::<VideoJob>(), allow_negative_numbers = true)]
     Video(stylize::VideoArgs),
 }
 
@@ -78,15 +54,15 @@ impl EngineCommand {
     /// The subcommand's name, as typed.
     pub fn name(&self) -> &'static str {
         match self {
-            EngineCommand::Curve(_) => "curve",
-            EngineCommand::Points(_) => "points",
-            EngineCommand::Strokes(_) => "strokes",
-            EngineCommand::Stylize(_) => "stylize",
-            EngineCommand::Presynth(_) => "presynth",
-            EngineCommand::Texture(_) => "texture",
-            EngineCommand::Inpaint(_) => "inpaint",
-            EngineCommand::Zoom(_) => "zoom",
-            EngineCommand::Video(_) => "video",
+            EngineCommand::Curve(_) => CurveJob::NAME,
+            EngineCommand::Points(_) => PointsJob::NAME,
+            EngineCommand::Strokes(_) => StrokesJob::NAME,
+            EngineCommand::Stylize(_) => StylizeJob::NAME,
+            EngineCommand::Presynth(_) => PresynthJob::NAME,
+            EngineCommand::Texture(_) => TextureJob::NAME,
+            EngineCommand::Inpaint(_) => InpaintJob::NAME,
+            EngineCommand::Zoom(_) => ZoomJob::NAME,
+            EngineCommand::Video(_) => VideoJob::NAME,
         }
     }
 

@@ -3,6 +3,8 @@
 use motif_core::NoProgress;
 use motif_stylize::samples::{crayon_style, map_guide};
 
+use serde_json::json;
+
 use super::*;
 
 #[test]
@@ -27,10 +29,10 @@ fn described_jobs_run_with_the_flag_names() {
     let source = map_guide(48, 40, 3, 1);
     let style = crayon_style(&source, 2);
     let target = map_guide(56, 44, 3, 3);
-    let run = job.run(style.clone(), vec![(source, target)], None, &mut NoProgress).unwrap();
+    let run = job.run_on(StylizeInputs::new(style.clone(), vec![(source, target)]), &mut NoProgress).unwrap();
     assert_eq!(run.figures["output_size"], json!([56, 44]));
     let texture: TextureJob = serde_json::from_value(json!({ "size": [40, 30], "tileable": true })).unwrap();
-    let run = texture.run(style, &mut NoProgress).unwrap();
+    let run = texture.run_on(TextureInputs { exemplar: style, mask: None }, &mut NoProgress).unwrap();
     assert_eq!((run.output.image.width(), run.output.image.height()), (40, 30));
 }
 
@@ -47,6 +49,6 @@ fn bad_descriptions_name_what_is_wrong() {
     let job: StylizeJob = serde_json::from_value(json!({ "weight": [0.5, 0.5] })).unwrap();
     let source = map_guide(32, 32, 2, 1);
     let style = crayon_style(&source, 2);
-    let error = job.run(style, vec![(source.clone(), source)], None, &mut NoProgress).unwrap_err();
+    let error = job.run_on(StylizeInputs::new(style, vec![(source.clone(), source)]), &mut NoProgress).unwrap_err();
     assert!(error.to_string().contains("weight"), "{error}");
 }

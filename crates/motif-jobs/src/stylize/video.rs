@@ -117,27 +117,6 @@ impl VideoJob {
         intervals(frame_count, key_frames)
     }
 
-    /// Stylizes the whole sequence.
-    pub fn run(
-        &self,
-        frames: Vec<FloatImage>,
-        keys: Vec<Keyframe>,
-        mask: Option<Vec<bool>>,
-        progress: &mut dyn Progress,
-    ) -> Result<(VideoOutput, Map<String, Value>), JobError> {
-        let (params, video) = self.params()?;
-        let output = motif_stylize::stylize_video(&VideoInput { frames, keys, mask }, &params, &video, progress)?;
-        let figures = crate::object(json!({
-            "frames": output.report.frames,
-            "keyframes": output.report.keyframes,
-            "intervals": output.report.intervals,
-            "engine_ms": output.report.total_ms,
-            "ms_per_frame": output.report.ms_per_frame,
-            "flicker": output.report.flicker,
-        }));
-        Ok((output, figures))
-    }
-
     /// Stylizes one interval: `frames` are its frames, `interval` where it lies (from
     /// [`intervals`](Self::intervals)), and the styles of its keyframe ends. The interval is
     /// checked as a video of its own (sizes, channels, mask) before any work.
@@ -163,6 +142,50 @@ impl VideoJob {
         let first = interval.starts_at_key.then_some(first_style).flatten();
         let last = interval.ends_at_key.then_some(last_style).flatten();
         Ok(stylize_interval(frames, interval.first, first, last, mask, &params, &video, progress)?)
+    }
+}
+
+/// A finished video job.
+#[derive(Debug, Clone)]
+pub struct VideoRun {
+    /// The engine's output: the stylized frames and its report.
+    pub output: VideoOutput,
+    /// The run's figures: `frames`, `keyframes`, `intervals`, `engine_ms`, `ms_per_frame`,
+    /// `flicker`.
+    pub figures: Map<String, Value>,
+}
+
+impl crate::Finished for VideoRun {
+    fn figures(&self) -> &Map<String, Value> {
+        &self.figures
+    }
+}
+
+impl crate::Job for VideoJob {
+    const NAME: &'static str = "video";
+    const FIELDS: &'static [&'static str] = &["seed", "max-memory"];
+    const SUMMARY: &'static str = "Stylize a video from one or more keyframes painted by an artist";
+    const DETAILS: &'static str = "Each frame is synthesized from the nearest keyframes with the frame's colours \
+        and edges, the keyframe's positions carried along the motion and the previous output (against flicker), \
+        forward and backward from keyframes and blended between them (Jamriška et al. 2019). Keyframe intervals \
+        are independent (--interval).";
+    type Options = VideoJobOptions;
+    type Inputs<'a> = VideoInput;
+    type Run = VideoRun;
+
+    /// Stylizes the whole sequence.
+    fn run(&self, input: VideoInput, progress: &mut dyn Progress) -> Result<VideoRun, JobError> {
+        let (params, video) = self.params()?;
+        let output = motif_stylize::stylize_video(&input, &params, &video, progress)?;
+        let figures = crate::object(json!({
+            "frames": output.report.frames,
+            "keyframes": output.report.keyframes,
+            "intervals": output.report.intervals,
+            "engine_ms": output.report.total_ms,
+            "ms_per_frame": output.report.ms_per_frame,
+            "flicker": output.report.flicker,
+        }));
+        Ok(VideoRun { output, figures })
     }
 }
 
@@ -192,6 +215,7 @@ mod tests {
     use motif_stylize::samples::{CameraPath, crayon_style, map_guide, pan_and_zoom};
 
     use super::*;
+    use crate::Job;
 
     #[test]
     fn intervals_run_apart_give_the_bytes_of_one_whole_run() {
@@ -202,7 +226,8 @@ mod tests {
         let keys =
             vec![Keyframe { frame: 1, style: styles[0].clone() }, Keyframe { frame: 3, style: styles[1].clone() }];
         let job: VideoJob = serde_json::from_value(json!({ "seed": 5, "search-vote-iters": 2 })).unwrap();
-        let (whole, figures) = job.run(footage.frames.clone(), keys, None, &mut NoProgress).unwrap();
+        let VideoRun { output: whole, figures } =
+            job.run(VideoInput { frames: footage.frames.clone(), keys, mask: None }, &mut NoProgress).unwrap();
         assert_eq!(figures["frames"], json!(5));
         let parts = VideoJob::intervals(5, &[1, 3]);
         assert_eq!(parts.len(), 3);

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Point, Polyline};
+use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob, CurveOptions};
 use serde_json::json;
 

@@ -13,7 +13,10 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
-use motif_jobs::points::{DirectionsSpec, DomainSpec, FieldMaps, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec};
+use motif_jobs::Job;
+use motif_jobs::points::{
+    DirectionsSpec, DomainSpec, FieldMaps, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
+};
 use motif_points::PointSet;
 use serde_json::Value;
 
@@ -339,7 +342,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             .collect();
         files.join(", ")
     })?;
-    let run = job.run_with_maps(exemplar, existing, &integer, &maps, context.progress())?;
+    let run = job.run(PointsInputs { exemplar, existing, integer_columns: &integer, maps }, context.progress())?;
     let output = run.output;
     let format = match PointFormat::from_path(&args.out) {
         PointFormat::PlyBinary if args.ascii => PointFormat::PlyAscii,

@@ -12,7 +12,8 @@ use clap::Args;
 use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
-use motif_jobs::strokes::{StrokesJob, StrokesOptions, TargetSpec};
+use motif_jobs::Job;
+use motif_jobs::strokes::{StrokesInputs, StrokesJob, StrokesOptions, TargetSpec};
 use motif_strokes::{Analysis, Output, Stroke, Target, ToneMap};
 
 use crate::context::Context;
@@ -269,7 +270,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     let scale_map = read_map(args.scale_map.as_deref(), "--scale-map", &job, context.max_memory)?;
     let shown_strokes = args.analysis.as_ref().map(|_| strokes.clone());
     let run = job
-        .run_with_maps(strokes, density_map, scale_map, context.progress())
+        .run(StrokesInputs { reference: strokes, density_map, scale_map }, context.progress())
         .with_context(|| format!("cannot synthesize from {}", args.reference.display()))?;
     let output = run.output;
     let svg = output_svg(&output, width, height);

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use clap::Args;
 use motif_core::{ByteImage, RgbaImage};
+use motif_jobs::Job;
 use motif_jobs::stylize::{
-    InpaintJob, SynthesisOptions, ZoomJob, ZoomJobOptions, hole_of, kept_image, style_image_channels,
+    InpaintInputs, InpaintJob, SynthesisOptions, ZoomJob, ZoomJobOptions, hole_of, kept_image, style_image_channels,
 };
 use motif_stylize::Mask;
 
@@ -101,7 +102,7 @@ pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<
     let job =
         InpaintJob { seed: context.seed, max_memory: Some(context.max_memory), options: args.options.options.clone() };
     let run = job
-        .run(image, hole, context.progress())
+        .run(InpaintInputs { image, hole }, context.progress())
         .with_context(|| format!("cannot fill {} with the hole {}", args.image.display(), args.mask.display()))?;
     let output = &run.output;
     motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
@@ -151,22 +152,19 @@ pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
         options: args.options.options.clone(),
     };
     let factor = job.options.own.factor;
-    let estimate = job.memory_bytes(&exemplar);
-    let runs = job
+    let run = job
         .run(exemplar, context.progress())
         .with_context(|| format!("cannot zoom into {}", args.exemplar.display()))?;
     motif_io::create_folder(&args.out_dir)?;
-    for (run, name) in runs.iter().zip(&names) {
-        motif_io::write_png(name, &RgbaImage::from_float(&run.output.image))?;
+    for (level, name) in run.levels.iter().zip(&names) {
+        motif_io::write_png(name, &RgbaImage::from_float(&level.output.image))?;
     }
-    let total_ms: f64 = runs.iter().map(|run| run.output.report.total_ms).sum();
-    context.figure("estimated_memory_bytes", estimate);
-    context.figure("levels", runs.len());
-    context.figure("factor", factor);
-    context.figure("level_ms", runs.iter().map(|run| run.output.report.total_ms).collect::<Vec<_>>());
+    let total_ms: f64 = run.levels.iter().map(|level| level.output.report.total_ms).sum();
+    let levels = run.levels.len();
+    context.job_figures(run.figures);
     context.summary(&format!(
         "motif zoom: {} levels of {}×{}, each {}× closer, in {:.0} ms → {}",
-        runs.len(),
+        levels,
         args.size.0,
         args.size.1,
         factor,

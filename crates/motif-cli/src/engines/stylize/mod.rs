@@ -17,9 +17,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::RgbaImage;
+use motif_jobs::Job;
 use motif_jobs::stylize::{
-    PresynthJob, PresynthJobOptions, StylizeJob, StylizeJobOptions, TextureJob, TextureJobOptions,
-    guide_image_channels, guide_pair, style_image_channels,
+    PresynthInputs, PresynthJob, PresynthJobOptions, StylizeInputs, StylizeJob, StylizeJobOptions, TextureInputs,
+    TextureJob, TextureJobOptions, guide_image_channels, guide_pair, style_image_channels,
 };
 use motif_stylize::{NearestNeighbourField, Output, apply_field};
 
@@ -218,7 +219,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
         textures = Some(loaded);
     }
     let mask = args.masking.read(style.channels(), context.max_memory)?;
-    let run = job.run_masked(style, guides, textures, mask, context.progress()).with_context(|| {
+    let run = job.run(StylizeInputs { style, guides, textures, mask }, context.progress()).with_context(|| {
         let guides: Vec<String> = pairs.iter().map(|(a, b)| format!("{} → {}", a.display(), b.display())).collect();
         format!("cannot stylize {} with guides {}{}", style_path.display(), guides.join(", "), args.masking.describe())
     })?;
@@ -254,15 +255,13 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
     };
     let params = job.params()?;
     let style = style_image_channels(&style_image).to_float();
-    let style_shape = (style.width(), style.height(), style.channels());
-    let textures = job.run(style, guide_image_channels(&guide_image).to_float(), context.progress())?;
-    let estimate = motif_stylize::presynth_memory(style_shape, args.size, textures.len());
-    context.figure("estimated_memory_bytes", estimate.total());
+    let guide = guide_image_channels(&guide_image).to_float();
+    let run = job.run(PresynthInputs { style, guide }, context.progress())?;
+    let textures = &run.textures;
     motif_io::create_folder(&args.out_dir)?;
-    let generation = cache::write(&args.out_dir, params.patch_size, &textures)?;
+    let generation = cache::write(&args.out_dir, params.patch_size, textures)?;
+    context.job_figures(run.figures.clone());
     context.figure("generation", generation);
-    context.figure("segments", textures.len());
-    context.figure("texture_size", [args.size.0, args.size.1]);
     context.summary(&format!(
         "motif presynth: {} segment textures of {}×{} → {}",
         textures.len(),
@@ -288,7 +287,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
         options: args.options.options.clone(),
     };
     let run = job
-        .run_masked(exemplar, mask, context.progress())
+        .run(TextureInputs { exemplar, mask }, context.progress())
         .with_context(|| format!("cannot synthesize from {}{}", args.exemplar.display(), args.masking.describe()))?;
     let output = &run.output;
     motif_io::write_png(&args.out, &RgbaImage::from_float(&output.image))?;
