@@ -7,8 +7,9 @@ H×W×3 or H×W×4 (results are H×W×4, straight alpha). Every call releases th
 runs; ``threads`` caps its worker threads (default: all cores; results do not depend on it).
 ``report=True`` also returns the run's figures as a dict (the CLI's ``--report``).
 
-Bad options raise ``ValueError`` naming the option; files that cannot be read or written raise
-``OSError``.
+Bad options raise ``motif.OptionError`` naming the option, unusable inputs ``motif.InputError``
+and runs past a memory, point or work limit ``motif.LimitError`` (all ``motif.MotifError``, a
+``ValueError``); files that cannot be read or written raise ``OSError``.
 
 >>> import numpy as np, motif
 >>> exemplar = (np.random.default_rng(1).random((32, 32, 3)) * 255).astype(np.uint8)
@@ -41,7 +42,18 @@ __all__ = [
     "options",
     "jobs",
     "Textures",
+    "MotifError",
+    "OptionError",
+    "InputError",
+    "LimitError",
 ]
+
+# A run the engines refuse raises one of these (all ValueError): a bad option, an unusable input,
+# or a limit the run would pass (memory, points, work).
+MotifError = _motif.MotifError
+OptionError = _motif.OptionError
+InputError = _motif.InputError
+LimitError = _motif.LimitError
 
 #: Pre-synthesized textures, one per segment colour (``presynth``'s result, for ``stylize``).
 Textures = _motif.Textures

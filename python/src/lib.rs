@@ -23,8 +23,25 @@ fn value_error(error: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(error.to_string())
 }
 
+pyo3::create_exception!(_motif, MotifError, PyValueError, "A run refused by motif (a ValueError).");
+pyo3::create_exception!(_motif, OptionError, MotifError, "An option out of its range or inconsistent with another.");
+pyo3::create_exception!(
+    _motif,
+    InputError,
+    MotifError,
+    "An input (image, points, curve, strokes) that cannot be used."
+);
+pyo3::create_exception!(_motif, LimitError, MotifError, "A run that would pass a memory, point or work limit.");
+
+/// The job's error as the exception of its kind.
 fn job_error(error: JobError) -> PyErr {
-    value_error(error)
+    let message = error.to_string();
+    match error.kind() {
+        motif_jobs::ErrorKind::Option => OptionError::new_err(message),
+        motif_jobs::ErrorKind::Input => InputError::new_err(message),
+        motif_jobs::ErrorKind::Limit => LimitError::new_err(message),
+        _ => MotifError::new_err(message),
+    }
 }
 
 fn io_error(error: motif_io::IoError) -> PyErr {
@@ -32,7 +49,7 @@ fn io_error(error: motif_io::IoError) -> PyErr {
 }
 
 fn description<T: serde::de::DeserializeOwned>(job: &str) -> PyResult<T> {
-    serde_json::from_str(job).map_err(|error| value_error(format!("bad options: {error}")))
+    serde_json::from_str(job).map_err(|error| OptionError::new_err(format!("bad options: {error}")))
 }
 
 /// An H×W (grey), H×W×1, H×W×3 or H×W×4 uint8 array as an RGBA image. `what` names it in errors.
@@ -539,5 +556,9 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(strokes, module)?)?;
     module.add_function(wrap_pyfunction!(options, module)?)?;
     module.add_function(wrap_pyfunction!(jobs, module)?)?;
+    module.add("MotifError", module.py().get_type::<MotifError>())?;
+    module.add("OptionError", module.py().get_type::<OptionError>())?;
+    module.add("InputError", module.py().get_type::<InputError>())?;
+    module.add("LimitError", module.py().get_type::<LimitError>())?;
     Ok(())
 }

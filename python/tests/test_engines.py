@@ -310,3 +310,16 @@ def test_video_equals_the_cli_and_checks_its_inputs(cli, tmp_path, photo):
         motif.video(frames, {0: key}, mask=np.ones((3, 3), dtype=bool))
     with pytest.raises(TypeError, match="temporal_weight"):
         motif.video(frames, {0: key}, temporal_wieght=1)
+
+
+def test_errors_come_in_kinds(photo):
+    """A bad option, an unusable input and a run past a limit each raise their own ValueError."""
+    exemplar = np.ascontiguousarray(photo[:64, :64, :3])
+    with pytest.raises(motif.OptionError, match="patch-size"):
+        motif.texture(exemplar, (32, 32), patch_size=4)
+    with pytest.raises(motif.InputError):
+        motif.points({"x": np.array([0.0, 1.0]), "y": np.array([0.0, 1.0])}, 1.0, domain=(10, 10))
+    with pytest.raises(motif.LimitError):
+        motif.texture(exemplar, (4096, 4096), max_memory="1M")
+    for kind in (motif.OptionError, motif.InputError, motif.LimitError):
+        assert issubclass(kind, motif.MotifError) and issubclass(kind, ValueError)

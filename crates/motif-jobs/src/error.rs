@@ -23,7 +23,47 @@ pub enum JobError {
     Stylize(#[from] motif_stylize::Error),
 }
 
+/// What kind of problem stopped a job: the categories front ends map errors to (Python raises
+/// `motif.OptionError`, `motif.InputError` or `motif.LimitError`, all `ValueError`s).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum ErrorKind {
+    /// An option or field of the description is out of its range or inconsistent with another.
+    Option,
+    /// An input (image, point set, curve, strokes, mesh) cannot be used as given.
+    Input,
+    /// The run would pass a limit on memory, points, elements or work.
+    Limit,
+}
+
 impl JobError {
+    /// The kind of problem, for front ends that raise one error type per kind.
+    pub fn kind(&self) -> ErrorKind {
+        use motif_curve::Error as Curve;
+        use motif_points::Error as Points;
+        use motif_strokes::Error as Strokes;
+        use motif_stylize::Error as Stylize;
+        match self {
+            Self::InvalidParameter(_)
+            | Self::Curve(Curve::InvalidParameter(_))
+            | Self::Points(Points::InvalidParameter(_))
+            | Self::Strokes(Strokes::InvalidParameter(_))
+            | Self::Stylize(Stylize::InvalidParameter(_)) => ErrorKind::Option,
+            Self::Curve(Curve::TooMuchMemory(_))
+            | Self::Points(
+                Points::TooMuchMemory(_) | Points::TooManyPoints { .. } | Points::TooManyQuadraturePoints { .. },
+            )
+            | Self::Strokes(
+                Strokes::TooMuchMemory(_) | Strokes::TooManyElements { .. } | Strokes::TooMuchMatching { .. },
+            )
+            | Self::Stylize(Stylize::TooMuchMemory(_) | Stylize::TooMuchWork { .. } | Stylize::FieldTooLarge { .. }) => {
+                ErrorKind::Limit
+            }
+            _ => ErrorKind::Input,
+        }
+    }
+
     /// The engine's memory refusal, when this is one (a front end restates it with what it
     /// holds itself).
     pub fn too_much_memory(&self) -> Option<&motif_core::TooMuchMemory> {
@@ -34,5 +74,34 @@ impl JobError {
             | Self::Stylize(motif_stylize::Error::TooMuchMemory(error)) => Some(error),
             _ => None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use motif_core::NoProgress;
+    use motif_points::samples::hex_exemplar;
+    use serde_json::json;
+
+    use super::ErrorKind;
+    use crate::Job;
+    use crate::points::{PointsInputs, PointsJob};
+
+    fn kind_of(description: serde_json::Value, exemplar: motif_points::PointSet) -> ErrorKind {
+        let job: PointsJob = serde_json::from_value(description).unwrap();
+        job.run(PointsInputs::new(exemplar), &mut NoProgress).unwrap_err().kind()
+    }
+
+    #[test]
+    fn errors_fall_into_their_kinds() {
+        let exemplar = hex_exemplar(8, 8, 0.05, 1);
+        let domain = json!({ "box": [10, 8] });
+        assert_eq!(kind_of(json!({ "domain": domain, "patch-size": 0 }), exemplar.clone()), ErrorKind::Option);
+        let two = motif_points::PointSet::new(2, vec![0.0, 0.0, 1.0, 1.0]);
+        assert_eq!(kind_of(json!({ "domain": domain }), two), ErrorKind::Input);
+        assert_eq!(
+            kind_of(json!({ "domain": { "box": [1000, 1000] }, "max-memory": "1M" }), exemplar),
+            ErrorKind::Limit
+        );
     }
 }

@@ -41,7 +41,7 @@ pub mod points;
 pub mod strokes;
 pub mod stylize;
 
-pub use error::JobError;
+pub use error::{ErrorKind, JobError};
 pub use job::{Finished, Job, JobEntry};
 
 /// Every job, in the order front ends list them. The CLI's subcommands, Python's functions and
