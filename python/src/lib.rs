@@ -270,7 +270,7 @@ fn video_intervals(frame_count: usize, key_frames: Vec<usize>) -> Vec<(usize, us
 /// One interval of `motif video` (see `video_intervals`): (frames, report JSON).
 #[pyfunction]
 #[pyo3(signature = (frames, interval, first_style, last_style, mask, job, threads=None))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, reason = "a Python function's keyword arguments")]
 fn video_interval<'py>(
     py: Python<'py>,
     frames: Vec<PyReadonlyArrayDyn<'py, u8>>,
@@ -473,7 +473,7 @@ fn points<'py>(
 /// `size` (width, height) user units; the maps are images over the target region's bounds.
 #[pyfunction]
 #[pyo3(signature = (reference_svg, job, size, tolerance=0.1, threads=None, density_map=None, scale_map=None))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, reason = "a Python function's keyword arguments")]
 fn strokes(
     py: Python<'_>,
     reference_svg: &str,

@@ -374,7 +374,7 @@ impl Context {
     }
 
     /// Prints a one-line summary on stderr unless quiet.
-    #[allow(clippy::print_stderr)]
+    #[allow(clippy::print_stderr, reason = "the summary line is the command's terminal output")]
     pub fn summary(&self, line: &str) {
         if !self.quiet {
             eprintln!("{line}");

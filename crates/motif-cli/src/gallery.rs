@@ -96,7 +96,7 @@ impl<'a> Demo<'a> {
 
     /// Runs `case` in-process and adds it to the gallery. A case that fails is recorded with its
     /// error (the gallery marks it) and the demo goes on; [`Demo::failures`] lists them.
-    #[allow(clippy::print_stderr)]
+    #[allow(clippy::print_stderr, reason = "a failed demo case is reported on the terminal")]
     pub fn case(&mut self, case: DemoCase) -> anyhow::Result<()> {
         let resolved = self.resolve(&case);
         let start = std::time::Instant::now();

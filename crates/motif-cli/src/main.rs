@@ -65,7 +65,7 @@ pub enum Command {
 fn main() -> ExitCode {
     // A panic is a bug in motif, never the user's fault: say so plainly instead of a backtrace.
     std::panic::set_hook(Box::new(|info| {
-        #[allow(clippy::print_stderr)]
+        #[allow(clippy::print_stderr, reason = "errors and warnings go to the terminal")]
         {
             eprintln!("error: internal error (a bug in motif; please report it with the command you ran): {info}");
         }
@@ -75,7 +75,7 @@ fn main() -> ExitCode {
     // progress and of outputs not committed, and exit as interrupted.
     let interrupted = ctrlc::set_handler(|| {
         motif_io::stop_outputs();
-        #[allow(clippy::print_stderr)]
+        #[allow(clippy::print_stderr, reason = "errors and warnings go to the terminal")]
         {
             eprintln!("error: interrupted");
         }
@@ -116,7 +116,7 @@ fn main() -> ExitCode {
 }
 
 /// Prints an error and its causes, one per line.
-#[allow(clippy::print_stderr)]
+#[allow(clippy::print_stderr, reason = "errors and warnings go to the terminal")]
 fn print_error(error: &anyhow::Error) {
     eprintln!("error: {error}");
     for cause in error.chain().skip(1) {

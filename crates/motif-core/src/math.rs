@@ -53,7 +53,7 @@ fn power_of_two(m: i64) -> f64 {
 }
 
 /// `2^(j/32)`, correctly rounded (computed to 60 digits, then rounded once).
-#[allow(clippy::excessive_precision)]
+#[allow(clippy::excessive_precision, reason = "the table is written with the digits it was computed to")]
 const TWO_TO_J_OVER_32: [f64; 32] = [
     1.0,
     1.0218971486541166,

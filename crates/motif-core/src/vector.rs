@@ -50,7 +50,7 @@ pub fn rotation(angle: f64) -> Affine {
 }
 
 #[cfg(test)]
-#[allow(clippy::disallowed_methods)] // compares with kurbo's platform-math versions
+#[allow(clippy::disallowed_methods, reason = "compares with kurbo's platform-math versions")]
 mod tests {
     use super::*;
 

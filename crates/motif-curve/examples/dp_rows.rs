@@ -7,7 +7,7 @@ use motif_core::{NoProgress, Point, Polyline};
 use motif_curve::samples::chain;
 use motif_curve::{Input as CurveInput, Params as CurveParams, Solver, synthesize};
 
-#[allow(clippy::print_stdout)]
+#[allow(clippy::print_stdout, reason = "the example prints its figures")]
 fn main() {
     let args: Vec<usize> = std::env::args().skip(1).map(|a| a.parse().expect("integer")).collect();
     let (width, height) = (args.first().copied().unwrap_or(199), args.get(1).copied().unwrap_or(82));

@@ -86,7 +86,10 @@ impl CostModel {
 
     /// ξ on separate channels (the form the vectorized edge comparison uses).
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "one lane per channel, the form the vectorized comparison compiles to"
+    )]
     fn xi_lane(&self, pr: u8, pg: u8, pb: u8, pa: u8, qr: u8, qg: u8, qb: u8, qa: u8) -> u32 {
         let dr = i32::from(pr) - i32::from(qr);
         let dg = i32::from(pg) - i32::from(qg);

@@ -83,7 +83,10 @@ impl<const D: usize> Problem<'_, D> {
     /// matrix product. With the Gaussian window the pairs' window factors come from per-axis
     /// tables (see [`RowScratch`]), equal to the direct exponential up to rounding.
     #[inline]
-    #[allow(clippy::too_many_arguments)]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the inner energy row kernel: scratch and outputs are borrowed apart to stay allocation-free"
+    )]
     pub fn point_row(
         &self,
         state: &State<D>,

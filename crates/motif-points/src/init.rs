@@ -355,7 +355,10 @@ struct CopyFrame<'a, const D: usize> {
 /// its already copied lower sides (`lower_placed`), replacing there the points beyond the minimum
 /// error boundary cut. `sizes.0` is half the tile's side per axis. Returns the change in the point
 /// count.
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "one tile copy of the quilted start; state, provenance and frame are borrowed apart"
+)]
 fn copy_with_cuts<const D: usize>(
     exemplar: &Exemplar<D>,
     state: &mut State<D>,

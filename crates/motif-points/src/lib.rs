@@ -71,7 +71,10 @@
 
 // Coordinates are indexed `0..D` throughout: index loops over fixed-size arrays read like the
 // formulas they implement.
-#![allow(clippy::needless_range_loop)]
+#![allow(
+    clippy::needless_range_loop,
+    reason = "fixed-size vector and matrix code indexes by axis, as the paper's formulas do"
+)]
 
 mod curvature;
 mod cut;

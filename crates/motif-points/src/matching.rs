@@ -143,7 +143,7 @@ pub fn match_all<const D: usize>(
         .collect()
 }
 
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, reason = "the per-point matching kernel, called in parallel with shared borrows")]
 fn match_one<const D: usize>(
     problem: &Problem<'_, D>,
     fields: &SearchFields<D>,

@@ -23,7 +23,10 @@ fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
 
 /// Adds exemplar point `j` (or its whole element) mapped by `x = anchor + frame (e − origin)`.
 /// Elements get `extra` applied to their orientation. Returns the number of points added.
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "a placement is an affine map (anchor, origin, frame, scale) plus the domain test"
+)]
 pub fn place<const D: usize>(
     exemplar: &Exemplar<D>,
     state: &mut State<D>,

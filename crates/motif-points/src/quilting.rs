@@ -63,7 +63,7 @@ impl<const D: usize> Band<D> {
     /// exemplar point and from each exemplar band point to the nearest placed point. Only places
     /// both sides can see count: placed points that fall outside the exemplar, and exemplar points
     /// whose copy would land where nothing is placed yet (`filled` is false) or outside the domain.
-    #[allow(clippy::too_many_arguments)]
+    #[allow(clippy::too_many_arguments, reason = "the seam measure reads both sides of a tile boundary and its bounds")]
     pub fn disagreement(
         &self,
         tile: &Tile<'_, D>,

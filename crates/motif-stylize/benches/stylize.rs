@@ -1,5 +1,5 @@
 //! Criterion benchmark of one guided stylization (0.05 MP, 3+3 channels, 3×3 patches).
-#![allow(missing_docs)]
+#![allow(missing_docs, reason = "criterion's macros generate undocumented items")]
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use motif_core::{FloatImage, NoProgress};

@@ -421,7 +421,10 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
 
 /// One search: K PatchMatch iterations (Ω refreshed before each) or one exact pass.
 /// `omega_current`: Ω already matches the field (its refresh before the first iteration is skipped).
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the search step's state is borrowed apart (field mutable, level shared) inside the EM loop"
+)]
 fn search(
     level: &Level,
     field: &mut Field,

@@ -341,7 +341,10 @@ pub struct IntervalOutput {
 /// wherever it runs). `first_style` is the stylized first frame (then synthesis runs forward
 /// from it), `last_style` the stylized last one (backward); at least one is needed. The input
 /// must have passed [`VideoInput::validate`] as part of its whole video.
-#[allow(clippy::too_many_arguments)]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "an interval is the public unit a front end runs apart; each argument is one input of it"
+)]
 pub fn stylize_interval(
     frames: &[FloatImage],
     first_frame: usize,

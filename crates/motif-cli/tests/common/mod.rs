@@ -1,6 +1,6 @@
 //! Helpers shared by the CLI test files (each test file uses a subset: the rest would
 //! be dead code in that crate).
-#![allow(dead_code)]
+#![allow(dead_code, reason = "each integration test uses part of the shared helpers")]
 
 use std::fmt::Write as _;
 use std::path::Path;
