@@ -183,3 +183,59 @@ fn every_entry_names_what_its_description_holds() {
         assert!(!entry.summary.is_empty() && !entry.details.is_empty(), "{name}");
     }
 }
+
+/// Both ends of every declared range pass the engine's own `validate`: a declaration is never
+/// looser or stricter than the engine it sets (curve's ranges are checked on a real run in its
+/// own tests, as its parameters need an exemplar).
+#[test]
+fn the_ends_of_every_declared_range_pass_the_engine() {
+    use motif_jobs::points::PointsJob;
+    use motif_jobs::strokes::StrokesJob;
+    use motif_jobs::stylize::{PresynthJob, StylizeJob, TextureJob, VideoJob};
+    use serde_json::{Value, json};
+
+    fn checked<J: serde::de::DeserializeOwned, T>(
+        description: Value,
+        params: impl Fn(&J) -> Result<T, motif_jobs::JobError>,
+    ) -> Result<(), String> {
+        let job: J = serde_json::from_value(description).map_err(|error| error.to_string())?;
+        params(&job).map(drop).map_err(|error| error.to_string())
+    }
+    type Check = fn(Value) -> Result<(), String>;
+    let jobs: [(&str, Value, Check); 6] = [
+        ("points", json!({ "domain": { "box": [10, 10] } }), |d| checked(d, |j: &PointsJob| j.params(2, &[]))),
+        ("strokes", json!({ "scale": 1, "target": { "rect": [10, 10] } }), |d| checked(d, StrokesJob::params)),
+        ("stylize", json!({}), |d| checked(d, |j: &StylizeJob| j.params(false))),
+        ("presynth", json!({}), |d| checked(d, PresynthJob::params)),
+        ("texture", json!({ "size": [8, 8] }), |d| checked(d, TextureJob::params)),
+        ("video", json!({}), |d| checked(d, VideoJob::params)),
+    ];
+    let mut failures = Vec::new();
+    for (name, base, check) in jobs {
+        let entry = motif_jobs::JobEntry::named(name).unwrap();
+        for spec in (entry.options)() {
+            let Some((low, high)) = spec.range else { continue };
+            for end in [low, high] {
+                let mut description = base.clone();
+                description[spec.name.as_str()] = match spec.kind {
+                    Kind::Integer => json!(end as u64),
+                    Kind::Numbers => json!([end]),
+                    Kind::Weights => json!({ "mark": end }),
+                    _ => json!(end),
+                };
+                // An option that only makes sense with a flag gets it (one that needs an input
+                // is checked without it: inputs are not part of a description).
+                let options = (entry.options)();
+                if let Some(flag) =
+                    options.iter().find(|o| Some(o.name.as_str()) == spec.requires && o.kind == Kind::Flag)
+                {
+                    description[flag.name.as_str()] = json!(true);
+                }
+                if let Err(error) = check(description) {
+                    failures.push(format!("{name} --{} {end}: {error}", spec.name));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "declared ends the engine refuses:\n{}", failures.join("\n"));
+}
