@@ -423,7 +423,7 @@ const runStylize = latestOnly(async () => {
   const data = canvas.getContext("2d").getImageData(0, 0, stylize.size, stylize.size).data;
   const rgba = new Uint8Array(data).buffer;
   try {
-    const result = await request("stylizeRun", { rgba, width: stylize.size, height: stylize.size, job: { band: 4 } }, [rgba]);
+    const result = await request("stylizeRun", { rgba, width: stylize.size, height: stylize.size, job: { band: Number($("stylize-band").value) } }, [rgba]);
     putImage($("stylize-output"), result.rgba, result.width, result.height);
     window.motifTimings.stylize.push({ engine_ms: result.ms });
     info("stylize", `band mode: ${result.report.searched_pixels} pixels optimized in ${result.ms.toFixed(0)} ms`);
@@ -481,10 +481,33 @@ guideCanvas.addEventListener("pointerup", () => {
   stylize.painting = false;
   runStylize();
 });
+$("stylize-band").addEventListener("input", () => ($("stylize-band-value").textContent = $("stylize-band").value));
+$("stylize-band").addEventListener("change", () => runStylize());
+
+// ---------------------------------------------------------------- declared options
+// A control bound to a declared option (data-option="job/option") takes the option's help as its
+// tooltip and keeps within its declared range (motif-jobs' declarations, through the worker).
+async function applyDeclarations() {
+  const controls = [...document.querySelectorAll("[data-option]")];
+  for (const job of new Set(controls.map((c) => c.dataset.option.split("/")[0]))) {
+    const specs = await request("options", { job });
+    for (const control of controls.filter((c) => c.dataset.option.startsWith(`${job}/`))) {
+      const name = control.dataset.option.split("/")[1];
+      const spec = specs.find((s) => s.name === name);
+      if (!spec) throw new Error(`the control ${control.id} names ${job} --${name}, which ${job} does not declare`);
+      control.title = spec.help;
+      if (spec.range) {
+        control.min = Math.max(Number(control.min), spec.range[0]);
+        control.max = Math.min(Number(control.max), spec.range[1]);
+      }
+    }
+  }
+}
 
 // ---------------------------------------------------------------- start
 (async () => {
   try {
+    await applyDeclarations();
     await loadCurveExemplar(fetch($("curve-exemplar").value).then((r) => r.blob()));
     await startPoints();
     await startStrokes();

@@ -268,6 +268,13 @@ def main():
         driver.save_screenshot(str(shots / "1-ready.png"))
         for panel in ("curve", "points", "strokes", "stylize"):
             check_panel_ok(driver, panel)
+        # Controls bound to declared options carry the declaration's help, and keep in its range.
+        declared = driver.execute_script(
+            "return [...document.querySelectorAll('[data-option]')].map(c => [c.dataset.option, c.title, Number(c.min)])"
+        )
+        assert len(declared) == 3 and all(title for _, title, _ in declared), declared
+        band = next(d for d in declared if d[0] == "stylize/band")
+        assert "band" in band[1].lower() and band[2] >= 0, band
 
         # Curve: about 50 pieces (piece length 14 on this curve), then drag the middle handle.
         driver.execute_script("const s = document.getElementById('curve-piece'); s.value = 14; s.dispatchEvent(new Event('input'));")

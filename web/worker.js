@@ -1,6 +1,6 @@
 // The playground's Web Worker: owns the WebAssembly sessions so the page never freezes.
 // Messages: {id, panel, method, args}; replies: {id, ok, value} or {id, ok: false, error}.
-import init, { CurvePanel, PointsPanel, StrokesPanel, StylizePanel, max_image_side } from "./pkg/motif_web.js";
+import init, { CurvePanel, PointsPanel, StrokesPanel, StylizePanel, job_options, max_image_side } from "./pkg/motif_web.js";
 
 const ready = init();
 const sessions = {};
@@ -12,6 +12,9 @@ function respond(id, value, transfer = []) {
 const handlers = {
   async limits() {
     return { maxImageSide: max_image_side() };
+  },
+  async options({ job }) {
+    return JSON.parse(job_options(job));
   },
   async curveExemplar({ rgba, width, height }) {
     sessions.curve = new CurvePanel(new Uint8Array(rgba), width, height);

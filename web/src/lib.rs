@@ -16,6 +16,14 @@ fn error(message: impl std::fmt::Display) -> JsError {
     JsError::new(&message.to_string())
 }
 
+/// The declared options of `job` (a name of `motif_jobs::JOBS`) as JSON: name, kind, help,
+/// default and range of each. The page's controls take their help and ranges from it.
+#[wasm_bindgen]
+pub fn job_options(job: &str) -> Result<String, JsError> {
+    let entry = motif_jobs::JobEntry::named(job).ok_or_else(|| error(format!("no job named {job}")))?;
+    serde_json::to_string(&(entry.options)()).map_err(error)
+}
+
 fn elapsed_ms(start: web_time::Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1000.0
 }
