@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # Builds the playground into web/dist: the WebAssembly module (release, wasm32-unknown-unknown),
-# its JavaScript glue (wasm-bindgen-cli of the exact version in web/Cargo.lock, installed from
+# its JavaScript glue (wasm-bindgen-cli of the exact version in the workspace's Cargo.lock, installed from
 # the crate registry into web/.tools when missing), the page and the real exemplars it offers.
 # Serve with: python3 -m http.server --bind 127.0.0.1 -d web/dist 8000   (then open http://127.0.0.1:8000)
 set -euo pipefail
 cd "$(dirname "$0")"
 rustup target list --installed 2> /dev/null | grep -q wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
-cargo build --release --locked --target wasm32-unknown-unknown
-version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3; exit }' Cargo.lock)
+# The workspace's `wasm` profile (LTO, one codegen unit), into the workspace's target folder.
+cargo build --profile wasm --locked --target wasm32-unknown-unknown -p motif-web
+wasm="${CARGO_TARGET_DIR:-../target}/wasm32-unknown-unknown/wasm/motif_web.wasm"
+version=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/"/, "", $3); print $3; exit }' ../Cargo.lock)
 bindgen=.tools/bin/wasm-bindgen
 if ! [ -x "$bindgen" ] || [ "$("$bindgen" --version | awk '{print $2}')" != "$version" ]; then
   echo "installing wasm-bindgen-cli $version into web/.tools"
@@ -28,7 +30,7 @@ if ! [ -x "$bindgen" ] || [ "$("$bindgen" --version | awk '{print $2}')" != "$ve
 fi
 rm -rf dist.tmp
 mkdir -p dist.tmp/pkg dist.tmp/exemplars
-"$bindgen" --target web --no-typescript --out-dir dist.tmp/pkg target/wasm32-unknown-unknown/release/motif_web.wasm
+"$bindgen" --target web --no-typescript --out-dir dist.tmp/pkg "$wasm"
 cp index.html main.js worker.js style.css dist.tmp/
 cp ../data/real/curve/chain_small.png ../data/real/curve/rope.png ../data/real/curve/vine.png dist.tmp/exemplars/
 rm -rf dist

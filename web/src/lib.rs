@@ -100,7 +100,7 @@ fn rgba_image(rgba: &[u8], width: usize, height: usize, what: &str) -> Result<Rg
 }
 
 fn polyline(points: &[f64], what: &str) -> Result<Polyline, JsError> {
-    if points.len() < 4 || points.len() % 2 != 0 {
+    if points.len() < 4 || !points.len().is_multiple_of(2) {
         return Err(error(format!("{what}: give at least two x, y points")));
     }
     let list: Vec<Point> = points.chunks_exact(2).map(|p| Point::new(p[0], p[1])).collect();

@@ -262,7 +262,7 @@ impl CurveJob {
         Ok(params)
     }
 
-    /// [`run`](Self::run) within an editing session: what the session's previous run computed
+    /// [`Job::run`](crate::Job::run) within an editing session: what the session's previous run computed
     /// and still holds is reused (the playground calls this while a curve is dragged; the result
     /// is byte-identical to a fresh run).
     pub fn run_in_session(

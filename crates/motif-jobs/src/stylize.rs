@@ -408,7 +408,7 @@ impl ZoomJob {
         Self { size: [width, height], seed: default_seed(), max_memory: None, options: ZoomJobOptions::default() }
     }
 
-    /// The whole run's estimated peak memory for `exemplar`, bytes (checked by [`ZoomJob::run`]
+    /// The whole run's estimated peak memory for `exemplar`, bytes (checked by [`Job::run`](crate::Job::run)
     /// before the first level).
     pub fn memory_bytes(&self, exemplar: &motif_core::FloatImage) -> u64 {
         let style = (exemplar.width(), exemplar.height(), exemplar.channels());
