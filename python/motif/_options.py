@@ -240,10 +240,11 @@ class StylizeOptions(TypedDict, total=False):
     #: --guide, in the same order. Allowed: 0–1000.
     weight: Sequence[float]
     #: Treat the colours of the segment guide as segment labels: ω_best per segment (Eq. 6) and no match
-    #: across segments. Exact palette (at most 64 colours) unless --segment-count.
+    #: across segments. The source guide's exact palette (at most 64 colours) unless --segment-count; every
+    #: target pixel takes the nearest segment colour.
     segments: bool
-    #: Quantize the segment guide into K colours by k-means (for anti-aliased guides); implies --segments.
-    #: Allowed: 2–64.
+    #: Quantize the source segment guide into K colours by k-means (for anti-aliased or JPEG guides): every
+    #: pixel of both guides takes the nearest; implies --segments. Allowed: 2–64.
     segment_count: int
     #: Which --guide pair defines the segments, counted from 1. Allowed: ≥ 1. Default: 1.
     segment_guide: int
@@ -298,7 +299,8 @@ class PresynthOptions(TypedDict, total=False):
     #: Refuse runs that would synthesize more output pixels than this (summed over presynth's textures): a
     #: guard against a typo in a size; about 15 CPU-seconds per megapixel. Allowed: ≥ 1. Default: 64000000.
     max_pixels: int
-    #: Quantize the guide into K colours by k-means instead of an exact palette. Allowed: 2–64.
+    #: Quantize the guide into K colours by k-means instead of an exact palette (for anti-aliased or JPEG
+    #: guides: every pixel takes the nearest). Allowed: 2–64.
     segment_count: int
 
 

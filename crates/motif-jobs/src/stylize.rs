@@ -119,10 +119,11 @@ crate::declare_options! {
         [value_name: "W", range: (0.0, 1000.0)]
         weight: Vec<f32> = Vec::new(),
         /// Treat the colours of the segment guide as segment labels: ω_best per segment (Eq. 6) and
-        /// no match across segments. Exact palette (at most 64 colours) unless --segment-count.
+        /// no match across segments. The source guide's exact palette (at most 64 colours) unless
+        /// --segment-count; every target pixel takes the nearest segment colour.
         segments: bool = false,
-        /// Quantize the segment guide into K colours by k-means (for anti-aliased guides); implies
-        /// --segments.
+        /// Quantize the source segment guide into K colours by k-means (for anti-aliased or JPEG
+        /// guides): every pixel of both guides takes the nearest; implies --segments.
         [value_name: "K", range: (2.0, 64.0)]
         segment_count: Option<usize> = None,
         /// Which --guide pair defines the segments, counted from 1.
@@ -165,7 +166,8 @@ crate::declare_options! {
 crate::declare_options! {
     /// The options of `motif presynth` of its own (besides [`SynthesisOptions`]), declared once.
     pub struct PresynthOptions {
-        /// Quantize the guide into K colours by k-means instead of an exact palette.
+        /// Quantize the guide into K colours by k-means instead of an exact palette (for
+        /// anti-aliased or JPEG guides: every pixel takes the nearest).
         [value_name: "K", range: (2.0, 64.0)]
         segment_count: Option<usize> = None,
     }

@@ -145,8 +145,8 @@ pub(crate) fn compose_field(
 /// of every target pixel.
 pub(crate) type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
 
-/// Matches textures to segments by colour, composes the target from them (and their fields) and
-/// marks the band.
+/// Composes the target from the textures (and their fields), label `l` from texture `l` (the
+/// labels are the textures' colours), and marks the band.
 pub(crate) fn compose_textures(
     textures: &[SegmentTexture],
     labels: &SegmentLabels,
@@ -195,26 +195,10 @@ pub(crate) fn compose_textures(
             }
         }
     }
-    let mut present = vec![false; labels.colours.len()];
-    for &label in &labels.target {
-        present[usize::from(label)] = true;
-    }
-    // Each label takes the texture of the nearest colour, which must be within 8/255 per channel.
-    let mut texture_of = vec![0; labels.colours.len()];
-    for (label, colour) in labels.colours.iter().enumerate() {
-        let distance =
-            |t: &SegmentTexture| -> f32 { t.colour.iter().zip(colour).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max) };
-        let (best, gap) = textures
-            .iter()
-            .enumerate()
-            .map(|(i, t)| (i, if t.colour.len() == colour.len() { distance(t) } else { f32::INFINITY }))
-            .fold((0, f32::INFINITY), |a, b| if b.1 < a.1 { b } else { a });
-        if present[label] && gap > 8.5 / 255.0 {
-            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::MissingTexture { colour: hex });
-        }
-        texture_of[label] = best;
-    }
+    // The labels were made from the textures' colours ([`crate::label_by_colours`]): label `l` is
+    // texture `l`.
+    debug_assert_eq!(labels.colours.len(), textures.len());
+    let texture_of: Vec<usize> = (0..textures.len()).collect();
     let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
     let composed = compose(&labels.target, width, height, &images, &texture_of, channels);
     let domain = band_mask(&labels.target, width, height, band_width);

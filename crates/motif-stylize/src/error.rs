@@ -183,15 +183,43 @@ pub enum Error {
         /// The style's height.
         style_height: usize,
     },
-    /// A segment of the target guide has no texture of its colour.
-    #[error("pre-synthesized textures: no texture for the target segment of colour #{colour}")]
+    /// A segment of the target guide is far from every texture's colour and from their blends.
+    #[error(
+        "pre-synthesized textures: no texture for the target segment of colour #{colour} ({pixels} pixels): the \
+         textures are of {textures}, and its colour distance to the nearest of them or of their blends is {distance} \
+         (in 8-bit levels; up to {tolerance} is taken for an anti-aliased or compressed edge); presynthesize from a \
+         source guide that has this colour"
+    )]
     MissingTexture {
-        /// The segment's colour, `rrggbb` (or the guide's channels in hex).
+        /// The segment's (mean) colour, `rrggbb` (or the guide's channels in hex).
         colour: String,
+        /// Its pixels in the target guide.
+        pixels: usize,
+        /// The textures' colours, `#rrggbb, …`.
+        textures: String,
+        /// Its distance from the nearest texture colour or blend of two, in 8-bit levels.
+        distance: u32,
+        /// The largest distance taken for an edge's blend, in 8-bit levels.
+        tolerance: u32,
+    },
+    /// A texture's segment colour has another channel count than the segment guide.
+    #[error(
+        "pre-synthesized textures: texture {texture}'s segment colour is for a guide of {channels} channel(s) but the \
+         segment guide has {guide_channels} (the cache was made from a guide of another kind: grey, RGB or RGBA)"
+    )]
+    TextureColour {
+        /// The texture, counted from 1.
+        texture: usize,
+        /// Its colour's channels.
+        channels: usize,
+        /// The segment guide's channels.
+        guide_channels: usize,
     },
     /// A segment of the source guide is too thin to hold one whole patch.
     #[error(
-        "pre-synthesized textures: segment #{colour} has no pixel where a whole {patch}×{patch} patch fits inside the style"
+        "pre-synthesized textures: segment #{colour} has no pixel where a whole {patch}×{patch} patch fits inside the \
+         style (an anti-aliased edge's blend read as a colour of its own? quantize the guide with k-means, a segment \
+         count)"
     )]
     SegmentTooThin {
         /// The segment's colour in hex.

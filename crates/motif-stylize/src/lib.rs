@@ -105,7 +105,7 @@ pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
-pub use segments::{MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
+pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure::{nearest_patch_distance, sharpness};
 pub use video::{
     Interval, IntervalOutput, IntervalReport, Keyframe, VIDEO_MEMORY_ADVICE, VideoInput, VideoOutput, VideoParams,
@@ -431,13 +431,16 @@ pub fn synthesize<I: ChannelImage>(
             }
         })?;
         let (source, target) = (guide.source.to_float_image(), guide.target.to_float_image());
-        match (params.segments, &input.textures) {
-            // Quantized guides with a cache: the cache's colours are the segments, and each pixel
-            // (anti-aliased edges included) belongs to the nearest (Texler et al. §3.7).
-            (Some(Segmentation::KMeans(_)), Some(textures)) => {
-                Some(label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect()))
+        match &input.textures {
+            // With a cache, its colours are the segments (whatever the mode, which chose them when
+            // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
+            // (Texler et al. §3.7).
+            Some(textures) => {
+                Some(label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect())?)
             }
-            (mode, _) => Some(label_guides(&source, &target, mode.unwrap_or(Segmentation::Palette), params.seed)?),
+            None => {
+                Some(label_guides(&source, &target, params.segments.unwrap_or(Segmentation::Palette), params.seed)?)
+            }
         }
     } else {
         None

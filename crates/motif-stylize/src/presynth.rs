@@ -3,8 +3,9 @@
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
 
+use crate::segments::{hex, label_image, segment_colours};
 use crate::{
-    Error, MEMORY_ADVICE, Params, SegmentTexture, Segmentation, channel_weights, check_image, check_work, label_guides,
+    Error, MEMORY_ADVICE, Params, SegmentTexture, Segmentation, channel_weights, check_image, check_work,
     memory_estimate, size_of, synthesis,
 };
 
@@ -68,20 +69,21 @@ pub fn presynthesize(
     }
     check_work(width * height, params.max_pixels)?;
     let mode = params.segments.unwrap_or(Segmentation::Palette);
-    let labels = label_guides(&input.guide, &input.guide, mode, params.seed)?;
-    check_work(width * height * labels.colours.len(), params.max_pixels)?;
+    // Every guide pixel, anti-aliased edges included, belongs to the nearest segment colour.
+    let colours = segment_colours(&input.guide, mode, params.seed)?;
+    let source_labels = label_image(&input.guide, &colours);
+    check_work(width * height * colours.len(), params.max_pixels)?;
     let (sw, sh) = (input.style.width(), input.style.height());
-    presynth_memory((sw, sh, input.style.channels()), (width, height), labels.colours.len())
+    presynth_memory((sw, sh, input.style.channels()), (width, height), colours.len())
         .check(params.max_memory, MEMORY_ADVICE)?;
     let r = patch / 2;
-    let mut textures = Vec::with_capacity(labels.colours.len());
+    let mut textures = Vec::with_capacity(colours.len());
     let style_weights: Vec<f32> =
         channel_weights(params.style_weight.max(f32::MIN_POSITIVE), input.style.channels()).collect();
-    for (label, colour) in labels.colours.iter().enumerate() {
-        let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(labels.source[y * sw + x]) == label));
+    for (label, colour) in colours.iter().enumerate() {
+        let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(source_labels[y * sw + x]) == label));
         if !has_centre {
-            let hex: String = colour.iter().map(|v| format!("{:02x}", (v * 255.0).round() as u8)).collect();
-            return Err(Error::SegmentTooThin { colour: hex, patch });
+            return Err(Error::SegmentTooThin { colour: hex(colour), patch });
         }
         let problem = synthesis::Problem {
             style: &input.style,
@@ -90,7 +92,7 @@ pub fn presynthesize(
             style_weights: style_weights.clone(),
             guide_weights: Vec::new(),
             target_size: input.size,
-            labels: Some((labels.source.clone(), vec![label as u16; width * height], labels.colours.len())),
+            labels: Some((source_labels.clone(), vec![label as u16; width * height], colours.len())),
             tileable: true,
             composition: None,
             seeds: None,
@@ -100,7 +102,7 @@ pub fn presynthesize(
         let mut segment_params = params.clone();
         segment_params.seed = motif_core::SeedStreams::new(params.seed).child("presynth", label as u64).seed();
         let mut report = |stage: &str, fraction: f64| {
-            progress.report(&format!("segment {} of {}: {stage}", label + 1, labels.colours.len()), fraction)
+            progress.report(&format!("segment {} of {}: {stage}", label + 1, colours.len()), fraction)
         };
         let output = synthesis::run(&problem, &segment_params, &mut report)?;
         textures.push(SegmentTexture { colour: colour.clone(), image: output.image, field: Some(output.field) });

@@ -1,6 +1,8 @@
-//! Segment labels from guide colours (§3.6): an exact palette for flat map renders, or k-means
-//! quantization for anti-aliased guides. Labels are shared by source and target, so "the same
-//! segment" means "the same guide colour (cluster)" on both sides.
+//! Segment labels from guide colours (§3.6): the source guide's exact palette for flat map
+//! renders, or its k-means quantization for anti-aliased or compressed guides, or the colours of a
+//! pre-synthesized cache (§3.7). Every pixel of both guides takes the nearest segment colour, so
+//! "the same segment" means "the same guide colour (cluster)" on both sides and an edge's blends
+//! join a segment; a target colour far from every segment colour and blend is set apart.
 
 use std::collections::BTreeMap;
 
@@ -15,7 +17,8 @@ pub const MAX_PALETTE: usize = 64;
 /// Segment labels of the source and target segment guides.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SegmentLabels {
-    /// Guide colour of each label (values in `[0, 1]`, the guide's channels).
+    /// Guide colour of each label (values in `[0, 1]`, the guide's channels): the segment colours,
+    /// then those of target segments far from all of them (no source pixel has those labels).
     pub colours: Vec<Vec<f32>>,
     /// Label of every source pixel, row-major.
     pub source: Vec<u16>,
@@ -33,78 +36,243 @@ fn key(pixel: &[f32]) -> [u8; 4] {
     key
 }
 
-/// Labels both guides' colours with `mode`; `seed` drives k-means initialization.
+/// How far (Euclidean, channels in `[0, 1]`) a guide colour may lie from the nearest segment colour
+/// or blend of two segment colours and still be taken for them: an anti-aliased edge is a blend,
+/// JPEG's ringing and a soft brush's noise stay within this; a colour of its own lies farther.
+pub const BLEND_TOLERANCE: f32 = 0.2;
+
+/// Fewest pixels a run of far colours must cover to be a segment of its own (a 5 × 5 patch); a
+/// thousandth of the target when that is more. Fewer are stray edge pixels and take the nearest.
+const MIN_SEGMENT_PIXELS: usize = 25;
+
+/// Share of the source guide's pixels whose distance from the blends of its segment colours
+/// widens the tolerance (k-means with fewer segments than the guide has colours merges colours
+/// that lie farther apart; its rarest strays do not count).
+const SOURCE_SPREAD_SHARE: f64 = 0.995;
+
+/// Distinct 8-bit colours of `image` with their pixel counts (in key order).
+fn histogram(image: &FloatImage) -> Vec<([u8; 4], usize)> {
+    let mut histogram: BTreeMap<[u8; 4], usize> = BTreeMap::new();
+    // Guides are mostly flat runs of one colour: count runs, not pixels, into the map.
+    let mut run: Option<([u8; 4], usize)> = None;
+    for pixel in image.data().chunks_exact(image.channels()) {
+        let key = key(pixel);
+        match &mut run {
+            Some((current, count)) if *current == key => *count += 1,
+            _ => {
+                if let Some((current, count)) = run.replace((key, 1)) {
+                    *histogram.entry(current).or_default() += count;
+                }
+            }
+        }
+    }
+    if let Some((current, count)) = run {
+        *histogram.entry(current).or_default() += count;
+    }
+    histogram.into_iter().collect()
+}
+
+fn unkey(key: &[u8; 4], channels: usize) -> Vec<f32> {
+    key[..channels].iter().map(|&v| f32::from(v) / 255.0).collect()
+}
+
+/// The segment colours of a source guide: its exact palette, or `k` k-means centres of its
+/// colours (the target guide plays no part: its pixels take the nearest of these).
+pub(crate) fn segment_colours(source: &FloatImage, mode: Segmentation, seed: u64) -> Result<Vec<Vec<f32>>, Error> {
+    let unique = histogram(source);
+    let channels = source.channels();
+    match mode {
+        Segmentation::Palette => {
+            if unique.len() > MAX_PALETTE {
+                return Err(Error::TooManyColours { colours: unique.len(), max: MAX_PALETTE });
+            }
+            Ok(unique.iter().map(|(key, _)| unkey(key, channels)).collect())
+        }
+        Segmentation::KMeans(k) => Ok(kmeans(&unique, channels, k, seed)),
+    }
+}
+
+/// Labels both guides with `mode`: the segment colours are the source guide's (palette or
+/// k-means, `seed` drives its initialization) and every pixel of both takes the nearest, so
+/// anti-aliased or compressed edges join a segment. A target colour far from every segment and
+/// its blends over a whole patch or more (a region the style's map lacks) is a segment of its
+/// own, with no source pixels: its patches match anywhere.
 pub fn label_guides(
     source: &FloatImage,
     target: &FloatImage,
     mode: Segmentation,
     seed: u64,
 ) -> Result<SegmentLabels, Error> {
-    let channels = source.channels();
-    let mut histogram: BTreeMap<[u8; 4], usize> = BTreeMap::new();
-    for image in [source, target] {
-        // Guides are mostly flat runs of one colour: count runs, not pixels, into the map.
-        let mut run: Option<([u8; 4], usize)> = None;
-        for pixel in image.data().chunks_exact(channels) {
-            let key = key(pixel);
-            match &mut run {
-                Some((current, count)) if *current == key => *count += 1,
-                _ => {
-                    if let Some((current, count)) = run.replace((key, 1)) {
-                        *histogram.entry(current).or_default() += count;
-                    }
-                }
-            }
-        }
-        if let Some((current, count)) = run {
-            *histogram.entry(current).or_default() += count;
-        }
-    }
-    let unique: Vec<([u8; 4], usize)> = histogram.into_iter().collect();
-    let colours: Vec<Vec<f32>> = match mode {
-        Segmentation::Palette => {
-            if unique.len() > MAX_PALETTE {
-                return Err(Error::TooManyColours { colours: unique.len(), max: MAX_PALETTE });
-            }
-            unique.iter().map(|(key, _)| key[..channels].iter().map(|&v| f32::from(v) / 255.0).collect()).collect()
-        }
-        Segmentation::KMeans(k) => kmeans(&unique, channels, k, seed),
-    };
-    Ok(label_by_colours(source, target, colours))
+    let mut colours = segment_colours(source, mode, seed)?;
+    let far = far_segments(source, target, &colours);
+    colours.extend(far.into_iter().map(|segment| segment.colour));
+    Ok(nearest_labels(source, target, colours))
 }
 
 /// Labels every pixel of both guides with its nearest colour of `colours` (squared distance in
 /// the guides' channels): the segments of a pre-synthesized cache, whose colours were fixed when
-/// it was made, for guides whose anti-aliased or compressed edges hold colours of their own.
-pub fn label_by_colours(source: &FloatImage, target: &FloatImage, colours: Vec<Vec<f32>>) -> SegmentLabels {
-    let channels = source.channels();
+/// it was made, for guides whose anti-aliased or compressed edges hold colours of their own. A
+/// target segment far from every colour and their blends is refused, naming it
+/// ([`Error::MissingTexture`]); so are no colours and colours of another channel count.
+pub fn label_by_colours(
+    source: &FloatImage,
+    target: &FloatImage,
+    colours: Vec<Vec<f32>>,
+) -> Result<SegmentLabels, Error> {
+    if colours.is_empty() {
+        return Err(Error::NoTextures);
+    }
+    let guide_channels = source.channels();
+    if let Some(index) = colours.iter().position(|c| c.len() != guide_channels) {
+        let channels = colours[index].len();
+        return Err(Error::TextureColour { texture: index + 1, channels, guide_channels });
+    }
+    if let Some(far) = far_segments(source, target, &colours).into_iter().next() {
+        let textures: Vec<String> = colours.iter().map(|c| format!("#{}", hex(c))).collect();
+        return Err(Error::MissingTexture {
+            colour: hex(&far.colour),
+            pixels: far.pixels,
+            textures: textures.join(", "),
+            distance: levels(far.distance),
+            tolerance: levels(far.tolerance),
+        });
+    }
+    Ok(nearest_labels(source, target, colours))
+}
+
+/// A colour as hex digits, two per channel (`rrggbb` for RGB).
+pub(crate) fn hex(colour: &[f32]) -> String {
+    colour.iter().map(|v| format!("{:02x}", (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)).collect()
+}
+
+/// A distance in `[0, 1]` channel units as 8-bit levels, rounded.
+fn levels(distance: f32) -> u32 {
+    (distance * 255.0 + 0.5) as u32
+}
+
+fn nearest_labels(source: &FloatImage, target: &FloatImage, colours: Vec<Vec<f32>>) -> SegmentLabels {
+    SegmentLabels { source: label_image(source, &colours), target: label_image(target, &colours), colours }
+}
+
+/// The label of every pixel of `image`: the index of its nearest colour of `colours`.
+pub(crate) fn label_image(image: &FloatImage, colours: &[Vec<f32>]) -> Vec<u16> {
     let label_of = |pixel: &[f32]| -> u16 {
         let mut best = (f32::INFINITY, 0);
         for (label, colour) in colours.iter().enumerate() {
-            let d: f32 = colour.iter().zip(pixel).map(|(a, b)| (a - b) * (a - b)).sum();
+            let d = squared(colour, pixel);
             if d < best.0 {
                 best = (d, label);
             }
         }
         best.1 as u16
     };
-    let label_image = |image: &FloatImage| {
-        // Runs of one colour share the label of their first pixel.
-        let mut previous: Option<(&[f32], u16)> = None;
-        image
-            .data()
-            .chunks_exact(channels)
-            .map(|pixel| match previous {
-                Some((colour, label)) if colour == pixel => label,
-                _ => {
-                    let label = label_of(pixel);
-                    previous = Some((pixel, label));
-                    label
-                }
-            })
-            .collect()
-    };
-    SegmentLabels { source: label_image(source), target: label_image(target), colours }
+    // Runs of one colour share the label of their first pixel.
+    let mut previous: Option<(&[f32], u16)> = None;
+    image
+        .data()
+        .chunks_exact(image.channels())
+        .map(|pixel| match previous {
+            Some((colour, label)) if colour == pixel => label,
+            _ => {
+                let label = label_of(pixel);
+                previous = Some((pixel, label));
+                label
+            }
+        })
+        .collect()
+}
+
+fn squared(a: &[f32], b: &[f32]) -> f32 {
+    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
+}
+
+/// Squared distance from `pixel` to the nearest segment colour or blend of two (the line between
+/// them): what anti-aliasing cannot explain.
+fn blend_residual(pixel: &[f32], colours: &[Vec<f32>]) -> f32 {
+    let mut best = colours.iter().map(|c| squared(c, pixel)).fold(f32::INFINITY, f32::min);
+    for (i, a) in colours.iter().enumerate() {
+        for b in &colours[i + 1..] {
+            let along: f32 = a.iter().zip(b).zip(pixel).map(|((a, b), p)| (b - a) * (p - a)).sum();
+            let length = squared(a, b);
+            if length <= 0.0 || along <= 0.0 || along >= length {
+                continue;
+            }
+            let t = along / length;
+            let d: f32 =
+                a.iter().zip(b).zip(pixel).map(|((a, b), p)| (a + t * (b - a) - p) * (a + t * (b - a) - p)).sum();
+            best = best.min(d);
+        }
+    }
+    best
+}
+
+/// A run of target colours far from every segment colour and blend.
+#[derive(Debug, Clone, PartialEq)]
+struct FarSegment {
+    /// Its mean colour.
+    colour: Vec<f32>,
+    /// Its pixels.
+    pixels: usize,
+    /// Distance of its mean from the nearest segment colour or blend.
+    distance: f32,
+    /// The tolerance it passes.
+    tolerance: f32,
+}
+
+/// How far from the blends of `colours` the source guide's own pixels reach (all but its rarest
+/// strays), at least [`BLEND_TOLERANCE`].
+fn tolerance(source: &[([u8; 4], usize)], channels: usize, colours: &[Vec<f32>]) -> f32 {
+    let mut residuals: Vec<(f32, usize)> =
+        source.iter().map(|(key, count)| (blend_residual(&unkey(key, channels), colours), *count)).collect();
+    residuals.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let total: usize = residuals.iter().map(|r| r.1).sum();
+    let mut seen = 0;
+    let mut spread = 0.0_f32;
+    for (residual, count) in residuals {
+        if seen as f64 >= SOURCE_SPREAD_SHARE * total as f64 {
+            break;
+        }
+        spread = residual;
+        seen += count;
+    }
+    spread.sqrt().max(BLEND_TOLERANCE)
+}
+
+/// The target's colours that lie farther than the tolerance from every segment colour and blend,
+/// grouped by 16-level bins; a bin of at least a patch of pixels (a thousandth of the target when
+/// more) is a segment. Largest first.
+fn far_segments(source: &FloatImage, target: &FloatImage, colours: &[Vec<f32>]) -> Vec<FarSegment> {
+    let channels = target.channels();
+    if colours.is_empty() || colours.iter().any(|c| c.len() != channels) || source.channels() != channels {
+        return Vec::new();
+    }
+    let limit = tolerance(&histogram(source), channels, colours);
+    let near = limit * limit;
+    let mut bins: BTreeMap<[u8; 4], (usize, Vec<f64>)> = BTreeMap::new();
+    for (key, count) in histogram(target) {
+        let colour = unkey(&key, channels);
+        let nearest = colours.iter().map(|c| squared(c, &colour)).fold(f32::INFINITY, f32::min);
+        if nearest <= near || blend_residual(&colour, colours) <= near {
+            continue;
+        }
+        let bin = bins.entry(key.map(|v| v >> 4)).or_insert_with(|| (0, vec![0.0; channels]));
+        bin.0 += count;
+        for (sum, value) in bin.1.iter_mut().zip(&colour) {
+            *sum += count as f64 * f64::from(*value);
+        }
+    }
+    let least = MIN_SEGMENT_PIXELS.max(target.width() * target.height() / 1000);
+    let mut far: Vec<FarSegment> = bins
+        .into_values()
+        .filter(|(pixels, _)| *pixels >= least)
+        .map(|(pixels, sums)| {
+            let colour: Vec<f32> = sums.iter().map(|s| (s / pixels as f64) as f32).collect();
+            let distance = blend_residual(&colour, colours).sqrt();
+            FarSegment { colour, pixels, distance, tolerance: limit }
+        })
+        .collect();
+    far.sort_by_key(|segment| std::cmp::Reverse(segment.pixels));
+    far
 }
 
 /// Weighted k-means over the distinct colours (k-means++ seeding from one seeded stream, then
@@ -213,10 +381,80 @@ mod tests {
         let source = image(&[[1.0, 0.0, 0.0], [0.55, 0.0, 0.45], [0.0, 0.0, 1.0]]);
         let target = image(&[[0.4, 0.0, 0.6], [0.9, 0.05, 0.0]]);
         let colours = vec![vec![0.0, 0.0, 1.0], vec![1.0, 0.0, 0.0]];
-        let labels = label_by_colours(&source, &target, colours.clone());
+        let labels = label_by_colours(&source, &target, colours.clone()).unwrap();
         assert_eq!(labels.colours, colours);
         assert_eq!(labels.source, vec![1, 1, 0]);
         assert_eq!(labels.target, vec![0, 1]);
+    }
+
+    /// A `width` × `height` guide of RGB colours from `colour(x, y)` (8-bit values).
+    fn guide(width: usize, height: usize, colour: impl Fn(usize, usize) -> [u8; 3]) -> FloatImage {
+        let data = (0..width * height).flat_map(|i| colour(i % width, i / width)).map(|v| f32::from(v) / 255.0);
+        FloatImage::from_data(width, height, 3, data.collect()).unwrap()
+    }
+
+    const BLUE: [u8; 3] = [0x1e, 0x4b, 0x96];
+    const SAND: [u8; 3] = [0xd8, 0xb8, 0x6a];
+
+    /// A flat two-colour source; a target whose edge is anti-aliased (the fraction of each pixel
+    /// left of a slanted line, over 4 × 4 samples) with JPEG-like noise of up to ±6 levels.
+    fn anti_aliased_pair() -> (FloatImage, FloatImage) {
+        let source = guide(40, 30, |x, _| if x < 20 { BLUE } else { SAND });
+        let target = guide(40, 30, |x, y| {
+            let left = (0..16).filter(|i| 4 * (4 * x + i % 4) < 4 * (12 + y / 2) + i / 4).count() as u32;
+            let noise = ((x * 7 + y * 13) % 13) as i32 - 6;
+            let mix =
+                |c: usize| (f64::from(BLUE[c]) * f64::from(left) + f64::from(SAND[c]) * f64::from(16 - left)) / 16.0;
+            [0, 1, 2].map(|c| (mix(c).round() as i32 + noise).clamp(0, 255) as u8)
+        });
+        (source, target)
+    }
+
+    #[test]
+    fn anti_aliased_and_noisy_target_pixels_take_the_nearest_source_segment() {
+        let (source, target) = anti_aliased_pair();
+        let blends = target.data().chunks_exact(3).filter(|p| key(p)[..3] != BLUE && key(p)[..3] != SAND).count();
+        assert!(blends > 600, "{blends} blended or noisy pixels");
+        for mode in [Segmentation::Palette, Segmentation::KMeans(2)] {
+            let labels = label_guides(&source, &target, mode, 5).unwrap();
+            // The segments are the source's two colours: no blend becomes a segment of its own.
+            assert_eq!(labels.colours.len(), 2, "{mode:?}");
+            for (index, pixel) in target.data().chunks_exact(3).enumerate() {
+                let near_blue = squared(pixel, &unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3))
+                    < squared(pixel, &unkey(&[SAND[0], SAND[1], SAND[2], 0], 3));
+                let label = usize::from(labels.target[index]);
+                assert_eq!(labels.colours[label] == unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3), near_blue, "{index}");
+            }
+        }
+        // k-means finds the colours on the source side: the target's shades do not move them.
+        let alone = label_guides(&source, &source, Segmentation::KMeans(2), 5).unwrap();
+        assert_eq!(label_guides(&source, &target, Segmentation::KMeans(2), 5).unwrap().colours, alone.colours);
+    }
+
+    #[test]
+    fn a_far_target_colour_is_its_own_segment_or_refused_by_name() {
+        let (source, mut target) = anti_aliased_pair();
+        // A 6 × 6 square of green, far from both colours and their blends.
+        for y in 20..26 {
+            for x in 2..8 {
+                target.pixel_mut(x, y).copy_from_slice(&[0.1, 0.8, 0.1]);
+            }
+        }
+        let labels = label_guides(&source, &target, Segmentation::Palette, 0).unwrap();
+        assert_eq!(labels.colours.len(), 3);
+        assert_eq!(labels.target.iter().filter(|&&l| l == 2).count(), 36);
+        assert!(labels.source.iter().all(|&l| l < 2));
+        let colours = labels.colours[..2].to_vec();
+        let message = label_by_colours(&source, &target, colours).unwrap_err().to_string();
+        assert!(message.contains("#1acc1a (36 pixels)") && message.contains("#1e4b96, #d8b86a"), "{message}");
+        // No colours, or colours of another kind of guide (grey against RGB), are refused.
+        assert!(matches!(label_by_colours(&source, &target, Vec::new()), Err(Error::NoTextures)));
+        let grey = label_by_colours(&source, &target, vec![vec![0.5]]).unwrap_err().to_string();
+        assert!(grey.contains("guide of 1 channel(s) but the segment guide has 3"), "{grey}");
+        // A few stray pixels are not a segment: they take the nearest.
+        let (_, mut target) = anti_aliased_pair();
+        target.pixel_mut(3, 3).copy_from_slice(&[0.1, 0.8, 0.1]);
+        assert_eq!(label_guides(&source, &target, Segmentation::Palette, 0).unwrap().colours.len(), 2);
     }
 
     #[test]

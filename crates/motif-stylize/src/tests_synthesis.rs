@@ -195,9 +195,9 @@ fn band_mode_keeps_textures_outside_the_band() {
     assert!(output.report.searched_pixels > 0 && output.report.searched_pixels < 50 * 44);
 }
 
-/// Quantized segments with a cache: a target guide whose disc edge is anti-aliased (blends of the
-/// two segment colours the cache does not hold, and a blue that k-means over source and target
-/// would move) takes each pixel to the nearest texture's colour instead of failing.
+/// Segments with a cache: a target guide whose disc edge is anti-aliased (blends of the two
+/// segment colours the cache does not hold, and a blue off the cache's) takes each pixel to the
+/// nearest texture's colour instead of failing; a colour of its own is refused by name.
 #[test]
 fn quantized_segments_with_a_cache_accept_anti_aliased_guides() {
     let mut input = two_segment_case();
@@ -223,9 +223,20 @@ fn quantized_segments_with_a_cache_accept_anti_aliased_guides() {
     // Far from the edge each pixel keeps its segment's colours.
     let (centre, corner) = (output.image.pixel(25, 22), output.image.pixel(2, 2));
     assert!(centre[2] > centre[0] && corner[0] > corner[2], "{centre:?} {corner:?}");
-    // The exact palette still refuses colours the cache does not hold.
-    let palette = Params { segments: Some(Segmentation::Palette), ..params };
-    assert!(matches!(synthesize(&input, &palette, &mut NoProgress), Err(Error::MissingTexture { .. })));
+    // With a cache its colours are the segments whatever the mode: the palette gives the same.
+    let palette = Params { segments: Some(Segmentation::Palette), ..params.clone() };
+    assert_eq!(synthesize(&input, &palette, &mut NoProgress).unwrap().image, output.image);
+    // A region of a colour far from both textures' and their blends is refused, naming it.
+    input.guides[0].target = flat(50, 44, |x, y| if x < 8 && y < 8 { [0.0, 1.0, 0.0] } else { [1.0, 0.0, 0.0] });
+    match synthesize(&input, &params, &mut NoProgress) {
+        Err(error @ Error::MissingTexture { .. }) => {
+            let message = error.to_string();
+            let named =
+                message.contains("#00ff00 (64 pixels)") && message.contains("#ff0000") && message.contains("#0000ff");
+            assert!(named, "{message}");
+        }
+        other => panic!("{other:?}"),
+    }
 }
 
 /// The specialized kernels (row length fixed at compile time) give exactly the generic sums, and

@@ -2,7 +2,8 @@
 # Rebuilds the real textures of the stylize corpus (PNG) from GIMP's patterns in Debian's
 # gimp-data, and copies scikit-image's CC0 photo of a cat (chelsea.png) from python3-skimage. Needs Python 3 (standard library only) and apt-get/dpkg-deb: gimp-data need not be
 # installed; if it is not, this script fetches it with `apt-get download` into a temporary folder
-# (the same for python3-skimage).
+# (the same for python3-skimage). Then makes the anti-aliased segment guides
+# chelsea_segments.png and stone_segments.png from them with segment_guides.py.
 # Made with gimp-data 2.10.34-1+deb12u10 and python3-skimage 0.19.3-8 (Debian bookworm), Python 3.11.
 set -euo pipefail
 
@@ -23,3 +24,6 @@ done
 # The photo the video footage is filmed over (`motif demo`, `motif bench --case video`): copied
 # byte for byte.
 cp "$(package_file python3-skimage usr/lib/python3/dist-packages/skimage/data/chelsea.png)" "$here/chelsea.png"
+
+# Anti-aliased segment guides made from the photo and the stone wall (standard library only).
+"$PYTHON" "$here/segment_guides.py" "$here"

@@ -49,7 +49,8 @@ pub struct StylizeArgs {
     pub masking: masks::MaskOptions,
     /// Directory written by `motif presynth`: fill every pixel at least --band pixels
     /// from a segment edge of the target guide with its segment's texture and optimize only the
-    /// band (§3.7). Implies --segments.
+    /// band (§3.7). Implies --segments. The textures' colours are the segments: every guide pixel
+    /// takes the nearest, and a target colour far from all of them and their blends is refused.
     #[arg(long, value_name = "DIR")]
     pub presynth: Option<PathBuf>,
     /// Also write nnf.png (the final nearest-neighbour field as a 16-bit PNG: red/green = source
@@ -75,7 +76,8 @@ pub struct PresynthArgs {
     /// The style exemplar A'.
     #[arg(long, value_name = "A1.png")]
     pub style: PathBuf,
-    /// The source segment guide A (the style's size): each colour is a segment.
+    /// The source segment guide A (the style's size): each colour is a segment; with
+    /// --segment-count, each of K k-means colours, every pixel taking the nearest.
     #[arg(long, value_name = "A.png")]
     pub guide: PathBuf,
     /// Texture size in pixels; the textures tile, so it need not match the target.
