@@ -249,9 +249,12 @@ fn video<'py>(
     let (frames, styles) = video_inputs(&frames, &styles)?;
     let size = frames.first().map_or((0, 0), |f| (f.width(), f.height()));
     let mask = mask.map(|m| hole_array(&m, size, "mask")).transpose()?;
-    let keys =
-        keys.iter().zip(styles).map(|((frame, _), style)| motif_stylize::Keyframe { frame: *frame, style }).collect();
-    let input = motif_stylize::VideoInput { frames, keys, mask };
+    let keys = keys
+        .iter()
+        .zip(styles)
+        .map(|((frame, _), style)| motif_jobs::stylize::Keyframe { frame: *frame, style })
+        .collect();
+    let input = motif_jobs::stylize::VideoInput { frames, keys, mask };
     let run = detached(py, threads, || job.run(input, &mut NoProgress))?.map_err(job_error)?;
     let (output, figures) = (run.output, run.figures);
     let images = output.frames.iter().map(|f| array_of(py, &RgbaImage::from_float(f))).collect::<PyResult<Vec<_>>>()?;
@@ -292,7 +295,7 @@ fn video_interval<'py>(
     let first_decoded = if first_style.is_some() { styles.pop() } else { None };
     let size = frames.first().map_or((0, 0), |f| (f.width(), f.height()));
     let mask = mask.map(|m| hole_array(&m, size, "mask")).transpose()?;
-    let interval = motif_stylize::Interval { first, last, starts_at_key, ends_at_key };
+    let interval = motif_jobs::stylize::Interval { first, last, starts_at_key, ends_at_key };
     let output = detached(py, threads, || {
         job.run_interval(
             &frames,
@@ -312,7 +315,7 @@ fn video_interval<'py>(
 /// The pre-synthesized textures of `motif presynth`, one per segment colour of a style's guide,
 /// kept whole (with the fields that start the band mode) for `stylize(textures=...)`.
 #[pyclass(frozen, module = "motif._motif")]
-struct Textures(Vec<motif_stylize::SegmentTexture>);
+struct Textures(Vec<motif_jobs::stylize::SegmentTexture>);
 
 #[pymethods]
 impl Textures {
@@ -507,7 +510,7 @@ fn strokes(
     let mut writer = motif_io::SvgWriter::new(size.0, size.1);
     writer.begin_group("strokes");
     for stroke in &run.output.strokes {
-        let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
+        let line = (stroke.width > 0.0).then_some(motif_io::StrokePaint { width: stroke.width, colour: stroke.colour });
         writer.dashed_polyline(
             stroke.polyline.points(),
             stroke.polyline.is_closed(),

@@ -6,11 +6,11 @@
 //! piece boundaries match best (a global optimum). Modules, by section of the paper:
 //!
 //! - `ribbon`: the ribbon's offset curves (constant width or a width profile, §1.1) and the
-//!   slicing into quadrilateral pieces (§1.3); `bends` first rounds bends tighter than the ribbon
+//!   slicing into quadrilateral pieces (§1.3); `tight_bends` first rounds bends tighter than the ribbon
 //!   (not in the paper, whose fold-over rule leaves those pieces empty).
 //! - `piece`: a piece in exemplar space (rotation `M`, scale `s`, edges `L_i`, `R_i`) and the
 //!   validity test of positions (§1.3, §3.1), over `U = W × (H + C)` candidates (§1.4), plus a
-//!   minimum-coverage rule and the pattern's side margins (not in the paper); `bent` straightens
+//!   minimum-coverage rule and the pattern's side margins (not in the paper); `ribbon_pieces` straightens
 //!   pieces that follow the ribbon (the default; the paper's pieces are rigid).
 //! - `cost`: the matching cost ξ (binary and continuous alpha, `γ`) and the edge distance `D`
 //!   with `C = ⌈‖L‖⌉` bilinear samples (§1, §1.3); `bounds`: lower bounds of `D` from block-sum
@@ -58,8 +58,6 @@
 
 mod atlas;
 mod avoidance;
-mod bends;
-mod bent;
 mod bounds;
 mod canvas;
 mod closed;
@@ -77,9 +75,11 @@ mod render;
 mod repeat;
 mod report;
 mod ribbon;
+mod ribbon_pieces;
 pub mod samples;
 mod solve;
 mod stitch;
+mod tight_bends;
 mod variety;
 mod warnings;
 
@@ -202,7 +202,7 @@ pub(crate) fn synthesize_with(
     timer.start("ribbon");
     let curve = working_curve(input.curve, closed)?;
     // Rounding moves the curve by at most half the ribbon's width.
-    let rounded = bends::round_bends(&curve, params.round_bends * params.width, 0.5 * params.width)?;
+    let rounded = tight_bends::round_bends(&curve, params.round_bends * params.width, 0.5 * params.width)?;
     let curve = rounded.curve;
     let (canvas_width, canvas_height, shift) = canvas_geometry(&curve, params, input.avoidance)?;
     let canvas_pixels = (canvas_width * canvas_height) as f64;
@@ -225,7 +225,7 @@ pub(crate) fn synthesize_with(
                 // up to the curve's end: its right edge meets no seam, and every piece then has
                 // the same frame, so an edit that keeps the number of pieces changes no DP row.
                 let quad = if closed { *quad } else { PieceQuad { end: quad.start + params.piece_length, ..*quad } };
-                bent::straight_frame(&quad, params.width * params.scale / along, along, samples)
+                ribbon_pieces::straight_frame(&quad, params.width * params.scale / along, along, samples)
             })
             .collect()
     } else {
@@ -339,7 +339,7 @@ pub(crate) fn synthesize_with(
         .into_par_iter()
         .map(|i| match (forbidden_pixels, bent) {
             (0, _) => Vec::new(),
-            (_, true) => bent::forbidden_samples(
+            (_, true) => ribbon_pieces::forbidden_samples(
                 &triangles,
                 spacing,
                 &quads[i],
@@ -499,9 +499,9 @@ pub(crate) fn synthesize_with(
         report.distortion_mean = deviations.iter().sum::<f64>() / deviations.len().max(1) as f64;
         report.distortion_max = deviations.iter().copied().fold(0.0, f64::max);
     }
-    let bent_pieces: Vec<bent::BentPiece<'_>> = if bent {
+    let bent_pieces: Vec<ribbon_pieces::BentPiece<'_>> = if bent {
         (0..n)
-            .map(|i| bent::BentPiece {
+            .map(|i| ribbon_pieces::BentPiece {
                 start: quads[i].start,
                 position: (!empty[i]).then_some(positions[i]),
                 frame: &frames[i],
@@ -513,7 +513,14 @@ pub(crate) fn synthesize_with(
         Vec::new()
     };
     let shapes: Vec<Shape<'_>> = if bent {
-        bent::shapes(&triangles, &bent_pieces, exemplar, params.width, params.scale, (canvas_width, canvas_height))
+        ribbon_pieces::shapes(
+            &triangles,
+            &bent_pieces,
+            exemplar,
+            params.width,
+            params.scale,
+            (canvas_width, canvas_height),
+        )
     } else {
         (0..n)
             .filter(|&i| !empty[i])

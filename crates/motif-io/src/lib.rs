@@ -38,7 +38,7 @@ pub use raster::{
 };
 pub(crate) use staging::write_with;
 pub use staging::{begin_outputs, check_folder_writable, commit_outputs, create_folder, discard_outputs, stop_outputs};
-pub use svg::{Stroke, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};
+pub use svg::{StrokePaint, SvgDocument, SvgPath, SvgWriter, parse_svg, read_svg, render_svg};
 
 /// A file could not be read or written; always names the file.
 #[derive(Debug, thiserror::Error)]

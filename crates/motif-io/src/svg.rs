@@ -11,7 +11,7 @@ use crate::{IoError, Result};
 
 /// A stroke's paint: width in document units (the path's transform applied) and colour.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stroke {
+pub struct StrokePaint {
     /// Width in document units.
     pub width: f64,
     /// sRGB colour with the stroke's opacity as alpha.
@@ -26,7 +26,7 @@ pub struct SvgPath {
     /// The geometry in document coordinates (all transforms applied).
     pub path: BezPath,
     /// The stroke, when the path is stroked with a plain colour.
-    pub stroke: Option<Stroke>,
+    pub stroke: Option<StrokePaint>,
     /// The fill colour, when the path is filled with a plain colour.
     pub fill: Option<[u8; 4]>,
     /// The stroke's dash pattern (lengths of dashes and gaps in document units), when dashed.
@@ -104,7 +104,7 @@ fn convert_path(path: &usvg::Path) -> SvgPath {
     let stroke = path.stroke().and_then(|stroke| {
         let scale = transform.determinant().abs().sqrt();
         colour(stroke.paint(), stroke.opacity().get())
-            .map(|colour| Stroke { width: f64::from(stroke.width().get()) * scale, colour })
+            .map(|colour| StrokePaint { width: f64::from(stroke.width().get()) * scale, colour })
     });
     let fill = path.fill().and_then(|fill| colour(fill.paint(), fill.opacity().get()));
     let dash = path.stroke().and_then(|stroke| {
@@ -185,7 +185,7 @@ impl SvgWriter {
         self.body.push('\n');
     }
 
-    fn paint(stroke: Option<Stroke>, fill: Option<[u8; 4]>) -> String {
+    fn paint(stroke: Option<StrokePaint>, fill: Option<[u8; 4]>) -> String {
         let mut attributes = String::new();
         match fill {
             Some(colour) => {
@@ -211,7 +211,7 @@ impl SvgWriter {
     }
 
     /// Adds a path with optional stroke and fill.
-    pub fn path(&mut self, path: &BezPath, stroke: Option<Stroke>, fill: Option<[u8; 4]>) -> &mut Self {
+    pub fn path(&mut self, path: &BezPath, stroke: Option<StrokePaint>, fill: Option<[u8; 4]>) -> &mut Self {
         self.dashed_path(path, stroke, fill, &[])
     }
 
@@ -219,7 +219,7 @@ impl SvgWriter {
     pub fn dashed_path(
         &mut self,
         path: &BezPath,
-        stroke: Option<Stroke>,
+        stroke: Option<StrokePaint>,
         fill: Option<[u8; 4]>,
         dash: &[f64],
     ) -> &mut Self {
@@ -249,7 +249,7 @@ impl SvgWriter {
         &mut self,
         points: &[Point],
         closed: bool,
-        stroke: Option<Stroke>,
+        stroke: Option<StrokePaint>,
         fill: Option<[u8; 4]>,
     ) -> &mut Self {
         self.dashed_polyline(points, closed, stroke, fill, &[])
@@ -260,7 +260,7 @@ impl SvgWriter {
         &mut self,
         points: &[Point],
         closed: bool,
-        stroke: Option<Stroke>,
+        stroke: Option<StrokePaint>,
         fill: Option<[u8; 4]>,
         dash: &[f64],
     ) -> &mut Self {
@@ -278,7 +278,13 @@ impl SvgWriter {
     }
 
     /// Adds a circle.
-    pub fn circle(&mut self, centre: Point, radius: f64, stroke: Option<Stroke>, fill: Option<[u8; 4]>) -> &mut Self {
+    pub fn circle(
+        &mut self,
+        centre: Point,
+        radius: f64,
+        stroke: Option<StrokePaint>,
+        fill: Option<[u8; 4]>,
+    ) -> &mut Self {
         let line = format!(
             "<circle cx=\"{}\" cy=\"{}\" r=\"{}\"{}/>",
             number(centre.x),
@@ -297,7 +303,7 @@ impl SvgWriter {
         y: f64,
         width: f64,
         height: f64,
-        stroke: Option<Stroke>,
+        stroke: Option<StrokePaint>,
         fill: Option<[u8; 4]>,
     ) -> &mut Self {
         let line = format!(
@@ -361,7 +367,7 @@ mod tests {
         let mut path = BezPath::new();
         path.move_to((10.0, 10.0));
         path.curve_to((20.0, 0.0), (30.0, 20.0), (40.0, 10.0));
-        let stroke = Stroke { width: 2.5, colour: [255, 0, 0, 255] };
+        let stroke = StrokePaint { width: 2.5, colour: [255, 0, 0, 255] };
         writer.path(&path, Some(stroke), None);
         writer.begin_group("g").circle(Point::new(50.0, 25.0), 5.0, None, Some([0, 0, 255, 128])).end_group();
         let text = writer.finish();

@@ -275,7 +275,7 @@ impl PointsJob {
             }
             DomainSpec::Stroke(stroke) => {
                 let [scale_start, scale_end] = stroke.scale_along.unwrap_or([1.0, 1.0]);
-                Domain::Stroke(motif_points::Stroke {
+                Domain::Stroke(motif_points::BrushStroke {
                     points: stroke.points.clone(),
                     width: stroke.width,
                     scale_start,
@@ -324,8 +324,8 @@ impl PointsJob {
             .with_neighbourhood(options.neighbourhood)
             .with_window(options.window)
             .with_sigma(options.sigma)
-            .with_rotation(Some(options.rotation).filter(|&r| r != 0.0).map_or(Field::None, Field::Uniform))
-            .with_scale(Some(options.scale).filter(|&s| s != 1.0).map_or(Field::None, Field::Uniform))
+            .with_rotation(Some(options.rotation).filter(|&r| r != 0.0).map_or(Field::Unset, Field::Uniform))
+            .with_scale(Some(options.scale).filter(|&s| s != 1.0).map_or(Field::Unset, Field::Uniform))
             .with_quadrature_spacing(options.quadrature_spacing)
             .with_sampling_rounds(options.sampling_rounds)
             .with_merge_iterations(options.merge_iterations)

@@ -336,6 +336,9 @@ mod images;
 mod run;
 mod video;
 pub use images::{guide_image_channels, guide_pair, hole_of, kept_image, style_image_channels};
+/// The engine's types that stylize inputs and runs are made of, named here so that front ends
+/// need no engine crate.
+pub use motif_stylize::{Interval, Keyframe, SegmentTexture, VideoInput};
 pub use run::{InpaintInputs, PresynthInputs, PresynthRun, StylizeInputs, StylizeRun, TextureInputs, ZoomRun, figures};
 pub use video::{VideoJob, VideoJobOptions, VideoOptions, VideoRun, video_frame, video_styles};
 

@@ -291,11 +291,11 @@ impl<const D: usize> Region<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::params::Stroke;
+    use crate::params::BrushStroke;
     #[test]
     fn stroke_frames_follow_the_tangent_and_scale() {
         let stroke =
-            Stroke { points: vec![vec![0.0, 0.0], vec![0.0, 10.0]], width: 2.0, scale_start: 1.0, scale_end: 3.0 };
+            BrushStroke { points: vec![vec![0.0, 0.0], vec![0.0, 10.0]], width: 2.0, scale_start: 1.0, scale_end: 3.0 };
         let region = Region::<2>::new(&Domain::Stroke(stroke)).unwrap();
         assert!(region.contains(&[0.5, 5.0]));
         assert!(!region.contains(&[1.5, 5.0]));

@@ -263,7 +263,7 @@ impl<const D: usize> Problem<'_, D> {
     ) -> Evaluation<D> {
         let n = state.positions.len();
         let neighbours = Neighbours::build(&state.positions, self.kernel.cutoff);
-        // With the Gaussian window the output pairs are summed pair by pair (see `crate::pairs`);
+        // With the Gaussian window the output pairs are summed pair by pair (see `crate::output_pairs`);
         // the box window's pair test depends on both points, so its rows keep them.
         let pairs = (self.kernel.window == Window::Gaussian).then(|| self.pair_terms(state, &neighbours, active));
         let row =

@@ -90,8 +90,8 @@ mod matching;
 mod merging;
 mod mesh_surface;
 mod model;
+mod output_pairs;
 mod pair_statistics;
-mod pairs;
 mod params;
 mod placement;
 mod points;
@@ -121,7 +121,7 @@ pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};
 pub use pair_statistics::StatisticsRefinement;
 pub use params::{
-    Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, Stroke, SurfaceDirections,
+    BrushStroke, Domain, Evaluator, Field, FieldFunction, Initialization, Input, Params, Refinement, SurfaceDirections,
     Window,
 };
 pub use points::{MAX_COORDINATE, PointSet};

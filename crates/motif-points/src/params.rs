@@ -8,7 +8,6 @@ use crate::PointSet;
 use crate::error::Error;
 
 /// The window function `w` delimiting a neighbourhood (§4.2–4.3).
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Window {
@@ -24,7 +23,6 @@ pub enum Window {
 /// The paper finds its solver robust to either; on real exemplars (clustered, inhibited,
 /// multi-type) it is not: from random points the output crystallizes (see the fidelity figures of
 /// `motif bench --engine points`), so patches are the default.
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Initialization {
@@ -44,7 +42,6 @@ pub enum Initialization {
 /// that of the copies alone): a window of δ reaches across seams, and the matches of windows that
 /// straddle two copies explain neither. Keeping the interiors as copied and optimizing only the
 /// seams was better on 10 of 11 cases (figures in docs/points.md).
-#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Refinement {
@@ -78,7 +75,7 @@ pub type FieldFunction = Arc<dyn Fn(&[f64]) -> f64 + Send + Sync>;
 pub enum Field {
     /// No field: rotation 0°, scale 1.
     #[default]
-    None,
+    Unset,
     /// The same value everywhere.
     Uniform(f64),
     /// Any function of the position (called once per quadrature point).
@@ -86,10 +83,10 @@ pub enum Field {
 }
 
 impl Field {
-    /// The value at `p`, or `default` for [`Field::None`].
+    /// The value at `p`, or `default` for [`Field::Unset`].
     pub fn value(&self, p: &[f64], default: f64) -> f64 {
         match self {
-            Field::None => default,
+            Field::Unset => default,
             Field::Uniform(value) => *value,
             Field::Custom(f) => f(p),
         }
@@ -99,7 +96,7 @@ impl Field {
 impl std::fmt::Debug for Field {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Field::None => write!(f, "None"),
+            Field::Unset => write!(f, "Unset"),
             Field::Uniform(value) => write!(f, "Uniform({value})"),
             Field::Custom(_) => write!(f, "Custom(..)"),
         }
@@ -108,7 +105,7 @@ impl std::fmt::Debug for Field {
 
 /// A brush stroke: the region within `width / 2` of a polyline, oriented along its tangent (§6.2).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Stroke {
+pub struct BrushStroke {
     /// Vertices of the curve, each with `dimension` coordinates (at least 2 distinct vertices).
     pub points: Vec<Vec<f64>>,
     /// Brush width (output units, > 0): the region covered is a tube of radius `width / 2`.
@@ -132,7 +129,7 @@ pub enum Domain {
     /// A polygonal region (2D only), for example read from an SVG.
     Polygon(motif_core::Polygon),
     /// A brush stroke; the exemplar's x axis follows the stroke tangent.
-    Stroke(Stroke),
+    Stroke(BrushStroke),
     /// The inside of a closed triangle mesh (3D only).
     Volume(motif_core::TriangleMesh),
     /// The surface of a triangle mesh (open or closed), for a 2D exemplar: the output is 3D,
@@ -342,8 +339,8 @@ impl Params {
         statistics_iterations: 40,
         initialization: Initialization::Patches,
         refinement: Refinement::Seams,
-        rotation: Field::None,
-        scale: Field::None,
+        rotation: Field::Unset,
+        scale: Field::Unset,
         attributes: None,
         discrete_attributes: Vec::new(),
         detect_discrete: true,

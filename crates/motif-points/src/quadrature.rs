@@ -290,7 +290,7 @@ mod tests {
     fn quadrature_queries_match_brute_force() {
         let region = Region::<2>::new(&Domain::Box { min: vec![0.0, 0.0], max: vec![5.0, 3.0] }).unwrap();
         let quadrature =
-            Quadrature::new([0.0, 0.0], [5.0, 3.0], 0.5, |q| region.contains(q), &region, &Field::None, &Field::None)
+            Quadrature::new([0.0, 0.0], [5.0, 3.0], 0.5, |q| region.contains(q), &region, &Field::Unset, &Field::Unset)
                 .unwrap();
         assert_eq!(quadrature.len(), 11 * 7);
         let x = [2.2, 1.1];
@@ -313,8 +313,8 @@ mod tests {
             0.5,
             |q| region.contains(q) && q[0] < 4.2,
             &region,
-            &Field::None,
-            &Field::None,
+            &Field::Unset,
+            &Field::Unset,
         )
         .unwrap();
         let plain = |p: &Vector<2>| {

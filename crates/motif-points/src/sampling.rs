@@ -306,7 +306,7 @@ impl<const D: usize> Pass<'_, '_, D> {
             neighbours.sort_unstable();
             let mut gradient = [0.0; D];
             // With the Gaussian window the row does the exemplar side only and the output pairs come
-            // pair by pair (see `crate::pairs`); the box window's row keeps them.
+            // pair by pair (see `crate::output_pairs`); the box window's row keeps them.
             let (mut row_a, row_b) = self.problem.point_row(
                 state,
                 self.matches,

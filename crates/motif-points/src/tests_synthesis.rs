@@ -6,7 +6,7 @@ use motif_core::{NoProgress, SeedStreams};
 
 use crate::error::Error;
 use crate::linear::{self, Vector};
-use crate::params::{Domain, Field, Initialization, Input, Params, Stroke};
+use crate::params::{BrushStroke, Domain, Field, Initialization, Input, Params};
 use crate::tests::{box_domain, interior_nearest, jittered_grid, positions_of, quick_params, rows};
 use crate::{PointSet, synthesize};
 
@@ -237,7 +237,8 @@ fn progressive_synthesis_keeps_far_points_fixed() {
         &mut NoProgress,
     )
     .unwrap();
-    let stroke = Stroke { points: vec![vec![6.0, 3.0], vec![12.0, 3.0]], width: 3.0, scale_start: 1.0, scale_end: 1.0 };
+    let stroke =
+        BrushStroke { points: vec![vec![6.0, 3.0], vec![12.0, 3.0]], width: 3.0, scale_start: 1.0, scale_end: 1.0 };
     let params = Params { attributes: Some(vec![]), keep_margin: Some(2.0), ..quick_params() };
     let second = synthesize(
         &Input { exemplar, domain: Domain::Stroke(stroke), existing: Some(first.points.clone()) },
@@ -270,7 +271,8 @@ fn progressive_synthesis_keeps_far_points_fixed() {
 #[test]
 fn strokes_and_polygons_confine_the_output() {
     let exemplar = rows(24, 8);
-    let stroke = Stroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1.0, scale_end: 1.5 };
+    let stroke =
+        BrushStroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1.0, scale_end: 1.5 };
     let params = Params { neighbourhood: Some(1.5), ..quick_params() };
     let output = synthesize(
         &Input { exemplar: exemplar.clone(), domain: Domain::Stroke(stroke), existing: None },
@@ -360,7 +362,7 @@ fn extreme_exemplars_and_stroke_scales_are_refused_by_name() {
     assert!(matches!(run(same, box_domain(5.0, 5.0)).unwrap_err(), Error::CoincidentPoints));
     // A scale ratio of 1e300 along a stroke rounded the far end to scale 0.
     let stroke =
-        Stroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1e300, scale_end: 1.0 };
+        BrushStroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1e300, scale_end: 1.0 };
     let error = run(jittered_grid(5, 0.1, 1), Domain::Stroke(stroke)).unwrap_err();
     assert!(error.to_string().contains("scale-along") && error.to_string().contains("1e300"), "{error}");
 }

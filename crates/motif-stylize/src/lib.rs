@@ -32,9 +32,9 @@
 //!   passes blended between keyframes, in independent keyframe intervals.
 //! - `video_pass`: one pass of video synthesis from a keyframe along the motion, and the blend of
 //!   the passes from an interval's two keyframes (Jamriška et al. §3).
-//! - `structure`: the nearest-patch distance at a large patch size, a figure that sees whether a
+//! - `structure_fidelity`: the nearest-patch distance at a large patch size, a figure that sees whether a
 //!   texture keeps its exemplar's structure.
-//! - `feature_distance`: Kaspar et al. 2015's automatic structure guidance for texture synthesis
+//! - `structure_guidance`: Kaspar et al. 2015's automatic structure guidance for texture synthesis
 //!   (the distance to the exemplar's gaps as a channel weighted at the coarse levels), and
 //!   [`mean_feature_distance`] and [`line_contrast`], figures that see merged or cut elements and
 //!   broken courses.
@@ -67,7 +67,6 @@
 
 mod band;
 mod error;
-mod feature_distance;
 mod field;
 mod level;
 mod mask;
@@ -79,7 +78,8 @@ mod quilting;
 pub mod samples;
 mod search;
 mod segments;
-mod structure;
+mod structure_fidelity;
+mod structure_guidance;
 mod synthesis;
 mod video;
 mod video_pass;
@@ -99,14 +99,14 @@ use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
 
 pub use error::Error;
-pub use feature_distance::{line_contrast, mean_feature_distance};
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
-pub use structure::{nearest_patch_distance, sharpness};
+pub use structure_fidelity::{nearest_patch_distance, sharpness};
+pub use structure_guidance::{line_contrast, mean_feature_distance};
 pub use video::{
     Interval, IntervalOutput, IntervalReport, Keyframe, VIDEO_MEMORY_ADVICE, VideoInput, VideoOutput, VideoParams,
     VideoReport, intervals, mean_flicker, stylize_interval, stylize_video, video_memory,
@@ -484,7 +484,7 @@ pub fn synthesize<I: ChannelImage>(
             return Err(InvalidParameter::new("structure-weight", params.structure_weight, allowed).into());
         }
         let mut output =
-            feature_distance::synthesize_with_structure(style, &style_weights, target_size, params, progress)?;
+            structure_guidance::synthesize_with_structure(style, &style_weights, target_size, params, progress)?;
         output.report.estimated_memory_bytes = estimated_memory_bytes;
         return Ok(output);
     }

@@ -31,7 +31,7 @@ pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
     /// Synthesize only the hole, keep the rest (checked: the output's size, the style's channels).
     pub mask: Option<&'a crate::Mask<I>>,
     /// Structure guidance: the style's last channel is the feature distance, of this weight at
-    /// the coarsest level, falling linearly to 0 at the finest (`crate::feature_distance`).
+    /// the coarsest level, falling linearly to 0 at the finest (`crate::structure_guidance`).
     pub structure_weight: Option<f32>,
 }
 

@@ -4,7 +4,7 @@
 use anyhow::Context as _;
 use motif_core::Point;
 use motif_core::TriangleMesh;
-use motif_io::{Stroke as SvgStroke, SvgWriter};
+use motif_io::{StrokePaint, SvgWriter};
 use motif_points::Fidelity;
 use motif_points::PointSet;
 
@@ -187,7 +187,7 @@ fn draw_curves(
     curves: [&[f64]; 2],
     title: &str,
 ) {
-    svg.rect(left, top, width, height, Some(SvgStroke { width: 1.0, colour: [200, 200, 200, 255] }), None);
+    svg.rect(left, top, width, height, Some(StrokePaint { width: 1.0, colour: [200, 200, 200, 255] }), None);
     let peak = curves.iter().flat_map(|c| c.iter()).copied().fold(1e-12, f64::max) * 1.1;
     for (curve, colour) in curves.iter().zip([[30, 30, 30, 255], [230, 120, 20, 255]]) {
         let points: Vec<Point> = curve
@@ -198,7 +198,7 @@ fn draw_curves(
                 Point::new(x, top + height - v / peak * height)
             })
             .collect();
-        svg.polyline(&points, false, Some(SvgStroke { width: 1.5, colour }), None);
+        svg.polyline(&points, false, Some(StrokePaint { width: 1.5, colour }), None);
     }
     svg.text(Point::new(left + 4.0, top + 12.0), 10.0, [90, 90, 90, 255], title);
 }

@@ -13,7 +13,7 @@ use crate::gallery::{Demo, DemoCase};
 fn write_path_svg(path: &Path, shape: &BezPath, width: f64, height: f64, closed: bool) -> anyhow::Result<()> {
     let mut writer = SvgWriter::new(width, height);
     let fill = closed.then_some([235, 235, 225, 255]);
-    writer.path(shape, Some(motif_io::Stroke { width: 1.0, colour: [90, 90, 90, 255] }), fill);
+    writer.path(shape, Some(motif_io::StrokePaint { width: 1.0, colour: [90, 90, 90, 255] }), fill);
     motif_io::write_text(path, &writer.finish())?;
     Ok(())
 }

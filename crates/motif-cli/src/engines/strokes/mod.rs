@@ -162,7 +162,7 @@ fn read_map(file: Option<&Path>, flag: &str, job: &StrokesJob, max_memory: u64) 
 }
 
 fn draw_stroke(writer: &mut SvgWriter, stroke: &Stroke) {
-    let line = (stroke.width > 0.0).then_some(motif_io::Stroke { width: stroke.width, colour: stroke.colour });
+    let line = (stroke.width > 0.0).then_some(motif_io::StrokePaint { width: stroke.width, colour: stroke.colour });
     writer.dashed_polyline(
         stroke.polyline.points(),
         stroke.polyline.is_closed(),
@@ -204,7 +204,7 @@ pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height:
     let mut writer = SvgWriter::new(width, height);
     let thin = (0.01 * width.max(height)).clamp(0.3, 1.0);
     writer.begin_group("graph");
-    let grey = motif_io::Stroke { width: thin, colour: [120, 120, 120, 200] };
+    let grey = motif_io::StrokePaint { width: thin, colour: [120, 120, 120, 200] };
     for (a, b) in analysis.graph.edges() {
         let (p, q) = (analysis.elements[a].frame.centre, analysis.elements[b].frame.centre);
         writer.polyline(&[p, q], false, Some(grey), None);
@@ -223,7 +223,7 @@ pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height:
         // Degenerate boxes (single straight strokes) still show as a thin rectangle.
         frame.thickness = frame.thickness.max(thin);
         frame.length = frame.length.max(thin);
-        writer.polyline(&frame.corners(), true, Some(motif_io::Stroke { width: 0.5 * thin, colour }), None);
+        writer.polyline(&frame.corners(), true, Some(motif_io::StrokePaint { width: 0.5 * thin, colour }), None);
         writer.circle(element.frame.centre, 1.5 * thin, None, Some(colour));
         writer.end_group();
     }
