@@ -246,8 +246,20 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
         Some((l, h)) => (vector(l), vector(h)),
         None => fidelity::exemplar_window(&positions, spacing),
     };
-    let mut exemplar =
-        Exemplar { positions, features, channels, element_of, elements, low, high, spacing, window_low, window_high };
+    let mut exemplar = Exemplar {
+        positions,
+        features,
+        channels,
+        element_of,
+        elements,
+        low,
+        high,
+        spacing,
+        window_low,
+        window_high,
+        ranges: Vec::new(),
+    };
+    exemplar.ranges = crate::model::feature_ranges(&exemplar.features, channels);
     // Domain and quadrature.
     if let crate::params::Domain::Volume(mesh) = &input.domain {
         // The triangle tree (corners and node bounds) and the sorted edge lists of the checks.
@@ -442,6 +454,7 @@ impl<const D: usize> Setup<D> {
                     seam: (params.refinement == Refinement::Seams).then_some(0.25 * band),
                     on_surface,
                     node_share: self.node_share,
+                    count_tolerance: params.count_tolerance,
                 };
                 let copies =
                     init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);

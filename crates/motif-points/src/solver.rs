@@ -314,7 +314,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                 };
                 state.settle(|p| setup.region.keep_on(p));
                 let discrete = &setup.attributes.discrete;
-                let after = merging::merge_attributes(&mut state, merge_settings, discrete, last, &evaluate)
+                let ranges = params.attributes_within_range.then_some(setup.exemplar.ranges.as_slice());
+                let after = merging::merge_attributes(&mut state, merge_settings, discrete, ranges, last, &evaluate)
                     .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
                 energies.push(IterationEnergy {
                     scale,
