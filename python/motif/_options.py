@@ -160,6 +160,9 @@ class PointsOptions(TypedDict, total=False):
     shrink: float
     #: Turn sampling control (adding and removing points, Eq. 7) off.
     no_sampling_control: bool
+    #: Let continuous attributes leave the exemplar's range. By default each stays between the exemplar's
+    #: smallest and largest value of it (no negative diameters from a fit).
+    attributes_beyond_range: bool
     #: Use the plain reference implementation of the energy (slow; for comparisons).
     reference: bool
     #: Progressive synthesis: existing points farther than this from the new domain stay fixed (output units;

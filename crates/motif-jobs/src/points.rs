@@ -183,6 +183,9 @@ crate::declare_options! {
         shrink: Option<f64> = DEFAULTS.shrink,
         /// Turn sampling control (adding and removing points, Eq. 7) off.
         no_sampling_control: bool = !DEFAULTS.sampling_control,
+        /// Let continuous attributes leave the exemplar's range. By default each stays between the
+        /// exemplar's smallest and largest value of it (no negative diameters from a fit).
+        attributes_beyond_range: bool = !DEFAULTS.attributes_within_range,
         /// Use the plain reference implementation of the energy (slow; for comparisons).
         reference: bool = false,
         /// Progressive synthesis: existing points farther than this from the new domain stay fixed
@@ -334,6 +337,7 @@ impl PointsJob {
             .with_matching_iterations(options.matching_iterations)
             .with_shrink(options.shrink)
             .with_sampling_control(!options.no_sampling_control)
+            .with_attributes_within_range(!options.attributes_beyond_range)
             .with_evaluator(if options.reference { Evaluator::Reference } else { Evaluator::Fast })
             .with_initialization(options.init)
             .with_attributes(options.attributes.clone())

@@ -277,7 +277,8 @@ fn merge_free_positions<const D: usize>(
 }
 
 /// Descent on the (normalized) attributes of free points, then snapping of the discrete channels.
-/// `discrete[c]` lists the allowed values of channel `c` (empty = continuous). Returns T afterwards
+/// `discrete[c]` lists the allowed values of channel `c` (empty = continuous); with `ranges`, channel
+/// `c` stays within `ranges[c]` (the exemplar's smallest and largest value). Returns T afterwards
 /// (`None` when there is nothing to optimize, T is then unchanged).
 ///
 /// T is quadratic in the attributes at fixed positions ([`crate::quadratic`]): one evaluation pass
@@ -288,6 +289,7 @@ pub fn merge_attributes<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     discrete: &[Vec<f64>],
+    ranges: Option<&[(f64, f64)]>,
     evaluation: Option<Evaluation<D>>,
     evaluate: &dyn Fn(&State<D>, bool) -> Evaluation<D>,
 ) -> Option<f64> {
@@ -311,7 +313,12 @@ pub fn merge_attributes<const D: usize>(
     let before = quadratic.energy(&state.features);
     let mut features = state.features.clone();
     for c in 1..channels {
-        quadratic.minimize_channel(&mut features, c, &movable, settings.attribute_iterations);
+        match ranges {
+            Some(ranges) => {
+                quadratic.minimize_channel_within(&mut features, c, &movable, settings.attribute_iterations, ranges[c])
+            }
+            None => quadratic.minimize_channel(&mut features, c, &movable, settings.attribute_iterations),
+        }
     }
     // Exact line searches never raise T; the test guards against rounding on a flat form.
     if quadratic.energy(&features) < before {

@@ -156,6 +156,19 @@ pub struct Exemplar<const D: usize> {
     /// per axis).
     pub window_low: Vector<D>,
     pub window_high: Vector<D>,
+    /// Per channel, the smallest and the largest feature value (what the attribute step keeps
+    /// output attributes within).
+    pub ranges: Vec<(f64, f64)>,
+}
+
+/// Per channel of `channels`-wide feature vectors, the smallest and the largest value.
+pub fn feature_ranges(features: &[f64], channels: usize) -> Vec<(f64, f64)> {
+    (0..channels)
+        .map(|c| {
+            let values = features.iter().skip(c).step_by(channels.max(1));
+            values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &v| (low.min(v), high.max(v)))
+        })
+        .collect()
 }
 
 impl<const D: usize> Exemplar<D> {

@@ -433,6 +433,19 @@ pub fn thin<const D: usize>(
     (0..positions.len()).filter(|&i| gone[i]).collect()
 }
 
+/// Whether the refinement runs on `setup` (a uniform scale, `iterations` above 0).
+fn applies<const D: usize>(setup: &Setup<D>, iterations: usize) -> bool {
+    let scales = &setup.quadrature.scale;
+    iterations > 0 && scales.windows(2).all(|w| (w[0] - w[1]).abs() <= 1e-12 * w[0].abs())
+}
+
+/// Whether the refinement will thin a surplus over the count tolerance (a fresh synthesis it
+/// applies to, without rigid elements, which it cannot remove): sampling control then leaves that
+/// surplus to it.
+pub(crate) fn thins<const D: usize>(setup: &Setup<D>, iterations: usize) -> bool {
+    applies(setup, iterations) && setup.margin.is_none() && !setup.has_elements
+}
+
 /// Runs the refinement on a finished synthesis, in place, at a uniform scale; `None` where it does
 /// not apply (scale fields, `iterations` 0). On a surface, distances are taken in 3D (the same as
 /// along the surface at the scale of a few spacings, as in `fidelity`) and moved points are brought
@@ -443,11 +456,10 @@ pub(crate) fn refine_state<const D: usize>(
     iterations: usize,
     count_tolerance: f64,
 ) -> Option<StatisticsRefinement> {
-    let scales = &setup.quadrature.scale;
-    let uniform = scales.windows(2).all(|w| (w[0] - w[1]).abs() <= 1e-12 * w[0].abs());
-    if iterations == 0 || !uniform {
+    if !applies(setup, iterations) {
         return None;
     }
+    let scales = &setup.quadrature.scale;
     if state.alive.iter().any(|alive| !alive) {
         state.compact();
     }

@@ -12,6 +12,10 @@
 //! passes. Channels do not interact, so each is minimized on its own by conjugate gradients (steepest
 //! descent with exact line search, made conjugate).
 
+/// Rounds of [`AttributeQuadratic::minimize_channel_within`]: each holds the values that left
+/// the range at its ends and minimizes the rest again.
+const BOUND_ROUNDS: usize = 3;
+
 /// The coefficients of one output point's row: `(j, A_ij)` for every pair (itself included) and
 /// `B_i` (one value per channel).
 #[derive(Debug, Clone, Default)]
@@ -106,6 +110,36 @@ impl AttributeQuadratic {
             }
         }
         gradient
+    }
+
+    /// Lowers `T` over channel `channel` of the points in `free` with every value kept within
+    /// `range` (the values start inside it): conjugate gradients, then the values that left the
+    /// range are projected onto its nearest end and held there while the others are minimized
+    /// again (an active-set method), at most [`BOUND_ROUNDS`] times. The caller keeps the result
+    /// only where `T` fell, since a projection can raise it.
+    pub fn minimize_channel_within(
+        &self,
+        features: &mut [f64],
+        channel: usize,
+        free: &[usize],
+        iterations: usize,
+        range: (f64, f64),
+    ) {
+        let channels = self.channels;
+        let mut free = free.to_vec();
+        for _ in 0..BOUND_ROUNDS {
+            self.minimize_channel(features, channel, &free, iterations);
+            let before = free.len();
+            free.retain(|&i| {
+                let value = &mut features[i * channels + channel];
+                let inside = *value >= range.0 && *value <= range.1;
+                *value = value.clamp(range.0, range.1);
+                inside
+            });
+            if free.len() == before || free.is_empty() {
+                break;
+            }
+        }
     }
 
     /// Lowers `T` over channel `channel` of the points in `free` (the others stay) by at most
@@ -208,5 +242,23 @@ mod tests {
         // With only point 1 free the optimum is B_1 = Σ_j A_1j x_j solved for x_1.
         let expected = (-0.4 - 0.5 * 0.9 - 0.5 * -0.9) / 2.0;
         assert!((a[3] - expected).abs() < 1e-12, "{} vs {expected}", a[3]);
+    }
+
+    #[test]
+    fn bounded_minimization_stays_within_the_range() {
+        let q = chain();
+        let mut free = vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0];
+        q.minimize_channel(&mut free, 1, &[0, 1, 2], 3);
+        let (low, high) = (-0.1, 0.1);
+        // The free minimum leaves the range, so the bounds matter here.
+        assert!((0..3).any(|i| free[i * 2 + 1] < low || free[i * 2 + 1] > high), "{free:?}");
+        let mut bounded = vec![1.0, 0.0, 1.0, 0.0, 1.0, 0.0];
+        let before = q.energy(&bounded);
+        q.minimize_channel_within(&mut bounded, 1, &[0, 1, 2], 3, (low, high));
+        for i in 0..3 {
+            let value = bounded[i * 2 + 1];
+            assert!((low..=high).contains(&value), "point {i}: {value}");
+        }
+        assert!(q.energy(&bounded) < before, "{} against {before}", q.energy(&bounded));
     }
 }

@@ -61,12 +61,12 @@ pub fn sampling_density<const D: usize>(problem: &Problem<'_, D>, state: &State<
         .map(|k| {
             let q = quadrature.points[k];
             let mut p = 0.0;
-            grid.for_each_within(&q, reach, |i, _, d2| {
-                if state.alive[i] {
+            let m = matches[k];
+            grid.for_each_within(&q, reach, |i, x, d2| {
+                if state.alive[i] && seen_by_exemplar(problem, k, &m, x) {
                     p += weight(width, d2);
                 }
             });
-            let m = matches[k];
             let s = quadrature.scale[k];
             let transform = &quadrature.transform[k];
             problem.exemplar_grid.for_each_within(&m, reach / s, |_, e, d2| {
@@ -77,6 +77,21 @@ pub fn sampling_density<const D: usize>(problem: &Problem<'_, D>, state: &State<
             p
         })
         .collect()
+}
+
+/// Whether output place `x` has its counterpart inside the exemplar's observation window under
+/// quadrature point `k`'s match `m`: the exemplar shows nothing beyond its window, so `P` counts
+/// only the output points whose counterparts it could have shown (as it counts only the exemplar
+/// points whose images lie inside Ω). Counting them all made every window matched near the
+/// exemplar's border look too full.
+fn seen_by_exemplar<const D: usize>(problem: &Problem<'_, D>, k: usize, m: &Vector<D>, x: &Vector<D>) -> bool {
+    let quadrature = problem.quadrature;
+    let offset = linear::mat_vec(&quadrature.inverse[k], &linear::sub(x, &quadrature.points[k]));
+    let exemplar = problem.exemplar;
+    (0..D).all(|a| {
+        let e = m[a] + offset[a];
+        e >= exemplar.window_low[a] && e <= exemplar.window_high[a]
+    })
 }
 
 #[inline]
@@ -158,9 +173,11 @@ pub fn control<const D: usize>(
             if pass.alive >= pass.bounds.least || tries == 0 {
                 break;
             }
-            tries -= 1;
-            if let Some(Proposal::Accepted) = pass.propose_addition(exemplar, state, k) {
-                outcome.added += 1;
+            // Places with nothing to propose (no gap) cost no try.
+            match pass.propose_addition(exemplar, state, k) {
+                Some(Proposal::Accepted) => outcome.added += 1,
+                Some(_) => tries -= 1,
+                None => {}
             }
         }
     }
@@ -185,9 +202,11 @@ pub fn control<const D: usize>(
             if pass.alive <= pass.bounds.most || tries == 0 {
                 break;
             }
-            tries -= 1;
-            if let Some(Proposal::Accepted) = pass.propose_removal(state, k) {
-                outcome.removed += 1;
+            // Places with no removable point near them (patch interiors) cost no try.
+            match pass.propose_removal(state, k) {
+                Some(Proposal::Accepted) => outcome.removed += 1,
+                Some(_) => tries -= 1,
+                None => {}
             }
         }
     }
@@ -263,8 +282,11 @@ impl<const D: usize> Pass<'_, '_, D> {
             let quadrature = self.problem.quadrature;
             let density = &mut self.density;
             let width = self.width;
+            let (problem, matches) = (self.problem, self.matches);
             quadrature.for_each_within(&x, reach, |k| {
-                density[k] += sign * weight(width, linear::norm2(&linear::sub(&x, &quadrature.points[k])));
+                if seen_by_exemplar(problem, k, &matches[k], &x) {
+                    density[k] += sign * weight(width, linear::norm2(&linear::sub(&x, &quadrature.points[k])));
+                }
             });
         }
     }

@@ -261,7 +261,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
 
     let mut final_energy = f64::NAN;
     let mut done = 0;
-    let bounds = count_bounds(&setup, params.count_tolerance);
+    let thinned = crate::pair_statistics::thins(&setup, params.statistics_iterations);
+    let bounds = count_bounds(&setup, params.count_tolerance, thinned);
     let mut state = std::mem::take(&mut setup.state);
     let mut fields: Option<SearchFields<D>> = None;
     // Copies only: the quilted patches are the result.
@@ -314,7 +315,8 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
                 };
                 state.settle(|p| setup.region.keep_on(p));
                 let discrete = &setup.attributes.discrete;
-                let after = merging::merge_attributes(&mut state, merge_settings, discrete, last, &evaluate)
+                let ranges = params.attributes_within_range.then_some(setup.exemplar.ranges.as_slice());
+                let after = merging::merge_attributes(&mut state, merge_settings, discrete, ranges, last, &evaluate)
                     .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
                 energies.push(IterationEnergy {
                     scale,

@@ -62,7 +62,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
             "exemplar_halves": h.radial_distribution,
         },
         "targets": {
-            "density_within_10_percent": (fidelity.density_ratio - 1.0).abs() <= 0.1,
+            "density_within_3_percent": (fidelity.density_ratio - 1.0).abs() <= 0.03,
             "half_of_random": o.nearest_neighbour <= 0.5 * r.nearest_neighbour && o.radial_distribution <= 0.5 * r.radial_distribution,
             "within_1_5_of_tiled": o.nearest_neighbour <= 1.5 * t.nearest_neighbour && o.radial_distribution <= 1.5 * t.radial_distribution,
             // Whether a copy of the exemplar itself meets "half of random": where it does not, the
@@ -94,7 +94,7 @@ pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) ->
         }
         let value = run_case(&folder, case, seed)?;
         counts[0] += 1;
-        let keys = ["density_within_10_percent", "half_of_random", "within_1_5_of_tiled", "tiled_copy_half_of_random"];
+        let keys = ["density_within_3_percent", "half_of_random", "within_1_5_of_tiled", "tiled_copy_half_of_random"];
         for (slot, key) in keys.iter().enumerate() {
             counts[slot + 1] += usize::from(value["targets"][key].as_bool() == Some(true));
         }
@@ -104,7 +104,7 @@ pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) ->
         "summary".into(),
         json!({
             "cases": counts[0],
-            "density_within_10_percent": counts[1],
+            "density_within_3_percent": counts[1],
             "half_of_random": counts[2],
             "within_1_5_of_tiled": counts[3],
             "tiled_copy_half_of_random": counts[4],
