@@ -319,16 +319,26 @@ function drawStrokes(canvas, list, frame, boxes = []) {
   }
 }
 
+// The scale ε the strokes panel asks for: null (inferred from the reference) while "inferred" is
+// ticked, else the slider's.
+function strokesScale() {
+  return $("strokes-scale-auto").checked ? null : Number($("strokes-scale").value);
+}
+
 const analyseStrokes = latestOnly(async () => {
-  const scale = Number($("strokes-scale").value);
   try {
     const start = performance.now();
-    const analysis = await request("strokesAnalyse", { scale });
+    const analysis = await request("strokesAnalyse", { scale: strokesScale() });
+    const scale = Number(analysis.scale.toPrecision(3));
+    if (analysis.scale_inferred) {
+      $("strokes-scale").value = scale;
+      $("strokes-scale-value").textContent = `${scale} (inferred)`;
+    }
     strokes.elements = analysis.elements;
     drawStrokes($("strokes-reference"), strokes.reference, bounds(strokes.reference), analysis.elements);
     const total = performance.now() - start;
     window.motifTimings.strokes.push({ kind: "analysis", engine_ms: analysis.milliseconds, total_ms: total });
-    info("strokes", `${analysis.elements.length} elements at ε = ${scale} (analysis ${analysis.milliseconds.toFixed(1)} ms)`);
+    info("strokes", `${analysis.elements.length} elements at ε = ${scale}${analysis.scale_inferred ? " (inferred)" : ""} (analysis ${analysis.milliseconds.toFixed(1)} ms)`);
   } catch (error) {
     info("strokes", error.message, true);
   }
@@ -398,7 +408,12 @@ $("strokes-file").addEventListener("change", async () => {
 });
 
 $("strokes-scale").addEventListener("input", () => {
+  $("strokes-scale-auto").checked = false;
   $("strokes-scale-value").textContent = $("strokes-scale").value;
+  analyseStrokes();
+});
+$("strokes-scale-auto").addEventListener("change", () => {
+  if (!$("strokes-scale-auto").checked) $("strokes-scale-value").textContent = $("strokes-scale").value;
   analyseStrokes();
 });
 $("strokes-choice").addEventListener("change", () => startStrokes().catch((e) => info("strokes", e.message, true)));
@@ -406,7 +421,9 @@ $("strokes-run").addEventListener("click", async () => {
   const [minX, minY, maxX, maxY] = bounds(strokes.reference);
   const side = Math.max(maxX - minX, maxY - minY) * 1.6;
   try {
-    const result = await request("strokesSynthesize", { width: side, height: side, job: { scale: Number($("strokes-scale").value), target: { rect: [1, 1] } } });
+    const scale = strokesScale();
+    const job = scale === null ? { target: { rect: [1, 1] } } : { scale, target: { rect: [1, 1] } };
+    const result = await request("strokesSynthesize", { width: side, height: side, job });
     drawStrokes($("strokes-output"), result.strokes, [0, 0, side, side]);
     window.motifTimings.strokes.push({ kind: "synthesis", engine_ms: result.milliseconds });
     info("strokes", `${result.report.output_elements} elements synthesized in ${result.milliseconds.toFixed(0)} ms`);

@@ -321,7 +321,9 @@ def main():
         ]
         driver.save_screenshot(str(shots / "3-points-brushed.png"))
 
-        # Strokes: move the scale slider (the analysis follows), then synthesize.
+        # Strokes: the first analysis is at the ε inferred from the reference; move the scale
+        # slider (the analysis follows), then synthesize.
+        wait_for(driver, "return /\\(inferred\\)/.test(document.getElementById('strokes-info').textContent)", 30, "the analysis at the inferred scale")
         before = canvas_state(driver, "strokes-output")
         count = len(timings(driver, "strokes"))
         slider = driver.find_element(By.ID, "strokes-scale")

@@ -484,7 +484,7 @@ def points(
 
 def strokes(
     reference_svg: str,
-    scale: float,
+    scale: Optional[float] = None,
     *,
     rect: Optional[Tuple[float, float]] = None,
     along: Optional[ArrayLike] = None,
@@ -500,6 +500,10 @@ def strokes(
 ) -> Any:
     """Grows the stroke pattern of ``reference_svg`` (SVG text) at scale ε = ``scale`` inside
     ``rect=(W, H)``, along a polyline ``along`` or inside a polygon ``region`` (``motif strokes``).
+
+    ``scale`` left out (or None) is inferred from the reference, as ``motif strokes`` without
+    ``--scale`` does; the report (``report=True``) gives the ε used as ``scale``, with
+    ``scale_inferred`` and ``scale_inference`` (method, and the joining distances below and above).
 
     ``density_map`` and ``scale_map`` are uint8 images (H×W grey or H×W×C) stretched over a
     region target's bounding box, as ``--density-map`` and ``--scale-map``: darkness is the
@@ -524,7 +528,10 @@ def strokes(
         target = {given[0]: outline.tolist()}
         extent = (float(outline[:, 0].max()), float(outline[:, 1].max()))
     document = tuple(float(v) for v in (size if size is not None else extent))
-    job = _job("strokes", {"scale": float(scale), "target": target, "seed": _seed(seed)}, options)
+    fixed: Dict[str, Any] = {"target": target, "seed": _seed(seed)}
+    if scale is not None:
+        fixed["scale"] = float(scale)
+    job = _job("strokes", fixed, options)
     maps = [None if m is None else _image(m, name) for m, name in ((density_map, "density_map"), (scale_map, "scale_map"))]
     svg, report_text = _motif.strokes(reference_svg, job, document, float(tolerance), threads, *maps)
     return _finish(svg, report_text, report)

@@ -110,7 +110,7 @@ def points(
 ) -> Tuple[Dict[str, np.ndarray], Dict[str, Any]]: ...
 @overload
 def strokes(
-    reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
+    reference_svg: str, scale: Optional[float] = ..., *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
     size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
     density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,
@@ -118,7 +118,7 @@ def strokes(
 ) -> str: ...
 @overload
 def strokes(
-    reference_svg: str, scale: float, *, rect: Optional[Tuple[float, float]] = ...,
+    reference_svg: str, scale: Optional[float] = ..., *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
     size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
     density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,

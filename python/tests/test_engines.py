@@ -121,6 +121,20 @@ def test_strokes_equal_the_cli(cli, tmp_path):
     assert report["output_elements"] >= 1
 
 
+def test_strokes_infer_the_scale_as_the_cli(cli, tmp_path):
+    reference = (ROOT / "data" / "real" / "strokes" / "cactus_spines_cropped.svg").read_text()
+    (tmp_path / "reference.svg").write_text(reference)
+    cli(["strokes", "--reference", "reference.svg", "--rect", "460,460", "--out", "out.svg"], tmp_path)
+    svg, report = motif.strokes(reference, rect=(460, 460), report=True)
+    assert svg == (tmp_path / "out.svg").read_text()
+    assert report["scale_inferred"] is True and report["scale_inference"]["method"] == "gap"
+    assert report["scale_inference"]["below"] < report["scale"] < report["scale_inference"]["above"]
+    assert report["reference_elements"] == 57
+    given = motif.strokes(reference, 6, rect=(460, 460), report=True)[1]
+    assert (given["scale"], given["scale_inferred"], given["scale_inference"]) == (6, False, None)
+    assert motif.strokes(reference, None, rect=(460, 460)) == svg
+
+
 def test_a_call_releases_the_gil(photo):
     exemplar = np.ascontiguousarray(photo[:64, :64, :3])
     ticks = []

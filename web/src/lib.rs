@@ -343,11 +343,15 @@ impl StrokesPanel {
         strokes_json(&self.reference).to_string()
     }
 
-    /// The analysis at scale ε: per element its strokes and oriented box corners, as JSON, and
-    /// the time it took.
-    pub fn analyse(&self, scale: f64) -> Result<String, JsError> {
+    /// The analysis at scale ε (`undefined` or `null`: inferred from the reference, as a strokes
+    /// job without `scale`): per element its strokes and oriented box corners, as JSON, with the ε
+    /// used (`scale`, `scale_inferred`) and the time it took.
+    pub fn analyse(&self, scale: Option<f64>) -> Result<String, JsError> {
         let start = web_time::Instant::now();
-        let params = motif_strokes::Params::default().with_scale(scale);
+        let job = StrokesJob::new(scale, TargetSpec::Rect([1.0, 1.0]));
+        let mut params = job.params().map_err(error)?;
+        let used = job.scale_for(&self.reference, &params);
+        params.scale = used.value;
         let analysis = motif_strokes::analyse(&self.reference, &params, false).map_err(error)?;
         let elements: Vec<serde_json::Value> = analysis
             .elements
@@ -357,11 +361,18 @@ impl StrokesPanel {
                 serde_json::json!({ "strokes": element.strokes, "corners": corners })
             })
             .collect();
-        Ok(serde_json::json!({ "elements": elements, "milliseconds": elapsed_ms(start) }).to_string())
+        Ok(serde_json::json!({
+            "elements": elements,
+            "scale": used.value,
+            "scale_inferred": used.is_inferred(),
+            "milliseconds": elapsed_ms(start),
+        })
+        .to_string())
     }
 
     /// Synthesizes inside the rectangle (0, 0)–(`width`, `height`) with the job `job` (JSON with
-    /// `scale` and any `motif strokes` option); returns the strokes as JSON with the report.
+    /// any `motif strokes` option, and `scale` unless it is to be inferred); returns the strokes as
+    /// JSON with the report.
     pub fn synthesize(&self, width: f64, height: f64, job: &str) -> Result<String, JsError> {
         let start = web_time::Instant::now();
         let mut job: StrokesJob = serde_json::from_str(job).map_err(|e| error(format!("strokes options: {e}")))?;

@@ -105,6 +105,37 @@ fn hatching_along_a_curve_writes_svg_png_analysis_and_report() {
     }
 }
 
+/// Without `--scale` ε is inferred from the reference (between the overlapping strokes of a hatch
+/// and the 8 units between hatches), and the summary, the report and the analysis drawing say so;
+/// a given `--scale` wins.
+#[test]
+fn the_scale_is_inferred_when_not_given() {
+    let dir = setup();
+    let run = |scale: &[&str]| {
+        let mut args = vec!["--report", "report.json", "strokes", "--reference", "hatch.svg", "--along", "curve.svg"];
+        args.extend_from_slice(scale);
+        args.extend_from_slice(&["--analysis", "analysis.svg", "--out", "out.svg"]);
+        let output = motif(dir.path(), &args);
+        assert!(output.status.success(), "{}", stderr(&output));
+        let text = std::fs::read_to_string(dir.path().join("report.json")).unwrap();
+        let analysis = std::fs::read_to_string(dir.path().join("analysis.svg")).unwrap();
+        (stderr(&output), serde_json::from_str::<serde_json::Value>(&text).unwrap(), analysis)
+    };
+    let (summary, report, analysis) = run(&[]);
+    assert_eq!(report["reference_elements"], 20, "{report}");
+    assert_eq!(report["scale_inferred"], true, "{report}");
+    let scale = report["scale"].as_f64().unwrap();
+    assert!(scale > 1.0 && scale < 8.0, "{report}");
+    let inference = &report["scale_inference"];
+    assert_eq!(inference["method"], "gap", "{report}");
+    assert!(inference["below"].as_f64().unwrap() < scale && scale < inference["above"].as_f64().unwrap());
+    assert!(summary.contains("(inferred)") && summary.contains("ε"), "{summary}");
+    assert!(analysis.contains("(inferred)"), "the analysis drawing names how ε was chosen");
+    let (summary, report, _) = run(&["--scale", "3"]);
+    assert_eq!((&report["scale"], &report["scale_inferred"]), (&serde_json::json!(3.0), &serde_json::json!(false)));
+    assert!(report["scale_inference"].is_null() && summary.contains("ε 3 (given)"), "{summary}");
+}
+
 #[test]
 fn same_seed_gives_identical_bytes_for_any_thread_count() {
     let dir = setup();

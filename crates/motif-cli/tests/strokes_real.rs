@@ -1,20 +1,26 @@
 //! `motif strokes` on the real-data corpus (`data/real/strokes/`, nine public-domain drawings)
 //! through `motif bench --engine strokes --case corpus`: counts, overlaps against the reference's
-//! rate, border fragments, and spacing against reference elements placed at random.
+//! rate, border fragments, and spacing against reference elements placed at random; and
+//! (`--case scale`) the element counts at the ε inferred from each drawing.
 
 use std::process::Command;
 
-fn corpus_figures(seed: &str) -> serde_json::Map<String, serde_json::Value> {
+/// The figures of `motif bench --engine strokes --case <group>` for the group's cases.
+fn group_figures(group: &str, seed: &str) -> serde_json::Map<String, serde_json::Value> {
     let dir = tempfile::tempdir().unwrap();
     let output = Command::new(env!("CARGO_BIN_EXE_motif"))
         .current_dir(dir.path())
-        .args(["bench", "--engine", "strokes", "--case", "corpus", "--seed", seed, "--out", "b.json"])
+        .args(["bench", "--engine", "strokes", "--case", group, "--seed", seed, "--out", "b.json"])
         .output()
         .unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let value: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("b.json")).unwrap()).unwrap();
-    value["engines"]["strokes"]["corpus"].as_object().unwrap().clone()
+    value["engines"]["strokes"][group].as_object().unwrap().clone()
+}
+
+fn corpus_figures(seed: &str) -> serde_json::Map<String, serde_json::Value> {
+    group_figures("corpus", seed)
 }
 
 fn number(value: &serde_json::Value) -> f64 {
@@ -56,4 +62,31 @@ fn real_drawings_keep_their_count_overlap_and_spacing() {
         let cropped = &cases["cactus_spines_cropped"];
         assert!(number(&cropped["fragment_elements"]) >= 5.0, "{cropped}");
     }
+}
+
+/// The ε inferred from each real drawing (no `--scale`) finds the elements a person counts: more
+/// than one, at most one per stroke, within a quarter of the person's count on 7 of the 9
+/// drawings (not on the elephant's sketchy hatching, whose joining distances have no clear gap,
+/// nor on the tangram, whose pieces it takes for elements), and on the README's cactus exactly the
+/// elements of the hand-picked ε 6.
+#[test]
+fn inferred_scales_find_the_elements_of_real_drawings() {
+    let cases = group_figures("scale", "1");
+    assert!(cases.len() >= 9, "{:?}", cases.keys());
+    let mut close = Vec::new();
+    for (name, case) in &cases {
+        let (scale, elements) = (number(&case["inferred_scale"]), number(&case["inferred_elements"]));
+        assert!(scale.is_finite() && scale > 0.0, "{name}: {case}");
+        assert!(elements > 1.0 && elements <= number(&case["strokes"]), "{name}: {case}");
+        assert_eq!(case["inference"]["method"], "gap", "{name}: {case}");
+        let inference = &case["inference"];
+        assert!(number(&inference["below"]) < scale && scale < number(&inference["above"]), "{name}: {case}");
+        let human = number(&case["human_elements"]);
+        if (elements - human).abs() <= 0.25 * human {
+            close.push(name.as_str());
+        }
+    }
+    assert!(close.len() >= 7, "{close:?}");
+    let cactus = &cases["cactus_spines_cropped"];
+    assert_eq!(cactus["inferred_elements"], cactus["hand_elements"], "{cactus}");
 }

@@ -1,6 +1,7 @@
 //! `strokes` jobs: vector stroke patterns along a path or in a region (`motif_strokes`).
 //!
-//! Field names are the flags of `motif strokes`; only the scale ε and the target are required.
+//! Field names are the flags of `motif strokes`; only the target is required. The scale ε is
+//! inferred from the reference strokes when a job leaves it out ([`motif_strokes::infer_scale`]).
 //! Every option is declared once, in [`StrokesOptions`].
 //! The reference strokes come decoded (the CLI reads them from SVG with its `--tolerance`).
 
@@ -8,7 +9,7 @@ use std::collections::BTreeMap;
 
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Point, Polygon, Polyline, Progress};
-use motif_strokes::{FitPoints, Input, Output, Params, Stroke, Target, Thresholds, ToneMap};
+use motif_strokes::{FitPoints, InferredScale, Input, Output, Params, Stroke, Target, Thresholds, ToneMap};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
@@ -139,13 +140,14 @@ impl crate::options::OptionValue for ThresholdOverrides {
     }
 }
 
-/// A strokes job: the pattern's scale ε and where it grows, the run's seed and memory bound, and
-/// every other option ([`StrokesOptions`]).
+/// A strokes job: the pattern's scale ε (or none, to infer it) and where it grows, the run's seed
+/// and memory bound, and every other option ([`StrokesOptions`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", try_from = "crate::options::Described<StrokesJobFields>")]
 pub struct StrokesJob {
-    /// ε, the pattern's scale in drawing units (> 0).
-    pub scale: f64,
+    /// ε, the pattern's scale in drawing units (> 0); `None` infers it from the reference
+    /// ([`motif_strokes::infer_scale`]).
+    pub scale: Option<f64>,
     /// Where the pattern grows.
     pub target: TargetSpec,
     /// Seed of every random choice (default 1, as on the command line).
@@ -162,7 +164,8 @@ pub struct StrokesJob {
 #[derive(Debug, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub struct StrokesJobFields {
-    scale: f64,
+    #[serde(default)]
+    scale: Option<f64>,
     target: TargetSpec,
     #[serde(default = "default_seed")]
     seed: u64,
@@ -189,23 +192,26 @@ impl TryFrom<crate::options::Described<StrokesJobFields>> for StrokesJob {
 pub struct StrokesRun {
     /// The engine's output (strokes, elements, analysis and its `Report`).
     pub output: Output,
+    /// The ε the run used: the job's, or the one inferred from the reference.
+    pub scale: RunScale,
     /// The report's figures as one JSON object, the keys every front end writes.
     pub figures: Map<String, Value>,
 }
 
 impl StrokesJob {
-    /// A job with every option at its default.
-    pub fn new(scale: f64, target: TargetSpec) -> Self {
+    /// A job with every option at its default, at scale ε = `scale` (`None`: inferred).
+    pub fn new(scale: Option<f64>, target: TargetSpec) -> Self {
         Self { scale, target, seed: default_seed(), max_memory: None, options: StrokesOptions::default() }
     }
 
-    /// The engine's parameters.
+    /// The engine's parameters, with the job's ε (the engine's default stands in for an ε left to
+    /// be inferred: [`StrokesJob::scale_for`] gives the run's).
     pub fn params(&self) -> Result<Params, JobError> {
         use crate::options::Declared;
         let options = &self.options;
         options.check_ranges()?;
         let params = Params::DEFAULT
-            .with_scale(self.scale)
+            .with_scale(self.scale.unwrap_or(DEFAULTS.scale))
             .with_fit(options.fit)
             .with_rings(options.rings)
             .with_thresholds(options.thresholds.applied_to(DEFAULTS.thresholds))
@@ -217,6 +223,17 @@ impl StrokesJob {
             .with_seed(self.seed);
         params.validate()?;
         Ok(params)
+    }
+
+    /// The ε of a run on `reference` with `params`: the job's, or inferred from the strokes.
+    pub fn scale_for(&self, reference: &[Stroke], params: &Params) -> RunScale {
+        match self.scale {
+            Some(value) => RunScale { value, inferred: None },
+            None => {
+                let inferred = motif_strokes::infer_scale(reference, params);
+                RunScale { value: inferred.value, inferred: Some(inferred) }
+            }
+        }
     }
 
     /// The engine's target.
@@ -254,6 +271,22 @@ impl StrokesJob {
     }
 }
 
+/// The ε a strokes run used.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunScale {
+    /// ε in drawing units.
+    pub value: f64,
+    /// How it was inferred, when the job gave none.
+    pub inferred: Option<InferredScale>,
+}
+
+impl RunScale {
+    /// True when ε was inferred from the reference.
+    pub fn is_inferred(&self) -> bool {
+        self.inferred.is_some()
+    }
+}
+
 /// The decoded inputs of a strokes job.
 #[derive(Debug, Clone)]
 pub struct StrokesInputs {
@@ -283,12 +316,15 @@ impl crate::Job for StrokesJob {
     type Run = StrokesRun;
 
     fn run(&self, inputs: StrokesInputs, progress: &mut dyn Progress) -> Result<StrokesRun, JobError> {
-        let params = self.params()?;
+        let mut params = self.params()?;
         let StrokesInputs { reference, density_map, scale_map } = inputs;
-        let input = Input { density_map, scale_map, ..Input::new(reference, self.engine_target()?) };
+        let target = self.engine_target()?;
+        let scale = self.scale_for(&reference, &params);
+        params.scale = scale.value;
+        let input = Input { density_map, scale_map, ..Input::new(reference, target) };
         let output = motif_strokes::synthesize(&input, &params, progress)?;
-        let figures = figures(&output.report);
-        Ok(StrokesRun { output, figures })
+        let figures = figures(&output.report, &scale);
+        Ok(StrokesRun { output, scale, figures })
     }
 }
 
@@ -298,10 +334,15 @@ impl crate::Finished for StrokesRun {
     }
 }
 
-/// The figures of a strokes run under the keys of `motif strokes --report`.
-pub fn figures(report: &motif_strokes::Report) -> Map<String, Value> {
+/// The figures of a strokes run under the keys of `motif strokes --report`: ε (`scale`, with
+/// `scale_inferred` and, when inferred, `scale_inference`: the merge heights around it) and the
+/// engine's report.
+pub fn figures(report: &motif_strokes::Report, scale: &RunScale) -> Map<String, Value> {
     let value = json!({
         "command": "strokes",
+        "scale": scale.value,
+        "scale_inferred": scale.is_inferred(),
+        "scale_inference": scale.inferred,
         "estimated_memory_bytes": report.estimated_memory_bytes,
         "reference_strokes": report.reference_strokes,
         "reference_elements": report.reference_elements,
@@ -355,8 +396,29 @@ mod tests {
     }
 
     #[test]
+    fn a_job_without_a_scale_infers_it_and_a_given_one_wins() {
+        let row = HatchRow { count: 12, ..HatchRow::default() };
+        let strokes = hatch_row(&row, Point::new(10.0, 30.0), |_| 0.0, |_| [20, 20, 20, 255], 1);
+        let job: StrokesJob = serde_json::from_value(json!({ "target": { "rect": [200, 120] } })).unwrap();
+        assert_eq!(job.scale, None);
+        let run = job.run(StrokesInputs::new(strokes.clone()), &mut NoProgress).unwrap();
+        let inferred = run.scale.inferred.clone().expect("inferred");
+        assert_eq!(inferred, motif_strokes::infer_scale(&strokes, &job.params().unwrap()));
+        assert_eq!((run.scale.value, run.output.report.reference_elements), (inferred.value, 12));
+        let figures = &run.figures;
+        assert_eq!((figures["scale"].as_f64(), &figures["scale_inferred"]), (Some(inferred.value), &json!(true)));
+        assert_eq!(figures["scale_inference"]["method"], "gap");
+        assert!(figures["scale_inference"]["below"].as_f64() < figures["scale_inference"]["above"].as_f64());
+        let given = StrokesJob { scale: Some(2.5), ..job };
+        let run = given.run(StrokesInputs::new(strokes), &mut NoProgress).unwrap();
+        assert_eq!((run.scale.value, run.scale.is_inferred()), (2.5, false));
+        assert_eq!((&run.figures["scale"], &run.figures["scale_inferred"]), (&json!(2.5), &json!(false)));
+        assert!(run.figures["scale_inference"].is_null());
+    }
+
+    #[test]
     fn options_default_to_the_engines_parameters() {
-        let params = StrokesJob::new(Params::DEFAULT.scale, TargetSpec::Rect([10.0, 10.0])).params().unwrap();
+        let params = StrokesJob::new(Some(Params::DEFAULT.scale), TargetSpec::Rect([10.0, 10.0])).params().unwrap();
         assert_eq!(params, Params::DEFAULT.with_seed(1));
     }
 
@@ -385,12 +447,14 @@ mod tests {
         let unknown = bad(json!({ "scale": 5, "target": rect, "thresholds": { "colour": 0.2 } }));
         assert!(unknown.contains("colour=0.2"), "{unknown}");
         assert!(bad(json!({ "scale": 5, "target": rect, "stiffness": 1 })).contains("stiffness"));
-        let mut job = StrokesJob::new(5.0, TargetSpec::Rect([10.0, 10.0]));
+        let mut job = StrokesJob::new(Some(5.0), TargetSpec::Rect([10.0, 10.0]));
         job.options.rings = Some(6);
         assert!(job.params().unwrap_err().to_string().contains("rings"));
-        assert!(StrokesJob::new(5.0, TargetSpec::Rect([0.0, 10.0])).engine_target().is_err());
+        assert!(StrokesJob::new(Some(5.0), TargetSpec::Rect([0.0, 10.0])).engine_target().is_err());
         let crossed = TargetSpec::Region(vec![[0.0, 0.0], [10.0, 10.0], [10.0, 0.0], [0.0, 10.0]]);
-        assert!(StrokesJob::new(5.0, crossed).engine_target().unwrap_err().to_string().contains("self-intersecting"));
+        assert!(
+            StrokesJob::new(Some(5.0), crossed).engine_target().unwrap_err().to_string().contains("self-intersecting")
+        );
         let error = serde_json::from_value::<StrokesJob>(json!({ "scale": 5, "target": { "circle": 3 } })).unwrap_err();
         assert!(error.to_string().contains("circle"), "{error}");
     }

@@ -166,7 +166,7 @@ fn every_entry_names_what_its_description_holds() {
     let jobs = [
         held(&CurveJob::new(1.0, 1.0)),
         held(&PointsJob::new(1.0, DomainSpec::Box(vec![1.0, 1.0]))),
-        held(&StrokesJob::new(1.0, TargetSpec::Rect([1.0, 1.0]))),
+        held(&StrokesJob::new(Some(1.0), TargetSpec::Rect([1.0, 1.0]))),
         held(&StylizeJob::new()),
         held(&PresynthJob::new()),
         held(&TextureJob::new(1, 1)),

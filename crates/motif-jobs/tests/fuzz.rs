@@ -98,7 +98,7 @@ fn points_base() -> Value {
 }
 
 fn strokes_base() -> Value {
-    serde_json::to_value(StrokesJob::new(6.0, TargetSpec::Rect([100.0, 100.0]))).unwrap()
+    serde_json::to_value(StrokesJob::new(Some(6.0), TargetSpec::Rect([100.0, 100.0]))).unwrap()
 }
 
 fn stylize_base() -> Value {

@@ -48,31 +48,57 @@ pub fn proximity(first: &OrientedBox, second: &OrientedBox) -> f64 {
     first.directed_hausdorff(second).min(second.directed_hausdorff(first))
 }
 
+/// One axis configuration of the continuation test (§2.2.2): `other`'s largest corner offset from
+/// the line through `base`'s centre along `axis`, and the gap between the two boxes' projections
+/// on that axis (0 when they overlap).
+fn axis_configuration(base: &OrientedBox, other: &OrientedBox, axis: kurbo::Vec2) -> (f64, f64) {
+    let other_corners = other.corners();
+    let normal = perpendicular(axis);
+    let offset = other_corners.iter().map(|&q| (q - base.centre).dot(normal).abs()).fold(0.0, f64::max);
+    let range = |corners: &[motif_core::Point; 4]| {
+        corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &q| {
+            let t = (q - base.centre).dot(axis);
+            (low.min(t), high.max(t))
+        })
+    };
+    let ((a0, a1), (b0, b1)) = (range(&base.corners()), range(&other_corners));
+    (offset, (a0.max(b0) - a1.min(b1)).max(0.0))
+}
+
+/// The four axis configurations (A and B of either element) of the continuation test.
+fn axis_configurations(first: &OrientedBox, second: &OrientedBox) -> [(f64, f64); 4] {
+    [
+        axis_configuration(first, second, first.axis),
+        axis_configuration(first, second, first.secondary_axis()),
+        axis_configuration(second, first, second.axis),
+        axis_configuration(second, first, second.secondary_axis()),
+    ]
+}
+
 /// Continuation (§2.2.2): for each of the four axes (A and B of either element), the other
 /// element is near-collinear when all its corners lie within ε/2 of the axis line through the
 /// element's centre; the continuation error is then the gap between the two boxes' projections on
 /// the axis. Returns the smallest error over the near-collinear configurations (infinity if none).
 pub fn continuation(first: &OrientedBox, second: &OrientedBox, scale: f64) -> f64 {
-    let mut best = f64::INFINITY;
-    for (base, other) in [(first, second), (second, first)] {
-        let (base_corners, other_corners) = (base.corners(), other.corners());
-        for axis in [base.axis, base.secondary_axis()] {
-            let normal = perpendicular(axis);
-            let collinear = other_corners.iter().all(|&q| (q - base.centre).dot(normal).abs() < 0.5 * scale);
-            if !collinear {
-                continue;
-            }
-            let range = |corners: &[motif_core::Point; 4]| {
-                corners.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &q| {
-                    let t = (q - base.centre).dot(axis);
-                    (low.min(t), high.max(t))
-                })
-            };
-            let ((a0, a1), (b0, b1)) = (range(&base_corners), range(&other_corners));
-            best = best.min((a0.max(b0) - a1.min(b1)).max(0.0));
-        }
-    }
-    best
+    axis_configurations(first, second)
+        .into_iter()
+        .filter(|&(offset, _)| offset < 0.5 * scale)
+        .fold(f64::INFINITY, |best, (_, gap)| best.min(gap))
+}
+
+/// The smallest ε at which the continuation test of [`continuation`] passes: over the four axis
+/// configurations, the larger of twice the other element's offset from the axis line (it must be
+/// within ε/2) and the gap between the projections (it must be below ε).
+pub fn continuation_height(first: &OrientedBox, second: &OrientedBox) -> f64 {
+    axis_configurations(first, second)
+        .into_iter()
+        .fold(f64::INFINITY, |best, (offset, gap)| best.min((2.0 * offset).max(gap)))
+}
+
+/// The smallest ε at which the pair test of §2.2 (`should_merge`) joins two elements (it joins
+/// them at every ε above): the smaller of their proximity and their `continuation_height`.
+pub fn merge_height(first: &OrientedBox, second: &OrientedBox) -> f64 {
+    proximity(first, second).min(continuation_height(first, second))
 }
 
 /// The element pair test of §2.2: proximity or continuation below ε.
@@ -371,6 +397,30 @@ mod tests {
             let mut all: Vec<usize> = elements.iter().flat_map(|e| e.strokes.clone()).collect();
             all.sort_unstable();
             assert_eq!(all, (0..60).collect::<Vec<_>>());
+        }
+    }
+
+    #[test]
+    fn the_merge_height_is_where_the_pair_test_starts_to_pass() {
+        let streams = SeedStreams::new(5);
+        let mut random = streams.stream("boxes", 0);
+        let mut boxes = Vec::new();
+        for _ in 0..40 {
+            let angle: f64 = random.random_range(0.0..std::f64::consts::PI);
+            boxes.push(OrientedBox {
+                centre: Point::new(random.random_range(0.0..60.0), random.random_range(0.0..60.0)),
+                axis: kurbo::Vec2::new(math::cos(angle), math::sin(angle)),
+                length: random.random_range(1.0..20.0),
+                thickness: random.random_range(0.0..4.0),
+            });
+        }
+        for (i, first) in boxes.iter().enumerate() {
+            for second in &boxes[i + 1..] {
+                let height = merge_height(first, second);
+                assert!(height.is_finite() && height >= 0.0, "{first:?} {second:?}: {height}");
+                assert!(should_merge(first, second, height * 1.001 + 1e-9), "{first:?} {second:?} above {height}");
+                assert!(!should_merge(first, second, height * 0.999), "{first:?} {second:?} below {height}");
+            }
         }
     }
 }

@@ -11,6 +11,8 @@
 //! - `element`: oriented bounding boxes from the covariance of skeleton or contour points, and
 //!   box Hausdorff distances (§2.1).
 //! - `cluster`: the greedy clustering queue with the proximity and continuation tests (§2.2).
+//! - `scale`: ε inferred from the reference when none is given ([`infer_scale`]; the paper has
+//!   the user choose it): the widest gap between the heights at which strokes join under §2.2.
 //! - `distribution`: chain and unskewed-Delaunay neighbour graphs, k-rings, shift vectors (§2.3).
 //! - `analysis`: the whole analysis of a reference (§2).
 //! - `border`: elements touching the reference's frame, not copied when enough lie inside (pieces
@@ -30,7 +32,7 @@
 //!   `fidelity`; everything else is re-exported flat below).
 //!
 //! The entry point is [`synthesize`]; [`analyse`] runs the analysis alone (for interactive tuning
-//! of ε). The crate does no I/O and builds for `wasm32`.
+//! of ε), [`infer_scale`] proposes ε. The crate does no I/O and builds for `wasm32`.
 //!
 //! ```
 //! use motif_core::{NoProgress, Point, Polyline};
@@ -64,6 +66,7 @@ mod overlap;
 mod params;
 mod placement;
 pub mod samples;
+mod scale;
 mod seeds;
 mod stroke;
 mod synthesis;
@@ -78,12 +81,13 @@ use serde::Serialize;
 
 pub use analysis::{Analysis, analyse};
 pub use attributes::{Appearance, Attributes};
-pub use cluster::{ClusteringComparison, Element, compare_clustering};
+pub use cluster::{ClusteringComparison, Element, compare_clustering, merge_height};
 pub use element::OrientedBox;
 pub use error::Error;
 pub use motif_core::ToneMap;
 pub use params::{FitPoints, Params, Thresholds};
 pub use placement::OverlapFigures;
+pub use scale::{InferredScale, MIN_ELEMENTS, NEIGHBOURS, ScaleMethod, TOUCHING_FRACTION, infer_scale, merge_heights};
 pub use stroke::Stroke;
 pub use variation::Exchange;
 

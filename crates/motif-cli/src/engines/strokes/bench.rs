@@ -42,7 +42,8 @@ fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
 }
 
 /// `motif bench` figures: the real-data corpus (`--case corpus` or case names; see
-/// [`super::corpus`]), and the generated cases (`--case generated`): a 60-element 1D hatching
+/// [`super::corpus`]), the ε inferred from each corpus drawing (`--case scale` or case names), and
+/// the generated cases (`--case generated`): a 60-element 1D hatching
 /// reference along a path 10× its length, a 120-element 2D reference of three-stroke figures in a
 /// region 10× its area (all stages, median of several runs), and the clustering speed-up of the
 /// R-tree queue over the paper's full scan.
@@ -50,7 +51,12 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let mut all = serde_json::Map::new();
     if !bench.quick {
         let corpus = super::corpus::bench(bench.seed, &|name| bench.selects(name, "corpus"))?;
-        all.insert("corpus".into(), corpus);
+        let scale = super::corpus::scale_bench(&|name| bench.selects(name, "scale"))?;
+        for (group, figures) in [("corpus", corpus), ("scale", scale)] {
+            if figures.as_object().is_some_and(|cases| !cases.is_empty()) {
+                all.insert(group.into(), figures);
+            }
+        }
     }
     if bench.selects("generated", "generated") {
         all.extend(generated(bench)?.as_object().cloned().unwrap_or_default());

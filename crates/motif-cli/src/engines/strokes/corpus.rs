@@ -2,7 +2,8 @@
 //! the time, the element count against the expected one, and the fidelity figures (size, spacing
 //! and orientation distances, overlap rate; `motif_strokes::fidelity`) of the output next to
 //! those of a tiled copy of the reference and of reference elements placed at random, and the
-//! same run with overlaps allowed and with position variation.
+//! same run with overlaps allowed and with position variation; and (`--case scale`) the ε
+//! inferred from each drawing against the hand-picked one.
 
 use std::path::Path;
 
@@ -25,6 +26,8 @@ pub struct CorpusCase {
     pub scale: f64,
     /// The target rectangle (0, 0)–(W, H).
     pub rect: [f64; 2],
+    /// Elements a person counts in the drawing.
+    pub elements_expected: usize,
 }
 
 fn figures(f: &Fidelity) -> Value {
@@ -101,6 +104,42 @@ pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value
     for case in &cases {
         if selected(&case.name) {
             all.insert(case.name.clone(), run_case(&folder, case, seed)?);
+        }
+    }
+    Ok(Value::Object(all))
+}
+
+/// Elements the analysis finds in `strokes` at ε = `scale`.
+fn elements_at(strokes: &[motif_strokes::Stroke], scale: f64) -> anyhow::Result<usize> {
+    Ok(motif_strokes::analyse(strokes, &Params::default().with_scale(scale), false)?.elements.len())
+}
+
+/// The inferred ε of one case against its hand-picked one (`scale` in `cases.json`), with the
+/// element counts of both and the count a person makes.
+pub fn scale_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
+    let document = motif_io::read_svg(&folder.join(&case.file))?;
+    let strokes = strokes_of(&document, 0.1)?;
+    let params = Params::default();
+    let inferred = motif_strokes::infer_scale(&strokes, &params);
+    Ok(json!({
+        "strokes": strokes.len(),
+        "human_elements": case.elements_expected,
+        "hand_scale": case.scale,
+        "hand_elements": elements_at(&strokes, case.scale)?,
+        "inferred_scale": inferred.value,
+        "inferred_elements": elements_at(&strokes, inferred.value)?,
+        "inference": inferred,
+    }))
+}
+
+/// [`scale_case`] for every case `selected` accepts.
+pub fn scale_bench(selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+    let folder = corpus_folder("strokes");
+    let cases: Vec<CorpusCase> = read_cases(&folder)?;
+    let mut all = serde_json::Map::new();
+    for case in &cases {
+        if selected(&case.name) {
+            all.insert(case.name.clone(), scale_case(&folder, case)?);
         }
     }
     Ok(Value::Object(all))

@@ -13,7 +13,7 @@ use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::{SvgDocument, SvgWriter};
 use motif_jobs::Job;
-use motif_jobs::strokes::{StrokesInputs, StrokesJob, StrokesOptions, TargetSpec};
+use motif_jobs::strokes::{RunScale, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, TargetSpec};
 use motif_strokes::{Analysis, Output, Stroke, Target, ToneMap};
 
 use crate::context::Context;
@@ -29,10 +29,11 @@ pub struct StrokesArgs {
     #[arg(long, value_name = "REF.svg")]
     pub reference: PathBuf,
     /// ε, the pattern's scale in drawing units: strokes closer than this (or continuing each other
-    /// within it) form one element. Must be > 0; start near the gap between elements and tune it
-    /// with --analysis.
+    /// within it) form one element. Must be > 0. Default: inferred from the reference, in the
+    /// widest gap between the distances at which its strokes join (the summary and the report
+    /// give it); check it with --analysis and give it to override.
     #[arg(long = "scale", value_name = "EPS", allow_negative_numbers = true)]
-    pub scale: f64,
+    pub scale: Option<f64>,
     /// Synthesize a 1D pattern along the first path of this SVG (its first subpath).
     #[arg(long, value_name = "PATH.svg")]
     pub along: Option<PathBuf>,
@@ -200,7 +201,8 @@ fn cluster_colour(index: usize) -> [u8; 4] {
 }
 
 /// The analysed reference as SVG: strokes in cluster colours, element boxes, neighbour graph.
-pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height: f64, scale: f64) -> String {
+/// `scale` is ε as the label shows it.
+pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height: f64, scale: &str) -> String {
     let mut writer = SvgWriter::new(width, height);
     let thin = (0.01 * width.max(height)).clamp(0.3, 1.0);
     writer.begin_group("graph");
@@ -235,6 +237,37 @@ pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height:
     );
     writer.text(Point::new(4.0, 4.0 + 3.0 * thin.max(3.0)), 3.0 * thin.max(3.0), [40, 40, 40, 255], &label);
     writer.finish()
+}
+
+/// `value` to three significant figures (an inferred ε in the summary: 6.24, 0.512, 112).
+fn three_figures(value: f64) -> String {
+    let decimals = (2 - value.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    format!("{value:.decimals$}")
+}
+
+/// The run's ε as the summary and the analysis drawing show it: `6 (given)`, `6.99 (inferred)`.
+fn shown_scale(scale: &RunScale) -> String {
+    match scale.inferred {
+        Some(_) => format!("{} (inferred)", three_figures(scale.value)),
+        None => format!("{} (given)", motif_core::error::number(scale.value)),
+    }
+}
+
+/// The one-line summary of a run written to `out`.
+fn summary(run: &StrokesRun, out: &Path) -> String {
+    let report = &run.output.report;
+    format!(
+        "motif strokes: ε {}; {} reference strokes → {} elements ({} cut by the frame, not copied); {} output elements ({} matched within thresholds, {} fell back, {} removed to avoid overlaps) → {}",
+        shown_scale(&run.scale),
+        report.reference_strokes,
+        report.reference_elements,
+        report.fragment_elements,
+        report.output_elements,
+        report.matched_elements,
+        report.fallback_elements,
+        report.overlap.removed,
+        out.display()
+    )
 }
 
 /// Runs `motif strokes`.
@@ -272,8 +305,8 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     let run = job
         .run(StrokesInputs { reference: strokes, density_map, scale_map }, context.progress())
         .with_context(|| format!("cannot synthesize from {}", args.reference.display()))?;
-    let output = run.output;
-    let svg = output_svg(&output, width, height);
+    let output = &run.output;
+    let svg = output_svg(output, width, height);
     motif_io::write_text(&args.out, &svg)?;
     if let Some(png) = &args.png {
         context.check_render(output.report.estimated_memory_bytes, &svg, args.png_scale)?;
@@ -281,22 +314,12 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_io::write_png(png, &image)?;
     }
     if let (Some(path), Some(strokes)) = (&args.analysis, &shown_strokes) {
-        let text = analysis_svg(&output.analysis, strokes, reference.width, reference.height, args.scale);
+        let scale = shown_scale(&run.scale);
+        let text = analysis_svg(&output.analysis, strokes, reference.width, reference.height, &scale);
         motif_io::write_text(path, &text)?;
     }
+    context.summary(&summary(&run, &args.out));
     context.job_figures(run.figures);
-    let report = &output.report;
-    context.summary(&format!(
-        "motif strokes: {} reference strokes → {} elements ({} cut by the frame, not copied); {} output elements ({} matched within thresholds, {} fell back, {} removed to avoid overlaps) → {}",
-        report.reference_strokes,
-        report.reference_elements,
-        report.fragment_elements,
-        report.output_elements,
-        report.matched_elements,
-        report.fallback_elements,
-        report.overlap.removed,
-        args.out.display()
-    ));
     Ok(())
 }
 
