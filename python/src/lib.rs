@@ -490,37 +490,12 @@ fn strokes(
     let density_map = tone_map(density_map, "density_map")?;
     let scale_map = tone_map(scale_map, "scale_map")?;
     let job: motif_jobs::strokes::StrokesJob = description(job)?;
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(value_error(format!("invalid tolerance = {tolerance}: must be a finite number > 0")));
-    }
     let document = motif_io::parse_svg(reference_svg, std::path::Path::new("reference_svg")).map_err(value_error)?;
-    let mut reference = Vec::new();
-    for path in &document.paths {
-        let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
-        let pieces =
-            motif_strokes::Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
-                .map_err(|error| value_error(format!("reference_svg: path `{}`: {error}", path.id)))?;
-        reference.extend(pieces.into_iter().filter(motif_strokes::Stroke::is_visible));
-    }
-    if reference.is_empty() {
-        return Err(value_error("reference_svg: no stroked or filled path with a length > 0"));
-    }
+    let reference = motif_jobs::strokes::reference_from_svg(&document, tolerance).map_err(job_error)?;
     let inputs = motif_jobs::strokes::StrokesInputs { reference, density_map, scale_map };
     let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
-    let mut writer = motif_io::SvgWriter::new(size.0, size.1);
-    writer.begin_group("strokes");
-    for stroke in &run.output.strokes {
-        let line = (stroke.width > 0.0).then_some(motif_io::StrokePaint { width: stroke.width, colour: stroke.colour });
-        writer.dashed_polyline(
-            stroke.polyline.points(),
-            stroke.polyline.is_closed(),
-            line,
-            stroke.fill,
-            stroke.dash.as_deref().unwrap_or_default(),
-        );
-    }
-    writer.end_group();
-    Ok((writer.finish(), report_json(&run.figures)))
+    let svg = motif_jobs::strokes::strokes_svg(&run.output.strokes, size.0, size.1, Some("strokes"));
+    Ok((svg, report_json(&run.figures)))
 }
 
 /// Every name (flag name) a job's description holds, its fields then its options, from

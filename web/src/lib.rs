@@ -5,11 +5,10 @@
 
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_jobs::Job;
-use motif_jobs::curve::{CurveInputs, CurveJob};
-use motif_jobs::points::{DomainSpec, PointsInputs, PointsJob, StrokeSpec};
-use motif_jobs::strokes::{StrokesInputs, StrokesJob, TargetSpec};
+use motif_jobs::curve::{CurveInputs, CurveJob, Incremental};
+use motif_jobs::points::{DomainSpec, PointSet, PointsInputs, PointsJob, StrokeSpec};
+use motif_jobs::strokes::{Stroke, StrokesInputs, StrokesJob, TargetSpec, strokes_from_json, strokes_to_json};
 use motif_jobs::stylize::{PresynthInputs, PresynthJob, StylizeInputs, StylizeJob};
-use motif_points::PointSet;
 use wasm_bindgen::prelude::*;
 
 fn error(message: impl std::fmt::Display) -> JsError {
@@ -112,7 +111,7 @@ fn polyline(points: &[f64], what: &str) -> Result<Polyline, JsError> {
 #[wasm_bindgen]
 pub struct CurvePanel {
     exemplar: RgbaImage,
-    session: motif_curve::Incremental,
+    session: Incremental,
 }
 
 #[wasm_bindgen]
@@ -127,7 +126,7 @@ impl CurvePanel {
                  background (a PNG with alpha)",
             ));
         }
-        Ok(CurvePanel { exemplar, session: motif_curve::Incremental::new() })
+        Ok(CurvePanel { exemplar, session: Incremental::new() })
     }
 
     /// Synthesizes along the polyline `points` (x0, y0, x1, y1, ...) with the job `job`
@@ -239,26 +238,7 @@ impl PointsResult {
 /// The strokes panel: a built-in reference drawing, its analysis at any scale, and synthesis.
 #[wasm_bindgen]
 pub struct StrokesPanel {
-    reference: Vec<motif_strokes::Stroke>,
-}
-
-fn strokes_json(strokes: &[motif_strokes::Stroke]) -> serde_json::Value {
-    serde_json::Value::Array(
-        strokes
-            .iter()
-            .map(|stroke| {
-                let points: Vec<[f64; 2]> = stroke.polyline.points().iter().map(|p| [p.x, p.y]).collect();
-                serde_json::json!({
-                    "points": points,
-                    "closed": stroke.polyline.is_closed(),
-                    "width": stroke.width,
-                    "colour": stroke.colour,
-                    "fill": stroke.fill,
-                    "dash": stroke.dash,
-                })
-            })
-            .collect(),
-    )
+    reference: Vec<Stroke>,
 }
 
 #[wasm_bindgen]
@@ -290,57 +270,13 @@ impl StrokesPanel {
     /// A panel on your own reference: strokes as JSON (`[{points: [[x, y], ...], closed, width,
     /// colour: [r, g, b, a], fill: [r, g, b, a] | null}]`), as the page samples them from an SVG.
     pub fn from_strokes(strokes: &str) -> Result<StrokesPanel, JsError> {
-        let value: serde_json::Value =
-            serde_json::from_str(strokes).map_err(|e| error(format!("reference strokes: {e}")))?;
-        let list = value.as_array().ok_or_else(|| error("reference strokes: expected a list"))?;
-        let colour = |value: &serde_json::Value| -> Option<[u8; 4]> {
-            let parts = value.as_array()?;
-            let mut out = [0u8; 4];
-            for (slot, part) in out.iter_mut().zip(parts) {
-                *slot = part.as_f64()?.clamp(0.0, 255.0) as u8;
-            }
-            (parts.len() == 4).then_some(out)
-        };
-        let mut reference = Vec::new();
-        for (index, item) in list.iter().enumerate() {
-            let points: Vec<Point> = item["points"]
-                .as_array()
-                .map(|points| {
-                    points.iter().filter_map(|p| Some(Point::new(p.get(0)?.as_f64()?, p.get(1)?.as_f64()?))).collect()
-                })
-                .unwrap_or_default();
-            let closed = item["closed"].as_bool().unwrap_or(false);
-            let Ok(polyline) = Polyline::new(points, closed) else { continue };
-            let width = item["width"].as_f64().unwrap_or(1.0);
-            if !(width.is_finite() && width >= 0.0) {
-                return Err(error(format!("reference stroke {}: width {width}", index + 1)));
-            }
-            let stroke = motif_strokes::Stroke {
-                polyline,
-                width,
-                colour: colour(&item["colour"]).unwrap_or([0, 0, 0, 255]),
-                fill: colour(&item["fill"]),
-                // Like an SVG dash array: finite lengths ≥ 0, solid when none is positive.
-                dash: item["dash"]
-                    .as_array()
-                    .map(|lengths| lengths.iter().filter_map(|l| l.as_f64()).collect::<Vec<f64>>())
-                    .filter(|lengths| {
-                        lengths.iter().all(|l| l.is_finite() && *l >= 0.0) && lengths.iter().any(|&l| l > 0.0)
-                    }),
-            };
-            if stroke.is_visible() {
-                reference.push(stroke);
-            }
-        }
-        if reference.is_empty() {
-            return Err(error("the drawing has no stroked or filled path with a length > 0"));
-        }
+        let reference = strokes_from_json(strokes).map_err(error)?;
         Ok(StrokesPanel { reference })
     }
 
     /// The reference strokes as JSON (`[{points, closed, width, colour, fill}]`).
     pub fn reference(&self) -> String {
-        strokes_json(&self.reference).to_string()
+        strokes_to_json(&self.reference).to_string()
     }
 
     /// The analysis at scale ε (`undefined` or `null`: inferred from the reference, as a strokes
@@ -349,10 +285,7 @@ impl StrokesPanel {
     pub fn analyse(&self, scale: Option<f64>) -> Result<String, JsError> {
         let start = web_time::Instant::now();
         let job = StrokesJob::new(scale, TargetSpec::Rect([1.0, 1.0]));
-        let mut params = job.params().map_err(error)?;
-        let used = job.scale_for(&self.reference, &params);
-        params.scale = used.value;
-        let analysis = motif_strokes::analyse(&self.reference, &params, false).map_err(error)?;
+        let (analysis, used) = job.analyse(&self.reference).map_err(error)?;
         let elements: Vec<serde_json::Value> = analysis
             .elements
             .iter()
@@ -379,7 +312,7 @@ impl StrokesPanel {
         job.target = TargetSpec::Rect([width, height]);
         let run = job.run(StrokesInputs::new(self.reference.clone()), &mut NoProgress).map_err(error)?;
         Ok(serde_json::json!({
-            "strokes": strokes_json(&run.output.strokes),
+            "strokes": strokes_to_json(&run.output.strokes),
             "report": run.figures,
             "milliseconds": elapsed_ms(start),
         })
@@ -393,7 +326,7 @@ impl StrokesPanel {
 pub struct StylizePanel {
     style: motif_core::FloatImage,
     guide: RgbaImage,
-    textures: Vec<motif_stylize::SegmentTexture>,
+    textures: Vec<motif_jobs::stylize::SegmentTexture>,
 }
 
 #[wasm_bindgen]

@@ -1,5 +1,6 @@
 //! The house rules that code review alone would let slip: the CLI's modules import each other
-//! without a cycle, and no source file in the workspace outgrows a reader's head.
+//! without a cycle, no source file in the workspace outgrows a reader's head, and Python and the
+//! page go through motif-jobs.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -111,4 +112,34 @@ fn no_source_file_outgrows_a_reader() {
         .collect();
     assert!(files.len() > 50, "found only {} files", files.len());
     assert!(long.is_empty(), "split these by concern: {long:?}");
+}
+
+/// Python and the page reach the engines only through motif-jobs (ARCHITECTURE.md's layers): no
+/// engine path in their code, outside the built-in samples the page starts from, and no engine
+/// crate among Python's dependencies.
+#[test]
+fn python_and_the_page_reach_the_engines_only_through_jobs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let engines = ["motif_curve::", "motif_points::", "motif_strokes::", "motif_stylize::"];
+    let mut found = Vec::new();
+    for front_end in ["python/src", "web/src"] {
+        let mut files = Vec::new();
+        rust_files(&root.join(front_end), &mut files);
+        assert!(!files.is_empty(), "no Rust file in {front_end}");
+        for file in files {
+            for (number, line) in std::fs::read_to_string(&file).unwrap().lines().enumerate() {
+                let code = line.split("//").next().unwrap_or("");
+                let reaches =
+                    engines.iter().any(|engine| code.split(engine).skip(1).any(|rest| !rest.starts_with("samples")));
+                if reaches {
+                    found.push(format!("{}:{}: {}", file.display(), number + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "go through motif_jobs instead: {found:#?}");
+    let manifest = std::fs::read_to_string(root.join("python/Cargo.toml")).unwrap();
+    for engine in ["motif-curve", "motif-points", "motif-strokes", "motif-stylize"] {
+        assert!(!manifest.contains(engine), "python/Cargo.toml depends on {engine}");
+    }
 }

@@ -12,6 +12,10 @@ use motif_curve::{PatchFidelity, patch_fidelity};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
+/// The engine's types that curve runs are made of, named here so that front ends need no engine
+/// crate: an editing session re-solves only what changed ([`CurveJob::run_in_session`]).
+pub use motif_curve::Incremental;
+
 use crate::JobError;
 use crate::options::{Declared, Described};
 
@@ -268,7 +272,7 @@ impl CurveJob {
     pub fn run_in_session(
         &self,
         inputs: CurveInputs<'_>,
-        session: &mut motif_curve::Incremental,
+        session: &mut Incremental,
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
         self.run_in(inputs, Some(session), progress)
@@ -277,7 +281,7 @@ impl CurveJob {
     fn run_in(
         &self,
         inputs: CurveInputs<'_>,
-        session: Option<&mut motif_curve::Incremental>,
+        session: Option<&mut Incremental>,
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
         let (params, dimensions) = self.params(&inputs)?;

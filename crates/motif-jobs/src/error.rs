@@ -21,6 +21,9 @@ pub enum JobError {
     /// The stylize engine refused the run.
     #[error(transparent)]
     Stylize(#[from] motif_stylize::Error),
+    /// Reference strokes (SVG or JSON) could not be read.
+    #[error(transparent)]
+    Reference(#[from] crate::strokes::ReferenceProblem),
 }
 
 /// What kind of problem stopped a job: the categories front ends map errors to (Python raises

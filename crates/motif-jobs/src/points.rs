@@ -8,10 +8,14 @@ use std::collections::BTreeMap;
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Progress, ToneMap};
 use motif_points::{
-    Domain, Evaluator, Field, Initialization, Input, Output, Params, PointSet, Refinement, SurfaceDirections, Window,
+    Domain, Evaluator, Field, Initialization, Input, Output, Params, Refinement, SurfaceDirections, Window,
 };
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
+
+/// The engine's point set, the type of exemplars and outputs, named here so that front ends need
+/// no engine crate.
+pub use motif_points::PointSet;
 
 use crate::JobError;
 

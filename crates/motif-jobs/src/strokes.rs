@@ -9,11 +9,50 @@ use std::collections::BTreeMap;
 
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Point, Polygon, Polyline, Progress};
-use motif_strokes::{FitPoints, InferredScale, Input, Output, Params, Stroke, Target, Thresholds, ToneMap};
+use motif_strokes::{FitPoints, InferredScale, Input, Output, Params, Target, Thresholds, ToneMap};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
 use crate::JobError;
+
+mod records;
+#[cfg(feature = "svg")]
+mod svg;
+
+/// The engine's types that strokes inputs and runs are made of, named here so that front ends
+/// need no engine crate.
+pub use motif_strokes::{Analysis, Stroke};
+pub use records::{StrokeRecord, strokes_from_json, strokes_to_json};
+#[cfg(feature = "svg")]
+pub use svg::{draw_stroke, reference_from_svg, strokes_svg};
+
+/// Why reference strokes could not be read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReferenceProblem {
+    /// A path of the drawing cannot be read (its `id`, empty when it has none).
+    #[error("path `{id}` of the reference cannot be read: {source}")]
+    Path {
+        /// The path's `id`.
+        id: String,
+        /// What is wrong with it.
+        source: InvalidParameter,
+    },
+    /// A stroke record's width is not a finite number ≥ 0.
+    #[error("reference stroke {index}: width {width} must be a finite number >= 0")]
+    Width {
+        /// 1-based position of the record.
+        index: usize,
+        /// The width given.
+        width: f64,
+    },
+    /// The stroke records are not a JSON list of strokes.
+    #[error("reference strokes: {0}")]
+    Json(String),
+    /// Nothing visible is left.
+    #[error("the reference has no strokes: it needs at least one stroked or filled path with a length > 0")]
+    Empty,
+}
 
 /// Where the pattern grows.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -234,6 +273,15 @@ impl StrokesJob {
                 RunScale { value: inferred.value, inferred: Some(inferred) }
             }
         }
+    }
+
+    /// The analysis of `reference` alone into elements (§2), at the job's ε or the one inferred
+    /// from it, as a synthesis in a region makes it.
+    pub fn analyse(&self, reference: &[Stroke]) -> Result<(Analysis, RunScale), JobError> {
+        let mut params = self.params()?;
+        let scale = self.scale_for(reference, &params);
+        params.scale = scale.value;
+        Ok((motif_strokes::analyse(reference, &params, false)?, scale))
     }
 
     /// The engine's target.

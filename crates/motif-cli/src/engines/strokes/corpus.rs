@@ -8,12 +8,12 @@
 use std::path::Path;
 
 use motif_core::NoProgress;
+use motif_jobs::strokes::reference_from_svg;
 use motif_strokes::fidelity::{self, Fidelity, MeasuredPattern};
 use motif_strokes::{Input, Params, Target};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
-use super::strokes_of;
 use crate::suite::{corpus_folder, read_cases};
 
 /// One case of `cases.json`.
@@ -43,7 +43,7 @@ fn figures(f: &Fidelity) -> Value {
 /// Runs one corpus case.
 pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
     let document = motif_io::read_svg(&folder.join(&case.file))?;
-    let strokes = strokes_of(&document, 0.1)?;
+    let strokes = reference_from_svg(&document, 0.1)?;
     let [width, height] = case.rect;
     let frame = kurbo::Rect::new(0.0, 0.0, width, height);
     let region = motif_core::Polygon::new(vec![
@@ -118,7 +118,7 @@ fn elements_at(strokes: &[motif_strokes::Stroke], scale: f64) -> anyhow::Result<
 /// element counts of both and the count a person makes.
 pub fn scale_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
     let document = motif_io::read_svg(&folder.join(&case.file))?;
-    let strokes = strokes_of(&document, 0.1)?;
+    let strokes = reference_from_svg(&document, 0.1)?;
     let params = Params::default();
     let inferred = motif_strokes::infer_scale(&strokes, &params);
     Ok(json!({

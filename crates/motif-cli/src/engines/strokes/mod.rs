@@ -11,10 +11,13 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use kurbo::BezPath;
 use motif_core::{Point, Polyline};
-use motif_io::{SvgDocument, SvgWriter};
+use motif_io::SvgWriter;
 use motif_jobs::Job;
-use motif_jobs::strokes::{RunScale, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, TargetSpec};
-use motif_strokes::{Analysis, Output, Stroke, Target, ToneMap};
+use motif_jobs::strokes::{
+    Analysis, RunScale, Stroke, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, TargetSpec, draw_stroke,
+    reference_from_svg, strokes_svg,
+};
+use motif_strokes::{Target, ToneMap};
 
 use crate::context::Context;
 use crate::gallery::Demo;
@@ -89,18 +92,6 @@ fn job_of(args: &StrokesArgs, seed: u64, target: TargetSpec) -> StrokesJob {
     StrokesJob { seed, options: args.options.options.clone(), ..StrokesJob::new(args.scale, target) }
 }
 
-/// Every visible path of a drawing as strokes, in document order.
-pub fn strokes_of(document: &SvgDocument, tolerance: f64) -> anyhow::Result<Vec<Stroke>> {
-    let mut strokes = Vec::new();
-    for path in &document.paths {
-        let (width, colour) = path.stroke.map_or((0.0, path.fill.unwrap_or([0, 0, 0, 255])), |s| (s.width, s.colour));
-        let pieces = Stroke::from_path(&path.path, tolerance, width, colour, path.fill, path.dash.as_deref())
-            .with_context(|| format!("cannot read path `{}` of the reference", path.id))?;
-        strokes.extend(pieces.into_iter().filter(Stroke::is_visible));
-    }
-    Ok(strokes)
-}
-
 fn first_subpath(path: &BezPath, tolerance: f64) -> anyhow::Result<Option<Polyline>> {
     Ok(Polyline::from_bez_path(path, tolerance)?.into_iter().next())
 }
@@ -160,28 +151,6 @@ fn read_map(file: Option<&Path>, flag: &str, job: &StrokesJob, max_memory: u64) 
         }
     }
     Ok(Some(map))
-}
-
-fn draw_stroke(writer: &mut SvgWriter, stroke: &Stroke) {
-    let line = (stroke.width > 0.0).then_some(motif_io::StrokePaint { width: stroke.width, colour: stroke.colour });
-    writer.dashed_polyline(
-        stroke.polyline.points(),
-        stroke.polyline.is_closed(),
-        line,
-        stroke.fill,
-        stroke.dash.as_deref().unwrap_or_default(),
-    );
-}
-
-/// The synthesized pattern as SVG text.
-pub fn output_svg(output: &Output, width: f64, height: f64) -> String {
-    let mut writer = SvgWriter::new(width, height);
-    writer.begin_group("strokes");
-    for stroke in &output.strokes {
-        draw_stroke(&mut writer, stroke);
-    }
-    writer.end_group();
-    writer.finish()
 }
 
 /// A distinct colour per cluster (golden-angle hues).
@@ -281,22 +250,14 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     for extra in args.png.iter().chain(&args.analysis) {
         context.check_output(extra, &inputs)?;
     }
-    if !(args.tolerance.is_finite() && args.tolerance > 0.0) {
-        bail!("invalid tolerance = {}: must be a finite number > 0", args.tolerance);
-    }
     if !(args.png_scale.is_finite() && args.png_scale > 0.0) {
         bail!("invalid png-scale = {}: must be a finite number > 0", args.png_scale);
     }
     // The options are checked before any file is read (the target is not needed for that).
     job_of(args, context.seed, TargetSpec::Rect([1.0, 1.0])).params()?;
     let reference = motif_io::read_svg(&args.reference)?;
-    let strokes = strokes_of(&reference, args.tolerance)?;
-    if strokes.is_empty() {
-        bail!(
-            "{}: the reference has no strokes: it needs at least one stroked or filled path with a length > 0",
-            args.reference.display()
-        );
-    }
+    let strokes = reference_from_svg(&reference, args.tolerance)
+        .with_context(|| format!("cannot read the reference {}", args.reference.display()))?;
     let (target, width, height) = read_target(args)?;
     let job = StrokesJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed, target) };
     let density_map = read_map(args.density_map.as_deref(), "--density-map", &job, context.max_memory)?;
@@ -306,7 +267,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
         .run(StrokesInputs { reference: strokes, density_map, scale_map }, context.progress())
         .with_context(|| format!("cannot synthesize from {}", args.reference.display()))?;
     let output = &run.output;
-    let svg = output_svg(output, width, height);
+    let svg = strokes_svg(&output.strokes, width, height, Some("strokes"));
     motif_io::write_text(&args.out, &svg)?;
     if let Some(png) = &args.png {
         context.check_render(output.report.estimated_memory_bytes, &svg, args.png_scale)?;
@@ -324,11 +285,7 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
 }
 
 fn write_strokes_svg(path: &Path, strokes: &[Stroke], width: f64, height: f64) -> anyhow::Result<()> {
-    let mut writer = SvgWriter::new(width, height);
-    for stroke in strokes {
-        draw_stroke(&mut writer, stroke);
-    }
-    motif_io::write_text(path, &writer.finish())?;
+    motif_io::write_text(path, &strokes_svg(strokes, width, height, None))?;
     Ok(())
 }
 
