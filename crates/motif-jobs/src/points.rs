@@ -61,6 +61,33 @@ pub enum DirectionsSpec {
     PerVertex(Vec<[f64; 3]>),
 }
 
+impl DirectionsSpec {
+    /// The engine's surface directions.
+    pub fn engine(&self) -> SurfaceDirections {
+        match self {
+            DirectionsSpec::Curvature => SurfaceDirections::Curvature,
+            DirectionsSpec::Constant(v) => SurfaceDirections::Constant(*v),
+            DirectionsSpec::PerVertex(vectors) => SurfaceDirections::PerVertex(vectors.clone()),
+        }
+    }
+}
+
+impl DomainSpec {
+    /// Checks a mesh domain before anything runs: a volume's mesh must enclose space, a
+    /// surface's mesh must have faces its directions can be drawn on (one vector per vertex when
+    /// given per vertex). Other domains pass: a job checks them when it runs.
+    pub fn check_mesh(&self) -> Result<(), JobError> {
+        match self {
+            DomainSpec::Volume(mesh) => motif_points::check_volume_mesh(mesh)?,
+            DomainSpec::Surface(surface) => {
+                motif_points::check_surface_mesh(&surface.mesh, &surface.directions.engine())?
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
 /// A brush stroke of [`DomainSpec::Stroke`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case", deny_unknown_fields)]
@@ -290,14 +317,9 @@ impl PointsJob {
                 })
             }
             DomainSpec::Volume(mesh) => Domain::Volume(mesh.clone()),
-            DomainSpec::Surface(surface) => Domain::Surface {
-                mesh: surface.mesh.clone(),
-                directions: match &surface.directions {
-                    DirectionsSpec::Curvature => SurfaceDirections::Curvature,
-                    DirectionsSpec::Constant(v) => SurfaceDirections::Constant(*v),
-                    DirectionsSpec::PerVertex(vectors) => SurfaceDirections::PerVertex(vectors.clone()),
-                },
-            },
+            DomainSpec::Surface(surface) => {
+                Domain::Surface { mesh: surface.mesh.clone(), directions: surface.directions.engine() }
+            }
         })
     }
 

@@ -14,9 +14,7 @@ use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
 use motif_jobs::Job;
-use motif_jobs::points::{
-    DirectionsSpec, DomainSpec, FieldMaps, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
-};
+use motif_jobs::points::{DomainSpec, FieldMaps, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec};
 use motif_points::PointSet;
 use serde_json::Value;
 
@@ -220,25 +218,20 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
             Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
             Some(spec) if spec.starts_with("volume:") => {
                 let file = Path::new(&spec["volume:".len()..]);
-                let mesh = motif_io::read_mesh(file)?;
-                motif_points::check_volume_mesh(&mesh)
-                    .with_context(|| format!("--domain volume:{}", file.display()))?;
-                DomainSpec::Volume(mesh)
+                let domain = DomainSpec::Volume(motif_io::read_mesh(file)?);
+                domain.check_mesh().with_context(|| format!("--domain volume:{}", file.display()))?;
+                domain
             }
             Some(spec) if spec.starts_with("surface:") => {
                 let file = Path::new(&spec["surface:".len()..]);
                 let mesh = motif_io::read_mesh(file)?;
                 let directions = meshes::surface_directions(args.surface_directions.as_deref())?;
-                let engine_directions = match &directions {
-                    DirectionsSpec::Curvature => motif_points::SurfaceDirections::Curvature,
-                    DirectionsSpec::Constant(v) => motif_points::SurfaceDirections::Constant(*v),
-                    DirectionsSpec::PerVertex(v) => motif_points::SurfaceDirections::PerVertex(v.clone()),
-                };
-                motif_points::check_surface_mesh(&mesh, &engine_directions).with_context(|| {
+                let domain = DomainSpec::Surface(SurfaceSpec { mesh, directions });
+                domain.check_mesh().with_context(|| {
                     let field = args.surface_directions.as_deref().map(|d| format!(" with --surface-directions {d}"));
                     format!("--domain surface:{}{}", file.display(), field.unwrap_or_default())
                 })?;
-                DomainSpec::Surface(SurfaceSpec { mesh, directions })
+                domain
             }
             Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
             None => {
