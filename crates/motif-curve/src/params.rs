@@ -288,8 +288,14 @@ fn check_exemplar(exemplar: &motif_core::RgbaImage, index: usize) -> Result<(), 
 impl Params {
     /// Checks every parameter on its own (the checks that need the inputs, such as the piece
     /// length against the curve's length, run in [`synthesize`](crate::synthesize)). The error
-    /// names the parameter as the CLI flag does and says what is allowed.
-    pub fn validate(&self) -> Result<(), InvalidParameter> {
+    /// names the parameter as the CLI flag does and says what is allowed
+    /// ([`Error::InvalidParameter`]).
+    pub fn validate(&self) -> Result<(), Error> {
+        Ok(self.check()?)
+    }
+
+    /// [`Params::validate`]'s checks, with the parameter's error itself.
+    fn check(&self) -> Result<(), InvalidParameter> {
         let params = self;
         check_positive("width", params.width)?;
         check_positive("piece-length", params.piece_length)?;
@@ -419,9 +425,9 @@ mod tests {
         let params = Params::default().with_width(80.0).with_piece_length(20.0).with_variety(5.0);
         assert_eq!((params.width, params.piece_length, params.variety), (80.0, 20.0, 5.0));
         assert!(params.validate().is_ok());
-        let error = Params::default().with_round_bends(-1.0).validate().unwrap_err();
+        let error = Params::default().with_round_bends(-1.0).check().unwrap_err();
         assert_eq!(error.name, "round-bends");
-        let error = Params::default().with_piece_length(1e-300).validate().unwrap_err();
+        let error = Params::default().with_piece_length(1e-300).check().unwrap_err();
         assert_eq!((error.name.as_str(), error.value.as_str()), ("piece-length", "1e-300"));
         let error = Params::default().with_width_profile(vec![(0.0, 2.0)]).with_piece_shape(PieceShape::Rigid);
         assert!(error.validate().unwrap_err().to_string().contains("bent"));

@@ -3,6 +3,8 @@
 use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 
+use crate::Error;
+
 /// Which points an element's oriented box is fitted to (§2.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -126,8 +128,13 @@ impl Params {
         seed: 0,
     };
 
-    /// Checks every field; the first bad one is returned.
-    pub fn validate(&self) -> Result<(), InvalidParameter> {
+    /// Checks every field; the first bad one is returned ([`Error::InvalidParameter`]).
+    pub fn validate(&self) -> Result<(), Error> {
+        Ok(self.check()?)
+    }
+
+    /// [`Params::validate`]'s checks, with the parameter's error itself.
+    fn check(&self) -> Result<(), InvalidParameter> {
         check_positive("scale", self.scale)?;
         if let Some(rings) = self.rings {
             check_count("rings", rings, 1, 5)?;
