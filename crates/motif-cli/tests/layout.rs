@@ -1,6 +1,6 @@
 //! The house rules that code review alone would let slip: the CLI's modules import each other
-//! without a cycle, no source file in the workspace outgrows a reader's head, and Python and the
-//! page go through motif-jobs.
+//! without a cycle, no source file in the workspace outgrows a reader's head, and front ends go
+//! through motif-jobs.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -114,28 +114,40 @@ fn no_source_file_outgrows_a_reader() {
     assert!(long.is_empty(), "split these by concern: {long:?}");
 }
 
-/// Python and the page reach the engines only through motif-jobs (ARCHITECTURE.md's layers): no
-/// engine path in their code, outside the built-in samples the page starts from, and no engine
-/// crate among Python's dependencies.
-#[test]
-fn python_and_the_page_reach_the_engines_only_through_jobs() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+/// The engine paths (`motif_points::…`) in `file`'s code before its test module, outside the
+/// built-in samples, as `file:line: text`.
+fn engine_paths(file: &Path) -> Vec<String> {
     let engines = ["motif_curve::", "motif_points::", "motif_strokes::", "motif_stylize::"];
     let mut found = Vec::new();
-    for front_end in ["python/src", "web/src"] {
+    for (number, line) in std::fs::read_to_string(file).unwrap().lines().enumerate() {
+        if line.trim() == "#[cfg(test)]" {
+            break;
+        }
+        let code = line.split("//").next().unwrap_or("");
+        if engines.iter().any(|engine| code.split(engine).skip(1).any(|rest| !rest.starts_with("samples"))) {
+            found.push(format!("{}:{}: {}", file.display(), number + 1, line.trim()));
+        }
+    }
+    found
+}
+
+/// Front ends reach the engines only through motif-jobs (ARCHITECTURE.md's layers): no engine
+/// path in Python's, the page's or the CLI's running code, outside the built-in samples demos
+/// start from; the CLI's bench, corpus and demo files, which call engine measures and reference
+/// implementations, are the exception. Python depends on no engine crate.
+#[test]
+fn front_ends_reach_the_engines_only_through_jobs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let measuring = |file: &Path| {
+        let name = file.file_stem().unwrap().to_string_lossy();
+        ["bench", "video_bench", "corpus", "demo"].contains(&name.as_ref())
+    };
+    let mut found = Vec::new();
+    for front_end in ["python/src", "web/src", "crates/motif-cli/src"] {
         let mut files = Vec::new();
         rust_files(&root.join(front_end), &mut files);
         assert!(!files.is_empty(), "no Rust file in {front_end}");
-        for file in files {
-            for (number, line) in std::fs::read_to_string(&file).unwrap().lines().enumerate() {
-                let code = line.split("//").next().unwrap_or("");
-                let reaches =
-                    engines.iter().any(|engine| code.split(engine).skip(1).any(|rest| !rest.starts_with("samples")));
-                if reaches {
-                    found.push(format!("{}:{}: {}", file.display(), number + 1, line.trim()));
-                }
-            }
-        }
+        found.extend(files.iter().filter(|file| !measuring(file)).flat_map(|file| engine_paths(file)));
     }
     assert!(found.is_empty(), "go through motif_jobs instead: {found:#?}");
     let manifest = std::fs::read_to_string(root.join("python/Cargo.toml")).unwrap();

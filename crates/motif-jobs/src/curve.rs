@@ -14,7 +14,7 @@ use serde_json::{Map, Value, json};
 
 /// The engine's types that curve runs are made of, named here so that front ends need no engine
 /// crate: an editing session re-solves only what changed ([`CurveJob::run_in_session`]).
-pub use motif_curve::Incremental;
+pub use motif_curve::{Dimension, Incremental, debug_overlay};
 
 use crate::JobError;
 use crate::options::{Declared, Described};

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use motif_core::error::number;
 use motif_core::{InvalidParameter, Point, Polygon, Polyline, Progress};
-use motif_strokes::{FitPoints, InferredScale, Input, Output, Params, Target, Thresholds, ToneMap};
+use motif_strokes::{FitPoints, InferredScale, Input, Params, Thresholds};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value, json};
 
@@ -21,7 +21,7 @@ mod svg;
 
 /// The engine's types that strokes inputs and runs are made of, named here so that front ends
 /// need no engine crate.
-pub use motif_strokes::{Analysis, Stroke};
+pub use motif_strokes::{Analysis, Output, Stroke, Target, ToneMap, region_from_outline};
 pub use records::{StrokeRecord, strokes_from_json, strokes_to_json};
 #[cfg(feature = "svg")]
 pub use svg::{draw_stroke, reference_from_svg, strokes_svg};

@@ -338,7 +338,10 @@ mod video;
 pub use images::{guide_image_channels, guide_pair, hole_of, kept_image, style_image_channels};
 /// The engine's types that stylize inputs and runs are made of, named here so that front ends
 /// need no engine crate.
-pub use motif_stylize::{Interval, Keyframe, SegmentTexture, VideoInput};
+pub use motif_stylize::{
+    Interval, IntervalReport, Keyframe, Mask, NearestNeighbourField, Output, SegmentTexture, VideoInput, apply_field,
+    mean_flicker,
+};
 pub use run::{InpaintInputs, PresynthInputs, PresynthRun, StylizeInputs, StylizeRun, TextureInputs, ZoomRun, figures};
 pub use video::{VideoJob, VideoJobOptions, VideoOptions, VideoRun, video_frame, video_styles};
 

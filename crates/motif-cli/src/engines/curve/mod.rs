@@ -124,7 +124,7 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_io::write_json(path, &document)?;
     }
     if let Some(path) = &args.debug_overlay {
-        motif_io::write_png(path, &motif_curve::debug_overlay(&output))?;
+        motif_io::write_png(path, &motif_jobs::curve::debug_overlay(&output))?;
     }
     context.job_figures(run.figures);
     for warning in &output.report.warnings {
@@ -137,7 +137,8 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
             100.0 * figures.exemplar_coverage
         )
     });
-    let dimension = |d: motif_curve::Dimension| format!("{}{}", d.value, if d.inferred { " (inferred)" } else { "" });
+    let dimension =
+        |d: motif_jobs::curve::Dimension| format!("{}{}", d.value, if d.inferred { " (inferred)" } else { "" });
     context.summary(&format!(
         "curve: width {}, piece length {}, {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
         dimension(run.dimensions.width),

@@ -12,7 +12,7 @@ use super::table_to_points;
 /// points' centroid), scaled so that its largest side is `size` exemplar units (default: the
 /// exemplar's mean spacing), then by the frame there.
 pub fn place_elements(
-    output: &motif_points::Output,
+    output: &motif_jobs::points::Output,
     mesh: &motif_core::TriangleMesh,
     side: f64,
     size: Option<f64>,

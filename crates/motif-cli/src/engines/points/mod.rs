@@ -14,8 +14,9 @@ use clap::Args;
 use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
 use motif_jobs::Job;
-use motif_jobs::points::{DomainSpec, FieldMaps, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec};
-use motif_points::PointSet;
+use motif_jobs::points::{
+    DomainSpec, FieldMaps, PointSet, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
+};
 use serde_json::Value;
 
 use crate::context::Context;
@@ -267,7 +268,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         context.check_output(extra, &inputs)?;
     }
     let (exemplar, integer) = read_set(&args.exemplar, "exemplar")?;
-    let normal_columns = |set: &motif_points::PointSet| -> Option<[usize; 3]> {
+    let normal_columns = |set: &PointSet| -> Option<[usize; 3]> {
         let find = |name: &str| set.attribute_names.iter().position(|n| n == name);
         Some([find("nx")?, find("ny")?, find("nz")?])
     };
@@ -356,7 +357,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
             (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
         let normals: Vec<[f64; 3]> =
             (0..output.points.len()).map(|i| columns.map(|c| output.points.attributes_of(i)[c])).collect();
-        let mesh = motif_points::reconstruct_surface(&positions, &normals)
+        let mesh = motif_jobs::points::reconstruct_surface(&positions, &normals)
             .with_context(|| format!("cannot reconstruct a surface for {}", path.display()))?;
         motif_io::write_obj(path, &mesh, "surface reconstructed by motif points (implicit MLS, surface nets)")?;
         surface = Some(mesh);

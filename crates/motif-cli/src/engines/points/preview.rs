@@ -5,8 +5,7 @@ use anyhow::Context as _;
 use motif_core::Point;
 use motif_core::TriangleMesh;
 use motif_io::{StrokePaint, SvgWriter};
-use motif_points::Fidelity;
-use motif_points::PointSet;
+use motif_jobs::points::{Fidelity, PointSet};
 
 /// A colour for `t` in [0, 1] (dark blue → teal → yellow).
 fn ramp(t: f64) -> [u8; 4] {

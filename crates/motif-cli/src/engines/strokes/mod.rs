@@ -14,10 +14,9 @@ use motif_core::{Point, Polyline};
 use motif_io::SvgWriter;
 use motif_jobs::Job;
 use motif_jobs::strokes::{
-    Analysis, RunScale, Stroke, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, TargetSpec, draw_stroke,
-    reference_from_svg, strokes_svg,
+    Analysis, RunScale, Stroke, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, Target, TargetSpec, ToneMap,
+    draw_stroke, reference_from_svg, strokes_svg,
 };
-use motif_strokes::{Target, ToneMap};
 
 use crate::context::Context;
 use crate::gallery::Demo;
@@ -124,7 +123,7 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
                 continue;
             }
             // Checked here too, so that the error names the file and the path.
-            motif_strokes::region_from_outline(outline.points().to_vec())
+            motif_jobs::strokes::region_from_outline(outline.points().to_vec())
                 .with_context(|| format!("{}: the region (path `{}`) cannot be used", file.display(), path.id))?;
             let points = outline.points().iter().map(|p| [p.x, p.y]).collect();
             return Ok((TargetSpec::Region(points), document.width, document.height));

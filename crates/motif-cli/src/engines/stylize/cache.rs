@@ -11,7 +11,7 @@ use std::path::Path;
 
 use anyhow::{Context as _, bail};
 use motif_core::RgbaImage;
-use motif_stylize::{NearestNeighbourField, SegmentTexture};
+use motif_jobs::stylize::{NearestNeighbourField, SegmentTexture};
 use serde::{Deserialize, Serialize};
 
 /// The manifest's file name.

@@ -7,10 +7,10 @@ use anyhow::Context as _;
 use clap::Args;
 use motif_core::{ByteImage, RgbaImage};
 use motif_jobs::Job;
+use motif_jobs::stylize::Mask;
 use motif_jobs::stylize::{
     InpaintInputs, InpaintJob, SynthesisOptions, ZoomJob, ZoomJobOptions, hole_of, kept_image, style_image_channels,
 };
-use motif_stylize::Mask;
 
 use super::{load, write_debug};
 use crate::context::Context;

@@ -18,11 +18,11 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::RgbaImage;
 use motif_jobs::Job;
+use motif_jobs::stylize::{NearestNeighbourField, Output, apply_field};
 use motif_jobs::stylize::{
     PresynthInputs, PresynthJob, PresynthJobOptions, StylizeInputs, StylizeJob, StylizeJobOptions, TextureInputs,
     TextureJob, TextureJobOptions, guide_image_channels, guide_pair, style_image_channels,
 };
-use motif_stylize::{NearestNeighbourField, Output, apply_field};
 
 use crate::context::Context;
 use crate::gallery::Demo;

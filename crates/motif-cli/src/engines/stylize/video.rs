@@ -7,8 +7,8 @@ use anyhow::{Context as _, bail};
 use clap::Args;
 use motif_core::{FloatImage, RgbaImage};
 use motif_io::FramePattern;
+use motif_jobs::stylize::{IntervalReport, mean_flicker};
 use motif_jobs::stylize::{VideoJob, VideoJobOptions, hole_of, video_frame, video_styles};
-use motif_stylize::{IntervalReport, mean_flicker};
 use serde_json::json;
 
 use super::load;
