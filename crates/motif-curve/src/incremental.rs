@@ -63,7 +63,7 @@ impl Incremental {
         if key != self.cache.key {
             self.cache = Cache { key, ..Cache::default() };
         }
-        crate::synthesize_with(input, params, progress, Some(&mut self.cache))
+        crate::pipeline::synthesize_with(input, params, progress, Some(&mut self.cache))
     }
 
     /// Rows of the dynamic program the last call took from the previous one.

@@ -186,6 +186,9 @@ impl ProfileTree {
     }
 }
 
+/// Positions per parallel block of a row.
+const BLOCK: usize = 64;
+
 /// The exact fast row update (see the module comment).
 ///
 /// For a position `u`, the tree is searched best-first along its depth: the child whose box is
@@ -201,124 +204,20 @@ pub(crate) fn exact_row(
     seeds: &Seeds,
 ) -> RowResult {
     let tree = ProfileTree::new(previous, rights);
-    let ProfileTree { costs, original, position_of, nodes, alphas, dims, coarse, .. } = &tree;
-    let dims = *dims;
-    let cheapest = (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0);
-    let weight = model.mask_weight();
-    let samples = lefts.samples;
-    let alpha_bound = AlphaBound::new(model, samples);
-    let chunk = 64;
-    let results: Vec<(Vec<(u64, u32)>, DpCounters)> = (0..lefts.len().div_ceil(chunk))
+    let search = RowSearch {
+        model,
+        rights,
+        lefts,
+        seeds,
+        tree: &tree,
+        cheapest: (0..previous.len()).min_by_key(|&v| (previous[v], v)).unwrap_or(0),
+        weight: model.mask_weight(),
+        samples: lefts.samples,
+        alpha_bound: AlphaBound::new(model, lefts.samples),
+    };
+    let results: Vec<(Vec<(u64, u32)>, DpCounters)> = (0..lefts.len().div_ceil(BLOCK))
         .into_par_iter()
-        .map(|block| {
-            let mut counters = DpCounters::default();
-            let range = block * chunk..((block + 1) * chunk).min(lefts.len());
-            let first = range.start;
-            let mut out: Vec<(u64, u32)> = Vec::with_capacity(range.len());
-            let mut stack: Vec<(u64, u32)> = Vec::new();
-            for u in range {
-                let left_masks = lefts.masks_of(u);
-                let left_profile = lefts.profile_of(u);
-                let left_alpha = alpha_profile(lefts, u);
-                let left_coarse = if coarse.is_empty() { [0; 8] } else { coarse_profile(left_alpha) };
-                // (total, original predecessor index); compare lexicographically for ties.
-                let mut best = (u64::MAX, u32::MAX);
-                let consider = |position: usize, best: &mut (u64, u32), counters: &mut DpCounters| {
-                    let cost = costs[position];
-                    let v = original[position];
-                    counters.visited += 1;
-                    if !coarse.is_empty() {
-                        let near = coarse_distance(&coarse[position], &left_coarse);
-                        if (cost + alpha_bound_of_distance(model, near, samples), v) >= *best {
-                            return;
-                        }
-                    }
-                    let alpha = l1_u16(&alphas[position * dims..(position + 1) * dims], left_alpha);
-                    if (cost + alpha_bound_of_distance(model, alpha, samples), v) >= *best {
-                        return;
-                    }
-                    let right_profile = rights.profile_of(v as usize);
-                    let colour = if model.colour_bounds() {
-                        let colour = colour_profile_distance(right_profile, left_profile);
-                        if (cost + bound_of_distances(model, colour, alpha, samples), v) >= *best {
-                            return;
-                        }
-                        colour
-                    } else {
-                        0
-                    };
-                    if (cost + mask_bound(weight, rights.masks_of(v as usize), left_masks), v) >= *best {
-                        return;
-                    }
-                    counters.compared += 1;
-                    let limit = best.0.saturating_sub(cost);
-                    if let Some(distance) =
-                        edge_distance_bounded(model, rights, v as usize, lefts, u, limit, (colour, alpha))
-                    {
-                        counters.completed += 1;
-                        let total = cost + u64::from(distance);
-                        if (total, v) < *best {
-                            *best = (total, v);
-                        }
-                    }
-                };
-                let continuation = seeds.continuation[u];
-                if continuation != u32::MAX {
-                    consider(position_of[continuation as usize] as usize, &mut best, &mut counters);
-                }
-                let above = seeds.above[u] as usize;
-                if above != u32::MAX as usize && above >= first && above < u {
-                    let above_predecessor = out[above - first].1;
-                    if above_predecessor != u32::MAX {
-                        let [x, y] = seeds.previous[above_predecessor as usize];
-                        if let Some(v) = seeds.previous_index([x, y + 1]) {
-                            consider(position_of[v as usize] as usize, &mut best, &mut counters);
-                        }
-                    }
-                }
-                // The predecessor of the previous position (similar u, low P) and the cheapest
-                // predecessor overall.
-                if let Some(&(_, previous_best)) = out.last()
-                    && previous_best != u32::MAX
-                {
-                    consider(position_of[previous_best as usize] as usize, &mut best, &mut counters);
-                }
-                consider(position_of[cheapest] as usize, &mut best, &mut counters);
-                // Branch and bound; the stack holds (alpha bound of the box distance, node).
-                // Pruning is strict (`>`), so a tie with a lower index is still found.
-                stack.clear();
-                stack.push((alpha_bound.of(tree.gap(0, left_alpha)), 0));
-                while let Some((bound, index)) = stack.pop() {
-                    let node = nodes[index as usize];
-                    if node.lowest_cost.saturating_add(bound) > best.0 {
-                        continue;
-                    }
-                    match node.children {
-                        Some(children) => {
-                            let [near, far] =
-                                children.map(|child| (alpha_bound.of(tree.gap(child, left_alpha)), child));
-                            let (near, far) = if far.0 < near.0 { (far, near) } else { (near, far) };
-                            // Pushed last, popped first: the nearer child.
-                            for (bound, child) in [far, near] {
-                                if nodes[child as usize].lowest_cost.saturating_add(bound) <= best.0 {
-                                    stack.push((bound, child));
-                                }
-                            }
-                        }
-                        None => {
-                            for (position, &cost) in costs.iter().enumerate().take(node.end).skip(node.start) {
-                                if cost + bound > best.0 {
-                                    break;
-                                }
-                                consider(position, &mut best, &mut counters);
-                            }
-                        }
-                    }
-                }
-                out.push(best);
-            }
-            (out, counters)
-        })
+        .map(|block| search.block(block * BLOCK..((block + 1) * BLOCK).min(lefts.len())))
         .collect();
     let mut counters = DpCounters { pairs: (previous.len() * lefts.len()) as u64, ..DpCounters::default() };
     let mut costs = Vec::with_capacity(lefts.len());
@@ -333,6 +232,179 @@ pub(crate) fn exact_row(
         }
     }
     (costs, predecessors, counters)
+}
+
+/// What the search of one row shares between its positions.
+struct RowSearch<'a> {
+    model: &'a CostModel,
+    rights: &'a EdgeSet,
+    lefts: &'a EdgeSet,
+    seeds: &'a Seeds,
+    tree: &'a ProfileTree,
+    /// The predecessor of lowest `P` (lowest index among ties).
+    cheapest: usize,
+    /// The weight of the mask bound.
+    weight: u32,
+    /// `C`.
+    samples: usize,
+    alpha_bound: AlphaBound,
+}
+
+/// A position's left edge, as the bounds read it.
+struct Target<'a> {
+    u: usize,
+    masks: (&'a [u64], &'a [u64]),
+    profile: &'a [u16],
+    alpha: &'a [u16],
+    /// The alpha profile's coarse sums (zeros when the tree keeps none).
+    coarse: [u16; 8],
+}
+
+impl RowSearch<'_> {
+    /// The best (total, original predecessor index) of each position of `range`, with the work
+    /// counters of the block.
+    fn block(&self, range: std::ops::Range<usize>) -> (Vec<(u64, u32)>, DpCounters) {
+        let mut counters = DpCounters::default();
+        let first = range.start;
+        let mut out: Vec<(u64, u32)> = Vec::with_capacity(range.len());
+        let mut stack: Vec<(u64, u32)> = Vec::new();
+        for u in range {
+            let alpha = alpha_profile(self.lefts, u);
+            let target = Target {
+                u,
+                masks: self.lefts.masks_of(u),
+                profile: self.lefts.profile_of(u),
+                alpha,
+                coarse: if self.tree.coarse.is_empty() { [0; 8] } else { coarse_profile(alpha) },
+            };
+            // (total, original predecessor index); compare lexicographically for ties.
+            let mut best = (u64::MAX, u32::MAX);
+            self.try_seeds(&target, first, &out, &mut best, &mut counters);
+            self.branch_and_bound(&target, &mut stack, &mut best, &mut counters);
+            out.push(best);
+        }
+        (out, counters)
+    }
+
+    /// Tries the predecessors likely to be best first, so that the bounds prune early: the one
+    /// continuing `u`'s window, the one below the predecessor of the position above, the
+    /// predecessor of the previous position (similar u, low P) and the cheapest overall.
+    fn try_seeds(
+        &self,
+        target: &Target<'_>,
+        first: usize,
+        out: &[(u64, u32)],
+        best: &mut (u64, u32),
+        counters: &mut DpCounters,
+    ) {
+        let (seeds, position_of) = (self.seeds, &self.tree.position_of);
+        let u = target.u;
+        let continuation = seeds.continuation[u];
+        if continuation != u32::MAX {
+            self.consider(target, position_of[continuation as usize] as usize, best, counters);
+        }
+        let above = seeds.above[u] as usize;
+        if above != u32::MAX as usize && above >= first && above < u {
+            let above_predecessor = out[above - first].1;
+            if above_predecessor != u32::MAX {
+                let [x, y] = seeds.previous[above_predecessor as usize];
+                if let Some(v) = seeds.previous_index([x, y + 1]) {
+                    self.consider(target, position_of[v as usize] as usize, best, counters);
+                }
+            }
+        }
+        if let Some(&(_, previous_best)) = out.last()
+            && previous_best != u32::MAX
+        {
+            self.consider(target, position_of[previous_best as usize] as usize, best, counters);
+        }
+        self.consider(target, position_of[self.cheapest] as usize, best, counters);
+    }
+
+    /// Branch and bound over the tree; the stack holds (alpha bound of the box distance, node).
+    /// Pruning is strict (`>`), so a tie with a lower index is still found.
+    fn branch_and_bound(
+        &self,
+        target: &Target<'_>,
+        stack: &mut Vec<(u64, u32)>,
+        best: &mut (u64, u32),
+        counters: &mut DpCounters,
+    ) {
+        let (tree, alpha_bound) = (self.tree, &self.alpha_bound);
+        stack.clear();
+        stack.push((alpha_bound.of(tree.gap(0, target.alpha)), 0));
+        while let Some((bound, index)) = stack.pop() {
+            let node = tree.nodes[index as usize];
+            if node.lowest_cost.saturating_add(bound) > best.0 {
+                continue;
+            }
+            match node.children {
+                Some(children) => {
+                    let [near, far] = children.map(|child| (alpha_bound.of(tree.gap(child, target.alpha)), child));
+                    let (near, far) = if far.0 < near.0 { (far, near) } else { (near, far) };
+                    // Pushed last, popped first: the nearer child.
+                    for (bound, child) in [far, near] {
+                        if tree.nodes[child as usize].lowest_cost.saturating_add(bound) <= best.0 {
+                            stack.push((bound, child));
+                        }
+                    }
+                }
+                None => {
+                    for (position, &cost) in tree.costs.iter().enumerate().take(node.end).skip(node.start) {
+                        if cost + bound > best.0 {
+                            break;
+                        }
+                        self.consider(target, position, best, counters);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Compares the predecessor at leaf-order `position` with `target`, cheapest bounds first
+    /// (coarse alpha, alpha, colour profile, masks), and keeps it in `best` when its total is lower.
+    #[inline]
+    fn consider(&self, target: &Target<'_>, position: usize, best: &mut (u64, u32), counters: &mut DpCounters) {
+        let (model, rights, tree, samples) = (self.model, self.rights, self.tree, self.samples);
+        let cost = tree.costs[position];
+        let v = tree.original[position];
+        counters.visited += 1;
+        if !tree.coarse.is_empty() {
+            let near = coarse_distance(&tree.coarse[position], &target.coarse);
+            if (cost + alpha_bound_of_distance(model, near, samples), v) >= *best {
+                return;
+            }
+        }
+        let dims = tree.dims;
+        let alpha = l1_u16(&tree.alphas[position * dims..(position + 1) * dims], target.alpha);
+        if (cost + alpha_bound_of_distance(model, alpha, samples), v) >= *best {
+            return;
+        }
+        let right_profile = rights.profile_of(v as usize);
+        let colour = if model.colour_bounds() {
+            let colour = colour_profile_distance(right_profile, target.profile);
+            if (cost + bound_of_distances(model, colour, alpha, samples), v) >= *best {
+                return;
+            }
+            colour
+        } else {
+            0
+        };
+        if (cost + mask_bound(self.weight, rights.masks_of(v as usize), target.masks), v) >= *best {
+            return;
+        }
+        counters.compared += 1;
+        let limit = best.0.saturating_sub(cost);
+        if let Some(distance) =
+            edge_distance_bounded(model, rights, v as usize, self.lefts, target.u, limit, (colour, alpha))
+        {
+            counters.completed += 1;
+            let total = cost + u64::from(distance);
+            if (total, v) < *best {
+                *best = (total, v);
+            }
+        }
+    }
 }
 
 #[cfg(test)]

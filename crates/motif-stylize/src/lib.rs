@@ -319,13 +319,81 @@ pub fn synthesize<I: ChannelImage>(
     progress: &mut dyn Progress,
 ) -> Result<Output, Error> {
     params.validate()?;
-    check_image(&input.style, "style")?;
+    check_images(input, params.patch_size)?;
+    let target_size = target_size(input)?;
+    check_work(target_size.0 * target_size.1, params.max_pixels)?;
+    let estimated_memory_bytes = check_memory(input, params, target_size)?;
     let style = &input.style;
-    let patch = params.patch_size;
+    let (style_weights, guide_weights) = weights(input, params);
+    let labels = segment_labels(input, params)?;
+    let (composition, seeds) = match &input.textures {
+        Some(textures) => {
+            let labels = labels.as_ref().expect("textures imply segments");
+            let style_shape = (style.width(), style.height(), style.channels());
+            let (composed, domain, seeds) =
+                band::compose_textures(textures, labels, style_shape, target_size, params.band)?;
+            (Some((composed, domain)), seeds)
+        }
+        None => (None, None),
+    };
+    if let Some(mask) = &input.mask {
+        mask::check(mask, style, target_size, params.patch_size, input.textures.is_some())?;
+    }
+    let texture_only = input.guides.is_empty() && input.mask.is_none() && input.textures.is_none();
+    let quilting_start = motif_core::timing::Clock::now();
+    let seeds = if params.quilt_block > 0 {
+        Some(quilted_start(style, target_size, params, texture_only, progress)?)
+    } else {
+        seeds
+    };
+    let quilting_ms = (params.quilt_block > 0).then(|| motif_core::timing::elapsed_ms(quilting_start));
+    if params.structure_weight > 0.0 {
+        if !texture_only {
+            let allowed = "applies to texture synthesis only (no guides, mask or textures); 0 turns it off";
+            return Err(InvalidParameter::new("structure-weight", params.structure_weight, allowed).into());
+        }
+        let mut output =
+            structure_guidance::synthesize_with_structure(style, &style_weights, target_size, params, progress)?;
+        output.report.estimated_memory_bytes = estimated_memory_bytes;
+        return Ok(output);
+    }
+    let problem = synthesis::Problem {
+        style,
+        // Guides stay as given (one borrowed image each, no stacked copy): the level stacks their
+        // channels as it quantizes them.
+        source_guides: input.guides.iter().map(|g| &g.source).collect(),
+        target_guides: input.guides.iter().map(|g| &g.target).collect(),
+        style_weights,
+        guide_weights,
+        target_size,
+        labels: labels.map(|l| {
+            let count = l.colours.len();
+            (l.source, l.target, count)
+        }),
+        tileable: params.tileable,
+        composition,
+        seeds,
+        mask: input.mask.as_ref(),
+        structure_weight: None,
+    };
+    let mut output = synthesis::run(&problem, params, progress)?;
+    output.report.estimated_memory_bytes = estimated_memory_bytes;
+    if let Some(ms) = quilting_ms {
+        output.report.stages_ms.insert(0, ("quilting".to_string(), ms));
+        output.report.total_ms += ms;
+    }
+    Ok(output)
+}
+
+/// Checks the style (non-empty, 1, 3 or 4 channels, at least a patch a side) and every guide
+/// pair: the source the style's size, the target the first target's, equal channels, the weight
+/// in range.
+fn check_images<I: ChannelImage>(input: &Input<I>, patch: usize) -> Result<(), Error> {
+    let style = &input.style;
+    check_image(style, "style")?;
     if style.width() < patch || style.height() < patch {
         return Err(Error::StyleTooSmall { width: style.width(), height: style.height(), patch });
     }
-    let guide_count = input.guides.len();
     for (index, guide) in input.guides.iter().enumerate() {
         let number = index + 1;
         check_image(&guide.source, &format!("source guide {number}"))?;
@@ -360,17 +428,22 @@ pub fn synthesize<I: ChannelImage>(
             motif_core::error::check_range(&format!("weight of guide {number}"), f64::from(weight), 0.0, 1000.0)?;
         }
     }
-    let target_size = match (input.guides.first(), input.size) {
+    Ok(())
+}
+
+/// The output's size: the target guides', or the size asked for without guides.
+fn target_size<I: ChannelImage>(input: &Input<I>) -> Result<(usize, usize), Error> {
+    match (input.guides.first(), input.size) {
         (Some(guide), Some(size)) if size != (guide.target.width(), guide.target.height()) => {
-            return Err(Error::SizeMismatch {
+            Err(Error::SizeMismatch {
                 what: "the output size must equal the target guides' size".into(),
                 first: "the output".into(),
                 first_size: format!("{}×{}", size.0, size.1),
                 second: "target guide 1".into(),
                 second_size: size_of(&guide.target),
-            });
+            })
         }
-        (Some(guide), _) => (guide.target.width(), guide.target.height()),
+        (Some(guide), _) => Ok((guide.target.width(), guide.target.height())),
         (None, Some((w, h))) => {
             if w == 0 || h == 0 {
                 return Err(Error::EmptyImage("output".into()));
@@ -378,138 +451,97 @@ pub fn synthesize<I: ChannelImage>(
             if w > 1 << 15 || h > 1 << 15 {
                 return Err(InvalidParameter::new("size", format!("{w}×{h}"), "must be at most 32768 a side").into());
             }
-            (w, h)
+            Ok((w, h))
         }
-        (None, None) => return Err(Error::MissingTargetSize),
-    };
-    check_work(target_size.0 * target_size.1, params.max_pixels)?;
+        (None, None) => Err(Error::MissingTargetSize),
+    }
+}
+
+/// Checks the run's estimated peak memory against [`Params::max_memory`] and returns it, then
+/// the guides' channels against [`MAX_GUIDE_CHANNELS`].
+fn check_memory<I: ChannelImage>(input: &Input<I>, params: &Params, target_size: (usize, usize)) -> Result<u64, Error> {
+    let style = &input.style;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
-    let style_pixels = style.width() * style.height();
+    let target_pixels = target_size.0 * target_size.1;
     let mut estimate = memory_estimate(
-        style_pixels,
+        style.width() * style.height(),
         style.channels(),
         guide_channels,
-        target_size.0 * target_size.1,
+        target_pixels,
         sample_bytes(style),
     );
     if input.mask.is_some() {
         // The kept image with its pyramid, the hole per level and its dilations, and the fill's
         // start (measured: 46–48 bytes a pixel beyond the rest, 77 k to 1.2 M pixels).
-        estimate.add("mask and fill", (target_size.0 * target_size.1) as f64, 48.0);
+        estimate.add("mask and fill", target_pixels as f64, 48.0);
     }
     let estimated_memory_bytes = estimate.check(params.max_memory, MEMORY_ADVICE)?;
     if guide_channels > MAX_GUIDE_CHANNELS {
         return Err(InvalidParameter::new(
             "guide",
-            format!("{guide_count} guides with {guide_channels} channels"),
+            format!("{} guides with {guide_channels} channels", input.guides.len()),
             format!("must have at most {MAX_GUIDE_CHANNELS} channels in all"),
         )
         .into());
     }
-    let style_weights: Vec<f32> = channel_weights(params.style_weight, style.channels()).collect();
+    Ok(estimated_memory_bytes)
+}
+
+/// Per-channel weights of the style (α) and of the guides' channels in order (β of each guide,
+/// 1 / number of guides by default).
+fn weights<I: ChannelImage>(input: &Input<I>, params: &Params) -> (Vec<f32>, Vec<f32>) {
+    let style_weights: Vec<f32> = channel_weights(params.style_weight, input.style.channels()).collect();
     let mut guide_weights = Vec::new();
     for guide in &input.guides {
-        let weight = guide.weight.unwrap_or(1.0 / guide_count as f32);
+        let weight = guide.weight.unwrap_or(1.0 / input.guides.len() as f32);
         guide_weights.extend(channel_weights(weight, guide.source.channels()));
     }
-    // Guides stay as given (one borrowed image each, no stacked copy): the level stacks their
-    // channels as it quantizes them.
-    let source_guides: Vec<&I> = input.guides.iter().map(|g| &g.source).collect();
-    let target_guides: Vec<&I> = input.guides.iter().map(|g| &g.target).collect();
-    let wants_segments = params.segments.is_some() || input.textures.is_some();
-    let labels = if wants_segments {
-        let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
-            if guide_count == 0 {
-                Error::SegmentsWithoutGuide
-            } else {
-                InvalidParameter::new(
-                    "segment-guide",
-                    params.segment_guide + 1,
-                    format!("must name one of the {guide_count} guides, counted from 1"),
-                )
-                .into()
-            }
-        })?;
-        let (source, target) = (guide.source.to_float_image(), guide.target.to_float_image());
-        match &input.textures {
-            // With a cache, its colours are the segments (whatever the mode, which chose them when
-            // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
-            // (Texler et al. §3.7).
-            Some(textures) => {
-                Some(label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect())?)
-            }
-            None => {
-                Some(label_guides(&source, &target, params.segments.unwrap_or(Segmentation::Palette), params.seed)?)
-            }
-        }
-    } else {
-        None
-    };
-    let composition = match &input.textures {
-        Some(textures) => {
-            let labels = labels.as_ref().expect("textures imply segments");
-            Some(band::compose_textures(
-                textures,
-                labels,
-                (style.width(), style.height(), style.channels()),
-                target_size,
-                params.band,
-            )?)
-        }
-        None => None,
-    };
-    let (composition, seeds) = match composition {
-        Some((composed, domain, seeds)) => (Some((composed, domain)), seeds),
-        None => (None, None),
-    };
-    if let Some(mask) = &input.mask {
-        mask::check(mask, style, target_size, patch, input.textures.is_some())?;
+    (style_weights, guide_weights)
+}
+
+/// Segment labels of the source and target (§3.6), when segments are asked for or textures are
+/// given: from the textures' colours, else found on the segment guide.
+fn segment_labels<I: ChannelImage>(input: &Input<I>, params: &Params) -> Result<Option<SegmentLabels>, Error> {
+    if params.segments.is_none() && input.textures.is_none() {
+        return Ok(None);
     }
-    let texture_only = guide_count == 0 && input.mask.is_none() && input.textures.is_none();
-    let quilting_start = motif_core::timing::Clock::now();
-    let seeds = if params.quilt_block > 0 {
-        if !texture_only || params.structure_weight > 0.0 || params.tileable {
-            let allowed = "applies to texture synthesis only (no guides, mask, textures, structure weight or \
-                tileable output); 0 turns it off";
-            return Err(InvalidParameter::new("quilt-block", params.quilt_block, allowed).into());
+    let guide_count = input.guides.len();
+    let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
+        if guide_count == 0 {
+            Error::SegmentsWithoutGuide
+        } else {
+            InvalidParameter::new(
+                "segment-guide",
+                params.segment_guide + 1,
+                format!("must name one of the {guide_count} guides, counted from 1"),
+            )
+            .into()
         }
-        Some(quilting::starting_field(style, target_size, params, progress)?)
-    } else {
-        seeds
+    })?;
+    let (source, target) = (guide.source.to_float_image(), guide.target.to_float_image());
+    let labels = match &input.textures {
+        // With a cache, its colours are the segments (whatever the mode, which chose them when
+        // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
+        // (Texler et al. §3.7).
+        Some(textures) => label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect())?,
+        None => label_guides(&source, &target, params.segments.unwrap_or(Segmentation::Palette), params.seed)?,
     };
-    let quilting_ms = (params.quilt_block > 0).then(|| motif_core::timing::elapsed_ms(quilting_start));
-    if params.structure_weight > 0.0 {
-        if !texture_only {
-            let allowed = "applies to texture synthesis only (no guides, mask or textures); 0 turns it off";
-            return Err(InvalidParameter::new("structure-weight", params.structure_weight, allowed).into());
-        }
-        let mut output =
-            structure_guidance::synthesize_with_structure(style, &style_weights, target_size, params, progress)?;
-        output.report.estimated_memory_bytes = estimated_memory_bytes;
-        return Ok(output);
+    Ok(Some(labels))
+}
+
+/// The image quilt that starts texture optimization ([`Params::quilt_block`]), as a starting
+/// field; refused outside plain texture synthesis.
+fn quilted_start<I: ChannelImage>(
+    style: &I,
+    target_size: (usize, usize),
+    params: &Params,
+    texture_only: bool,
+    progress: &mut dyn Progress,
+) -> Result<Vec<u32>, Error> {
+    if !texture_only || params.structure_weight > 0.0 || params.tileable {
+        let allowed = "applies to texture synthesis only (no guides, mask, textures, structure weight or \
+            tileable output); 0 turns it off";
+        return Err(InvalidParameter::new("quilt-block", params.quilt_block, allowed).into());
     }
-    let problem = synthesis::Problem {
-        style,
-        source_guides,
-        target_guides,
-        style_weights,
-        guide_weights,
-        target_size,
-        labels: labels.map(|l| {
-            let count = l.colours.len();
-            (l.source, l.target, count)
-        }),
-        tileable: params.tileable,
-        composition,
-        seeds,
-        mask: input.mask.as_ref(),
-        structure_weight: None,
-    };
-    let mut output = synthesis::run(&problem, params, progress)?;
-    output.report.estimated_memory_bytes = estimated_memory_bytes;
-    if let Some(ms) = quilting_ms {
-        output.report.stages_ms.insert(0, ("quilting".to_string(), ms));
-        output.report.total_ms += ms;
-    }
-    Ok(output)
+    quilting::starting_field(style, target_size, params, progress)
 }

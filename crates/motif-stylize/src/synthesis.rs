@@ -146,55 +146,127 @@ pub(crate) fn run<I: ChannelImage>(
     progress: &mut dyn Progress,
 ) -> Result<Output, Error> {
     let start = Clock::now();
-    // A band that starts from the textures' fields is nearly converged: fewer iterations (§3.7).
-    let seeded_band = problem.composition.is_some() && problem.seeds.is_some();
-    let mut params = params.clone();
-    if seeded_band {
-        params.search_vote_iterations = params.band_search_vote_iterations;
-        params.patchmatch_iterations = params.band_patchmatch_iterations;
-    }
-    let params = &params;
-    let mut timer = StageTimer::new();
-    let patch = params.patch_size;
-    let streams = SeedStreams::new(params.seed);
+    let params = &band_params(problem, params);
+    let levels = level_count(problem, params);
     let source_size = (problem.style.width(), problem.style.height());
-    let levels = if problem.composition.is_some() || problem.seeds.is_some() {
-        // Band mode optimizes a thin band at full resolution only (§3.7); a quilted start is
-        // already laid out at full resolution.
-        1
-    } else {
-        let fit = fitting_levels(&[source_size, problem.target_size], 2 * patch + 1);
-        if params.pyramid_levels == 0 { fit } else { params.pyramid_levels.min(fit) }
-    };
     if let Some((composed, domain)) = &problem.composition
         && !domain.iter().any(|&inside| inside)
     {
         // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
-        return Ok(composition_only(composed, source_size, patch, start));
+        return Ok(composition_only(composed, source_size, params.patch_size, start));
     }
+    let em = Em::new(problem, params, levels);
+    let mut timer = StageTimer::new();
+    let mut reports = Vec::with_capacity(levels + 1);
+    let mut previous: Option<(Field, Level)> = None;
+    let mut image = FloatImage::new(0, 0, 1);
+    let mut scratch = Vec::new();
+    for level_index in (0..levels).rev() {
+        // The coarser level is dropped once its field is upsampled.
+        let (field, level, report) = em.level(level_index, previous.take(), &mut image, &mut scratch, progress);
+        timer.add(&report.name, report.ms);
+        reports.push(report);
+        previous = Some((field, level));
+    }
+    let (mut field, mut level) = previous.expect("at least one level");
+    if params.extra_pass_3x3 {
+        let report;
+        (level, report) = em.extra_pass(&mut field, level, &mut image, &mut scratch, progress);
+        timer.add(&report.name, report.ms);
+        reports.push(report);
+    }
+    let figures = Figures::new(&mut field, &level, params);
+    let field = public_field(field, level, figures.vote_weights);
+    Ok(Output {
+        image,
+        field,
+        error_map: figures.error_map,
+        report: Report {
+            energy: figures.energy,
+            source_coverage: figures.source_coverage,
+            levels: reports,
+            stages_ms: timer.finish(),
+            total_ms: motif_core::timing::elapsed_ms(start),
+            searched_pixels: figures.searched,
+            estimated_memory_bytes: 0,
+        },
+    })
+}
+/// The parameters of the run: a band that starts from the textures' fields is nearly converged,
+/// so it takes the band's (fewer) iterations (§3.7).
+fn band_params<I: ChannelImage>(problem: &Problem<'_, I>, params: &Params) -> Params {
+    let mut params = params.clone();
+    if problem.composition.is_some() && problem.seeds.is_some() {
+        params.search_vote_iterations = params.band_search_vote_iterations;
+        params.patchmatch_iterations = params.band_patchmatch_iterations;
+    }
+    params
+}
+
+/// Number of pyramid levels: as many as fit two patches a side (or as asked, if fewer).
+fn level_count<I: ChannelImage>(problem: &Problem<'_, I>, params: &Params) -> usize {
+    if problem.composition.is_some() || problem.seeds.is_some() {
+        // Band mode optimizes a thin band at full resolution only (§3.7); a quilted start is
+        // already laid out at full resolution.
+        return 1;
+    }
+    let source_size = (problem.style.width(), problem.style.height());
+    let fit = fitting_levels(&[source_size, problem.target_size], 2 * params.patch_size + 1);
+    if params.pyramid_levels == 0 { fit } else { params.pyramid_levels.min(fit) }
+}
+
+/// The multi-resolution EM of one problem: its pyramids and what every level reads.
+struct Em<'p, 'a, I: ChannelImage> {
+    problem: &'p Problem<'a, I>,
+    params: &'p Params,
+    streams: SeedStreams,
+    levels: usize,
+    source_size: (usize, usize),
     // Pyramids hold the coarser levels only; level 0 is the problem's own image (no copy of the
     // largest images: the stacked guides are the biggest buffers of a run).
-    let style_pyramid = Pyramid::new(problem.style, levels);
-    let source_guide_pyramids: Vec<Pyramid<'_, I>> =
-        problem.source_guides.iter().map(|&g| Pyramid::new(g, levels)).collect();
-    let target_guide_pyramids: Vec<Pyramid<'_, I>> =
-        problem.target_guides.iter().map(|&g| Pyramid::new(g, levels)).collect();
-    let keep_pyramid = problem.mask.map(|mask| Pyramid::new(&mask.keep, levels));
-    let holes: Option<Vec<Vec<bool>>> =
-        problem.mask.map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect());
-    // Per level, the style channels' weights (they differ only with structure guidance).
-    let level_style_weights: Vec<Vec<f32>> = (0..levels)
-        .map(|level| {
-            let mut weights = problem.style_weights.clone();
-            if let (Some(weight), Some(last)) = (problem.structure_weight, weights.last_mut()) {
-                *last = if levels > 1 { weight * level as f32 / (levels - 1) as f32 } else { 0.0 };
-            }
-            weights
-        })
-        .collect();
-    let spec = |level: usize, patch: usize| -> LevelSpec<'_, '_, I> {
+    style: Pyramid<'a, I>,
+    source_guides: Vec<Pyramid<'a, I>>,
+    target_guides: Vec<Pyramid<'a, I>>,
+    keep: Option<Pyramid<'a, I>>,
+    /// The mask's hole at every level.
+    holes: Option<Vec<Vec<bool>>>,
+    /// Per level, the style channels' weights (they differ only with structure guidance).
+    style_weights: Vec<Vec<f32>>,
+}
+
+impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
+    fn new(problem: &'p Problem<'a, I>, params: &'p Params, levels: usize) -> Self {
+        let style_weights = (0..levels)
+            .map(|level| {
+                let mut weights = problem.style_weights.clone();
+                if let (Some(weight), Some(last)) = (problem.structure_weight, weights.last_mut()) {
+                    *last = if levels > 1 { weight * level as f32 / (levels - 1) as f32 } else { 0.0 };
+                }
+                weights
+            })
+            .collect();
+        Self {
+            problem,
+            params,
+            streams: SeedStreams::new(params.seed),
+            levels,
+            source_size: (problem.style.width(), problem.style.height()),
+            style: Pyramid::new(problem.style, levels),
+            source_guides: problem.source_guides.iter().map(|&g| Pyramid::new(g, levels)).collect(),
+            target_guides: problem.target_guides.iter().map(|&g| Pyramid::new(g, levels)).collect(),
+            keep: problem.mask.map(|mask| Pyramid::new(&mask.keep, levels)),
+            holes: problem
+                .mask
+                .map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect()),
+            style_weights,
+        }
+    }
+
+    /// The images, weights and labels of pyramid level `level` with patches of side `patch`.
+    fn spec(&self, level: usize, patch: usize) -> LevelSpec<'_, '_, I> {
+        let (problem, source_size) = (self.problem, self.source_size);
         let target_size = level_size(problem.target_size, level);
-        let inpainting = problem.mask.filter(|mask| mask.exclude_hole_from_style).and(holes.as_ref());
+        let inpainting = problem.mask.filter(|mask| mask.exclude_hole_from_style).and(self.holes.as_ref());
         let (source_labels, target_labels, label_count) = match (&problem.labels, inpainting) {
             // Inpainting: the source is the target image; patches touching its hole form a
             // second segment that no target patch may match.
@@ -212,10 +284,10 @@ pub(crate) fn run<I: ChannelImage>(
         };
         LevelSpec {
             patch,
-            style: style_pyramid.level(level),
-            style_weights: &level_style_weights[level],
-            source_guides: source_guide_pyramids.iter().map(|p| p.level(level)).collect(),
-            target_guides: target_guide_pyramids.iter().map(|p| p.level(level)).collect(),
+            style: self.style.level(level),
+            style_weights: &self.style_weights[level],
+            source_guides: self.source_guides.iter().map(|p| p.level(level)).collect(),
+            target_guides: self.target_guides.iter().map(|p| p.level(level)).collect(),
             guide_weights: &problem.guide_weights,
             target_size,
             tileable: problem.tileable,
@@ -223,136 +295,166 @@ pub(crate) fn run<I: ChannelImage>(
             target_labels,
             label_count,
         }
-    };
-    let band = |level: &mut Level, index: usize| {
-        let domain = match (&problem.composition, &holes) {
+    }
+
+    /// Level `index` with patches of side `patch`, restricted to the band (§3.7) or the hole
+    /// when there is one.
+    fn level_of(&self, index: usize, patch: usize) -> Level<'_> {
+        let mut level = Level::new(self.spec(index, patch));
+        let domain = match (&self.problem.composition, &self.holes) {
             (Some((_, domain)), _) => domain,
             (None, Some(holes)) => &holes[index],
-            (None, None) => return,
+            (None, None) => return level,
         };
         level.active = Some(dilate(domain, level.target_width, level.target_height, level.radius));
         level.domain = Some(domain.clone());
-    };
+        level
+    }
 
-    let mut reports = Vec::with_capacity(levels + 1);
-    let mut previous: Option<(Field, Level)> = None;
-    let mut image = FloatImage::new(0, 0, 1);
-    let mut scratch = Vec::new();
-    for level_index in (0..levels).rev() {
+    /// One pyramid level of Algorithm 1: the field from `coarser` (or a seeded or random one at
+    /// the coarsest level), the output's start from it, then N × (search, vote).
+    fn level(
+        &self,
+        index: usize,
+        coarser: Option<(Field, Level<'_>)>,
+        image: &mut FloatImage,
+        scratch: &mut Vec<u32>,
+        progress: &mut dyn Progress,
+    ) -> (Field, Level<'_>, LevelReport) {
+        let (params, levels) = (self.params, self.levels);
         let level_start = Clock::now();
-        let stage = format!("level {} of {}", levels - level_index, levels);
+        let stage = format!("level {} of {}", levels - index, levels);
         progress.report(&stage, 0.0);
-        let level_streams = streams.child("level", level_index as u64);
-        let level_patch = patch_at_level(params, levels, level_index, source_size, problem.target_size);
-        let mut level = Level::new(spec(level_index, level_patch));
-        band(&mut level, level_index);
-        // The coarser level is dropped once its field is upsampled.
-        let mut field = match (previous.take(), &problem.seeds) {
-            (None, Some(seeds)) => Field::seeded(&level, seeds, &level_streams),
-            (None, None) => Field::random(&level, &level_streams),
-            (Some((coarse, coarse_level)), _) => Field::upsample(&coarse, &coarse_level, &level, &level_streams),
+        let streams = self.streams.child("level", index as u64);
+        let patch = patch_at_level(params, levels, index, self.source_size, self.problem.target_size);
+        let mut level = self.level_of(index, patch);
+        let mut field = match (coarser, &self.problem.seeds) {
+            (None, Some(seeds)) => Field::seeded(&level, seeds, &streams),
+            (None, None) => Field::random(&level, &streams),
+            (Some((coarse, coarse_level)), _) => Field::upsample(&coarse, &coarse_level, &level, &streams),
         };
-        image = match (&problem.composition, &keep_pyramid) {
-            (Some((composed, _)), _) => composed.clone(),
-            (None, Some(keep)) => {
-                // The kept pixels of this level; the hole from the field (random or upsampled).
-                let mut fresh = keep.level(level_index).to_float_image().into_owned();
-                vote(&level, &field, &mut fresh, false, 0.0);
-                fresh
-            }
-            (None, None) => {
-                let mut fresh = FloatImage::new(level.target_width, level.target_height, level.style_channels);
-                vote(&level, &field, &mut fresh, false, 0.0);
-                fresh
-            }
-        };
-        level.set_target_style(&image, false);
+        *image = self.start_image(&level, index, &field);
+        level.set_target_style(image, false);
         let mut occurrence = Occurrence::new(&level, params.uniformity);
+        let mut searcher = Searcher { params, streams: &streams, scratch };
         let mut energies = Vec::with_capacity(params.search_vote_iterations);
         let mut converged: Option<Vec<bool>> = None;
         for iteration in 0..params.search_vote_iterations {
             field.recompute_costs(&level);
-            let mask = converged.as_deref();
             // From the second iteration on, Ω was refreshed after the last search and the field has
             // not moved since (voting changes only the target).
             let current = iteration > 0;
-            search(&level, &mut field, &mut occurrence, &mut scratch, params, &level_streams, iteration, mask, current);
+            searcher.search(&level, &mut field, &mut occurrence, iteration, converged.as_deref(), current);
             occurrence.refresh(&level, &field.matches);
             energies.push(field.mean_energy(&level, &occurrence));
-            let changed = vote(&level, &field, &mut image, true, params.stop_threshold);
-            level.set_target_style(&image, true);
+            let changed = vote(&level, &field, image, true, params.stop_threshold);
+            level.set_target_style(image, true);
             converged = (params.stop_threshold > 0.0).then(|| converged_patches(&level, &changed));
             progress.report(&stage, (iteration + 1) as f64 / params.search_vote_iterations as f64);
         }
         let ms = motif_core::timing::elapsed_ms(level_start);
-        timer.add(&stage, ms);
-        reports.push(LevelReport {
-            name: stage,
-            width: level.target_width,
-            height: level.target_height,
-            patch_size: level_patch,
-            energies,
-            ms,
-        });
-        previous = Some((field, level));
+        let (width, height) = (level.target_width, level.target_height);
+        let report = LevelReport { name: stage, width, height, patch_size: patch, energies, ms };
+        (field, level, report)
     }
-    let (mut field, mut level) = previous.expect("at least one level");
 
-    if params.extra_pass_3x3 {
+    /// The output at the start of level `index`: the composed textures in band mode, else the
+    /// vote of the starting field (over the kept pixels of this level when there is a mask).
+    fn start_image(&self, level: &Level, index: usize, field: &Field) -> FloatImage {
+        match (&self.problem.composition, &self.keep) {
+            (Some((composed, _)), _) => composed.clone(),
+            (None, Some(keep)) => {
+                // The kept pixels of this level; the hole from the field (random or upsampled).
+                let mut fresh = keep.level(index).to_float_image().into_owned();
+                vote(level, field, &mut fresh, false, 0.0);
+                fresh
+            }
+            (None, None) => {
+                let mut fresh = FloatImage::new(level.target_width, level.target_height, level.style_channels);
+                vote(level, field, &mut fresh, false, 0.0);
+                fresh
+            }
+        }
+    }
+
+    /// The optional final pass with 3×3 patches at the finest level, without the occurrence
+    /// penalty; `finest` is dropped before its replacement is stacked.
+    fn extra_pass(
+        &self,
+        field: &mut Field,
+        finest: Level<'_>,
+        image: &mut FloatImage,
+        scratch: &mut Vec<u32>,
+        progress: &mut dyn Progress,
+    ) -> (Level<'_>, LevelReport) {
         let pass_start = Clock::now();
         let stage = "extra 3×3 pass".to_string();
         progress.report(&stage, 0.0);
-        drop(level);
-        let mut fine = Level::new(spec(0, 3));
-        band(&mut fine, 0);
-        fine.set_target_style(&image, false);
+        drop(finest);
+        let mut fine = self.level_of(0, 3);
+        fine.set_target_style(image, false);
         let mut occurrence = Occurrence::new(&fine, 0.0);
         field.recompute_costs(&fine);
-        let pass_streams = streams.child("extra pass", 0);
-        search(&fine, &mut field, &mut occurrence, &mut scratch, params, &pass_streams, 0, None, false);
+        let streams = self.streams.child("extra pass", 0);
+        let mut searcher = Searcher { params: self.params, streams: &streams, scratch };
+        searcher.search(&fine, field, &mut occurrence, 0, None, false);
         let energies = vec![field.mean_energy(&fine, &occurrence)];
-        vote(&fine, &field, &mut image, true, 0.0);
-        fine.set_target_style(&image, true);
+        vote(&fine, field, image, true, 0.0);
+        fine.set_target_style(image, true);
         let ms = motif_core::timing::elapsed_ms(pass_start);
-        timer.add(&stage, ms);
-        reports.push(LevelReport {
-            name: stage.clone(),
-            width: fine.target_width,
-            height: fine.target_height,
-            patch_size: 3,
-            energies,
-            ms,
-        });
+        let (width, height) = (fine.target_width, fine.target_height);
         progress.report(&stage, 1.0);
-        level = fine;
+        (fine, LevelReport { name: stage, width, height, patch_size: 3, energies, ms })
     }
+}
 
-    // The weights the final vote gave each patch, before the costs are recomputed for the figures.
-    let area = (level.patch * level.patch) as f32;
-    let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
-    // Figures of the output itself: its final patch distances and the penalty of its field.
-    field.recompute_costs(&level);
-    let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
-    let mut occurrence = Occurrence::new(&level, final_lambda);
-    occurrence.refresh(&level, &field.matches);
-    let energy = energy_parts(&level, &field, &occurrence);
-    let source_coverage = Occurrence::coverage(&level, &field.matches);
-    let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
-    for (t, value) in error_map.data_mut().iter_mut().enumerate() {
-        if level.is_active(t) {
-            *value = field.costs[t] + occurrence.snapshot_cost(field.matches[t]);
+/// Figures of the output itself: its final patch distances and the penalty of its field.
+struct Figures {
+    energy: EnergyParts,
+    source_coverage: f64,
+    /// Per-pixel energy of the final field (0 outside the band or hole).
+    error_map: FloatImage,
+    /// Target patches optimized.
+    searched: usize,
+    /// The weights the final vote gave each patch.
+    vote_weights: Vec<u16>,
+}
+
+impl Figures {
+    fn new(field: &mut Field, level: &Level, params: &Params) -> Self {
+        // The weights the final vote gave each patch, before the costs are recomputed for the figures.
+        let area = (level.patch * level.patch) as f32;
+        let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
+        field.recompute_costs(level);
+        let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
+        let mut occurrence = Occurrence::new(level, final_lambda);
+        occurrence.refresh(level, &field.matches);
+        let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
+        for (t, value) in error_map.data_mut().iter_mut().enumerate() {
+            if level.is_active(t) {
+                *value = field.costs[t] + occurrence.snapshot_cost(field.matches[t]);
+            }
+        }
+        Self {
+            energy: energy_parts(level, field, &occurrence),
+            source_coverage: Occurrence::coverage(level, &field.matches),
+            error_map,
+            searched: level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count()),
+            vote_weights,
         }
     }
-    let searched = level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count());
-    // The public field is the largest buffer made at the end: the level's stacks, the costs and
-    // the occurrence counts are freed first.
+}
+
+/// The public field of the final level, with the final vote's weights. It is the largest buffer
+/// made at the end: the level's stacks and the costs are freed first.
+fn public_field(field: Field, mut level: Level, vote_weights: Vec<u16>) -> NearestNeighbourField {
     let (width, height, source_width, source_height, patch_size) =
         (level.target_width, level.target_height, level.source_width, level.source_height, level.patch);
     let active = level.active.take();
-    drop((level, occurrence));
+    drop(level);
     let Field { matches, costs } = field;
     drop(costs);
-    let nnf = NearestNeighbourField {
+    NearestNeighbourField {
         width,
         height,
         source_width,
@@ -369,21 +471,7 @@ pub(crate) fn run<I: ChannelImage>(
             })
             .collect(),
         weights: Some(vote_weights),
-    };
-    Ok(Output {
-        image,
-        field: nnf,
-        error_map,
-        report: Report {
-            energy,
-            source_coverage,
-            levels: reports,
-            stages_ms: timer.finish(),
-            total_ms: motif_core::timing::elapsed_ms(start),
-            searched_pixels: searched,
-            estimated_memory_bytes: 0,
-        },
-    })
+    }
 }
 
 /// Patches none of whose pixels `changed` (by the stop threshold, in the last vote).
@@ -419,38 +507,44 @@ fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: u
     }
 }
 
-/// One search: K PatchMatch iterations (Ω refreshed before each) or one exact pass.
-/// `omega_current`: Ω already matches the field (its refresh before the first iteration is skipped).
-#[allow(
-    clippy::too_many_arguments,
-    reason = "the search step's state is borrowed apart (field mutable, level shared) inside the EM loop"
-)]
-fn search(
-    level: &Level,
-    field: &mut Field,
-    occurrence: &mut Occurrence,
-    scratch: &mut Vec<u32>,
-    params: &Params,
-    streams: &SeedStreams,
-    iteration: usize,
-    converged: Option<&[bool]>,
-    omega_current: bool,
-) {
-    match params.nnf {
-        NnfMethod::PatchMatch => {
-            for k in 0..params.patchmatch_iterations {
-                if k > 0 || !omega_current {
+/// What the searches of one level share: the parameters, the level's random streams and the
+/// workers' scratch space.
+struct Searcher<'s> {
+    params: &'s Params,
+    streams: &'s SeedStreams,
+    scratch: &'s mut Vec<u32>,
+}
+
+impl Searcher<'_> {
+    /// One search: K PatchMatch iterations (Ω refreshed before each) or one exact pass.
+    /// `omega_current`: Ω already matches the field (its refresh before the first iteration is skipped).
+    fn search(
+        &mut self,
+        level: &Level,
+        field: &mut Field,
+        occurrence: &mut Occurrence,
+        iteration: usize,
+        converged: Option<&[bool]>,
+        omega_current: bool,
+    ) {
+        let params = self.params;
+        match params.nnf {
+            NnfMethod::PatchMatch => {
+                for k in 0..params.patchmatch_iterations {
+                    if k > 0 || !omega_current {
+                        occurrence.refresh(level, &field.matches);
+                    }
+                    let key = (iteration * params.patchmatch_iterations + k) as u64;
+                    let streams = self.streams.child("search", key);
+                    patchmatch_iteration(level, field, self.scratch, occurrence, &streams, k, converged);
+                }
+            }
+            NnfMethod::Exact => {
+                if !omega_current {
                     occurrence.refresh(level, &field.matches);
                 }
-                let key = (iteration * params.patchmatch_iterations + k) as u64;
-                patchmatch_iteration(level, field, scratch, occurrence, &streams.child("search", key), k, converged);
+                exact_search(level, field, occurrence);
             }
-        }
-        NnfMethod::Exact => {
-            if !omega_current {
-                occurrence.refresh(level, &field.matches);
-            }
-            exact_search(level, field, occurrence);
         }
     }
 }

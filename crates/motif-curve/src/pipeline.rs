@@ -1,0 +1,488 @@
+//! A synthesis, stage by stage as the report times them: ribbon (`layout`), avoidance, valid
+//! positions, dynamic program, stitching, render; or, for the repeat baseline, ribbon, avoidance
+//! and render.
+
+use motif_core::timing::StageTimer;
+use motif_core::{Progress, RgbaImage, Vec2};
+use rayon::prelude::*;
+
+use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
+use crate::cost::{COST_SCALE, edge_distance, left_edges, right_edges};
+use crate::dp::{DpCounters, RowSpec};
+use crate::layout::{Layout, MEMORY_ADVICE, memory_estimate};
+use crate::params::validate;
+use crate::piece::{Position, candidate_count};
+use crate::render::{Shape, rigid_shape};
+use crate::repeat::Triangle;
+use crate::stitch::Stitch;
+use crate::{ClosedMode, Error, Input, Method, Output, Params, PlacedPiece, Report};
+use crate::{avoidance, incremental, render, repeat, ribbon_pieces, solve, stitch, variety, warnings};
+
+/// [`synthesize`](crate::synthesize), reusing and updating a session's cache when one is given
+/// (see [`Incremental`](crate::Incremental)).
+pub(crate) fn synthesize_with(
+    input: &Input<'_>,
+    params: &Params,
+    progress: &mut dyn Progress,
+    mut cache: Option<&mut incremental::Cache>,
+) -> Result<Output, Error> {
+    let closed = validate(input, params)?;
+    let mut timer = StageTimer::new();
+    timer.start("ribbon");
+    let layout = Layout::new(input, params, closed, cache.as_deref_mut())?;
+
+    timer.start("avoidance");
+    progress.report("avoidance", 0.0);
+    let forbidden = forbidden_mask(input, params, &layout);
+    let mut report = first_report(params, &layout, &forbidden);
+
+    if params.method == Method::Repeat {
+        timer.start("render");
+        progress.report("render", 0.0);
+        let image = render_repeat(params, &layout, &mut report);
+        report.stages_ms = timer.finish();
+        progress.report("render", 1.0);
+        return Ok(layout.into_output(image, Vec::new(), report, forbidden));
+    }
+
+    timer.start("valid positions");
+    progress.report("valid positions", 0.0);
+    let candidates = Candidates::new(input, params, &layout, &forbidden, &mut report, cache.as_deref_mut())?;
+    check_pin(params, &candidates)?;
+
+    timer.start("dynamic program");
+    let (positions, optimum) = dynamic_program(params, &layout, &candidates, &mut report, cache, progress);
+
+    timer.start("stitching");
+    let stitches = stitch_seams(params, &layout, &candidates, &positions, optimum, &mut report);
+
+    timer.start("render");
+    progress.report("render", 0.0);
+    let image = render_pieces(params, &layout, &candidates, &positions, &stitches, &mut report);
+    progress.report("render", 1.0);
+
+    let pieces = placed_pieces(params, &layout, &candidates, &positions, &stitches);
+    report.stages_ms = timer.finish();
+    Ok(layout.into_output(image, pieces, report, forbidden))
+}
+
+/// The forbidden pixels of the canvas (§3.1): the avoidance map's, and the fold-overs of the
+/// ribbon when the synthesis avoids them.
+fn forbidden_mask(input: &Input<'_>, params: &Params, layout: &Layout) -> ForbiddenMask {
+    let mut forbidden = ForbiddenMask::empty(layout.canvas.0, layout.canvas.1);
+    if let Some(map) = input.avoidance {
+        forbidden.add_map(map);
+    }
+    if params.foldover_avoidance && params.method == Method::Synthesis {
+        forbidden.add_foldovers(&layout.rigid_frames, params.samples_per_axis);
+    }
+    forbidden
+}
+
+/// The report as the layout and the forbidden mask leave it (the later stages fill the rest),
+/// with the warning of a bend that rounding could not resolve.
+fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> Report {
+    let mut report = Report {
+        method: params.method,
+        estimated_memory_bytes: layout.canvas_memory,
+        solver: params.solver,
+        pieces: 0,
+        samples_per_edge: layout.samples,
+        canvas: [layout.canvas.0, layout.canvas.1],
+        canvas_origin: [-layout.shift.x, -layout.shift.y],
+        total_cost: 0.0,
+        total_cost_unstitched: 0.0,
+        mean_seam_cost: 0.0,
+        dp_optimum: 0.0,
+        valid_fraction: 0.0,
+        dp_row_ms: Vec::new(),
+        dp_row_ms_median: 0.0,
+        dp_row_ms_max: 0.0,
+        stages_ms: Vec::new(),
+        closed: layout.closed,
+        closed_certified: None,
+        closed_starts_tried: 0,
+        closed_directly: false,
+        empty_pieces: 0,
+        forbidden_pixels: forbidden.count(),
+        foldover_pixels: forbidden.flags.iter().filter(|&&f| f & FROM_FOLDOVER != 0).count(),
+        dp_counters: DpCounters::default(),
+        columns_skipped_fraction: 0.0,
+        stitched_seams: 0,
+        distortion_mean: 0.0,
+        distortion_max: 0.0,
+        wrap_seams: 0,
+        repeated_pairs: 0,
+        distinct_windows: 0,
+        variety: None,
+        warnings: Vec::new(),
+        dp_rows_reused: 0,
+        rounded_bends: layout.rounded_bends,
+        bend_shift_max: layout.bend_shift_max,
+    };
+    if layout.unresolved_bend {
+        report.warnings.push(format!(
+            "a bend of the curve is tighter than {:.1} px and rounding it would move the curve more than half \
+             the ribbon's width: the ribbon may fold there and leave pieces empty; use a narrower ribbon or a \
+             smoother curve",
+            params.round_bends * params.width
+        ));
+    }
+    report
+}
+
+/// Mean and largest deviation of the ribbon's triangles' stretch from 1, into the report.
+fn record_distortion(report: &mut Report, stretch: &[f64]) {
+    let deviations: Vec<f64> = stretch.iter().map(|s| (s - 1.0).abs()).collect();
+    report.distortion_mean = deviations.iter().sum::<f64>() / deviations.len().max(1) as f64;
+    report.distortion_max = deviations.iter().copied().fold(0.0, f64::max);
+}
+
+/// The repeat baseline: the exemplar repeated along the arc length and bent with the ribbon.
+fn render_repeat(params: &Params, layout: &Layout, report: &mut Report) -> RgbaImage {
+    let exemplar = &*layout.exemplar;
+    let (triangles, stretch) = repeat::triangulate(&layout.ribbon);
+    let shapes = repeat::shapes(&triangles, exemplar, params.width, params.scale, layout.canvas);
+    let image = render::render(layout.canvas.0, layout.canvas.1, params.samples_per_axis, &shapes);
+    record_distortion(report, &stretch);
+    report.wrap_seams = (params.scale * layout.ribbon.length() / f64::from(exemplar.width)).floor() as usize;
+    image
+}
+
+/// A piece's valid positions, whether it was left empty by a forbidden area, and its signature
+/// (the key of the incremental cache).
+type PieceValid = (Vec<Position>, bool, u64);
+
+/// Number of rows of the exemplar holding non-transparent pixels (for error messages).
+fn pattern_height(image: &RgbaImage) -> usize {
+    image.opaque_bounds().map_or(0, |(_, y0, _, y1)| y1 - y0)
+}
+
+/// What the valid-positions stage finds: every piece's valid positions (§1.3, §3.1) and the
+/// forbidden samples they avoid, and for bent pieces the ribbon's triangles they are drawn through.
+struct Candidates {
+    /// Valid positions per piece (one empty position for a piece left empty).
+    valid: Vec<Vec<Position>>,
+    /// Pieces left empty: a forbidden area leaves them no valid position.
+    empty: Vec<bool>,
+    /// Forbidden sample points per piece, in piece-local coordinates.
+    forbidden_samples: Vec<Vec<Vec2>>,
+    /// Bent pieces: the ribbon's triangles and their stretch (empty for rigid pieces).
+    triangles: Vec<Triangle>,
+    stretch: Vec<f64>,
+}
+
+impl Candidates {
+    /// Lists the valid positions of every piece, after checking the memory they and the dynamic
+    /// program will take, and records the validity figures and warnings.
+    fn new(
+        input: &Input<'_>,
+        params: &Params,
+        layout: &Layout,
+        forbidden: &ForbiddenMask,
+        report: &mut Report,
+        mut cache: Option<&mut incremental::Cache>,
+    ) -> Result<Self, Error> {
+        // Bent pieces are drawn (and tested against forbidden pixels) through the ribbon's triangles.
+        let (triangles, stretch, spacing) = if layout.bent {
+            let (triangles, stretch) = repeat::triangulate(&layout.ribbon);
+            let slices = repeat::slice_count(&layout.ribbon);
+            (triangles, stretch, (layout.ribbon.length() / slices as f64, slices))
+        } else {
+            (Vec::new(), Vec::new(), (1.0, 1))
+        };
+        let forbidden_samples = piece_forbidden_samples(params, layout, forbidden, &triangles, spacing);
+        let previous = cache.as_deref_mut().map(|cache| std::mem::take(&mut cache.valid)).unwrap_or_default();
+        let valid = valid_positions(params, layout, &forbidden_samples, &previous, report)?;
+        if let Some(cache) = cache {
+            cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
+        }
+        if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
+            let samples = layout.samples;
+            return Err(Error::NoValidPosition { piece, samples, pattern_height: pattern_height(input.exemplar) });
+        }
+        let (valid, empty): (Vec<Vec<Position>>, Vec<bool>) = valid.into_iter().map(|(p, e, _)| (p, e)).unzip();
+        let candidates = Self { valid, empty, forbidden_samples, triangles, stretch };
+        candidates.record(params, layout, report);
+        Ok(candidates)
+    }
+
+    /// The share of valid positions, the empty pieces and the warnings they call for.
+    fn record(&self, params: &Params, layout: &Layout, report: &mut Report) {
+        let (valid, empty) = (&self.valid, &self.empty);
+        let candidates = candidate_count(layout.atlas.image.width(), layout.atlas.image.height(), layout.samples);
+        report.empty_pieces = empty.iter().filter(|&&e| e).count();
+        report.valid_fraction = valid
+            .iter()
+            .zip(empty)
+            .map(|(positions, &is_empty)| if is_empty { 0.0 } else { positions.len() as f64 / candidates as f64 })
+            .sum::<f64>()
+            / valid.len() as f64;
+        report.warnings.extend(warnings::warnings(
+            &layout.exemplar,
+            params,
+            layout.samples,
+            report.valid_fraction,
+            report.empty_pieces,
+        ));
+    }
+}
+
+/// The forbidden sample points each piece covers (none when no pixel is forbidden).
+fn piece_forbidden_samples(
+    params: &Params,
+    layout: &Layout,
+    forbidden: &ForbiddenMask,
+    triangles: &[Triangle],
+    spacing: (f64, usize),
+) -> Vec<Vec<Vec2>> {
+    let forbidden_pixels = forbidden.count();
+    let n_samples = params.samples_per_axis;
+    (0..layout.frames.len())
+        .into_par_iter()
+        .map(|i| match (forbidden_pixels, layout.bent) {
+            (0, _) => Vec::new(),
+            (_, true) => ribbon_pieces::forbidden_samples(
+                triangles,
+                spacing,
+                &layout.quads[i],
+                params.width,
+                [layout.along_scales[i], params.scale],
+                forbidden,
+                n_samples,
+            ),
+            (_, false) => avoidance::forbidden_samples(&layout.frames[i], forbidden, n_samples),
+        })
+        .collect()
+}
+
+/// Every piece's valid positions, taken from `previous` (a session's last run, by piece
+/// signature) where it has them. The DP's memory follows the valid positions per piece: a few
+/// pieces go first, and their counts decide whether the rest may be computed (their lists are
+/// kept, not redone).
+fn valid_positions(
+    params: &Params,
+    layout: &Layout,
+    forbidden_samples: &[Vec<Vec2>],
+    previous: &std::collections::HashMap<u64, Vec<Position>>,
+    report: &mut Report,
+) -> Result<Vec<PieceValid>, Error> {
+    let frames = &layout.frames;
+    let valid_of = |i: usize| -> PieceValid {
+        let frame = &frames[i];
+        let runs = avoidance::forbidden_runs(&forbidden_samples[i]);
+        let signature = incremental::piece_signature(frame, &runs);
+        let positions = match previous.get(&signature) {
+            Some(positions) => positions.clone(),
+            None => frame.valid_positions(&layout.exemplar, &runs, params.min_coverage),
+        };
+        // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
+        // position stays empty; the DP pays for the gap at its seams.
+        if positions.is_empty() && !runs.is_empty() {
+            (vec![frame.empty_position()], true, signature)
+        } else {
+            (positions, false, signature)
+        }
+    };
+    let probe_count = frames.len().min(8);
+    let mut slots: Vec<Option<PieceValid>> = vec![None; frames.len()];
+    let probed: Vec<(usize, PieceValid)> =
+        (0..probe_count).into_par_iter().map(|k| k * frames.len() / probe_count).map(|i| (i, valid_of(i))).collect();
+    let mean_valid = probed.iter().map(|(_, (p, _, _))| p.len()).sum::<usize>() as f64 / probe_count.max(1) as f64;
+    report.estimated_memory_bytes =
+        memory_estimate(layout.canvas_pixels(), frames.len() as f64, mean_valid, layout.samples)
+            .check(params.max_memory, MEMORY_ADVICE)?;
+    for (i, lists) in probed {
+        slots[i] = Some(lists);
+    }
+    Ok(slots.into_par_iter().enumerate().map(|(i, slot)| slot.unwrap_or_else(|| valid_of(i))).collect())
+}
+
+/// Refuses a pinned first position that is not one of the first piece's valid positions.
+fn check_pin(params: &Params, candidates: &Candidates) -> Result<(), Error> {
+    let (valid, empty) = (&candidates.valid[0], candidates.empty[0]);
+    match params.pin_first {
+        Some(pin) if !valid.contains(&pin) || empty => {
+            Err(Error::InvalidPin { x: pin[0], y: pin[1], count: if empty { 0 } else { valid.len() } })
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The dynamic program of Eq. 1 (§1.4, §2) over the pieces' valid positions, with the repetition
+/// control of `variety`: the chosen position of every piece and the optimum Ω (cost units), its
+/// figures into the report.
+fn dynamic_program(
+    params: &Params,
+    layout: &Layout,
+    candidates: &Candidates,
+    report: &mut Report,
+    mut cache: Option<&mut incremental::Cache>,
+    progress: &mut dyn Progress,
+) -> (Vec<Position>, u64) {
+    let (frames, closed, samples) = (&layout.frames, layout.closed, layout.samples);
+    let pinned = params.pin_first.map(|pin| [pin]);
+    let first_positions: &[Position] = pinned.as_ref().map_or(candidates.valid[0].as_slice(), |pin| pin.as_slice());
+    let mut rows: Vec<RowSpec<'_>> =
+        frames.iter().zip(&candidates.valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
+    rows[0].positions = first_positions;
+    if closed {
+        rows.push(RowSpec { frame: &frames[0], positions: first_positions });
+    }
+    let total_rows = rows.len();
+    let mut on_row = |row: usize| progress.report("dynamic program", row as f64 / total_rows.max(1) as f64);
+    let rule = variety::Rule {
+        weight: (params.variety * COST_SCALE).round() as u64,
+        radius: params.variety_radius,
+        reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
+        closed,
+    };
+    let setup = solve::Setup {
+        solver: params.solver,
+        closed,
+        exact_closed: params.closed == ClosedMode::Exact,
+        closed_max_starts: params.closed_max_starts,
+        rule,
+    };
+    let (exemplar, model, empty) = (&layout.exemplar, &layout.model, &candidates.empty);
+    let optimised = solve::optimise(exemplar, model, &rows, setup, empty, cache.as_deref_mut(), &mut on_row);
+    report.dp_rows_reused = cache.map_or(0, |cache| cache.reused_rows);
+    let solve::Optimised { solution, repeated_pairs, distinct_windows, variety } = optimised;
+    if closed {
+        report.closed_certified =
+            if params.pin_first.is_some() && setup.exact_closed { Some(true) } else { solution.closed_certified };
+        report.closed_starts_tried = solution.closed_starts_tried;
+        report.closed_directly = solution.closed_directly;
+    }
+    report.repeated_pairs = repeated_pairs;
+    report.distinct_windows = distinct_windows;
+    report.variety = variety;
+    let (path, optimum, row_ms, counters) = (solution.path, solution.cost, solution.row_ms, solution.counters);
+    report.dp_optimum = optimum as f64 / COST_SCALE;
+    report.dp_row_ms_median = motif_core::timing::median(&row_ms);
+    report.dp_row_ms_max = row_ms.iter().copied().fold(0.0, f64::max);
+    report.dp_row_ms = row_ms;
+    report.dp_counters = counters;
+    report.columns_skipped_fraction = counters.skipped_fraction();
+    ((0..frames.len()).map(|i| rows[i].positions[path[i]]).collect(), optimum)
+}
+
+/// The edge alignment of every seam (Eq. 2–3, §3.2; identity without stitching), and the seam
+/// costs before and after it into the report.
+fn stitch_seams(
+    params: &Params,
+    layout: &Layout,
+    candidates: &Candidates,
+    positions: &[Position],
+    optimum: u64,
+    report: &mut Report,
+) -> Vec<Stitch> {
+    let n = layout.frames.len();
+    let seam_count = if layout.closed { n } else { n - 1 };
+    let stitches: Vec<Stitch> =
+        (0..seam_count).into_par_iter().map(|i| stitch_seam(params, layout, candidates, positions, i)).collect();
+    report.stitched_seams = stitches.iter().filter(|s| !s.is_identity()).count();
+    let before: u64 = stitches.iter().map(|s| s.before).sum();
+    let after: u64 = stitches.iter().map(|s| s.after).sum();
+    // The seams recomputed at the chosen positions add up to the DP optimum Ω.
+    debug_assert_eq!(before, optimum, "seam costs must add up to the DP optimum");
+    report.total_cost_unstitched = before as f64 / COST_SCALE;
+    report.total_cost = after as f64 / COST_SCALE;
+    report.mean_seam_cost = if seam_count == 0 { 0.0 } else { report.total_cost / seam_count as f64 };
+    report.pieces = n;
+    stitches
+}
+
+/// The stitch of the seam between piece `i` and the next: identity where stitching is off or a
+/// side is empty, or where the deformation would draw pattern into a forbidden pixel.
+fn stitch_seam(params: &Params, layout: &Layout, candidates: &Candidates, positions: &[Position], i: usize) -> Stitch {
+    let (exemplar, model, samples) = (&*layout.exemplar, &layout.model, layout.samples);
+    let (frames, empty) = (&layout.frames, &candidates.empty);
+    let next = (i + 1) % frames.len();
+    let rights = right_edges(exemplar, model, &frames[i], &[positions[i]]);
+    let lefts = left_edges(exemplar, model, &[positions[next]], samples);
+    let cost = u64::from(edge_distance(model, &rights, 0, &lefts, 0));
+    if !params.stitch || empty[i] || empty[next] {
+        return Stitch::identity(samples, cost);
+    }
+    let stitch = stitch::align(model, &rights, 0, &lefts, 0, params.stitch_penalty);
+    // The deformation must not draw pattern into a forbidden pixel.
+    let safe = candidates.forbidden_samples[i].iter().all(|&local| {
+        let moved = stitch::deform(&frames[i], &stitch.remap, local);
+        avoidance::footprint(moved).iter().all(|&(dx, dy)| {
+            let (x, y) = (positions[i][0] + dx, positions[i][1] + dy);
+            !exemplar.in_storage(x, y) || exemplar.rgba[exemplar.index(x, y)][3] == 0
+        })
+    });
+    if safe { stitch } else { Stitch::identity(samples, cost) }
+}
+
+/// Draws the placed pieces, anti-aliased: rigid pieces as rotated copies, bent ones through the
+/// ribbon's triangles (whose distortion goes into the report).
+fn render_pieces(
+    params: &Params,
+    layout: &Layout,
+    candidates: &Candidates,
+    positions: &[Position],
+    stitches: &[Stitch],
+    report: &mut Report,
+) -> RgbaImage {
+    let (exemplar, canvas, empty) = (&*layout.exemplar, layout.canvas, &candidates.empty);
+    let n = layout.frames.len();
+    let remap_of = |i: usize| stitches.get(i).filter(|s| !s.is_identity()).map(|s| s.remap.clone());
+    if layout.bent {
+        record_distortion(report, &candidates.stretch);
+    }
+    let bent_pieces: Vec<ribbon_pieces::BentPiece<'_>> = if layout.bent {
+        (0..n)
+            .map(|i| ribbon_pieces::BentPiece {
+                start: layout.quads[i].start,
+                position: (!empty[i]).then_some(positions[i]),
+                frame: &layout.frames[i],
+                remap: remap_of(i),
+                along_scale: layout.along_scales[i],
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let shapes: Vec<Shape<'_>> = if layout.bent {
+        ribbon_pieces::shapes(&candidates.triangles, &bent_pieces, exemplar, params.width, params.scale, canvas)
+    } else {
+        (0..n)
+            .filter(|&i| !empty[i])
+            .map(|i| rigid_shape(&layout.frames[i], positions[i], remap_of(i), exemplar, canvas))
+            .collect()
+    };
+    render::render(canvas.0, canvas.1, params.samples_per_axis, &shapes)
+}
+
+/// The pieces as the pieces JSON lists them.
+fn placed_pieces(
+    params: &Params,
+    layout: &Layout,
+    candidates: &Candidates,
+    positions: &[Position],
+    stitches: &[Stitch],
+) -> Vec<PlacedPiece> {
+    let (quads, atlas, empty) = (&layout.quads, &layout.atlas, &candidates.empty);
+    (0..layout.frames.len())
+        .map(|i| {
+            let stitch = stitches.get(i);
+            PlacedPiece {
+                index: i,
+                arc: [quads[i].start, quads[i].end],
+                quad: quads[i].corners.map(|c| [c.x, c.y]),
+                position: if empty[i] { None } else { Some(atlas.local(positions[i]).1) },
+                exemplar: if empty[i] { 0 } else { atlas.local(positions[i]).0 },
+                rotation: layout.rigid_frames[i].angle(),
+                scale: params.scale,
+                valid_positions: if empty[i] { 0 } else { candidates.valid[i].len() },
+                has_seam: stitch.is_some(),
+                seam_cost: stitch.map_or(0.0, |s| s.after as f64 / COST_SCALE),
+                seam_cost_unstitched: stitch.map_or(0.0, |s| s.before as f64 / COST_SCALE),
+                stitch: stitch.map_or_else(|| (0..layout.samples).collect(), |s| s.remap.clone()),
+            }
+        })
+        .collect()
+}
