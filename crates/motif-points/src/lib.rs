@@ -95,6 +95,7 @@ mod pair_statistics;
 mod params;
 mod placement;
 mod points;
+mod prepare;
 mod quadratic;
 mod quadrature;
 mod quilting;
