@@ -78,6 +78,7 @@
 
 mod curvature;
 mod cut;
+mod cut_copy;
 mod domain;
 mod energy;
 mod error;
