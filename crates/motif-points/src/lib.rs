@@ -87,6 +87,7 @@ mod fidelity;
 mod grid;
 mod init;
 mod linear;
+mod local_global;
 mod matching;
 mod merging;
 mod mesh_surface;
