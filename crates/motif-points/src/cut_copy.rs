@@ -4,7 +4,7 @@
 use crate::cut::{Cut, Overlap};
 use crate::linear::{self, Matrix, Vector};
 use crate::model::{Exemplar, State};
-use crate::placement::place;
+use crate::placement::{Placement, place};
 
 /// What the copies made so far came from, per copied point and per exemplar point.
 pub(crate) struct Provenance {
@@ -103,18 +103,14 @@ pub(crate) fn copy_with_cuts<const D: usize>(
             None => (0..2).all(|a| p[a] >= low[a]),
         };
         if keep {
-            let placed = place(
-                exemplar,
-                state,
-                j,
-                &frame.centre,
-                &frame.origin,
-                frame.transform,
-                frame.scale,
-                None,
-                allowed,
-                false,
-            );
+            let placement = Placement {
+                anchor: &frame.centre,
+                origin: &frame.origin,
+                frame: frame.transform,
+                scale: frame.scale,
+                extra: None,
+            };
+            let placed = place(exemplar, state, j, &placement, allowed, false);
             if placed > 0 {
                 provenance.usage[j] += 1.0;
                 provenance.source_of.push(j as u32);

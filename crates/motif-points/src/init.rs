@@ -10,7 +10,7 @@ use crate::domain::Quadrature;
 use crate::grid::StaticGrid;
 use crate::linear::{self, Vector};
 use crate::model::{Exemplar, State};
-use crate::placement::place;
+use crate::placement::{Placement, place};
 use crate::quilting::{Band, Tile};
 
 /// How patch initialization cuts and chooses its patches.
@@ -436,8 +436,9 @@ impl<const D: usize> Quilt<'_, D> {
                 .layout
                 .seam
                 .is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * self.tiling.sides[a] - seam));
-            let placed =
-                place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, self.allowed, frozen);
+            let placement =
+                Placement { anchor: &centre, origin: &origin, frame: &quadrature.transform[k], scale: s, extra: None };
+            let placed = place(exemplar, state, j, &placement, self.allowed, frozen);
             running.placed_so_far += placed as f64;
             running.provenance.usage[j] += placed as f64;
             if frozen {
