@@ -111,53 +111,11 @@ impl<const D: usize> Problem<'_, D> {
         let Some(range) = self.quadrature.node_range(&x, kernel.gather) else {
             return (0.0, 0.0);
         };
-        // Pairs (i, j), the point itself first.
         let RowScratch { pairs: scratch, windows, found } = scratch;
-        scratch.clear();
         // Without pairs (they come from [`Problem::pair_terms`]) the node loop does only the
         // exemplar side.
-        let neighbours = if with_pairs { neighbours } else { &[] };
-        if with_pairs {
-            scratch.push(PairCache {
-                other: i as u32,
-                pair: 1.0 - kernel.pair_floor,
-                slope: [0.0; D],
-                mid: x,
-                weight: feature_dot(a, a),
-                coefficient: 0.0,
-            });
-        }
-        for &j in neighbours {
-            let xj = state.positions[j as usize];
-            let d = linear::sub(&x, &xj);
-            let d2 = linear::norm2(&d);
-            if d2 >= kernel.cutoff2 {
-                continue;
-            }
-            let pair_exp = math::exp(-d2 * kernel.half_inv_sigma2);
-            scratch.push(PairCache {
-                other: j,
-                pair: pair_exp - kernel.pair_floor,
-                slope: linear::scale(&d, pair_exp * kernel.inv_sigma2),
-                mid: std::array::from_fn(|c| 0.5 * (x[c] + xj[c])),
-                weight: feature_dot(a, state.feature(j as usize)),
-                coefficient: 0.0,
-            });
-        }
-        // Window tables: pair p, axis c, node n at windows[(p·D + c)·width + n − low_c].
-        let (low, high) = range;
-        let width = (0..D).map(|c| high[c] - low[c] + 1).max().unwrap_or(1);
-        windows.clear();
-        if gaussian {
-            for cache in scratch.iter() {
-                for c in 0..D {
-                    for n in 0..width {
-                        let t = cache.mid[c] - self.quadrature.node_coordinate(c, low[c] + n);
-                        windows.push(math::exp(-t * t * kernel.inv_delta_prime2));
-                    }
-                }
-            }
-        }
+        self.pair_caches(state, i, with_pairs.then_some(neighbours), scratch);
+        let width = self.window_tables(scratch, &range, windows);
         let collect = quadratic.is_some();
         let identity = self.quadrature.identity_frames;
         self.quadrature.for_each_in_range(&x, kernel.gather, &range, |k, node| {
@@ -224,6 +182,64 @@ impl<const D: usize> Problem<'_, D> {
             row.coefficients.extend(scratch.iter().map(|cache| (cache.other, cache.coefficient)));
         }
         (row_a, row_b)
+    }
+
+    /// The pairs (i, j) of output point `i` within the cut-off, the point itself first (none when
+    /// `neighbours` is `None`), with their quadrature-independent factors.
+    fn pair_caches(&self, state: &State<D>, i: usize, neighbours: Option<&[u32]>, scratch: &mut Vec<PairCache<D>>) {
+        let kernel = &self.kernel;
+        let x = state.positions[i];
+        let a = state.feature(i);
+        scratch.clear();
+        let Some(neighbours) = neighbours else { return };
+        scratch.push(PairCache {
+            other: i as u32,
+            pair: 1.0 - kernel.pair_floor,
+            slope: [0.0; D],
+            mid: x,
+            weight: feature_dot(a, a),
+            coefficient: 0.0,
+        });
+        for &j in neighbours {
+            let xj = state.positions[j as usize];
+            let d = linear::sub(&x, &xj);
+            let d2 = linear::norm2(&d);
+            if d2 >= kernel.cutoff2 {
+                continue;
+            }
+            let pair_exp = math::exp(-d2 * kernel.half_inv_sigma2);
+            scratch.push(PairCache {
+                other: j,
+                pair: pair_exp - kernel.pair_floor,
+                slope: linear::scale(&d, pair_exp * kernel.inv_sigma2),
+                mid: std::array::from_fn(|c| 0.5 * (x[c] + xj[c])),
+                weight: feature_dot(a, state.feature(j as usize)),
+                coefficient: 0.0,
+            });
+        }
+    }
+
+    /// The Gaussian window's per-axis tables over the node range (empty for the box window): pair
+    /// p, axis c, node n at `windows[(p·D + c)·width + n − low_c]`. Returns `width`.
+    fn window_tables(
+        &self,
+        scratch: &[PairCache<D>],
+        (low, high): &([usize; D], [usize; D]),
+        windows: &mut Vec<f64>,
+    ) -> usize {
+        let width = (0..D).map(|c| high[c] - low[c] + 1).max().unwrap_or(1);
+        windows.clear();
+        if self.kernel.window == Window::Gaussian {
+            for cache in scratch {
+                for c in 0..D {
+                    for n in 0..width {
+                        let t = cache.mid[c] - self.quadrature.node_coordinate(c, low[c] + n);
+                        windows.push(math::exp(-t * t * self.kernel.inv_delta_prime2));
+                    }
+                }
+            }
+        }
+        width
     }
 
     /// T (given `exemplar_self = Σ_k C_k`) with gradients, point-centric and parallel.

@@ -3,14 +3,14 @@
 //! random points (`placement::random`).
 
 use motif_core::SeedStreams;
-use motif_core::random::Rng;
+use motif_core::random::{Rng, Stream};
 
-use crate::cut::Overlap;
+use crate::cut_copy::{CopyFrame, CutCopy, Provenance, copy_with_cuts};
 use crate::domain::Quadrature;
 use crate::grid::StaticGrid;
-use crate::linear::{self, Matrix, Vector};
+use crate::linear::{self, Vector};
 use crate::model::{Exemplar, State};
-use crate::placement::place;
+use crate::placement::{Placement, place};
 use crate::quilting::{Band, Tile};
 
 /// How patch initialization cuts and chooses its patches.
@@ -64,113 +64,278 @@ pub fn patches<const D: usize>(
     streams: &SeedStreams,
     allowed: &dyn Fn(&Vector<D>) -> bool,
 ) -> Copies<D> {
-    let PatchLayout { side: patch, band, candidates, balance, seam, on_surface, node_share, count_tolerance } = layout;
     let mut sources = vec![None; quadrature.len()];
     if fill.is_empty() {
         return Copies { sources, interiors: 0, usage_variation: 0.0 };
     }
-    let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
-    // The tiles cover the cells the quadrature points stand for, not only the points: tiles from
-    // the lowest point left a strip of up to half a cell along the domain's lower borders empty.
-    let (low, high) = crate::grid::bounds(&points);
-    let half_cell = 0.5 * quadrature.spacing();
-    let (low, high): (Vector<D>, Vector<D>) =
-        (std::array::from_fn(|a| low[a] - half_cell), std::array::from_fn(|a| high[a] + half_cell));
-    let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
-    // Tiles fit the domain's extent exactly, each side at most `patch`: a last tile reaching past
-    // the domain held only a strip of its copy, which the running count could not steer, and
-    // balancing filled such strips from the least-copied places, the exemplar's borders (bei's
-    // right edge came out at 1.9× the density). Where fitting would shrink the tiles below three
-    // quarters of a patch (a domain under three patches across), they keep the patch's side: on
-    // the generated hex lattice, 11.5 × 7.5 with patches of 6, tiles of 3.75 put seams through
-    // the lattice every few rows (nearest-neighbour distance 0.01 → 0.10).
-    let sides: Vector<D> = std::array::from_fn(|a| {
-        let fitted = (high[a] - low[a]) / dims[a] as f64;
-        if fitted >= 0.75 * patch { fitted } else { patch }
-    });
-    let total: usize = dims.iter().product();
-    // Which tile each fill point belongs to, so that tiles outside the domain are skipped.
-    let tile_of = |x: &Vector<D>| -> usize {
+    let tiling = Tiling::new(quadrature, fill, layout.side);
+    let quilt = Quilt {
+        exemplar,
+        quadrature,
+        layout,
+        extent: std::array::from_fn(|a| exemplar.high[a] - exemplar.low[a]),
+        exemplar_grid: StaticGrid::new(&exemplar.positions, exemplar.spacing),
+        // In 2D, copies of free points overlap the placed ones by a band and are joined along a
+        // minimum error boundary cut (`crate::cut`); elsewhere they meet at the tile borders.
+        cuts: D == 2 && exemplar.element_of.iter().all(Option::is_none),
+        allowed,
+        tiling,
+    };
+    let (representative, expected) = quilt.tile_shares(fill);
+    let nearest_to_centre = layout.on_surface.then(|| quilt.nearest_to_centres(fill));
+    let mut running = Running {
+        copies: vec![None; quilt.tiling.total],
+        provenance: Provenance {
+            first_copy: state.positions.len(),
+            copy_of: Vec::new(),
+            source_of: Vec::new(),
+            usage: vec![0.0; exemplar.positions.len()],
+        },
+        expected_so_far: 0.0,
+        placed_so_far: 0.0,
+        interiors: 0,
+    };
+    for (tile, k) in representative.iter().enumerate() {
+        let Some(mut k) = *k else { continue };
+        let mut stream = streams.stream("initial patch", tile as u64);
+        let mut centre = quilt.tiling.centre(tile);
+        if let Some(nearest) = &nearest_to_centre {
+            k = nearest[tile].0;
+            centre = quadrature.points[k];
+        }
+        let copy = quilt.tile_copy(tile, k, centre);
+        let places = quilt.candidate_origins(&copy, &mut stream);
+        let goal = running.expected_so_far + expected[tile];
+        let judged = quilt.judge_origins(&copy, &places, state, &running, (goal, expected[tile].max(1.0)));
+        let origin = places[pick_origin(&judged, layout.balance)];
+        running.expected_so_far = goal;
+        running.copies[tile] = Some((centre, origin, k));
+        quilt.copy_tile(&copy, origin, state, &mut running);
+    }
+    let Running { copies, provenance, mut interiors, .. } = running;
+    if quilt.cuts {
+        let expected = (expected.iter().sum(), layout.count_tolerance);
+        interiors = freeze_interiors(state, &provenance.copy_of, provenance.first_copy, layout.seam, expected);
+    }
+    for &k in fill {
+        if let Some((centre, origin, representative)) = copies[quilt.tiling.tile_of(&quadrature.points[k])] {
+            let offset = linear::sub(&quadrature.points[k], &centre);
+            sources[k] = Some(linear::add(&origin, &linear::mat_vec(&quadrature.inverse[representative], &offset)));
+        }
+    }
+    Copies { sources, interiors, usage_variation: variation(&provenance.usage) }
+}
+
+/// The coefficient of variation of how often each exemplar point was copied (0 when none was).
+fn variation(usage: &[f64]) -> f64 {
+    let mean = usage.iter().sum::<f64>() / usage.len() as f64;
+    let variance = usage.iter().map(|u| (u - mean) * (u - mean)).sum::<f64>() / usage.len() as f64;
+    if mean > 0.0 { variance.sqrt() / mean } else { 0.0 }
+}
+
+/// The tiles of a patch initialization: a grid over the cells of the fill points, tile `t` at
+/// `low + (c + ½) sides` for its cell `c`, numbered with the first axis fastest.
+struct Tiling<const D: usize> {
+    low: Vector<D>,
+    sides: Vector<D>,
+    dims: [usize; D],
+    total: usize,
+}
+
+impl<const D: usize> Tiling<D> {
+    fn new(quadrature: &Quadrature<D>, fill: &[usize], patch: f64) -> Self {
+        let points: Vec<Vector<D>> = fill.iter().map(|&k| quadrature.points[k]).collect();
+        // The tiles cover the cells the quadrature points stand for, not only the points: tiles
+        // from the lowest point left a strip of up to half a cell along the domain's lower
+        // borders empty.
+        let (low, high) = crate::grid::bounds(&points);
+        let half_cell = 0.5 * quadrature.spacing();
+        let (low, high): (Vector<D>, Vector<D>) =
+            (std::array::from_fn(|a| low[a] - half_cell), std::array::from_fn(|a| high[a] + half_cell));
+        let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / patch).ceil().max(1.0) as usize);
+        // Tiles fit the domain's extent exactly, each side at most `patch`: a last tile reaching
+        // past the domain held only a strip of its copy, which the running count could not steer,
+        // and balancing filled such strips from the least-copied places, the exemplar's borders
+        // (bei's right edge came out at 1.9× the density). Where fitting would shrink the tiles
+        // below three quarters of a patch (a domain under three patches across), they keep the
+        // patch's side: on the generated hex lattice, 11.5 × 7.5 with patches of 6, tiles of 3.75
+        // put seams through the lattice every few rows (nearest-neighbour distance 0.01 → 0.10).
+        let sides: Vector<D> = std::array::from_fn(|a| {
+            let fitted = (high[a] - low[a]) / dims[a] as f64;
+            if fitted >= 0.75 * patch { fitted } else { patch }
+        });
+        let total: usize = dims.iter().product();
+        Self { low, sides, dims, total }
+    }
+
+    /// The tile that holds `x` (clamped to the grid).
+    fn tile_of(&self, x: &Vector<D>) -> usize {
         let mut index = 0;
         for a in (0..D).rev() {
-            let c = (((x[a] - low[a]) / sides[a]).floor().max(0.0) as usize).min(dims[a] - 1);
-            index = index * dims[a] + c;
+            let c = (((x[a] - self.low[a]) / self.sides[a]).floor().max(0.0) as usize).min(self.dims[a] - 1);
+            index = index * self.dims[a] + c;
         }
         index
-    };
-    let mut representative: Vec<Option<usize>> = vec![None; total];
-    let tile_centre = |tile: usize| -> Vector<D> {
+    }
+
+    /// The centre of `tile`.
+    fn centre(&self, tile: usize) -> Vector<D> {
         let mut rest = tile;
         std::array::from_fn(|a| {
-            let c = rest % dims[a];
-            rest /= dims[a];
-            low[a] + (c as f64 + 0.5) * sides[a]
+            let c = rest % self.dims[a];
+            rest /= self.dims[a];
+            self.low[a] + (c as f64 + 0.5) * self.sides[a]
         })
-    };
-    // On a surface: per tile, the fill point nearest its centre and its squared distance.
-    let nearest_to_centre = on_surface.then(|| {
-        let mut nearest = vec![(usize::MAX, f64::INFINITY); total];
+    }
+
+    /// Half a tile's side per axis.
+    fn half(&self) -> Vector<D> {
+        std::array::from_fn(|a| 0.5 * self.sides[a])
+    }
+
+    /// Per axis, whether the tile's lower neighbour along it has been copied already.
+    fn lower_placed<T>(&self, tile: usize, copies: &[Option<T>]) -> [bool; D] {
+        let mut rest = tile;
+        let mut stride = 1;
+        std::array::from_fn(|a| {
+            let c = rest % self.dims[a];
+            rest /= self.dims[a];
+            let placed = c > 0 && copies[tile - stride].is_some();
+            stride *= self.dims[a];
+            placed
+        })
+    }
+}
+
+/// What every tile's copy reads: the exemplar, the quadrature and its tiling, the layout.
+struct Quilt<'a, const D: usize> {
+    exemplar: &'a Exemplar<D>,
+    quadrature: &'a Quadrature<D>,
+    layout: PatchLayout,
+    tiling: Tiling<D>,
+    /// The exemplar's bounding box's side per axis.
+    extent: Vector<D>,
+    /// The exemplar's points, searched within a spacing (the seams of candidates).
+    exemplar_grid: StaticGrid<D>,
+    /// Copies are joined along minimum error boundary cuts (2D free points).
+    cuts: bool,
+    allowed: &'a dyn Fn(&Vector<D>) -> bool,
+}
+
+/// The copies made so far and the running counts that steer the next one.
+struct Running<const D: usize> {
+    /// Per tile: (output centre, exemplar origin, representative quadrature point).
+    copies: Vec<Option<(Vector<D>, Vector<D>, usize)>>,
+    provenance: Provenance,
+    /// Points the exemplar's density asks for in the tiles copied so far.
+    expected_so_far: f64,
+    /// Points the copies placed so far.
+    placed_so_far: f64,
+    /// Points frozen as copied (without cuts).
+    interiors: usize,
+}
+
+/// One tile's copy: where it is centred and with which quadrature point's frame.
+struct TileCopy<const D: usize> {
+    tile: usize,
+    /// The representative quadrature point, whose frame the copy takes.
+    k: usize,
+    centre: Vector<D>,
+    scale: f64,
+    /// Half the tile's side per axis, in exemplar units.
+    half: Vector<D>,
+    /// How far from its origin the copy reaches, per axis, in exemplar units.
+    reach: Vector<D>,
+}
+
+impl<const D: usize> Quilt<'_, D> {
+    /// Per tile, its first fill point (none for tiles outside the domain) and what the exemplar's
+    /// density asks for in it (the part of the tile inside Ω).
+    fn tile_shares(&self, fill: &[usize]) -> (Vec<Option<usize>>, Vec<f64>) {
+        let quadrature = self.quadrature;
+        let mut representative: Vec<Option<usize>> = vec![None; self.tiling.total];
+        let mut expected: Vec<f64> = vec![0.0; self.tiling.total];
+        let cell = quadrature.spacing();
         for &k in fill {
-            let t = tile_of(&quadrature.points[k]);
-            let d2 = linear::norm2(&linear::sub(&quadrature.points[k], &tile_centre(t)));
+            let t = self.tiling.tile_of(&quadrature.points[k]);
+            representative[t].get_or_insert(k);
+            expected[t] +=
+                (cell / quadrature.scale[k]).powi(D as i32) * self.exemplar.density() * self.layout.node_share;
+        }
+        (representative, expected)
+    }
+
+    /// On a surface: per tile, the fill point nearest its centre and its squared distance.
+    fn nearest_to_centres(&self, fill: &[usize]) -> Vec<(usize, f64)> {
+        let mut nearest = vec![(usize::MAX, f64::INFINITY); self.tiling.total];
+        for &k in fill {
+            let t = self.tiling.tile_of(&self.quadrature.points[k]);
+            let d2 = linear::norm2(&linear::sub(&self.quadrature.points[k], &self.tiling.centre(t)));
             if d2 < nearest[t].1 {
                 nearest[t] = (k, d2);
             }
         }
         nearest
-    });
-    // What the exemplar's density asks for in each tile (the part of the tile inside Ω).
-    let mut expected: Vec<f64> = vec![0.0; total];
-    let cell = quadrature.spacing();
-    for &k in fill {
-        let t = tile_of(&quadrature.points[k]);
-        representative[t].get_or_insert(k);
-        expected[t] += (cell / quadrature.scale[k]).powi(D as i32) * exemplar.density() * node_share;
     }
-    let (mut expected_so_far, mut placed_so_far) = (0.0, 0.0);
-    let extent: Vector<D> = std::array::from_fn(|a| exemplar.high[a] - exemplar.low[a]);
-    let exemplar_grid = StaticGrid::new(&exemplar.positions, exemplar.spacing);
-    let mut interiors = 0;
-    // In 2D, copies of free points overlap the placed ones by a band and are joined along a
-    // minimum error boundary cut (`crate::cut`); elsewhere they meet at the tile borders.
-    let cuts = D == 2 && exemplar.element_of.iter().all(Option::is_none);
-    let first_copy = state.positions.len();
-    let mut provenance =
-        Provenance { copy_of: Vec::new(), source_of: Vec::new(), usage: vec![0.0; exemplar.positions.len()] };
-    // Per tile: (output centre, exemplar origin, representative quadrature point).
-    let mut copies: Vec<Option<(Vector<D>, Vector<D>, usize)>> = vec![None; total];
-    for (tile, k) in representative.iter().enumerate() {
-        let Some(mut k) = *k else { continue };
-        let mut stream = streams.stream("initial patch", tile as u64);
-        let mut centre = tile_centre(tile);
-        if let Some(nearest) = &nearest_to_centre {
-            k = nearest[tile].0;
-            centre = quadrature.points[k];
-        }
-        let s = quadrature.scale[k];
-        let half: Vector<D> = std::array::from_fn(|a| 0.5 * sides[a] / s);
+
+    /// The copy of `tile` centred at `centre` with the frame of quadrature point `k`.
+    fn tile_copy(&self, tile: usize, k: usize, centre: Vector<D>) -> TileCopy<D> {
+        let s = self.quadrature.scale[k];
+        let half: Vector<D> = std::array::from_fn(|a| 0.5 * self.tiling.sides[a] / s);
         // On a surface a copy reaches the whole tile from its centre's tangent plane (half the
         // tile's diagonal) and keeps only the points that land in the tile, since copies centred
         // off the tiles' centres would otherwise overlap (+27 % points on the bull).
-        let reach: Vector<D> = if on_surface { [0.5 * 3f64.sqrt() * patch / s; D] } else { half };
-        let in_tile = |x: &Vector<D>| !on_surface || tile_of(x) == tile;
-        // Patch centres whose patch lies inside the exemplar where possible: uniform draws and,
-        // with balancing, as many with one axis at an end of its range (the others drawn), since
-        // only those copy the exemplar's borders, which balancing then can choose.
+        let reach: Vector<D> =
+            if self.layout.on_surface { [0.5 * 3f64.sqrt() * self.layout.side / s; D] } else { half };
+        TileCopy { tile, k, centre, scale: s, half, reach }
+    }
+
+    /// Whether a copied point at `x` is kept in its tile (on a surface, only those landing in it).
+    fn in_tile(&self, copy: &TileCopy<D>, x: &Vector<D>) -> bool {
+        !self.layout.on_surface || self.tiling.tile_of(x) == copy.tile
+    }
+
+    /// Patch centres whose patch lies inside the exemplar where possible: `candidates` uniform
+    /// draws and, with balancing, as many with one axis at an end of its range (the others
+    /// drawn), since only those copy the exemplar's borders, which balancing then can choose.
+    fn candidate_origins(&self, copy: &TileCopy<D>, stream: &mut Stream) -> Vec<Vector<D>> {
+        let exemplar = self.exemplar;
         let mut candidate = |end: Option<(usize, f64)>| -> Vector<D> {
             std::array::from_fn(|a| {
-                let margin = half[a].min(0.5 * extent[a]);
+                let margin = copy.half[a].min(0.5 * self.extent[a]);
                 let t = match end {
                     Some((axis, t)) if axis == a => t,
                     _ => stream.random::<f64>(),
                 };
-                exemplar.low[a] + margin + t * (extent[a] - 2.0 * margin).max(0.0)
+                exemplar.low[a] + margin + t * (self.extent[a] - 2.0 * margin).max(0.0)
             })
         };
+        let candidates = self.layout.candidates;
+        let extra = if self.layout.balance > 0.0 { candidates } else { 0 };
+        (0..candidates + extra).map(|n| candidate((n >= candidates).then_some((n % D, (n / D % 2) as f64)))).collect()
+    }
+
+    /// Judges each place a tile's copy may come from: (score, drift², overuse), the score being
+    /// the seams with the copies around (in squared exemplar spacings, at most 1) plus the drift²
+    /// of the running count the copy leaves against `goal` (relative to one tile's `share`), the
+    /// overuse how much more often than the mean its points were copied already. Without the
+    /// count, an inhomogeneous exemplar is copied too densely: sources are drawn where a whole
+    /// patch fits, which over-weights the exemplar's middle (the traced chain runs along its
+    /// diagonal: +24 % points in the output).
+    fn judge_origins(
+        &self,
+        copy: &TileCopy<D>,
+        places: &[Vector<D>],
+        state: &State<D>,
+        running: &Running<D>,
+        (goal, share): (f64, f64),
+    ) -> Vec<(f64, f64, f64)> {
+        let (exemplar, quadrature) = (self.exemplar, self.quadrature);
+        let (tile, k, centre, s) = (copy.tile, copy.k, copy.centre, copy.scale);
         let frame = Tile {
             centre,
-            half: std::array::from_fn(|a| 0.5 * sides[a]),
-            band,
+            half: self.tiling.half(),
+            band: self.layout.band,
             inverse: &quadrature.inverse[k],
             frame: &quadrature.transform[k],
             scale: s,
@@ -179,18 +344,18 @@ pub fn patches<const D: usize>(
             state.positions.iter().zip(&state.alive).filter(|(_, alive)| **alive).map(|(p, _)| *p).collect();
         let placed = Band::gather(&alive, &frame, exemplar.spacing * s);
         let filled = |x: &Vector<D>| {
-            let t = tile_of(x);
-            t != tile && copies[t].is_some() && allowed(x)
+            let t = self.tiling.tile_of(x);
+            t != tile && running.copies[t].is_some() && (self.allowed)(x)
         };
         // The points a copy from `o` would put into Ω, and how often their sources are used.
-        let usage = &provenance.usage;
+        let usage = &running.provenance.usage;
         let count = |o: &Vector<D>| {
             let transform = &quadrature.transform[k];
             let (mut count, mut used) = (0.0, 0.0);
             for (e, u) in exemplar.positions.iter().zip(usage) {
                 let offset = linear::sub(e, o);
                 let x = linear::add(&centre, &linear::mat_vec(transform, &offset));
-                if (0..D).all(|a| offset[a].abs() <= reach[a]) && in_tile(&x) && allowed(&x) {
+                if (0..D).all(|a| offset[a].abs() <= copy.reach[a]) && self.in_tile(copy, &x) && (self.allowed)(&x) {
                     count += 1.0;
                     used += u;
                 }
@@ -198,13 +363,6 @@ pub fn patches<const D: usize>(
             (count, used)
         };
         let mean_usage = usage.iter().sum::<f64>() / usage.len() as f64;
-        // A candidate is judged on its seams (in squared exemplar spacings, at most 1) and on the
-        // running count it leaves, relative to one tile's share. Without the count, an
-        // inhomogeneous exemplar is copied too densely: sources are drawn where a whole patch
-        // fits, which over-weights the exemplar's middle (the traced chain runs along its
-        // diagonal: +24 % points in the output).
-        let goal = expected_so_far + expected[tile];
-        let share = expected[tile].max(1.0);
         let judge = |o: &Vector<D>| {
             let seams = if placed.is_empty() {
                 0.0
@@ -213,7 +371,7 @@ pub fn patches<const D: usize>(
                     &frame,
                     o,
                     &exemplar.positions,
-                    &exemplar_grid,
+                    &self.exemplar_grid,
                     &exemplar.low,
                     &exemplar.high,
                     exemplar.spacing,
@@ -225,71 +383,35 @@ pub fn patches<const D: usize>(
             // clustered longleaf pines lose their clusters of small trees (patches are chosen for
             // their count), g(r) distance 0.10 -> 0.21-0.37.
             let (count, used) = count(o);
-            let drift = ((placed_so_far + count - goal).abs() / goal.max(3.0 * share) - 0.2).max(0.0) / 0.05;
+            let drift = ((running.placed_so_far + count - goal).abs() / goal.max(3.0 * share) - 0.2).max(0.0) / 0.05;
             let overuse = if mean_usage > 0.0 && count > 0.0 { used / count / mean_usage - 1.0 } else { 0.0 };
             (seams + drift * drift, drift * drift, overuse)
         };
-        // With balancing, `candidates` more places each put one axis at an end of its range.
-        let extra = if balance > 0.0 { candidates } else { 0 };
-        let places: Vec<Vector<D>> = (0..candidates + extra)
-            .map(|n| candidate((n >= candidates).then_some((n % D, (n / D % 2) as f64))))
-            .collect();
-        let judged: Vec<(f64, f64, f64)> = places.iter().map(&judge).collect();
-        // Image quilting's rule (Efros and Freeman 2001: any block within a tolerance of the best
-        // error): every place whose score is within `balance` of the best is as good, and of
-        // those the least copied so far is taken. Adding the overuse to the score instead let it
-        // outweigh the seams of lattices (brushed hex structure: NN distance +8 % over 100 seeds).
-        // The tolerance is for the seams: a place must not drift the count more than the best.
-        let (best, best_drift) =
-            judged.iter().fold((f64::INFINITY, 0.0), |b, j| if j.0 < b.0 { (j.0, j.1) } else { b });
-        let good_enough = |&(score, drift, _): &(f64, f64, f64)| {
-            balance > 0.0 && score <= best * (1.0 + balance) + 1e-3 && drift <= best_drift
-        };
-        let mut choice = 0;
-        for (n, judgement) in judged.iter().enumerate() {
-            let chosen = &judged[choice];
-            let better = if good_enough(chosen) {
-                good_enough(judgement) && judgement.2 < chosen.2
-            } else {
-                judgement.0 < chosen.0
-            };
-            if better {
-                choice = n;
-            }
-        }
-        let origin = places[choice];
-        expected_so_far = goal;
-        copies[tile] = Some((centre, origin, k));
-        if cuts {
-            // The tile's lower neighbours along each axis, when already copied.
-            let mut rest = tile;
-            let mut stride = 1;
-            let lower_placed: [bool; D] = std::array::from_fn(|a| {
-                let c = rest % dims[a];
-                rest /= dims[a];
-                let placed = c > 0 && copies[tile - stride].is_some();
-                stride *= dims[a];
-                placed
-            });
-            let change = copy_with_cuts(
-                exemplar,
-                state,
-                &mut provenance,
-                tile as u32,
-                first_copy,
-                CopyFrame {
+        places.iter().map(judge).collect()
+    }
+
+    /// Copies the exemplar from `origin` into the tile: along cuts (2D free points) or every
+    /// point (or element, from its first member) within the copy's reach, the points deeper in
+    /// the tile than the seam width frozen.
+    fn copy_tile(&self, copy: &TileCopy<D>, origin: Vector<D>, state: &mut State<D>, running: &mut Running<D>) {
+        let (exemplar, quadrature) = (self.exemplar, self.quadrature);
+        let (k, centre, s) = (copy.k, copy.centre, copy.scale);
+        if self.cuts {
+            let cut = CutCopy {
+                tile: copy.tile as u32,
+                frame: CopyFrame {
                     centre,
                     origin,
                     transform: &quadrature.transform[k],
                     inverse: &quadrature.inverse[k],
                     scale: s,
                 },
-                (std::array::from_fn(|a| 0.5 * sides[a]), band),
-                lower_placed,
-                allowed,
-            );
-            placed_so_far += change;
-            continue;
+                half: self.tiling.half(),
+                band: self.layout.band,
+                lower_placed: self.tiling.lower_placed(copy.tile, &running.copies),
+            };
+            running.placed_so_far += copy_with_cuts(exemplar, state, &mut running.provenance, &cut, self.allowed);
+            return;
         }
         for j in 0..exemplar.positions.len() {
             let anchor = match exemplar.element_of[j] {
@@ -303,168 +425,49 @@ pub fn patches<const D: usize>(
                 }
             };
             let offset = linear::sub(&anchor, &origin);
-            if (0..D).any(|a| offset[a].abs() > reach[a]) {
+            if (0..D).any(|a| offset[a].abs() > copy.reach[a]) {
                 continue;
             }
             let x = linear::add(&centre, &linear::mat_vec(&quadrature.transform[k], &offset));
-            if !in_tile(&x) {
+            if !self.in_tile(copy, &x) {
                 continue;
             }
-            let frozen = seam.is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * sides[a] - seam));
-            let placed =
-                place(exemplar, state, j, &centre, &origin, &quadrature.transform[k], s, None, allowed, frozen);
-            placed_so_far += placed as f64;
-            provenance.usage[j] += placed as f64;
+            let frozen = self
+                .layout
+                .seam
+                .is_some_and(|seam| (0..D).all(|a| (x[a] - centre[a]).abs() < 0.5 * self.tiling.sides[a] - seam));
+            let placement =
+                Placement { anchor: &centre, origin: &origin, frame: &quadrature.transform[k], scale: s, extra: None };
+            let placed = place(exemplar, state, j, &placement, self.allowed, frozen);
+            running.placed_so_far += placed as f64;
+            running.provenance.usage[j] += placed as f64;
             if frozen {
-                interiors += placed;
+                running.interiors += placed;
             }
         }
     }
-    if cuts {
-        let expected = (expected.iter().sum(), count_tolerance);
-        interiors = freeze_interiors(state, &provenance.copy_of, first_copy, seam, expected);
-    }
-    for &k in fill {
-        if let Some((centre, origin, representative)) = copies[tile_of(&quadrature.points[k])] {
-            let offset = linear::sub(&quadrature.points[k], &centre);
-            sources[k] = Some(linear::add(&origin, &linear::mat_vec(&quadrature.inverse[representative], &offset)));
-        }
-    }
-    let usage = &provenance.usage;
-    let mean = usage.iter().sum::<f64>() / usage.len() as f64;
-    let variance = usage.iter().map(|u| (u - mean) * (u - mean)).sum::<f64>() / usage.len() as f64;
-    let usage_variation = if mean > 0.0 { variance.sqrt() / mean } else { 0.0 };
-    Copies { sources, interiors, usage_variation }
 }
 
-/// What the copies made so far came from, per copied point and per exemplar point.
-struct Provenance {
-    /// The copy (tile) each point placed since the first copy came from.
-    copy_of: Vec<u32>,
-    /// The exemplar point each point placed since the first copy is a copy of (2D free points).
-    source_of: Vec<u32>,
-    /// How many living output points are copies of each exemplar point.
-    usage: Vec<f64>,
-}
-
-/// Where a tile's copy comes from: `x = centre + transform (e − origin)`.
-struct CopyFrame<'a, const D: usize> {
-    centre: Vector<D>,
-    origin: Vector<D>,
-    transform: &'a Matrix<D>,
-    inverse: &'a Matrix<D>,
-    scale: f64,
-}
-
-/// Copies the exemplar into one tile (2D, free points) and into the bands of width `sizes.1` on
-/// its already copied lower sides (`lower_placed`), replacing there the points beyond the minimum
-/// error boundary cut. `sizes.0` is half the tile's side per axis. Returns the change in the point
-/// count.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "one tile copy of the quilted start; state, provenance and frame are borrowed apart"
-)]
-fn copy_with_cuts<const D: usize>(
-    exemplar: &Exemplar<D>,
-    state: &mut State<D>,
-    provenance: &mut Provenance,
-    tile: u32,
-    first_copy: usize,
-    frame: CopyFrame<'_, D>,
-    sizes: (Vector<D>, f64),
-    lower_placed: [bool; D],
-    allowed: &dyn Fn(&Vector<D>) -> bool,
-) -> f64 {
-    let (half, band) = sizes;
-    let flat = |p: &Vector<D>| [p[0], p[1]];
-    let low: [f64; 2] = std::array::from_fn(|a| frame.centre[a] - half[a]);
-    let high: [f64; 2] = std::array::from_fn(|a| frame.centre[a] + half[a]);
-    let extension: [f64; 2] = std::array::from_fn(|a| if lower_placed[a] { band } else { 0.0 });
-    // The new copy over the tile and its bands.
-    let copy: Vec<(usize, Vector<D>)> = (0..exemplar.positions.len())
-        .filter_map(|j| {
-            let x = linear::add(
-                &frame.centre,
-                &linear::mat_vec(frame.transform, &linear::sub(&exemplar.positions[j], &frame.origin)),
-            );
-            let inside = (0..2).all(|a| x[a] >= low[a] - extension[a] && x[a] < high[a]);
-            (inside && allowed(&x)).then_some((j, x))
-        })
-        .collect();
-    // One band per copied lower side; the horizontal one also covers the corner.
-    let cell = band / 8.0;
-    let reach = exemplar.spacing * frame.scale;
-    let overlaps = [
-        lower_placed[0].then_some(Overlap {
-            across: 0,
-            along_range: (low[1], high[1]),
-            across_range: (low[0] - band, low[0]),
-            cell,
-            reach,
-        }),
-        lower_placed[1].then_some(Overlap {
-            across: 1,
-            along_range: (low[0] - extension[0], high[0]),
-            across_range: (low[1] - band, low[1]),
-            cell,
-            reach,
-        }),
-    ];
-    let mut cuts = Vec::new();
-    let mut removed = 0usize;
-    for overlap in overlaps.into_iter().flatten() {
-        let placed: Vec<usize> = (first_copy..state.positions.len())
-            .filter(|&i| state.alive[i] && overlap.contains(&flat(&state.positions[i])))
-            .collect();
-        let placed_points: Vec<[f64; 2]> = placed.iter().map(|&i| flat(&state.positions[i])).collect();
-        let copy_points: Vec<[f64; 2]> = copy.iter().map(|(_, x)| flat(x)).filter(|x| overlap.contains(x)).collect();
-        // Where the copy's source lies inside the exemplar's window.
-        let covered = |p: &[f64; 2]| {
-            let mut offset = [0.0; D];
-            offset[0] = p[0] - frame.centre[0];
-            offset[1] = p[1] - frame.centre[1];
-            let source = linear::add(&frame.origin, &linear::mat_vec(frame.inverse, &offset));
-            (0..D).all(|a| source[a] >= exemplar.window_low[a] && source[a] <= exemplar.window_high[a])
-        };
-        let cut = overlap.minimum_cut(&placed_points, &copy_points, &covered);
-        for (&i, p) in placed.iter().zip(&placed_points) {
-            if cut.on_new_side(p) {
-                state.kill(state.unit_of[i] as usize);
-                provenance.usage[provenance.source_of[i - first_copy] as usize] -= 1.0;
-                removed += 1;
-            }
-        }
-        cuts.push(cut);
-    }
-    let mut added = 0usize;
-    for (j, x) in copy {
-        let p = flat(&x);
-        let keep = match cuts.iter().find(|cut| cut.contains(&p)) {
-            Some(cut) => cut.on_new_side(&p),
-            None => (0..2).all(|a| p[a] >= low[a]),
-        };
-        if keep {
-            let placed = place(
-                exemplar,
-                state,
-                j,
-                &frame.centre,
-                &frame.origin,
-                frame.transform,
-                frame.scale,
-                None,
-                allowed,
-                false,
-            );
-            if placed > 0 {
-                provenance.usage[j] += 1.0;
-                provenance.source_of.push(j as u32);
-            }
-            added += placed;
+/// Image quilting's rule (Efros and Freeman 2001: any block within a tolerance of the best error):
+/// every place whose score is within `balance` of the best is as good, and of those the least
+/// copied so far is taken. Adding the overuse to the score instead let it outweigh the seams of
+/// lattices (brushed hex structure: NN distance +8 % over 100 seeds). The tolerance is for the
+/// seams: a place must not drift the count more than the best. Returns the chosen index.
+fn pick_origin(judged: &[(f64, f64, f64)], balance: f64) -> usize {
+    let (best, best_drift) = judged.iter().fold((f64::INFINITY, 0.0), |b, j| if j.0 < b.0 { (j.0, j.1) } else { b });
+    let good_enough = |&(score, drift, _): &(f64, f64, f64)| {
+        balance > 0.0 && score <= best * (1.0 + balance) + 1e-3 && drift <= best_drift
+    };
+    let mut choice = 0;
+    for (n, judgement) in judged.iter().enumerate() {
+        let chosen = &judged[choice];
+        let better =
+            if good_enough(chosen) { good_enough(judgement) && judgement.2 < chosen.2 } else { judgement.0 < chosen.0 };
+        if better {
+            choice = n;
         }
     }
-    provenance.copy_of.resize(state.positions.len() - first_copy, tile);
-    added as f64 - removed as f64
+    choice
 }
 
 /// After cut copies: a point stays as copied (frozen) unless a point of another copy lies within

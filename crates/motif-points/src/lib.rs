@@ -78,6 +78,7 @@
 
 mod curvature;
 mod cut;
+mod cut_copy;
 mod domain;
 mod energy;
 mod error;
@@ -86,6 +87,7 @@ mod fidelity;
 mod grid;
 mod init;
 mod linear;
+mod local_global;
 mod matching;
 mod merging;
 mod mesh_surface;
@@ -95,6 +97,7 @@ mod pair_statistics;
 mod params;
 mod placement;
 mod points;
+mod prepare;
 mod quadratic;
 mod quadrature;
 mod quilting;

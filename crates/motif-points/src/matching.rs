@@ -120,7 +120,14 @@ pub fn match_all<const D: usize>(
     settings: MatchSettings,
     streams: &SeedStreams,
 ) -> Vec<Match<D>> {
-    let grid = StaticGrid::new(&state.positions, problem.kernel.gather);
+    let matcher = Matcher {
+        problem,
+        fields,
+        state,
+        grid: StaticGrid::new(&state.positions, problem.kernel.gather),
+        settings,
+        streams,
+    };
     let quadrature = problem.quadrature;
     (0..quadrature.len())
         .into_par_iter()
@@ -138,143 +145,177 @@ pub fn match_all<const D: usize>(
                     }
                 });
             }
-            match_one(problem, fields, state, &grid, previous.get(k), &guesses, k, settings, streams)
+            matcher.match_one(k, previous.get(k), &guesses)
         })
         .collect()
 }
 
-#[allow(clippy::too_many_arguments, reason = "the per-point matching kernel, called in parallel with shared borrows")]
-fn match_one<const D: usize>(
-    problem: &Problem<'_, D>,
-    fields: &SearchFields<D>,
-    state: &State<D>,
-    grid: &StaticGrid<D>,
-    previous: Option<&Vector<D>>,
-    guesses: &[Vector<D>],
-    k: usize,
+/// What matching every quadrature point reads (shared by the parallel workers).
+struct Matcher<'a, 'p, const D: usize> {
+    problem: &'a Problem<'p, D>,
+    fields: &'a SearchFields<D>,
+    state: &'a State<D>,
+    /// The output points, gathered into each quadrature point's window.
+    grid: StaticGrid<D>,
     settings: MatchSettings,
-    streams: &SeedStreams,
-) -> Match<D> {
-    let kernel = &problem.kernel;
-    let window = problem.output_window(k, grid);
-    let (low, high) = admissible(problem, k);
-    let inverse = &problem.quadrature.inverse[k];
-    let delta_prime2 = kernel.delta * kernel.delta + 0.5 * kernel.sigma * kernel.sigma;
-    // The search objective keeps the window points that carry weight: (exemplar offset, a_i w(u_i)).
-    let channels = fields.channels;
-    let mut offsets: Vec<Vector<D>> = Vec::new();
-    let mut weights: Vec<f64> = Vec::new();
-    for (u, i) in &window {
-        let r2 = linear::norm2(u);
-        let w = match kernel.window {
-            Window::Gaussian if r2 < 9.0 * kernel.delta * kernel.delta => math::exp(-r2 / delta_prime2),
-            Window::Box if r2 < kernel.delta * kernel.delta => 1.0,
-            _ => 0.0,
-        };
-        if w > 0.1 {
-            offsets.push(linear::mat_vec(inverse, u));
-            weights.extend(state.feature(*i as usize).iter().map(|a| a * w));
-        }
+    streams: &'a SeedStreams,
+}
+
+/// One quadrature point's search: its index, its output window and the box of admissible matches.
+struct Search<'w, const D: usize> {
+    k: usize,
+    window: &'w [(Vector<D>, u32)],
+    low: Vector<D>,
+    high: Vector<D>,
+}
+
+impl<const D: usize> Matcher<'_, '_, D> {
+    /// Matches quadrature point `k`: a search on the rasterized `S_k` from random starts and the
+    /// informed guesses, then the exact selection and polish.
+    fn match_one(&self, k: usize, previous: Option<&Vector<D>>, guesses: &[Vector<D>]) -> Match<D> {
+        let window = self.problem.output_window(k, &self.grid);
+        let (low, high) = admissible(self.problem, k);
+        let search = Search { k, window: &window, low, high };
+        let candidate = self.search(&search, previous, guesses);
+        self.select(&search, candidate, previous)
     }
-    let mut sample = vec![0.0; channels];
-    let mut sample_gradient = vec![[0.0; D]; channels];
-    let mut search = |m: &Vector<D>, gradient: &mut Vector<D>| -> f64 {
-        let mut one = [0.0];
-        let mut one_gradient = [[0.0; D]];
-        fields.exemplar_self.sample(m, &mut one, &mut one_gradient);
-        let mut value = one[0];
-        *gradient = one_gradient[0];
-        for (o, offset) in offsets.iter().enumerate() {
-            let y = linear::add(m, offset);
-            fields.smoothed.sample(&y, &mut sample, &mut sample_gradient);
-            let w = &weights[o * channels..(o + 1) * channels];
-            value -= 2.0 * feature_dot(w, &sample);
-            for c in 0..channels {
-                linear::axpy(gradient, -2.0 * w[c], &sample_gradient[c]);
+
+    /// The window points that carry weight in the search objective: their exemplar offsets and
+    /// their features times the window weight, `channels` per point.
+    fn weighted_window(&self, search: &Search<'_, D>) -> (Vec<Vector<D>>, Vec<f64>) {
+        let kernel = &self.problem.kernel;
+        let inverse = &self.problem.quadrature.inverse[search.k];
+        let delta_prime2 = kernel.delta * kernel.delta + 0.5 * kernel.sigma * kernel.sigma;
+        let mut offsets: Vec<Vector<D>> = Vec::new();
+        let mut weights: Vec<f64> = Vec::new();
+        for (u, i) in search.window {
+            let r2 = linear::norm2(u);
+            let w = match kernel.window {
+                Window::Gaussian if r2 < 9.0 * kernel.delta * kernel.delta => math::exp(-r2 / delta_prime2),
+                Window::Box if r2 < kernel.delta * kernel.delta => 1.0,
+                _ => 0.0,
+            };
+            if w > 0.1 {
+                offsets.push(linear::mat_vec(inverse, u));
+                weights.extend(self.state.feature(*i as usize).iter().map(|a| a * w));
             }
         }
-        value
-    };
-    let sigma = kernel.sigma;
-    let mut stream = streams.stream("matching", k as u64);
-    let mut best: Option<(f64, Vector<D>)> = None;
-    // `starts` random starts, plus one from the best of the previous match and the neighbours'
-    // propagated matches (keeps coherence between iterations).
-    let mut informed: Option<(f64, Vector<D>)> = None;
-    let mut scratch = [0.0; D];
-    for guess in previous.into_iter().chain(guesses) {
-        let m = clamp(guess, &low, &high);
-        let value = search(&m, &mut scratch);
-        if informed.is_none_or(|(v, _)| value < v) {
-            informed = Some((value, m));
-        }
+        (offsets, weights)
     }
-    let extra = usize::from(informed.is_some());
-    for start in 0..settings.starts + extra {
-        let mut m: Vector<D> = std::array::from_fn(|a| low[a] + stream.random::<f64>() * (high[a] - low[a]));
-        if start == settings.starts
-            && let Some((_, guess)) = informed
-        {
-            m = guess;
+
+    /// Gradient descent on the rasterized `S_k` from `starts` random starts, plus one from the
+    /// best of the previous match and the neighbours' propagated matches (keeps coherence between
+    /// iterations); returns the best place found.
+    fn search(&self, search: &Search<'_, D>, previous: Option<&Vector<D>>, guesses: &[Vector<D>]) -> Vector<D> {
+        let (fields, settings) = (self.fields, self.settings);
+        let (low, high) = (&search.low, &search.high);
+        let channels = fields.channels;
+        let (offsets, weights) = self.weighted_window(search);
+        let mut sample = vec![0.0; channels];
+        let mut sample_gradient = vec![[0.0; D]; channels];
+        let mut objective = |m: &Vector<D>, gradient: &mut Vector<D>| -> f64 {
+            let mut one = [0.0];
+            let mut one_gradient = [[0.0; D]];
+            fields.exemplar_self.sample(m, &mut one, &mut one_gradient);
+            let mut value = one[0];
+            *gradient = one_gradient[0];
+            for (o, offset) in offsets.iter().enumerate() {
+                let y = linear::add(m, offset);
+                fields.smoothed.sample(&y, &mut sample, &mut sample_gradient);
+                let w = &weights[o * channels..(o + 1) * channels];
+                value -= 2.0 * feature_dot(w, &sample);
+                for c in 0..channels {
+                    linear::axpy(gradient, -2.0 * w[c], &sample_gradient[c]);
+                }
+            }
+            value
+        };
+        let sigma = self.problem.kernel.sigma;
+        let mut stream = self.streams.stream("matching", search.k as u64);
+        let mut best: Option<(f64, Vector<D>)> = None;
+        let mut informed: Option<(f64, Vector<D>)> = None;
+        let mut scratch = [0.0; D];
+        for guess in previous.into_iter().chain(guesses) {
+            let m = clamp(guess, low, high);
+            let value = objective(&m, &mut scratch);
+            if informed.is_none_or(|(v, _)| value < v) {
+                informed = Some((value, m));
+            }
         }
+        let extra = usize::from(informed.is_some());
+        for start in 0..settings.starts + extra {
+            let mut m: Vector<D> = std::array::from_fn(|a| low[a] + stream.random::<f64>() * (high[a] - low[a]));
+            if start == settings.starts
+                && let Some((_, guess)) = informed
+            {
+                m = guess;
+            }
+            let mut gradient = [0.0; D];
+            let mut value = objective(&m, &mut gradient);
+            let mut step = 0.5 * sigma;
+            for _ in 0..settings.iterations {
+                let norm = linear::norm2(&gradient).sqrt();
+                if norm == 0.0 || step < 1e-3 * sigma {
+                    break;
+                }
+                let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), low, high);
+                let mut trial_gradient = [0.0; D];
+                let trial_value = objective(&trial, &mut trial_gradient);
+                if trial_value < value {
+                    m = trial;
+                    value = trial_value;
+                    gradient = trial_gradient;
+                    step *= 1.5;
+                } else {
+                    step *= 0.4;
+                }
+            }
+            if best.is_none_or(|(v, _)| value < v) {
+                best = Some((value, m));
+            }
+        }
+        best.map(|b| b.1).unwrap_or_else(|| clamp(low, low, high))
+    }
+
+    /// Exact selection: the searched candidate against the previous match on the exact `S_k`,
+    /// the better polished by exact gradient descent.
+    fn select(&self, search: &Search<'_, D>, candidate: Vector<D>, previous: Option<&Vector<D>>) -> Match<D> {
+        let (problem, state, k, window) = (self.problem, self.state, search.k, search.window);
+        let (low, high) = (&search.low, &search.high);
+        let sigma = problem.kernel.sigma;
         let mut gradient = [0.0; D];
-        let mut value = search(&m, &mut gradient);
-        let mut step = 0.5 * sigma;
-        for _ in 0..settings.iterations {
+        let mut m = candidate;
+        let (mut c, cross) = problem.match_parts(k, &m, window, state, Some(&mut gradient));
+        let mut value = c + cross;
+        if let Some(p) = previous {
+            let mut previous_gradient = [0.0; D];
+            let (previous_c, previous_cross) = problem.match_parts(k, p, window, state, Some(&mut previous_gradient));
+            if previous_c + previous_cross <= value {
+                m = *p;
+                value = previous_c + previous_cross;
+                c = previous_c;
+                gradient = previous_gradient;
+            }
+        }
+        let mut step = 0.25 * sigma;
+        for _ in 0..self.settings.polish {
             let norm = linear::norm2(&gradient).sqrt();
-            if norm == 0.0 || step < 1e-3 * sigma {
+            if norm == 0.0 {
                 break;
             }
-            let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), &low, &high);
+            let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), low, high);
             let mut trial_gradient = [0.0; D];
-            let trial_value = search(&trial, &mut trial_gradient);
-            if trial_value < value {
+            let (trial_c, trial_cross) = problem.match_parts(k, &trial, window, state, Some(&mut trial_gradient));
+            if trial_c + trial_cross < value {
                 m = trial;
-                value = trial_value;
+                value = trial_c + trial_cross;
+                c = trial_c;
                 gradient = trial_gradient;
                 step *= 1.5;
             } else {
                 step *= 0.4;
             }
         }
-        if best.is_none_or(|(v, _)| value < v) {
-            best = Some((value, m));
-        }
+        Match { location: m, exemplar_self: c }
     }
-    let candidate = best.map(|b| b.1).unwrap_or_else(|| clamp(&low, &low, &high));
-    // Exact selection: the searched candidate against the previous match.
-    let mut gradient = [0.0; D];
-    let mut m = candidate;
-    let (mut c, cross) = problem.match_parts(k, &m, &window, state, Some(&mut gradient));
-    let mut value = c + cross;
-    if let Some(p) = previous {
-        let mut previous_gradient = [0.0; D];
-        let (previous_c, previous_cross) = problem.match_parts(k, p, &window, state, Some(&mut previous_gradient));
-        if previous_c + previous_cross <= value {
-            m = *p;
-            value = previous_c + previous_cross;
-            c = previous_c;
-            gradient = previous_gradient;
-        }
-    }
-    let mut step = 0.25 * sigma;
-    for _ in 0..settings.polish {
-        let norm = linear::norm2(&gradient).sqrt();
-        if norm == 0.0 {
-            break;
-        }
-        let trial = clamp(&linear::add(&m, &linear::scale(&gradient, -step / norm)), &low, &high);
-        let mut trial_gradient = [0.0; D];
-        let (trial_c, trial_cross) = problem.match_parts(k, &trial, &window, state, Some(&mut trial_gradient));
-        if trial_c + trial_cross < value {
-            m = trial;
-            value = trial_c + trial_cross;
-            c = trial_c;
-            gradient = trial_gradient;
-            step *= 1.5;
-        } else {
-            step *= 0.4;
-        }
-    }
-    Match { location: m, exemplar_self: c }
 }

@@ -186,11 +186,9 @@ fn merge_free_positions<const D: usize>(
     }
     let gradient_of =
         |evaluation: &Evaluation<D>| -> Vec<f64> { movable.iter().flat_map(|&p| evaluation.positions[p]).collect() };
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
     let rms = |v: &[f64]| (dot(v, v) / movable.len() as f64).sqrt();
     let mut gradient = gradient_of(&current);
-    // (s, y, 1 / (s·y)), oldest first.
-    let mut pairs: std::collections::VecDeque<(Vec<f64>, Vec<f64>, f64)> = std::collections::VecDeque::new();
+    let mut pairs = CurvaturePairs::new();
     let mut eta = settings.step;
     let mut iteration = 0;
     while iteration < settings.iterations {
@@ -199,52 +197,13 @@ fn merge_free_positions<const D: usize>(
         if size == 0.0 || !size.is_finite() {
             break;
         }
-        // Two-loop recursion: direction = −H·g.
-        let mut direction: Vec<f64> = gradient.iter().map(|g| -g).collect();
-        let mut alphas = Vec::with_capacity(pairs.len());
-        for (s, y, rho) in pairs.iter().rev() {
-            let alpha = rho * dot(s, &direction);
-            for (d, y) in direction.iter_mut().zip(y) {
-                *d -= alpha * y;
-            }
-            alphas.push(alpha);
-        }
-        match pairs.back() {
-            Some((s, y, _)) => {
-                let scale = dot(s, y) / dot(y, y);
-                direction.iter_mut().for_each(|d| *d *= scale);
-            }
-            // No curvature yet: the gradient step of the plain descent.
-            None => direction.iter_mut().for_each(|d| *d *= eta * sigma / size),
-        }
-        for ((s, y, rho), alpha) in pairs.iter().zip(alphas.iter().rev()) {
-            let beta = rho * dot(y, &direction);
-            for (d, s) in direction.iter_mut().zip(s) {
-                *d += (alpha - beta) * s;
-            }
-        }
-        if dot(&direction, &gradient) >= 0.0 {
-            // Not a descent direction: forget the curvature and take a gradient step.
-            pairs.clear();
-            direction = gradient.iter().map(|g| -g * eta * sigma / size).collect();
-        }
+        let mut direction = lbfgs_direction(&gradient, &mut pairs, (eta, sigma, size));
         let cap = 0.5 * sigma;
         let length = rms(&direction);
         if length > cap {
             direction.iter_mut().for_each(|d| *d *= cap / length);
         }
-        let mut trial = state.clone();
-        let mut displacement = vec![0.0; direction.len()];
-        let mut movement = 0.0;
-        for (slot, &p) in movable.iter().enumerate() {
-            let step: Vector<D> = std::array::from_fn(|a| direction[slot * D + a]);
-            let moved = linear::add(&trial.positions[p], &step);
-            if allowed(&moved) {
-                trial.positions[p] = moved;
-                displacement[slot * D..slot * D + D].copy_from_slice(&step);
-                movement += linear::norm2(&step).sqrt();
-            }
-        }
+        let (trial, displacement, movement) = trial_step(state, &movable, &direction, allowed);
         let candidate = evaluate(&trial, attributes);
         if candidate.energy < current.energy {
             let decrease = current.energy - candidate.energy;
@@ -274,6 +233,72 @@ fn merge_free_positions<const D: usize>(
         }
     }
     (energies, current)
+}
+
+/// Curvature pairs of the quasi-Newton descent: (s, y, 1 / (s·y)), oldest first.
+type CurvaturePairs = std::collections::VecDeque<(Vec<f64>, Vec<f64>, f64)>;
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>()
+}
+
+/// The quasi-Newton direction −H·g by the two-loop recursion over `pairs`; without curvature yet,
+/// the plain descent's gradient step of length `η σ` in root-mean-square (`size` is the
+/// gradient's). Where that is no descent direction, the curvature is forgotten and the gradient
+/// step taken.
+fn lbfgs_direction(gradient: &[f64], pairs: &mut CurvaturePairs, (eta, sigma, size): (f64, f64, f64)) -> Vec<f64> {
+    let mut direction: Vec<f64> = gradient.iter().map(|g| -g).collect();
+    let mut alphas = Vec::with_capacity(pairs.len());
+    for (s, y, rho) in pairs.iter().rev() {
+        let alpha = rho * dot(s, &direction);
+        for (d, y) in direction.iter_mut().zip(y) {
+            *d -= alpha * y;
+        }
+        alphas.push(alpha);
+    }
+    match pairs.back() {
+        Some((s, y, _)) => {
+            let scale = dot(s, y) / dot(y, y);
+            direction.iter_mut().for_each(|d| *d *= scale);
+        }
+        // No curvature yet: the gradient step of the plain descent.
+        None => direction.iter_mut().for_each(|d| *d *= eta * sigma / size),
+    }
+    for ((s, y, rho), alpha) in pairs.iter().zip(alphas.iter().rev()) {
+        let beta = rho * dot(y, &direction);
+        for (d, s) in direction.iter_mut().zip(s) {
+            *d += (alpha - beta) * s;
+        }
+    }
+    if dot(&direction, gradient) >= 0.0 {
+        // Not a descent direction: forget the curvature and take a gradient step.
+        pairs.clear();
+        direction = gradient.iter().map(|g| -g * eta * sigma / size).collect();
+    }
+    direction
+}
+
+/// The state with each movable point moved by its part of `direction` where the moved point is
+/// allowed; with the displacement taken (0 where not moved) and the summed length of the moves.
+fn trial_step<const D: usize>(
+    state: &State<D>,
+    movable: &[usize],
+    direction: &[f64],
+    allowed: &dyn Fn(&Vector<D>) -> bool,
+) -> (State<D>, Vec<f64>, f64) {
+    let mut trial = state.clone();
+    let mut displacement = vec![0.0; direction.len()];
+    let mut movement = 0.0;
+    for (slot, &p) in movable.iter().enumerate() {
+        let step: Vector<D> = std::array::from_fn(|a| direction[slot * D + a]);
+        let moved = linear::add(&trial.positions[p], &step);
+        if allowed(&moved) {
+            trial.positions[p] = moved;
+            displacement[slot * D..slot * D + D].copy_from_slice(&step);
+            movement += linear::norm2(&step).sqrt();
+        }
+    }
+    (trial, displacement, movement)
 }
 
 /// Descent on the (normalized) attributes of free points, then snapping of the discrete channels.

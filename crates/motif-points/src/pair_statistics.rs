@@ -197,35 +197,13 @@ fn evaluate<const D: usize>(
     let bins = rings();
     let reach = REACH + RAMP;
     let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d)).collect();
-    let grid = StaticGrid::new(positions, reach);
-    // Pass 1: each centre's ring counts and each point's nearest neighbour, summed in point order
-    // afterwards (the same bytes on any thread count).
-    let per_point: Vec<(Vec<f64>, usize, f64)> = (0..positions.len())
-        .into_par_iter()
-        .map(|i| {
-            let mut counts = vec![0.0; usable[i]];
-            let (mut closest, mut nearest) = (f64::INFINITY, usize::MAX);
-            grid.for_each_within(&positions[i], reach, |j, _, d2| {
-                if j == i {
-                    return;
-                }
-                let d = d2.sqrt();
-                if d < closest || (d == closest && j < nearest) {
-                    closest = d;
-                    nearest = j;
-                }
-                for b in touched(d).take_while(|&b| b < usable[i]) {
-                    counts[b] += kernel(b, d).0;
-                }
-            });
-            (counts, nearest, closest)
-        })
-        .collect();
+    let pairs = Pairs { positions, grid: StaticGrid::new(positions, reach), reach, usable };
+    let per_point = pairs.per_point();
     let mut counts = vec![0.0; bins];
     let mut centres = vec![0usize; bins];
     for (i, (own, _, _)) in per_point.iter().enumerate() {
         counts.iter_mut().zip(own).for_each(|(c, o)| *c += o);
-        centres[..usable[i]].iter_mut().for_each(|c| *c += 1);
+        centres[..pairs.usable[i]].iter_mut().for_each(|c| *c += 1);
     }
     let mut energy = 0.0;
     let (mut wanted, mut weights, mut slopes) = (vec![0.0; bins], vec![0.0; bins], vec![0.0; bins]);
@@ -240,11 +218,25 @@ fn evaluate<const D: usize>(
         energy += excess * excess * weights[b];
         slopes[b] = 2.0 * excess * weights[b];
     }
-    // Nearest neighbours: counted when no farther than the point is deep, matched by rank.
+    let nearest_pull = nearest_term(target, depths, &per_point, &mut energy);
+    let Some(movable) = movable else {
+        return Evaluation { energy, gradient: Vec::new(), counts, centres, wanted, weights };
+    };
+    let gradient = pairs.gradient(&per_point, &slopes, &nearest_pull, movable);
+    Evaluation { energy, gradient, counts, centres, wanted, weights }
+}
+
+/// Per point: its ring counts (its usable rings), its nearest neighbour and that one's distance.
+type PerPoint = Vec<(Vec<f64>, usize, f64)>;
+
+/// The nearest-neighbour term: nearest neighbours counted when no farther than the point is deep,
+/// matched by rank to the exemplar's; adds its energy to `energy` and returns per point the slope
+/// of the term along its nearest pair.
+fn nearest_term(target: &Target, depths: &[f64], per_point: &PerPoint, energy: &mut f64) -> Vec<f64> {
     let mut counted: Vec<usize> =
-        (0..positions.len()).filter(|&i| per_point[i].1 != usize::MAX && per_point[i].2 <= depths[i]).collect();
+        (0..per_point.len()).filter(|&i| per_point[i].1 != usize::MAX && per_point[i].2 <= depths[i]).collect();
     counted.sort_by(|&a, &b| per_point[a].2.total_cmp(&per_point[b].2).then(a.cmp(&b)));
-    let mut nearest_pull = vec![0.0; positions.len()];
+    let mut nearest_pull = vec![0.0; per_point.len()];
     // An exemplar too small for any of its nearest neighbours to count has no such term.
     if target.nearest.is_empty() {
         counted.clear();
@@ -252,48 +244,87 @@ fn evaluate<const D: usize>(
     for (rank, &i) in counted.iter().enumerate() {
         let wanted = target.nearest_at((rank as f64 + 0.5) / counted.len() as f64);
         let miss = (per_point[i].2 - wanted) / RING;
-        energy += NEAREST_WEIGHT * miss * miss;
+        *energy += NEAREST_WEIGHT * miss * miss;
         nearest_pull[i] = 2.0 * NEAREST_WEIGHT * miss / RING;
     }
-    let Some(movable) = movable else {
-        return Evaluation { energy, gradient: Vec::new(), counts, centres, wanted, weights };
-    };
-    // Pass 2: ∂E/∂x_i. Every pair term is symmetric in (i, j), so each point gathers its own and no
-    // two threads write one place.
-    let gradient = (0..positions.len())
-        .into_par_iter()
-        .map(|i| {
-            let mut g = [0.0; D];
-            if !movable[i] {
-                return g;
-            }
-            let p = positions[i];
-            grid.for_each_within(&p, reach, |j, q, d2| {
-                if j == i || d2 == 0.0 {
-                    return;
-                }
-                let d = d2.sqrt();
-                let mut slope = 0.0;
-                for b in touched(d) {
-                    let centres = (b < usable[i]) as usize + (b < usable[j]) as usize;
-                    if centres > 0 {
-                        slope += slopes[b] * centres as f64 * kernel(b, d).1;
+    nearest_pull
+}
+
+/// The pairs of points within the rings' reach, and the rings each point may centre.
+struct Pairs<'a, const D: usize> {
+    positions: &'a [Vector<D>],
+    grid: StaticGrid<D>,
+    reach: f64,
+    /// Per point, how many rings fit inside the domain around it.
+    usable: Vec<usize>,
+}
+
+impl<const D: usize> Pairs<'_, D> {
+    /// Pass 1: each centre's ring counts and each point's nearest neighbour, summed in point order
+    /// afterwards (the same bytes on any thread count).
+    fn per_point(&self) -> PerPoint {
+        let (positions, usable) = (self.positions, &self.usable);
+        (0..positions.len())
+            .into_par_iter()
+            .map(|i| {
+                let mut counts = vec![0.0; usable[i]];
+                let (mut closest, mut nearest) = (f64::INFINITY, usize::MAX);
+                self.grid.for_each_within(&positions[i], self.reach, |j, _, d2| {
+                    if j == i {
+                        return;
                     }
+                    let d = d2.sqrt();
+                    if d < closest || (d == closest && j < nearest) {
+                        closest = d;
+                        nearest = j;
+                    }
+                    for b in touched(d).take_while(|&b| b < usable[i]) {
+                        counts[b] += kernel(b, d).0;
+                    }
+                });
+                (counts, nearest, closest)
+            })
+            .collect()
+    }
+
+    /// Pass 2: ∂E/∂x_i for the movable points (`slopes`: ∂E/∂count per ring). Every pair term is
+    /// symmetric in (i, j), so each point gathers its own and no two threads write one place.
+    fn gradient(&self, per_point: &PerPoint, slopes: &[f64], nearest_pull: &[f64], movable: &[bool]) -> Vec<Vector<D>> {
+        let (positions, usable) = (self.positions, &self.usable);
+        (0..positions.len())
+            .into_par_iter()
+            .map(|i| {
+                let mut g = [0.0; D];
+                if !movable[i] {
+                    return g;
                 }
-                if per_point[i].1 == j {
-                    slope += nearest_pull[i];
-                }
-                if per_point[j].1 == i {
-                    slope += nearest_pull[j];
-                }
-                for a in 0..D {
-                    g[a] += slope * (p[a] - q[a]) / d;
-                }
-            });
-            g
-        })
-        .collect();
-    Evaluation { energy, gradient, counts, centres, wanted, weights }
+                let p = positions[i];
+                self.grid.for_each_within(&p, self.reach, |j, q, d2| {
+                    if j == i || d2 == 0.0 {
+                        return;
+                    }
+                    let d = d2.sqrt();
+                    let mut slope = 0.0;
+                    for b in touched(d) {
+                        let centres = (b < usable[i]) as usize + (b < usable[j]) as usize;
+                        if centres > 0 {
+                            slope += slopes[b] * centres as f64 * kernel(b, d).1;
+                        }
+                    }
+                    if per_point[i].1 == j {
+                        slope += nearest_pull[i];
+                    }
+                    if per_point[j].1 == i {
+                        slope += nearest_pull[j];
+                    }
+                    for a in 0..D {
+                        g[a] += slope * (p[a] - q[a]) / d;
+                    }
+                });
+                g
+            })
+            .collect()
+    }
 }
 
 /// Moves the movable points to lower the energy: at most `iterations` steps along the gradient,

@@ -21,24 +21,27 @@ fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
     linear::rotation_axis_angle::<D>([r * math::cos(phi), r * math::sin(phi), z], angle)
 }
 
-/// Adds exemplar point `j` (or its whole element) mapped by `x = anchor + frame (e − origin)`.
-/// Elements get `extra` applied to their orientation. Returns the number of points added.
-#[allow(
-    clippy::too_many_arguments,
-    reason = "a placement is an affine map (anchor, origin, frame, scale) plus the domain test"
-)]
+/// Where a placement puts exemplar points: `x = anchor + frame (e − origin)`, the frame's scale
+/// `scale`; elements get `extra` applied to their orientation.
+pub struct Placement<'a, const D: usize> {
+    pub anchor: &'a Vector<D>,
+    pub origin: &'a Vector<D>,
+    pub frame: &'a Matrix<D>,
+    pub scale: f64,
+    pub extra: Option<Matrix<D>>,
+}
+
+/// Adds exemplar point `j` (or its whole element) mapped by `placement` where `allowed`. Returns
+/// the number of points added.
 pub fn place<const D: usize>(
     exemplar: &Exemplar<D>,
     state: &mut State<D>,
     j: usize,
-    anchor: &Vector<D>,
-    origin: &Vector<D>,
-    frame: &Matrix<D>,
-    scale: f64,
-    extra: Option<Matrix<D>>,
+    placement: &Placement<'_, D>,
     allowed: &dyn Fn(&Vector<D>) -> bool,
     frozen: bool,
 ) -> usize {
+    let Placement { anchor, origin, frame, scale, extra } = *placement;
     match exemplar.element_of[j] {
         None => {
             let x = linear::add(anchor, &linear::mat_vec(frame, &linear::sub(&exemplar.positions[j], origin)));
@@ -102,17 +105,13 @@ pub fn random<const D: usize>(
         let j = stream.random_range(0..exemplar.positions.len());
         let extra = random_rotation::<D>(&mut stream);
         // Map e_j onto x (the frame orients elements; a random extra turn randomizes them).
-        placed += place(
-            exemplar,
-            state,
-            j,
-            &x,
-            &exemplar.positions[j],
-            &quadrature.transform[k],
-            quadrature.scale[k],
-            Some(extra),
-            allowed,
-            false,
-        );
+        let placement = Placement {
+            anchor: &x,
+            origin: &exemplar.positions[j],
+            frame: &quadrature.transform[k],
+            scale: quadrature.scale[k],
+            extra: Some(extra),
+        };
+        placed += place(exemplar, state, j, &placement, allowed, false);
     }
 }

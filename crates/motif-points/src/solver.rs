@@ -10,13 +10,14 @@ use crate::energy::{Evaluation, Problem};
 use crate::error::{DomainProblem, Error};
 use crate::fidelity::Fidelity;
 use crate::linear::Vector;
+use crate::local_global::{Course, Solver, window_sizes};
 use crate::matching::{self, MatchSettings, SearchFields};
-use crate::merging::{self, MergeSettings};
+use crate::merging::MergeSettings;
 use crate::model::State;
 use crate::pair_statistics::StatisticsRefinement;
-use crate::params::{Domain, Evaluator, Input, Params, Refinement};
+use crate::params::{Domain, Evaluator, Input, Params};
 use crate::setup::{Setup, count_bounds, measure_fidelity, prepare, to_point_set};
-use crate::{PointSet, reference, sampling};
+use crate::{PointSet, reference};
 
 /// T at one outer iteration of Algorithm 1.
 #[derive(Debug, Clone, Serialize)]
@@ -230,140 +231,65 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
     let streams = SeedStreams::new(params.seed);
     let mut setup = prepare::<D>(input, params)?;
     timer.start("initialize");
-    let mut matches = setup.initialize(params, &streams.child("initialize", 0));
+    let matches = setup.initialize(params, &streams.child("initialize", 0));
     setup.state.settle(|p| setup.region.keep_on(p));
     let initial_points = setup.state.positions.len();
-    // Window sizes: δ, αδ, α²δ, ... while ≥ final_fraction·δ.
-    let mut deltas = vec![setup.delta];
-    while deltas.len() < 200 {
-        let next = deltas[deltas.len() - 1] * params.effective_shrink();
-        if next < params.final_fraction * setup.delta - 1e-12 {
-            break;
-        }
-        deltas.push(next);
-    }
-    let total_iterations = deltas.len() * params.sampling_rounds * params.local_global_iterations;
-    let match_settings = MatchSettings {
-        starts: params.matching_starts,
-        iterations: params.matching_iterations,
-        polish: params.matching_polish,
-    };
-    let merge_settings = MergeSettings {
-        iterations: params.merge_iterations,
-        attribute_iterations: params.attribute_iterations,
-        step: params.step,
-        tolerance: params.tolerance,
-        stagnation: params.stagnation,
-        sigma: setup.sigma,
-    };
-    let mut energies = Vec::new();
-    let (mut added, mut removed, mut rejected, mut held_by_bound) = (0, 0, 0, 0);
-
-    let mut final_energy = f64::NAN;
-    let mut done = 0;
     let thinned = crate::pair_statistics::thins(&setup, params.statistics_iterations);
     let bounds = count_bounds(&setup, params.count_tolerance, thinned);
-    let mut state = std::mem::take(&mut setup.state);
-    let mut fields: Option<SearchFields<D>> = None;
-    // Copies only: the quilted patches are the result.
-    let optimized = if params.refinement == Refinement::None { 0 } else { deltas.len() };
-    for (scale, &delta) in deltas.iter().enumerate().take(optimized) {
-        let problem = setup.problem(delta, params);
-        // The exemplar's search rasters at this window size (part of matching's work; a stage of
-        // its own because a brush stroke, a small synthesis, pays it in full every time).
-        timer.start("search fields");
-        let fields = match &mut fields {
-            Some(fields) => {
-                fields.set_window(&problem);
-                fields
-            }
-            None => fields.insert(SearchFields::new(&problem)),
-        };
-        for round in 0..params.sampling_rounds {
-            for _ in 0..params.local_global_iterations {
-                progress.report("synthesis", done as f64 / total_iterations as f64);
-                timer.start("matching");
-                let iteration_streams = streams.child("iteration", done as u64);
-                let found = matching::match_all(&problem, fields, &state, &matches, match_settings, &iteration_streams);
-                matches = found.iter().map(|m| m.location).collect();
-                let exemplar_self: f64 = found.iter().map(|m| m.exemplar_self).sum();
-                timer.start("merging");
-                let evaluate =
-                    |s: &State<D>, f: bool| evaluate_with(&problem, params.evaluator, s, &matches, exemplar_self, f);
-                let allowed = |p: &Vector<D>| setup.allowed(p);
-                let attributes = state.channels > 1 && merge_settings.attribute_iterations > 0;
-                let movable = state.movable();
-                let restricted =
-                    params.evaluator == Evaluator::Fast && problem.restricts() && movable.iter().any(|m| !m);
-                let (steps, last) = if restricted {
-                    // Frozen points (copied interiors, existing points) keep their rows' values while
-                    // the others move: the steps evaluate the movable rows alone, and T is their sum
-                    // plus a constant. One full pass after the steps gives that constant (and the
-                    // attribute form, when the attribute step follows), so the recorded energies
-                    // are T's; a pass before the steps as well cost 10 % of a brush stroke.
-                    let evaluate_movable = |s: &State<D>, _: bool| problem.evaluate_active(s, &matches, &movable);
-                    let (mut steps, last) =
-                        merging::merge_positions(&mut state, merge_settings, false, &evaluate_movable, &allowed);
-                    let full = problem.evaluate(&state, &matches, exemplar_self, attributes);
-                    let constant = full.energy - last.energy;
-                    steps.iter_mut().for_each(|energy| *energy += constant);
-                    (steps, Some(full))
-                } else {
-                    let (steps, last) =
-                        merging::merge_positions(&mut state, merge_settings, attributes, &evaluate, &allowed);
-                    (steps, Some(last))
-                };
-                state.settle(|p| setup.region.keep_on(p));
-                let discrete = &setup.attributes.discrete;
-                let ranges = params.attributes_within_range.then_some(setup.exemplar.ranges.as_slice());
-                let after = merging::merge_attributes(&mut state, merge_settings, discrete, ranges, last, &evaluate)
-                    .unwrap_or_else(|| steps.last().copied().unwrap_or(f64::NAN));
-                energies.push(IterationEnergy {
-                    scale,
-                    neighbourhood: delta,
-                    round,
-                    after_matching: steps[0],
-                    after_merging: after,
-                    merge_steps: steps.len() - 1,
-                    points: state.positions.len(),
-                    added: 0,
-                    removed: 0,
-                });
-                final_energy = after;
-                done += 1;
-            }
-            if params.sampling_control {
-                timer.start("sampling control");
-                let allowed = |p: &Vector<D>| setup.allowed(p);
-                let outcome = sampling::control(
-                    &problem,
-                    &setup.exemplar,
-                    &mut state,
-                    &matches,
-                    params.sampling_threshold,
-                    bounds,
-                    &allowed,
-                );
-                state.settle(|p| setup.region.keep_on(p));
-                if let Some(last) = energies.last_mut() {
-                    last.added = outcome.added;
-                    last.removed = outcome.removed;
-                }
-                added += outcome.added;
-                removed += outcome.removed;
-                rejected += outcome.rejected;
-                held_by_bound += outcome.held_by_bound;
-            }
-        }
-    }
+    let state = std::mem::take(&mut setup.state);
+    let solver = Solver {
+        setup: &setup,
+        params,
+        streams: &streams,
+        deltas: window_sizes(setup.delta, params),
+        match_settings: MatchSettings {
+            starts: params.matching_starts,
+            iterations: params.matching_iterations,
+            polish: params.matching_polish,
+        },
+        merge_settings: MergeSettings {
+            iterations: params.merge_iterations,
+            attribute_iterations: params.attribute_iterations,
+            step: params.step,
+            tolerance: params.tolerance,
+            stagnation: params.stagnation,
+            sigma: setup.sigma,
+        },
+        bounds,
+    };
+    let mut course = Course {
+        state,
+        matches,
+        timer,
+        energies: Vec::new(),
+        added: 0,
+        removed: 0,
+        rejected: 0,
+        held_by_bound: 0,
+        final_energy: f64::NAN,
+        done: 0,
+    };
+    solver.optimize(&mut course, progress);
     progress.report("synthesis", 1.0);
+    finish(&setup, params, course, initial_points)
+}
+
+/// The last stages (the pair-statistics refinement, the fidelity figures) and the output with its
+/// report.
+fn finish<const D: usize>(
+    setup: &Setup<D>,
+    params: &Params,
+    course: Course<D>,
+    initial_points: usize,
+) -> Result<Output, Error> {
+    let Course { mut state, mut timer, energies, added, removed, rejected, held_by_bound, final_energy, .. } = course;
     timer.start("pair statistics");
     let pair_statistics =
-        crate::pair_statistics::refine_state(&setup, &mut state, params.statistics_iterations, params.count_tolerance);
+        crate::pair_statistics::refine_state(setup, &mut state, params.statistics_iterations, params.count_tolerance);
     timer.start("fidelity");
-    let fidelity = measure_fidelity(&setup, &state.positions, params.seed);
-    let points = to_point_set(&setup, &state);
-    let frames = output_frames(&setup, &state, params)?;
+    let fidelity = measure_fidelity(setup, &state.positions, params.seed);
+    let points = to_point_set(setup, &state);
+    let frames = output_frames(setup, &state, params)?;
     let frozen: usize = state.units.iter().filter(|u| u.frozen).map(|u| u.points.len()).sum();
     let fixed_points = frozen - setup.patch_interiors;
     let stages_ms = timer.finish();
@@ -401,19 +327,24 @@ fn run<const D: usize>(input: &Input, params: &Params, progress: &mut dyn Progre
             pair_statistics,
             fidelity,
             stages_ms,
-            surface: match &setup.region {
-                crate::domain::Region::Surface { surface, .. } => {
-                    let radius = 1.0 / surface.typical_largest_curvature();
-                    Some(SurfaceFigures {
-                        area: surface.area(),
-                        curvature_radius: radius,
-                        window_over_radius: setup.delta / radius,
-                    })
-                }
-                _ => None,
-            },
+            surface: surface_figures(setup),
         },
     })
+}
+
+/// On a surface domain: its area, its typical radius of curvature and the window over it.
+fn surface_figures<const D: usize>(setup: &Setup<D>) -> Option<SurfaceFigures> {
+    match &setup.region {
+        crate::domain::Region::Surface { surface, .. } => {
+            let radius = 1.0 / surface.typical_largest_curvature();
+            Some(SurfaceFigures {
+                area: surface.area(),
+                curvature_radius: radius,
+                window_over_radius: setup.delta / radius,
+            })
+        }
+        _ => None,
+    }
 }
 
 /// The frame `s R` at every output point (see [`Output::frames`]), promoted to 3 × 3.

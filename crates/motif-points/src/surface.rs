@@ -33,18 +33,7 @@ pub fn reconstruct_surface(positions: &[[f64; 3]], normals: &[[f64; 3]]) -> Resu
             "at least 4 points, each with a normal",
         ));
     }
-    let mut unit = Vec::with_capacity(normals.len());
-    for (i, n) in normals.iter().enumerate() {
-        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if !(length.is_finite() && length > 0.0) || positions[i].iter().any(|v| !v.is_finite()) {
-            return Err(InvalidParameter::new(
-                "surface points",
-                format!("point {i}"),
-                "finite positions and non-zero finite normals (nx, ny, nz)",
-            ));
-        }
-        unit.push(n.map(|v| v / length));
-    }
+    let unit = unit_normals(positions, normals)?;
     let tree: RTree<[f64; 3]> = RTree::bulk_load(positions.to_vec());
     let index: RTree<IndexedPoint> =
         RTree::bulk_load(positions.iter().enumerate().map(|(i, p)| IndexedPoint(*p, i)).collect());
@@ -57,90 +46,149 @@ pub fn reconstruct_surface(positions: &[[f64; 3]], normals: &[[f64; 3]]) -> Resu
         return Err(InvalidParameter::new("surface points", "all at one place", "points spread over a surface"));
     }
     let width = 1.5 * spacing;
-    let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for p in positions {
-        for a in 0..3 {
-            low[a] = low[a].min(p[a] - 2.0 * width);
-            high[a] = high[a].max(p[a] + 2.0 * width);
+    let grid = Grid::new(positions, spacing, width);
+    let near = grid.band(positions, width);
+    let field = grid.field(&near, &index, &unit, width);
+    let mut buffer = SurfaceNetsBuffer::default();
+    surface_nets(&field, &grid.shape, [0; 3], grid.dims.map(|d| d - 1), &mut buffer);
+    Ok(grid.mesh(&buffer, &tree, width))
+}
+
+/// The normals scaled to unit length; fails on a zero or non-finite normal or position.
+fn unit_normals(positions: &[[f64; 3]], normals: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, InvalidParameter> {
+    let mut unit = Vec::with_capacity(normals.len());
+    for (i, n) in normals.iter().enumerate() {
+        let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        if !(length.is_finite() && length > 0.0) || positions[i].iter().any(|v| !v.is_finite()) {
+            return Err(InvalidParameter::new(
+                "surface points",
+                format!("point {i}"),
+                "finite positions and non-zero finite normals (nx, ny, nz)",
+            ));
         }
+        unit.push(n.map(|v| v / length));
     }
-    let volume: f64 = (0..3).map(|a| high[a] - low[a]).product();
-    let step = spacing.max(motif_core::math::cbrt(volume / MAX_NODES));
-    let dims: [u32; 3] = std::array::from_fn(|a| ((high[a] - low[a]) / step).ceil() as u32 + 1);
-    let shape = RuntimeShape::<u32, 3>::new(dims);
-    // Past 2.5 widths a weight is below 0.2 % of the nearest's.
-    let reach2 = (2.5 * width) * (2.5 * width);
-    let inverse = 1.0 / (width * width);
-    let node = |i: u32| -> [f64; 3] {
-        let [x, y, z] = shape.delinearize(i);
+    Ok(unit)
+}
+
+/// The grid the implicit function is sampled on: nodes `low + i · step` over the points' bounds
+/// padded by two widths.
+struct Grid {
+    low: [f64; 3],
+    step: f64,
+    dims: [u32; 3],
+    shape: RuntimeShape<u32, 3>,
+}
+
+impl Grid {
+    /// A grid of one mean spacing, coarsened to at most [`MAX_NODES`] nodes.
+    fn new(positions: &[[f64; 3]], spacing: f64, width: f64) -> Self {
+        let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in positions {
+            for a in 0..3 {
+                low[a] = low[a].min(p[a] - 2.0 * width);
+                high[a] = high[a].max(p[a] + 2.0 * width);
+            }
+        }
+        let volume: f64 = (0..3).map(|a| high[a] - low[a]).product();
+        let step = spacing.max(motif_core::math::cbrt(volume / MAX_NODES));
+        let dims: [u32; 3] = std::array::from_fn(|a| ((high[a] - low[a]) / step).ceil() as u32 + 1);
+        let shape = RuntimeShape::<u32, 3>::new(dims);
+        Self { low, step, dims, shape }
+    }
+
+    /// The position of node `i`.
+    fn node(&self, i: u32) -> [f64; 3] {
+        let [x, y, z] = self.shape.delinearize(i);
+        let (low, step) = (self.low, self.step);
         [low[0] + f64::from(x) * step, low[1] + f64::from(y) * step, low[2] + f64::from(z) * step]
-    };
-    // Nodes within reach of a point get the MLS value; the others only need to be outside (their
-    // sheets, at the band's edge, lie farther than the triangles kept).
-    let mut near = vec![false; shape.size() as usize];
-    let cells = (2.5 * width / step).ceil() as i64;
-    for p in positions {
-        let centre: [i64; 3] = std::array::from_fn(|a| ((p[a] - low[a]) / step).round() as i64);
-        for dz in -cells..=cells {
-            for dy in -cells..=cells {
-                for dx in -cells..=cells {
-                    let at = [centre[0] + dx, centre[1] + dy, centre[2] + dz];
-                    if (0..3).all(|a| at[a] >= 0 && at[a] < i64::from(dims[a])) {
-                        near[shape.linearize(at.map(|v| v as u32)) as usize] = true;
+    }
+
+    /// Per node, whether it lies within 2.5 widths (in grid cells) of a point: those get the MLS
+    /// value; the others only need to be outside (their sheets, at the band's edge, lie farther
+    /// than the triangles kept).
+    fn band(&self, positions: &[[f64; 3]], width: f64) -> Vec<bool> {
+        let (low, step, dims) = (self.low, self.step, self.dims);
+        let mut near = vec![false; self.shape.size() as usize];
+        let cells = (2.5 * width / step).ceil() as i64;
+        for p in positions {
+            let centre: [i64; 3] = std::array::from_fn(|a| ((p[a] - low[a]) / step).round() as i64);
+            for dz in -cells..=cells {
+                for dy in -cells..=cells {
+                    for dx in -cells..=cells {
+                        let at = [centre[0] + dx, centre[1] + dy, centre[2] + dz];
+                        if (0..3).all(|a| at[a] >= 0 && at[a] < i64::from(dims[a])) {
+                            near[self.shape.linearize(at.map(|v| v as u32)) as usize] = true;
+                        }
                     }
                 }
             }
         }
+        near
     }
-    let field: Vec<f32> = (0..shape.size())
-        .into_par_iter()
-        .with_min_len(4096)
-        .map(|i| {
-            if !near[i as usize] {
-                return 1.0;
-            }
-            let x = node(i);
-            let (mut sum, mut weights) = (0.0, 0.0);
-            for IndexedPoint(p, j) in index.locate_within_distance(x, reach2) {
-                let w = motif_core::math::exp(-distance2(&x, p) * inverse);
-                let d: f64 = (0..3).map(|a| (x[a] - p[a]) * unit[*j][a]).sum();
-                sum += w * d;
-                weights += w;
-            }
-            let value = if weights > 1e-12 {
-                sum / weights
-            } else {
-                let IndexedPoint(p, j) = index.nearest_neighbor(&x).expect("at least 4 points");
-                (0..3).map(|a| (x[a] - p[a]) * unit[*j][a]).sum()
-            };
-            value as f32
-        })
-        .collect();
-    let mut buffer = SurfaceNetsBuffer::default();
-    surface_nets(&field, &shape, [0; 3], dims.map(|d| d - 1), &mut buffer);
-    // Vertices in the drawing's units; triangles far from every point dropped, vertices re-indexed.
-    let world: Vec<[f64; 3]> =
-        buffer.positions.iter().map(|p| std::array::from_fn(|a| low[a] + f64::from(p[a]) * step)).collect();
-    let near = |p: &[f64; 3]| tree.nearest_neighbor(p).is_some_and(|q| distance2(p, q) <= 4.0 * width * width);
-    let mut mesh = TriangleMesh::default();
-    let mut remap = vec![u32::MAX; world.len()];
-    for triangle in buffer.indices.chunks_exact(3) {
-        let corners = [triangle[0], triangle[1], triangle[2]].map(|v| world[v as usize]);
-        let centre: [f64; 3] = std::array::from_fn(|a| (corners[0][a] + corners[1][a] + corners[2][a]) / 3.0);
-        if !near(&centre) {
-            continue;
-        }
-        let mut out = [0u32; 3];
-        for (k, &v) in triangle.iter().enumerate() {
-            if remap[v as usize] == u32::MAX {
-                remap[v as usize] = mesh.vertices.len() as u32;
-                mesh.vertices.push(world[v as usize]);
-            }
-            out[k] = remap[v as usize];
-        }
-        mesh.triangles.push(out);
+
+    /// The implicit function at every node: the Gaussian-weighted mean of the signed distances to
+    /// the points' tangent planes within the band (that of the nearest point where all weights
+    /// vanish), 1 (outside) beyond it.
+    fn field(&self, near: &[bool], index: &RTree<IndexedPoint>, unit: &[[f64; 3]], width: f64) -> Vec<f32> {
+        // Past 2.5 widths a weight is below 0.2 % of the nearest's.
+        let reach2 = (2.5 * width) * (2.5 * width);
+        let inverse = 1.0 / (width * width);
+        (0..self.shape.size())
+            .into_par_iter()
+            .with_min_len(4096)
+            .map(|i| {
+                if !near[i as usize] {
+                    return 1.0;
+                }
+                let x = self.node(i);
+                let (mut sum, mut weights) = (0.0, 0.0);
+                for IndexedPoint(p, j) in index.locate_within_distance(x, reach2) {
+                    let w = motif_core::math::exp(-distance2(&x, p) * inverse);
+                    let d: f64 = (0..3).map(|a| (x[a] - p[a]) * unit[*j][a]).sum();
+                    sum += w * d;
+                    weights += w;
+                }
+                let value = if weights > 1e-12 {
+                    sum / weights
+                } else {
+                    let IndexedPoint(p, j) = index.nearest_neighbor(&x).expect("at least 4 points");
+                    (0..3).map(|a| (x[a] - p[a]) * unit[*j][a]).sum()
+                };
+                value as f32
+            })
+            .collect()
     }
-    Ok(mesh)
+
+    /// The surface nets' triangles as a mesh in the drawing's units, those whose centre is farther
+    /// than two widths from every point dropped and the vertices re-indexed.
+    fn mesh(&self, buffer: &SurfaceNetsBuffer, tree: &RTree<[f64; 3]>, width: f64) -> TriangleMesh {
+        let world: Vec<[f64; 3]> = buffer
+            .positions
+            .iter()
+            .map(|p| std::array::from_fn(|a| self.low[a] + f64::from(p[a]) * self.step))
+            .collect();
+        let near = |p: &[f64; 3]| tree.nearest_neighbor(p).is_some_and(|q| distance2(p, q) <= 4.0 * width * width);
+        let mut mesh = TriangleMesh::default();
+        let mut remap = vec![u32::MAX; world.len()];
+        for triangle in buffer.indices.chunks_exact(3) {
+            let corners = [triangle[0], triangle[1], triangle[2]].map(|v| world[v as usize]);
+            let centre: [f64; 3] = std::array::from_fn(|a| (corners[0][a] + corners[1][a] + corners[2][a]) / 3.0);
+            if !near(&centre) {
+                continue;
+            }
+            let mut out = [0u32; 3];
+            for (k, &v) in triangle.iter().enumerate() {
+                if remap[v as usize] == u32::MAX {
+                    remap[v as usize] = mesh.vertices.len() as u32;
+                    mesh.vertices.push(world[v as usize]);
+                }
+                out[k] = remap[v as usize];
+            }
+            mesh.triangles.push(out);
+        }
+        mesh
+    }
 }
 
 /// A point with its index, in an R-tree.
