@@ -15,7 +15,7 @@ use crate::exemplar::Exemplar;
 use crate::piece::PieceFrame;
 use crate::ribbon::{PieceQuad, Ribbon};
 use crate::{Error, Input, Output, Params, PieceShape, PlacedPiece, Report};
-use crate::{incremental, ribbon, ribbon_pieces, tight_bends};
+use crate::{brush, incremental, ribbon, ribbon_pieces, tight_bends};
 
 /// Advice of the memory errors of a synthesis.
 pub(crate) const MEMORY_ADVICE: &str = "use a smaller canvas, longer pieces or a narrower ribbon";
@@ -63,8 +63,13 @@ pub(crate) struct Layout {
     pub rigid_frames: Vec<PieceFrame>,
     /// The exemplar side of each piece: the rigid frame or the straightened one.
     pub frames: Vec<PieceFrame>,
-    /// Exemplar pixels per canvas pixel along each piece (the scale over the width factor).
+    /// Exemplar pixels per canvas pixel along each piece (the scale over the width factor, times
+    /// the stretch of a fitted piece).
     pub along_scales: Vec<f64>,
+    /// The canvas length of a whole piece as fitted (the piece length unless stretched), and the
+    /// gap after each piece (0 unless spaced).
+    pub fitted_piece_length: f64,
+    pub fit_gap: f64,
     /// Whether pieces bend with the ribbon.
     pub bent: bool,
     /// The ribbon's offset curves, for the debug drawing.
@@ -96,10 +101,11 @@ impl Layout {
         let canvas_memory = memory_estimate(canvas_pixels, 0.0, 0.0, 0).check(params.max_memory, MEMORY_ADVICE)?;
         let curve = curve.transformed(Affine::translate(shift))?;
         let ribbon = Ribbon::new(&curve, params.width)?.with_profile(&params.width_profile);
-        let quads = ribbon::slice(&ribbon, params.piece_length);
+        let slices = brush::slices(ribbon.length(), params.piece_length, params.fit, closed);
+        let quads = ribbon::quads(&ribbon, &slices.bounds);
         let samples = ((params.width * params.scale).ceil() as usize).max(1);
         let bent = params.piece_shape == PieceShape::Bent;
-        let (rigid_frames, frames, along_scales) = piece_frames(&ribbon, &quads, params, closed, samples);
+        let (rigid_frames, frames, along_scales) = piece_frames(&ribbon, &quads, params, &slices, closed, samples);
         let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
         let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
         let atlas = Atlas::new(input.exemplar, input.more_exemplars);
@@ -118,6 +124,8 @@ impl Layout {
             rigid_frames,
             frames,
             along_scales,
+            fitted_piece_length: slices.piece_length,
+            fit_gap: slices.gap,
             bent,
             ribbon_top,
             ribbon_bottom,
@@ -150,13 +158,15 @@ fn piece_frames(
     ribbon: &Ribbon,
     quads: &[PieceQuad],
     params: &Params,
+    slices: &brush::Slices,
     closed: bool,
     samples: usize,
 ) -> (Vec<PieceFrame>, Vec<PieceFrame>, Vec<f64>) {
     // The canvas geometry of the pieces (fold-overs, rotation) is always the rigid frame's; the
     // exemplar side is the rigid or the straightened frame.
     let rigid_frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
-    let along_scales: Vec<f64> = quads.iter().map(|quad| params.scale / ribbon.factor(quad.start)).collect();
+    let along_scales: Vec<f64> =
+        quads.iter().map(|quad| params.scale * slices.stretch / ribbon.factor(quad.start)).collect();
     let frames: Vec<PieceFrame> = if params.piece_shape == PieceShape::Bent {
         quads
             .iter()
@@ -165,7 +175,7 @@ fn piece_frames(
                 // The shorter last piece of an open curve takes a full-length window and is drawn
                 // up to the curve's end: its right edge meets no seam, and every piece then has
                 // the same frame, so an edit that keeps the number of pieces changes no DP row.
-                let quad = if closed { *quad } else { PieceQuad { end: quad.start + params.piece_length, ..*quad } };
+                let quad = if closed { *quad } else { PieceQuad { end: quad.start + slices.piece_length, ..*quad } };
                 ribbon_pieces::straight_frame(&quad, params.width * params.scale / along, along, samples)
             })
             .collect()

@@ -4,6 +4,7 @@ use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 use serde::Serialize;
 
+use crate::brush::{Fit, Flip};
 use crate::cost::AlphaMode;
 use crate::dp::Solver;
 use crate::{Error, Input};
@@ -143,6 +144,15 @@ pub struct Params {
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
     /// Default 8.
     pub variety_radius: usize,
+    /// How the pieces meet the curve's length (not in the paper, which cuts the last piece):
+    /// stretched to a whole number of pieces, or spaced out. Default [`Fit::None`]. Stretching
+    /// needs bent pieces.
+    pub fit: Fit,
+    /// Mirror the exemplar along or across the curve. Default [`Flip::None`].
+    pub flip: Flip,
+    /// Colourize the exemplar as tints of this colour (sRGB): black becomes the colour, white
+    /// stays white. Default none (the exemplar's own colours).
+    pub tint: Option<[u8; 3]>,
 }
 
 impl Params {
@@ -171,6 +181,9 @@ impl Params {
         piece_shape: PieceShape::Bent,
         width_profile: Vec::new(),
         max_memory: motif_core::DEFAULT_MAX_MEMORY,
+        fit: Fit::None,
+        flip: Flip::None,
+        tint: None,
     };
 }
 
@@ -205,6 +218,9 @@ motif_core::builders! { Params {
     with_piece_shape => piece_shape: PieceShape,
     with_width_profile => width_profile: Vec<(f64, f64)>,
     with_max_memory => max_memory: u64,
+    with_fit => fit: Fit,
+    with_flip => flip: Flip,
+    with_tint => tint: Option<[u8; 3]>,
 }}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -309,6 +325,13 @@ impl Params {
         check_range("variety", params.variety, 0.0, 1e6)?;
         check_range("round-bends", params.round_bends, 0.0, 8.0)?;
         check_width_profile(params)?;
+        if params.fit == Fit::Stretch && params.piece_shape != PieceShape::Bent {
+            return Err(InvalidParameter::new(
+                "fit",
+                "stretch with rigid pieces",
+                "stretching pieces along the curve needs bent pieces (--pieces-shape bent)",
+            ));
+        }
         check_count("variety-radius", params.variety_radius, 1, 1000)?;
         if params.cut_alpha == 255 {
             return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254"));

@@ -9,13 +9,14 @@ use rayon::prelude::*;
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
 use crate::cost::{COST_SCALE, edge_distance, left_edges, right_edges};
 use crate::dp::{DpCounters, RowSpec};
+use crate::exemplar::Exemplar;
 use crate::layout::{Layout, MEMORY_ADVICE, memory_estimate};
 use crate::params::validate;
-use crate::piece::{Position, candidate_count};
+use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::{Shape, rigid_shape};
 use crate::repeat::Triangle;
 use crate::stitch::Stitch;
-use crate::{ClosedMode, Error, Input, Method, Output, Params, PlacedPiece, Report};
+use crate::{ClosedMode, Error, Fit, Input, Method, Output, Params, PlacedPiece, Report};
 use crate::{avoidance, incremental, render, repeat, ribbon_pieces, solve, stitch, variety, warnings};
 
 /// [`synthesize`](crate::synthesize), reusing and updating a session's cache when one is given
@@ -29,6 +30,16 @@ pub(crate) fn synthesize_with(
     let closed = validate(input, params)?;
     let mut timer = StageTimer::new();
     timer.start("ribbon");
+    // The exemplars as the brush draws them (flipped, tinted); every later stage reads these.
+    let exemplar = params.styled_exemplar(input.exemplar);
+    let more_exemplars: Vec<RgbaImage> = if params.styles_exemplars() {
+        input.more_exemplars.iter().map(|image| params.styled_exemplar(image).into_owned()).collect()
+    } else {
+        Vec::new()
+    };
+    let more_exemplars = if params.styles_exemplars() { &more_exemplars } else { input.more_exemplars };
+    let styled = Input { exemplar: &exemplar, more_exemplars, ..*input };
+    let input = &styled;
     let layout = Layout::new(input, params, closed, cache.as_deref_mut())?;
 
     timer.start("avoidance");
@@ -119,6 +130,9 @@ fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> 
         dp_rows_reused: 0,
         rounded_bends: layout.rounded_bends,
         bend_shift_max: layout.bend_shift_max,
+        fit: params.fit,
+        fitted_piece_length: layout.fitted_piece_length,
+        fit_gap: layout.fit_gap,
     };
     if layout.unresolved_bend {
         report.warnings.push(format!(
@@ -276,6 +290,8 @@ fn valid_positions(
             Some(positions) => positions.clone(),
             None => frame.valid_positions(&layout.exemplar, &runs, params.min_coverage),
         };
+        let positions =
+            if params.fit == Fit::Space { whole_motifs(frame, &layout.exemplar, positions) } else { positions };
         // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
         // position stays empty; the DP pays for the gap at its seams.
         if positions.is_empty() && !runs.is_empty() {
@@ -296,6 +312,15 @@ fn valid_positions(
         slots[i] = Some(lists);
     }
     Ok(slots.into_par_iter().enumerate().map(|(i, slot)| slot.unwrap_or_else(|| valid_of(i))).collect())
+}
+
+/// The positions whose sides are clear of the pattern (spaced pieces hold whole motifs); all of
+/// them when none is (a pattern with no clear column, such as a rope).
+fn whole_motifs(frame: &PieceFrame, exemplar: &Exemplar, positions: Vec<Position>) -> Vec<Position> {
+    let sides = frame.side_runs();
+    let clear: Vec<Position> =
+        positions.iter().filter(|u| sides.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))).copied().collect();
+    if clear.is_empty() { positions } else { clear }
 }
 
 /// Refuses a pinned first position that is not one of the first piece's valid positions.
@@ -437,6 +462,7 @@ fn render_pieces(
         (0..n)
             .map(|i| ribbon_pieces::BentPiece {
                 start: layout.quads[i].start,
+                visible_end: if layout.fit_gap > 0.0 { layout.quads[i].end } else { f64::INFINITY },
                 position: (!empty[i]).then_some(positions[i]),
                 frame: &layout.frames[i],
                 remap: remap_of(i),
