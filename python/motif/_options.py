@@ -90,6 +90,13 @@ class CurveOptions(TypedDict, total=False):
     #: Colourize the pattern as tints of this colour (#RRGGBB): black becomes the colour, white stays white,
     #: greys become lighter tints; transparency is kept.
     tint: str
+    #: A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first piece of an open
+    #: curve (an end cap, a clasp) and joined to the next piece by the same seam cost; the dynamic program
+    #: chooses its height. Its length along the curve is (X1 − X0) / scale.
+    start_tile: Tuple[int, int]
+    #: An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending at the curve's
+    #: end.
+    end_tile: Tuple[int, int]
 
 
 class PointsOptions(TypedDict, total=False):

@@ -88,23 +88,52 @@ pub(crate) struct Slices {
     pub stretch: f64,
     /// The gap after each piece (0 unless spaced).
     pub gap: f64,
+    /// Whether the first piece is a start tile and the last an end tile (drawn whole, unstretched).
+    pub tiles: [bool; 2],
+}
+
+impl Slices {
+    /// Whether piece `i` of these slices is a start or end tile.
+    pub fn is_tile(&self, i: usize) -> bool {
+        (i == 0 && self.tiles[0]) || (i + 1 == self.bounds.len() && self.tiles[1])
+    }
+}
+
+/// The pieces of a ribbon `length` long: a start tile `tiles[0]` long, pieces `delta` long fitted
+/// as `fit` asks, an end tile `tiles[1]` long (a tile 0 long is none). The tiles and one piece fit
+/// in `length` (checked by `validate`).
+pub(crate) fn slices(length: f64, delta: f64, fit: Fit, closed: bool, tiles: [f64; 2]) -> Slices {
+    let middle = length - tiles[0] - tiles[1];
+    let mut slices = fitted(middle, delta.min(middle), fit, closed);
+    for bound in &mut slices.bounds {
+        *bound = (bound.0 + tiles[0], bound.1 + tiles[0]);
+    }
+    if tiles[0] > 0.0 {
+        slices.bounds.insert(0, (0.0, tiles[0]));
+    }
+    if tiles[1] > 0.0 {
+        slices.bounds.push((length - tiles[1], length));
+    }
+    slices.tiles = tiles.map(|tile| tile > 0.0);
+    slices
 }
 
 /// The pieces of a ribbon `length` long for pieces `delta` long, fitted as `fit` asks; `delta` is
-/// at most `length` (checked by `validate`).
-pub(crate) fn slices(length: f64, delta: f64, fit: Fit, closed: bool) -> Slices {
+/// at most `length`.
+fn fitted(length: f64, delta: f64, fit: Fit, closed: bool) -> Slices {
+    let tiles = [false; 2];
     match fit {
         Fit::None => {
             let positions = crate::ribbon::slice_positions(length, delta);
             let bounds = positions.windows(2).map(|pair| (pair[0], pair[1])).collect();
-            Slices { bounds, piece_length: delta, stretch: 1.0, gap: 0.0 }
+            Slices { bounds, piece_length: delta, stretch: 1.0, gap: 0.0, tiles }
         }
         Fit::Stretch => {
             let count = (length / delta).round().max(1.0);
             let piece_length = length / count;
             let bounds =
                 (0..count as usize).map(|i| (i as f64 * piece_length, (i + 1) as f64 * piece_length)).collect();
-            Slices { bounds, piece_length, stretch: delta / piece_length, gap: 0.0 }
+            Slices { bounds, piece_length, stretch: delta / piece_length, gap: 0.0, tiles }
         }
         Fit::Space => {
             let count = (length / delta).floor().max(1.0) as usize;
@@ -116,7 +145,7 @@ pub(crate) fn slices(length: f64, delta: f64, fit: Fit, closed: bool) -> Slices 
                     (start, (start + delta).min(length))
                 })
                 .collect();
-            Slices { bounds, piece_length: delta, stretch: 1.0, gap }
+            Slices { bounds, piece_length: delta, stretch: 1.0, gap, tiles }
         }
     }
 }
@@ -127,7 +156,7 @@ mod tests {
 
     #[test]
     fn unfitted_slices_are_the_papers() {
-        let slices = slices(10.0, 3.0, Fit::None, false);
+        let slices = slices(10.0, 3.0, Fit::None, false, [0.0; 2]);
         assert_eq!(slices.bounds, vec![(0.0, 3.0), (3.0, 6.0), (6.0, 9.0), (9.0, 10.0)]);
         assert_eq!((slices.stretch, slices.gap), (1.0, 0.0));
     }
@@ -136,7 +165,7 @@ mod tests {
     fn fitted_pieces_end_exactly_at_the_curves_end() {
         for (length, delta) in [(10.0, 3.0), (100.0, 24.0), (7.5, 7.5), (61.0, 20.0), (59.0, 20.0)] {
             for closed in [false, true] {
-                let stretched = slices(length, delta, Fit::Stretch, closed);
+                let stretched = slices(length, delta, Fit::Stretch, closed, [0.0; 2]);
                 let last = stretched.bounds.last().unwrap().1;
                 assert!((last - length).abs() < 1e-9, "{length} {delta}");
                 let widths: Vec<f64> = stretched.bounds.iter().map(|(a, b)| b - a).collect();
@@ -145,7 +174,7 @@ mod tests {
                 assert!((length / delta - stretched.bounds.len() as f64).abs() <= 0.5 + 1e-9);
                 assert!((stretched.piece_length * stretched.stretch - delta).abs() < 1e-9);
 
-                let spaced = slices(length, delta, Fit::Space, closed);
+                let spaced = slices(length, delta, Fit::Space, closed, [0.0; 2]);
                 let count = spaced.bounds.len() as f64;
                 assert_eq!(count, (length / delta).floor());
                 assert!(spaced.bounds.iter().all(|(a, b)| ((b - a) - delta).abs() < 1e-9));
@@ -154,6 +183,25 @@ mod tests {
                 assert!(spaced.gap >= 0.0 && spaced.gap < delta * (1.0 + 1.0 / count));
             }
         }
+    }
+
+    #[test]
+    fn end_tiles_take_the_ends_and_the_pieces_fit_between_them() {
+        for fit in [Fit::None, Fit::Stretch, Fit::Space] {
+            let slices = slices(100.0, 20.0, fit, false, [15.0, 12.0]);
+            assert_eq!(slices.bounds[0], (0.0, 15.0));
+            assert_eq!(*slices.bounds.last().unwrap(), (88.0, 100.0));
+            assert!(slices.is_tile(0) && slices.is_tile(slices.bounds.len() - 1) && !slices.is_tile(1));
+            // Contiguous but for the gaps of a spaced fit, and in order.
+            for pair in slices.bounds.windows(2) {
+                assert!(
+                    pair[1].0 >= pair[0].1 - 1e-9 && pair[1].0 <= pair[0].1 + slices.gap + 1e-9,
+                    "{fit:?} {pair:?}"
+                );
+            }
+        }
+        let untiled = slices(100.0, 20.0, Fit::None, false, [0.0, 12.0]);
+        assert!(!untiled.is_tile(0) && untiled.is_tile(untiled.bounds.len() - 1));
     }
 
     #[test]

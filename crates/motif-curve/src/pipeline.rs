@@ -3,7 +3,7 @@
 //! and render.
 
 use motif_core::timing::StageTimer;
-use motif_core::{Progress, RgbaImage, Vec2};
+use motif_core::{InvalidParameter, Progress, RgbaImage, Vec2};
 use rayon::prelude::*;
 
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
@@ -212,6 +212,17 @@ impl Candidates {
             cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
         }
         if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
+            if let Some([x0, x1]) = layout.tile_columns(piece) {
+                let name = if piece == 0 { "start-tile" } else { "end-tile" };
+                return Err(InvalidParameter::new(
+                    name,
+                    format!("{x0},{x1}"),
+                    "no vertical position of these columns is cut cleanly (the tile must lie inside the pattern's \
+                     extent, with its top and bottom edges in transparent pixels): widen the ribbon (--width) or \
+                     choose other columns",
+                )
+                .into());
+            }
             let samples = layout.samples;
             return Err(Error::NoValidPosition { piece, samples, pattern_height: pattern_height(input.exemplar) });
         }
@@ -292,6 +303,10 @@ fn valid_positions(
         };
         let positions =
             if params.fit == Fit::Space { whole_motifs(frame, &layout.exemplar, positions) } else { positions };
+        let positions = match layout.tile_columns(i) {
+            Some([x0, _]) => positions.into_iter().filter(|u| i64::from(u[0]) == i64::from(x0)).collect(),
+            None => outside_tiles(frame, layout, positions),
+        };
         // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
         // position stays empty; the DP pays for the gap at its seams.
         if positions.is_empty() && !runs.is_empty() {
@@ -321,6 +336,25 @@ fn whole_motifs(frame: &PieceFrame, exemplar: &Exemplar, positions: Vec<Position
     let clear: Vec<Position> =
         positions.iter().filter(|u| sides.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))).copied().collect();
     if clear.is_empty() { positions } else { clear }
+}
+
+/// The positions of a piece between the tiles whose window stays clear of the tiles' columns: a
+/// cap or clasp is drawn at the ends only.
+fn outside_tiles(frame: &PieceFrame, layout: &Layout, positions: Vec<Position>) -> Vec<Position> {
+    let tiles: Vec<[u32; 2]> = layout.tile_columns.into_iter().flatten().collect();
+    if tiles.is_empty() {
+        return positions;
+    }
+    let corners = frame.local_corners();
+    let low = corners.iter().map(|c| c.x).fold(f64::INFINITY, f64::min);
+    let high = corners.iter().map(|c| c.x).fold(f64::NEG_INFINITY, f64::max);
+    positions
+        .into_iter()
+        .filter(|u| {
+            let (left, right) = (f64::from(u[0]) + 0.5 + low, f64::from(u[0]) + 0.5 + high);
+            tiles.iter().all(|&[x0, x1]| right <= f64::from(x0) || left >= f64::from(x1))
+        })
+        .collect()
 }
 
 /// Refuses a pinned first position that is not one of the first piece's valid positions.

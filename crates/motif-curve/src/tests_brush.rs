@@ -127,3 +127,42 @@ fn a_tint_turns_black_into_the_colour_and_keeps_the_alpha() {
     }
     assert!(solid > 500, "{solid}");
 }
+
+#[test]
+fn end_tiles_are_drawn_whole_at_the_curves_ends() {
+    // Bars of 10 px, with a distinct cap: a 30 px red block at columns 170..200 of the exemplar.
+    let exemplar = RgbaImage::from_fn(200, 16, |x, y| match (x, y) {
+        (170..=199, 2..=13) => [200, 20, 20, 255],
+        (_, 2..=13) if x % 20 < 10 && x < 160 => [40, 40, 40, 255],
+        _ => [0; 4],
+    });
+    let tiled = params(16.0, 20.0).with_start_tile(Some([170, 200])).with_end_tile(Some([170, 200]));
+    let output = run(&exemplar, &tiled);
+    let pieces = &output.pieces;
+    // 130 px: a 29 px start tile (column centres 170.5 to 199.5), 72 px of pieces, a 29 px end tile.
+    let column = |piece: &crate::PlacedPiece| piece.position.map(|[x, _]| x);
+    assert_eq!(column(&pieces[0]), Some(170));
+    assert_eq!(column(&pieces[pieces.len() - 1]), Some(170));
+    assert!(pieces[1..pieces.len() - 1].iter().all(|piece| column(piece) < Some(160)), "{pieces:?}");
+    assert_eq!((pieces[0].arc, pieces[pieces.len() - 1].arc), ([0.0, 29.0], [101.0, 130.0]));
+    // Red only at the two ends of the line, 30 px each.
+    let image = &output.image;
+    let row = |y: usize| -> Vec<[u8; 4]> { (0..image.width()).map(|x| image.get(x, y)).collect() };
+    let middle = (0..image.height()).max_by_key(|&y| row(y).iter().filter(|p| p[3] > 127).count()).unwrap();
+    let red: Vec<usize> =
+        row(middle).iter().enumerate().filter(|(_, p)| p[3] > 127 && p[0] > 150).map(|(x, _)| x).collect();
+    let (first, last) = (red[0], red[red.len() - 1]);
+    assert!((56..=60).contains(&red.len()), "{red:?}");
+    assert!(red.iter().all(|&x| x < first + 30 || x + 30 > last), "{red:?}");
+    assert!(last - first > 100, "{red:?}");
+    // Tiles need an open curve and columns inside the exemplar.
+    let closed = crate::tests::circle(100.0, 100.0, 60.0, 64);
+    let input = Input { exemplar: &exemplar, curve: &closed, avoidance: None, more_exemplars: &[] };
+    let message = synthesize(&input, &tiled, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("start-tile") && message.contains("closed"), "{message}");
+    let outside = params(16.0, 20.0).with_end_tile(Some([190, 210]));
+    let curve = line(10.0, 40.0, 140.0, 40.0);
+    let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let message = synthesize(&input, &outside, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("end-tile") && message.contains("200"), "{message}");
+}

@@ -145,11 +145,30 @@ crate::declare_options! {
         /// white stays white, greys become lighter tints; transparency is kept.
         [value_name: "#RRGGBB"]
         tint: Option<Colour> = None,
+        /// A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first
+        /// piece of an open curve (an end cap, a clasp) and joined to the next piece by the same
+        /// seam cost; the dynamic program chooses its height. Its length along the curve is
+        /// (X1 − X0) / scale.
+        [value_name: "X0,X1"]
+        start_tile: Option<[i32; 2]> = None,
+        /// An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending
+        /// at the curve's end.
+        [value_name: "X0,X1"]
+        end_tile: Option<[i32; 2]> = None,
     }
 }
 
 /// The engine's defaults, which the options take theirs from.
 const DEFAULTS: Params = Params::DEFAULT;
+
+/// A tile's columns as the engine takes them (the engine checks them against the exemplar).
+fn tile_columns(name: &str, columns: Option<[i32; 2]>) -> Result<Option<[u32; 2]>, JobError> {
+    let Some([x0, x1]) = columns else { return Ok(None) };
+    match (u32::try_from(x0), u32::try_from(x1)) {
+        (Ok(x0), Ok(x1)) => Ok(Some([x0, x1])),
+        _ => Err(motif_core::InvalidParameter::new(name, format!("{x0},{x1}"), "columns must not be negative").into()),
+    }
+}
 
 /// The margin of the engine's default canvas, fitted to the ribbon.
 fn fitted_margin() -> f64 {
@@ -281,6 +300,8 @@ impl CurveJob {
             .with_fit(options.fit)
             .with_flip(options.flip)
             .with_tint(options.tint.map(|Colour(rgb)| rgb))
+            .with_start_tile(tile_columns("start-tile", options.start_tile)?)
+            .with_end_tile(tile_columns("end-tile", options.end_tile)?)
             .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory));
         params.validate()?;
         Ok(params)
