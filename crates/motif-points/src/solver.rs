@@ -82,7 +82,7 @@ pub struct Report {
     pub final_energy: f64,
     /// Points that were kept fixed (progressive synthesis).
     pub fixed_points: usize,
-    /// Points copied into patch interiors and kept as copied ([`Refinement::Seams`]).
+    /// Points copied into patch interiors and kept as copied ([`Refinement::Seams`](crate::Refinement::Seams)).
     pub patch_interior_points: usize,
     /// How unevenly the patches copied the exemplar: the coefficient of variation of how many
     /// output points copy each exemplar point (0: all equally often, as in a tiled copy; `None`
