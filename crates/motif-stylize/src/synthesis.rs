@@ -109,6 +109,48 @@ fn patch_at_level(
     side
 }
 
+/// A level that refines upsampled matches ([`Params::local_search_above`]) has more than this many
+/// times its output's pixels in its exemplar: below it, a search of the whole exemplar costs
+/// about what the output does.
+pub const LOCAL_SEARCH_RATIO: usize = 4;
+
+/// The largest offset of the random search, in the level's pixels, on a level that refines
+/// upsampled matches: the coarser level placed each match within a pixel or two, propagation
+/// carries coherent runs, and a few pixels of slack let a patch settle on its best alignment.
+pub const LOCAL_SEARCH_RADIUS: usize = 8;
+
+/// Whether pyramid level `level` (0 = finest) of `levels` refines the matches upsampled from the
+/// coarser level instead of searching the whole exemplar ([`Params::local_search_above`]): in a
+/// native-size run (see [`is_native`]), a level but the coarsest whose exemplar has more than
+/// `local_search_above` pixels and [`LOCAL_SEARCH_RATIO`] times its output's.
+fn is_local<I: ChannelImage>(problem: &Problem<'_, I>, params: &Params, levels: usize, level: usize) -> bool {
+    level + 1 < levels && is_native(problem, params) && large_exemplar(problem, params, level)
+}
+
+/// Whether the run is plain texture synthesis (no guides, mask, band or seeded start) from an
+/// exemplar of more than [`Params::local_search_above`] pixels and [`LOCAL_SEARCH_RATIO`] times
+/// the output's. Then at every level the occurrence penalty counts uniform use as if the
+/// exemplar had only the output's pixels (uncapped, ω_best falls with the exemplar's size, the
+/// penalty of a coherent copy grows with it and breaks up every coherent run: the output blurs;
+/// a cap of 4 still blurred patches of a tiled stone wall at 4 096²), and the levels of
+/// [`is_local`] refine upsampled matches.
+fn is_native<I: ChannelImage>(problem: &Problem<'_, I>, params: &Params) -> bool {
+    let texture_only = problem.source_guides.is_empty()
+        && problem.mask.is_none()
+        && problem.composition.is_none()
+        && problem.seeds.is_none();
+    texture_only && large_exemplar(problem, params, 0)
+}
+
+/// Whether pyramid level `level`'s exemplar has more than [`Params::local_search_above`] pixels
+/// and [`LOCAL_SEARCH_RATIO`] times its output's.
+fn large_exemplar<I: ChannelImage>(problem: &Problem<'_, I>, params: &Params, level: usize) -> bool {
+    let (source, target) =
+        (level_size((problem.style.width(), problem.style.height()), level), level_size(problem.target_size, level));
+    let (source, target) = (source.0 * source.1, target.0 * target.1);
+    source > params.local_search_above && source > LOCAL_SEARCH_RATIO * target
+}
+
 /// Size of pyramid level `level` of an image of size `size`.
 fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
     (0..level).fold(size, |(w, h), _| (w.div_ceil(2), h.div_ceil(2)))
@@ -175,7 +217,7 @@ pub(crate) fn run<I: ChannelImage>(
         timer.add(&report.name, report.ms);
         reports.push(report);
     }
-    let figures = Figures::new(&mut field, &level, params);
+    let figures = Figures::new(&mut field, &level, params, em.local[0]);
     let field = public_field(field, level, figures.vote_weights);
     Ok(Output {
         image,
@@ -232,6 +274,10 @@ struct Em<'p, 'a, I: ChannelImage> {
     holes: Option<Vec<Vec<bool>>>,
     /// Per level, the style channels' weights (they differ only with structure guidance).
     style_weights: Vec<Vec<f32>>,
+    /// Per level, whether it refines upsampled matches (see [`is_local`]).
+    local: Vec<bool>,
+    /// Whether the occurrence penalty caps the exemplar's share (see [`is_native`]).
+    native: bool,
 }
 
 impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
@@ -259,6 +305,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
                 .mask
                 .map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect()),
             style_weights,
+            local: (0..levels).map(|level| is_local(problem, params, levels, level)).collect(),
+            native: is_native(problem, params),
         }
     }
 
@@ -301,6 +349,12 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
     /// when there is one.
     fn level_of(&self, index: usize, patch: usize) -> Level<'_> {
         let mut level = Level::new(self.spec(index, patch));
+        if self.local[index] {
+            level.search_radius = LOCAL_SEARCH_RADIUS;
+        }
+        if self.native {
+            level.source_share_cap = Some(1);
+        }
         let domain = match (&self.problem.composition, &self.holes) {
             (Some((_, domain)), _) => domain,
             (None, Some(holes)) => &holes[index],
@@ -335,7 +389,9 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         };
         *image = self.start_image(&level, index, &field);
         level.set_target_style(image, false);
-        let mut occurrence = Occurrence::new(&level, params.uniformity);
+        // A level that refines upsampled matches searches a few pixels around each: no patch can
+        // gather many target patches, and Ω over the whole exemplar would cost what it saves.
+        let mut occurrence = Occurrence::new(&level, if self.local[index] { 0.0 } else { params.uniformity });
         let mut searcher = Searcher { params, streams: &streams, scratch };
         let mut energies = Vec::with_capacity(params.search_vote_iterations);
         let mut converged: Option<Vec<bool>> = None;
@@ -354,7 +410,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         }
         let ms = motif_core::timing::elapsed_ms(level_start);
         let (width, height) = (level.target_width, level.target_height);
-        let report = LevelReport { name: stage, width, height, patch_size: patch, energies, ms };
+        let local_search = self.local[index];
+        let report = LevelReport { name: stage, width, height, patch_size: patch, local_search, energies, ms };
         (field, level, report)
     }
 
@@ -404,7 +461,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         let ms = motif_core::timing::elapsed_ms(pass_start);
         let (width, height) = (fine.target_width, fine.target_height);
         progress.report(&stage, 1.0);
-        (fine, LevelReport { name: stage, width, height, patch_size: 3, energies, ms })
+        let local_search = self.local[0];
+        (fine, LevelReport { name: stage, width, height, patch_size: 3, local_search, energies, ms })
     }
 }
 
@@ -421,12 +479,13 @@ struct Figures {
 }
 
 impl Figures {
-    fn new(field: &mut Field, level: &Level, params: &Params) -> Self {
+    /// `local`: the finest level refined upsampled matches, without the occurrence penalty.
+    fn new(field: &mut Field, level: &Level, params: &Params, local: bool) -> Self {
         // The weights the final vote gave each patch, before the costs are recomputed for the figures.
         let area = (level.patch * level.patch) as f32;
         let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
         field.recompute_costs(level);
-        let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
+        let final_lambda = if params.extra_pass_3x3 || local { 0.0 } else { params.uniformity };
         let mut occurrence = Occurrence::new(level, final_lambda);
         occurrence.refresh(level, &field.matches);
         let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
