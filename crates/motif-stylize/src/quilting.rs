@@ -275,7 +275,8 @@ mod tests {
     fn the_inferred_block_is_half_the_exemplar_when_it_grows() {
         assert_eq!(inferred_quilt_block((96, 96), (192, 192)), 48);
         assert_eq!(inferred_quilt_block((156, 120), (400, 300)), 60);
-        assert_eq!(inferred_quilt_block((96, 96), (150, 100)), 0, "a side below the exemplar's");
+        assert_eq!(inferred_quilt_block((96, 96), (150, 100)), 48);
+        assert_eq!(inferred_quilt_block((96, 96), (300, 90)), 0, "a side below the exemplar's");
         assert_eq!(inferred_quilt_block((1024, 1024), (1024, 1024)), 0, "no larger");
         assert_eq!(inferred_quilt_block((8192, 8192), (1024, 1024)), 0, "native size");
         assert_eq!(inferred_quilt_block((14, 14), (64, 64)), 0, "below 8 pixels");
