@@ -21,8 +21,10 @@ fn grown(exemplar: &ByteImage, seed: u64, above: usize) -> motif_stylize::Output
     synthesize(&Input::texture(exemplar.clone(), 48, 48), &params, &mut NoProgress).unwrap()
 }
 
-/// Measured over seeds 1–3: the mean nearest 15 × 15 patch distance of the refined textures
-/// within 1.25× the whole search's, and their sharpness within 10 % of it.
+/// Over seeds 1–3: the mean nearest 15 × 15 patch distance of the refined textures within 1.25×
+/// the whole search's, and their sharpness at least 0.9 of it (measured: 481 against 626,
+/// sharpness 14.3 against 11.5: the refined run's penalty, measured as if the exemplar had the
+/// output's pixels, keeps coherent copies that the whole search's breaks up).
 #[test]
 fn local_refinement_keeps_the_fidelity_of_a_whole_search_on_a_real_exemplar() {
     let exemplar = stone();
@@ -39,7 +41,6 @@ fn local_refinement_keeps_the_fidelity_of_a_whole_search_on_a_real_exemplar() {
         sharp_local += motif_stylize::sharpness(&refined.image) / 3.0;
         sharp_whole += motif_stylize::sharpness(&searched.image) / 3.0;
     }
-    eprintln!("distance {local:.0} against {whole:.0}, sharpness {sharp_local:.4} against {sharp_whole:.4}");
     assert!(local <= 1.25 * whole, "nearest 15×15 patch distance {local:.0} against {whole:.0}");
     assert!(sharp_local >= 0.9 * sharp_whole, "sharpness {sharp_local:.4} against {sharp_whole:.4}");
 }

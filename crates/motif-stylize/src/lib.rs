@@ -17,7 +17,10 @@
 //!   exact brute-force search of §4.2.
 //! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
-//!   upsampling (§3.5), the optional 3×3 pass, the report.
+//!   upsampling (§3.5), the optional 3×3 pass, the report; for an exemplar much larger than the
+//!   output, the coarse levels search the whole (reduced) exemplar and the finer ones refine the
+//!   upsampled matches within a few pixels ([`Params::local_search_above`]), so the time grows
+//!   with the output, not the exemplar.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7).
@@ -39,7 +42,8 @@
 //!   [`mean_feature_distance`] and [`line_contrast`], figures that see merged or cut elements and
 //!   broken courses.
 //! - `quilting`: image quilting (Efros and Freeman 2001) as the start of texture optimization
-//!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level.
+//!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level;
+//!   [`inferred_quilt_block`], the block `motif texture` uses when none is given.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -105,8 +109,8 @@ pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use params::{NnfMethod, Params, Segmentation};
-pub use quilting::inferred_quilt_block;
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
+pub use quilting::inferred_quilt_block;
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure_fidelity::{nearest_patch_distance, sharpness};
 pub use structure_guidance::{line_contrast, mean_feature_distance};

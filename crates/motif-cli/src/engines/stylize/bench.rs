@@ -41,7 +41,10 @@ fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> Input {
 }
 
 /// One synthesis, its wall-clock seconds and the process's CPU-seconds (where known).
-pub(super) fn timed<I: motif_core::ChannelImage>(input: &Input<I>, params: &Params) -> anyhow::Result<(Output, f64, Option<f64>)> {
+pub(super) fn timed<I: motif_core::ChannelImage>(
+    input: &Input<I>,
+    params: &Params,
+) -> anyhow::Result<(Output, f64, Option<f64>)> {
     let cpu_start = cpu_seconds();
     let start = std::time::Instant::now();
     let output = synthesize(input, params, &mut NoProgress)?;

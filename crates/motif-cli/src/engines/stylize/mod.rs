@@ -299,7 +299,9 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     }
     let quilt = match (run.figures["quilt_block"].as_u64(), run.figures["quilt_block_inferred"].as_bool()) {
         (Some(0) | None, _) => String::new(),
-        (Some(block), inferred) => format!(", quilt block {block}{}", if inferred == Some(true) { " (inferred)" } else { "" }),
+        (Some(block), inferred) => {
+            format!(", quilt block {block}{}", if inferred == Some(true) { " (inferred)" } else { "" })
+        }
     };
     context.job_figures(run.figures);
     context.summary(&format!(

@@ -39,8 +39,7 @@ pub fn texture_native(bench: &Bench) -> anyhow::Result<Value> {
     let mut fidelity = vec![None; sides.len()];
     let figures = |output: &motif_stylize::Output| {
         let distance = motif_stylize::nearest_patch_distance(&output.image, &pattern_float, 15, 100);
-        let sharpness =
-            motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&pattern_float).max(1e-9);
+        let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&pattern_float).max(1e-9);
         (distance, sharpness)
     };
     for _ in 0..rounds {
