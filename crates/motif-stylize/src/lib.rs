@@ -17,10 +17,10 @@
 //!   exact brute-force search of §4.2.
 //! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
-//!   upsampling (§3.5), the optional 3×3 pass, the report; for an exemplar much larger than the
-//!   output, the coarse levels search the whole (reduced) exemplar and the finer ones refine the
-//!   upsampled matches within a few pixels ([`Params::local_search_above`]), so the time grows
-//!   with the output, not the exemplar.
+//!   upsampling (§3.5), the optional 3×3 pass, the report.
+//! - `native`: for an exemplar much larger than the output, the coarse levels search the whole
+//!   (reduced) exemplar and the finer ones refine the upsampled matches within a few pixels
+//!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7).
@@ -75,6 +75,7 @@ mod field;
 mod level;
 mod mask;
 mod motion;
+mod native;
 mod occurrence;
 mod params;
 mod presynth;
@@ -108,13 +109,13 @@ pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
+pub use native::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
 pub use quilting::inferred_quilt_block;
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure_fidelity::{nearest_patch_distance, sharpness};
 pub use structure_guidance::{line_contrast, mean_feature_distance};
-pub use synthesis::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use video::{
     Interval, IntervalOutput, IntervalReport, Keyframe, VIDEO_MEMORY_ADVICE, VideoInput, VideoOutput, VideoParams,
     VideoReport, intervals, mean_flicker, stylize_interval, stylize_video, video_memory,
