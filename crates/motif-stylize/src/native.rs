@@ -17,6 +17,10 @@ pub const LOCAL_SEARCH_RATIO: usize = 4;
 /// carries coherent runs, and a few pixels of slack let a patch settle on its best alignment.
 pub const LOCAL_SEARCH_RADIUS: usize = 8;
 
+/// In a native-size run ([`is_native`]), the occurrence penalty's ω_best counts at most this many
+/// exemplar pixels per searched target patch: uniform use as if the exemplar had the output's size.
+pub(crate) const OCCURRENCE_SOURCE_SHARE: usize = 1;
+
 /// Whether pyramid level `level` (0 = finest) of `levels` refines the matches upsampled from the
 /// coarser level instead of searching the whole exemplar ([`Params::local_search_above`]): in a
 /// native-size run (see [`is_native`]), a level but the coarsest whose exemplar has more than

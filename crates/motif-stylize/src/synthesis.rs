@@ -6,7 +6,7 @@ use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 
 use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
-use crate::native::{LOCAL_SEARCH_RADIUS, is_local, is_native};
+use crate::native::{LOCAL_SEARCH_RADIUS, OCCURRENCE_SOURCE_SHARE, is_local, is_native};
 use crate::occurrence::Occurrence;
 use crate::search::{Field, exact_search, patchmatch_iteration};
 use crate::vote::{vote, weight_code};
@@ -312,7 +312,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             level.search_radius = LOCAL_SEARCH_RADIUS;
         }
         if self.native {
-            level.source_share_cap = Some(1);
+            level.source_share_cap = Some(OCCURRENCE_SOURCE_SHARE);
         }
         let domain = match (&self.problem.composition, &self.holes) {
             (Some((_, domain)), _) => domain,
