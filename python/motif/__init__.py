@@ -9,7 +9,8 @@ runs; ``threads`` caps its worker threads (default: all cores; results do not de
 
 Bad options raise ``motif.OptionError`` naming the option, unusable inputs ``motif.InputError``
 and runs past a memory, point or work limit ``motif.LimitError`` (all ``motif.MotifError``, a
-``ValueError``); files that cannot be read or written raise ``OSError``.
+``ValueError``; ``LimitError`` is a ``MemoryError`` too); files that cannot be read or written
+raise ``OSError``.
 
 >>> import numpy as np, motif
 >>> exemplar = (np.random.default_rng(1).random((32, 32, 3)) * 255).astype(np.uint8)
@@ -49,7 +50,7 @@ __all__ = [
 ]
 
 # A run the engines refuse raises one of these (all ValueError): a bad option, an unusable input,
-# or a limit the run would pass (memory, points, work).
+# or a limit the run would pass (memory, points, work; LimitError is also a MemoryError).
 MotifError = _motif.MotifError
 OptionError = _motif.OptionError
 InputError = _motif.InputError

@@ -79,6 +79,24 @@ class CurveOptions(TypedDict, total=False):
     fidelity: bool
     #: Exact closed mode: start positions tried at most before giving up the certificate. Allowed: 1–100000. Default: 64.
     closed_max_starts: int
+    #: How the pieces meet the curve's length, as a pattern brush fits its tiles: none cuts the last piece
+    #: where an open curve ends (the paper); stretch draws a whole number of pieces, each stretched or squeezed
+    #: along the curve; space draws as many whole pieces as fit, with equal gaps between them, each cut where
+    #: the exemplar is clear so that no motif is cut at a gap. Stretch needs bent pieces. Default: none.
+    fit: Literal["none", "stretch", "space"]
+    #: Mirror the exemplar before synthesis: along (the pattern runs the other way), across (its top faces the
+    #: other side of the curve) or both. Default: none.
+    flip: Literal["none", "along", "across", "both"]
+    #: Colourize the pattern as tints of this colour (#RRGGBB): black becomes the colour, white stays white,
+    #: greys become lighter tints; transparency is kept.
+    tint: str
+    #: A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first piece of an open
+    #: curve (an end cap, a clasp) and joined to the next piece by the same seam cost; the dynamic program
+    #: chooses its height. Its length along the curve is (X1 − X0) / scale.
+    start_tile: Tuple[int, int]
+    #: An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending at the curve's
+    #: end.
+    end_tile: Tuple[int, int]
 
 
 class PointsOptions(TypedDict, total=False):

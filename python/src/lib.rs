@@ -4,16 +4,18 @@
 //! `motif-jobs` (the layer the CLI uses too, so the same seed gives the same bytes) and returns
 //! numpy arrays and the report as JSON text.
 //!
-//! Errors: a bad description or parameter is a `ValueError` naming the option; a file that cannot
-//! be read or written is an `OSError`; nothing reaches the interpreter as a crash.
+//! Errors: a bad description or parameter is a `ValueError` naming the option (`OptionError`,
+//! `InputError`); a run past a memory, point or work limit is a `LimitError`, both a `ValueError`
+//! and a `MemoryError`; a file that cannot be read or written is an `OSError`; nothing reaches the
+//! interpreter as a crash.
 
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_jobs::columns::Column;
 use motif_jobs::{Job, JobError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyMemoryError, PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyList;
+use pyo3::types::{PyDict, PyList, PyType};
 
 type Image<'py> = Bound<'py, numpy::PyArray3<u8>>;
 type PyColumns<'py> = Vec<(String, bool, PyReadonlyArray1<'py, f64>)>;
@@ -31,7 +33,30 @@ pyo3::create_exception!(
     MotifError,
     "An input (image, points, curve, strokes) that cannot be used."
 );
-pyo3::create_exception!(_motif, LimitError, MotifError, "A run that would pass a memory, point or work limit.");
+
+/// `LimitError`: a run that would pass a memory, point or work limit. It is a `MotifError` (so a
+/// `ValueError`, like every refusal) and a `MemoryError`, so `except MemoryError` catches it too.
+/// `create_exception!` takes one base, so the class is made once by Python's `type`.
+static LIMIT_ERROR: pyo3::sync::PyOnceLock<Py<PyType>> = pyo3::sync::PyOnceLock::new();
+
+fn limit_error_type(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
+    let made = LIMIT_ERROR.get_or_try_init(py, || -> PyResult<Py<PyType>> {
+        let namespace = PyDict::new(py);
+        namespace.set_item("__doc__", "A run that would pass a memory, point or work limit.")?;
+        namespace.set_item("__module__", "motif._motif")?;
+        let bases = (py.get_type::<MotifError>(), py.get_type::<PyMemoryError>());
+        let class = py.get_type::<PyType>().call1(("LimitError", bases, namespace))?;
+        Ok(class.cast_into::<PyType>()?.unbind())
+    })?;
+    Ok(made.bind(py))
+}
+
+fn limit_error(message: String) -> PyErr {
+    Python::attach(|py| match limit_error_type(py) {
+        Ok(class) => PyErr::from_type(class.clone(), message),
+        Err(error) => error,
+    })
+}
 
 /// The job's error as the exception of its kind.
 fn job_error(error: JobError) -> PyErr {
@@ -39,7 +64,7 @@ fn job_error(error: JobError) -> PyErr {
     match error.kind() {
         motif_jobs::ErrorKind::Option => OptionError::new_err(message),
         motif_jobs::ErrorKind::Input => InputError::new_err(message),
-        motif_jobs::ErrorKind::Limit => LimitError::new_err(message),
+        motif_jobs::ErrorKind::Limit => limit_error(message),
         _ => MotifError::new_err(message),
     }
 }
@@ -537,6 +562,6 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add("MotifError", module.py().get_type::<MotifError>())?;
     module.add("OptionError", module.py().get_type::<OptionError>())?;
     module.add("InputError", module.py().get_type::<InputError>())?;
-    module.add("LimitError", module.py().get_type::<LimitError>())?;
+    module.add("LimitError", limit_error_type(module.py())?)?;
     Ok(())
 }

@@ -335,5 +335,10 @@ def test_errors_come_in_kinds(photo):
         motif.points({"x": np.array([0.0, 1.0]), "y": np.array([0.0, 1.0])}, 1.0, domain=(10, 10))
     with pytest.raises(motif.LimitError):
         motif.texture(exemplar, (4096, 4096), max_memory="1M")
+    with pytest.raises(MemoryError, match="memory"):
+        motif.texture(exemplar, (4096, 4096), max_memory="1M")
     for kind in (motif.OptionError, motif.InputError, motif.LimitError):
         assert issubclass(kind, motif.MotifError) and issubclass(kind, ValueError)
+    assert issubclass(motif.LimitError, MemoryError) and not issubclass(motif.OptionError, MemoryError)
+    with pytest.raises(OSError):
+        motif.read_points("no/such/points.csv")

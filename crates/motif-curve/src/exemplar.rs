@@ -32,7 +32,7 @@ pub(crate) fn runs_from_offsets(mut offsets: Vec<(i32, i32)>) -> Vec<Run> {
 
 /// First and last columns of `[x0, x1)` holding a pixel with alpha > `cut_alpha` (the whole range
 /// when none does).
-fn pattern_extent(image: &RgbaImage, x0: usize, x1: usize, cut_alpha: u8) -> (i32, i32) {
+pub(crate) fn pattern_extent(image: &RgbaImage, x0: usize, x1: usize, cut_alpha: u8) -> (i32, i32) {
     let occupied = |x: usize| (0..image.height()).any(|y| image.get(x, y)[3] > cut_alpha);
     match ((x0..x1).find(|&x| occupied(x)), (x0..x1).rev().find(|&x| occupied(x))) {
         (Some(a), Some(b)) => (a as i32, b as i32),

@@ -15,7 +15,7 @@ use crate::exemplar::Exemplar;
 use crate::piece::PieceFrame;
 use crate::ribbon::{PieceQuad, Ribbon};
 use crate::{Error, Input, Output, Params, PieceShape, PlacedPiece, Report};
-use crate::{incremental, ribbon, ribbon_pieces, tight_bends};
+use crate::{brush, incremental, ribbon, ribbon_pieces, tight_bends};
 
 /// Advice of the memory errors of a synthesis.
 pub(crate) const MEMORY_ADVICE: &str = "use a smaller canvas, longer pieces or a narrower ribbon";
@@ -63,8 +63,15 @@ pub(crate) struct Layout {
     pub rigid_frames: Vec<PieceFrame>,
     /// The exemplar side of each piece: the rigid frame or the straightened one.
     pub frames: Vec<PieceFrame>,
-    /// Exemplar pixels per canvas pixel along each piece (the scale over the width factor).
+    /// Exemplar pixels per canvas pixel along each piece (the scale over the width factor, times
+    /// the stretch of a fitted piece).
     pub along_scales: Vec<f64>,
+    /// The canvas length of a whole piece as fitted (the piece length unless stretched), and the
+    /// gap after each piece (0 unless spaced).
+    pub fitted_piece_length: f64,
+    pub fit_gap: f64,
+    /// The start and end tiles' exemplar columns, within the pattern's extent.
+    pub tile_columns: [Option<[u32; 2]>; 2],
     /// Whether pieces bend with the ribbon.
     pub bent: bool,
     /// The ribbon's offset curves, for the debug drawing.
@@ -96,10 +103,16 @@ impl Layout {
         let canvas_memory = memory_estimate(canvas_pixels, 0.0, 0.0, 0).check(params.max_memory, MEMORY_ADVICE)?;
         let curve = curve.transformed(Affine::translate(shift))?;
         let ribbon = Ribbon::new(&curve, params.width)?.with_profile(&params.width_profile);
-        let quads = ribbon::slice(&ribbon, params.piece_length);
+        let tile_columns =
+            [params.start_tile, params.end_tile].map(|tile| tile_in_pattern(input.exemplar, tile, params));
+        // A window at position x covers exemplar x + 0.5 to x + 0.5 + length: columns X0..X1 are
+        // drawn from the centre of the first to the centre of the last.
+        let tiles = tile_columns.map(|tile| tile.map_or(0.0, |[x0, x1]| f64::from(x1 - x0 - 1) / params.scale));
+        let slices = brush::slices(ribbon.length(), params.piece_length, params.fit, closed, tiles);
+        let quads = ribbon::quads(&ribbon, &slices.bounds);
         let samples = ((params.width * params.scale).ceil() as usize).max(1);
         let bent = params.piece_shape == PieceShape::Bent;
-        let (rigid_frames, frames, along_scales) = piece_frames(&ribbon, &quads, params, closed, samples);
+        let (rigid_frames, frames, along_scales) = piece_frames(&ribbon, &quads, params, &slices, closed, samples);
         let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
         let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
         let atlas = Atlas::new(input.exemplar, input.more_exemplars);
@@ -118,6 +131,9 @@ impl Layout {
             rigid_frames,
             frames,
             along_scales,
+            fitted_piece_length: slices.piece_length,
+            fit_gap: slices.gap,
+            tile_columns,
             bent,
             ribbon_top,
             ribbon_bottom,
@@ -125,6 +141,15 @@ impl Layout {
             exemplar,
             model: CostModel::new(params.alpha_mode, params.mismatch_penalty),
         })
+    }
+
+    /// The exemplar columns of piece `i` when it is a start or end tile.
+    pub fn tile_columns(&self, i: usize) -> Option<[u32; 2]> {
+        match (i, self.tile_columns) {
+            (0, [Some(start), _]) => Some(start),
+            (i, [_, Some(end)]) if i + 1 == self.quads.len() => Some(end),
+            _ => None,
+        }
     }
 
     /// Canvas pixels, for the memory estimate.
@@ -144,28 +169,45 @@ impl Layout {
     }
 }
 
+/// A tile's columns narrowed to the pattern's extent in the first exemplar (the transparent
+/// margin beside the pattern is not part of a cap), so that `0,W` takes the pattern's last motif
+/// whole; `None` when the narrowed tile is under two columns wide.
+fn tile_in_pattern(exemplar: &RgbaImage, tile: Option<[u32; 2]>, params: &Params) -> Option<[u32; 2]> {
+    let [x0, x1] = tile?;
+    let (first, last) = crate::exemplar::pattern_extent(exemplar, 0, exemplar.width(), params.cut_alpha);
+    let x0 = x0.max(first as u32);
+    let x1 = x1.min(last as u32 + 1);
+    (x0 + 2 <= x1).then_some([x0, x1])
+}
+
 /// Each piece's rigid frame, its exemplar-side frame (the rigid one, or straightened for bent
 /// pieces) and its scale along the curve.
 fn piece_frames(
     ribbon: &Ribbon,
     quads: &[PieceQuad],
     params: &Params,
+    slices: &brush::Slices,
     closed: bool,
     samples: usize,
 ) -> (Vec<PieceFrame>, Vec<PieceFrame>, Vec<f64>) {
     // The canvas geometry of the pieces (fold-overs, rotation) is always the rigid frame's; the
     // exemplar side is the rigid or the straightened frame.
     let rigid_frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
-    let along_scales: Vec<f64> = quads.iter().map(|quad| params.scale / ribbon.factor(quad.start)).collect();
+    let stretch = |i: usize| if slices.is_tile(i) { 1.0 } else { slices.stretch };
+    let along_scales: Vec<f64> =
+        quads.iter().enumerate().map(|(i, quad)| params.scale * stretch(i) / ribbon.factor(quad.start)).collect();
     let frames: Vec<PieceFrame> = if params.piece_shape == PieceShape::Bent {
         quads
             .iter()
             .zip(&along_scales)
-            .map(|(quad, &along)| {
+            .enumerate()
+            .map(|(i, (quad, &along))| {
                 // The shorter last piece of an open curve takes a full-length window and is drawn
                 // up to the curve's end: its right edge meets no seam, and every piece then has
                 // the same frame, so an edit that keeps the number of pieces changes no DP row.
-                let quad = if closed { *quad } else { PieceQuad { end: quad.start + params.piece_length, ..*quad } };
+                // A tile keeps its own length.
+                let keep = closed || slices.is_tile(i);
+                let quad = if keep { *quad } else { PieceQuad { end: quad.start + slices.piece_length, ..*quad } };
                 ribbon_pieces::straight_frame(&quad, params.width * params.scale / along, along, samples)
             })
             .collect()

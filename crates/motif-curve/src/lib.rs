@@ -26,6 +26,8 @@
 //!   texture-mapping baseline; `overlay`: the debug drawing; `fidelity`: the result read back
 //!   along the curve and compared with the exemplar patch by patch; [`samples`]: generated
 //!   exemplars for benchmarks.
+//! - `brush` (not in the paper; a pattern brush's options): the exemplar flipped along or across
+//!   the curve and tinted, and pieces fitted to the curve's length ([`Fit`], [`Flip`]).
 //! - `atlas` (several exemplars, §4's "matches across exemplars") and `incremental`
 //!   ([`Incremental`], §4's re-synthesis while the curve is edited).
 //! - `pipeline`: a synthesis stage by stage, as the report times them (ribbon, avoidance, valid
@@ -62,6 +64,7 @@
 mod atlas;
 mod avoidance;
 mod bounds;
+mod brush;
 mod canvas;
 mod closed;
 mod cost;
@@ -90,6 +93,7 @@ mod warnings;
 
 use motif_core::{InvalidParameter, Polyline, Progress, RgbaImage};
 
+pub use crate::brush::{Fit, Flip};
 pub use crate::cost::AlphaMode;
 pub use crate::dp::Solver;
 pub use crate::fidelity::{PatchFidelity, patch_fidelity};
@@ -158,5 +162,7 @@ pub fn synthesize(input: &Input<'_>, params: &Params, progress: &mut dyn Progres
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_brush;
 #[cfg(test)]
 mod tests_features;

@@ -4,6 +4,7 @@ use motif_core::InvalidParameter;
 use motif_core::error::{check_count, check_positive, check_range};
 use serde::Serialize;
 
+use crate::brush::{Fit, Flip};
 use crate::cost::AlphaMode;
 use crate::dp::Solver;
 use crate::{Error, Input};
@@ -143,6 +144,23 @@ pub struct Params {
     /// `R`, how many pieces apart a repeated window is penalised. Integer in `[1, 1000]`.
     /// Default 8.
     pub variety_radius: usize,
+    /// How the pieces meet the curve's length (not in the paper, which cuts the last piece):
+    /// stretched to a whole number of pieces, or spaced out. Default [`Fit::None`]. Stretching
+    /// needs bent pieces.
+    pub fit: Fit,
+    /// Mirror the exemplar along or across the curve. Default [`Flip::None`].
+    pub flip: Flip,
+    /// Colourize the exemplar as tints of this colour (sRGB): black becomes the colour, white
+    /// stays white. Default none (the exemplar's own colours).
+    pub tint: Option<[u8; 3]>,
+    /// A start tile: columns `[x0, x1)` of the first exemplar drawn whole as the first piece of an
+    /// open curve (from the centre of column `x0` to that of `x1 − 1`: its length is
+    /// `(x1 − x0 − 1) / scale`), joined to the next piece by the same seam cost;
+    /// the DP chooses its vertical position. Default none.
+    pub start_tile: Option<[u32; 2]>,
+    /// An end tile: columns `[x0, x1)` of the first exemplar drawn whole as the last piece, ending
+    /// at the curve's end. Default none.
+    pub end_tile: Option<[u32; 2]>,
 }
 
 impl Params {
@@ -171,6 +189,11 @@ impl Params {
         piece_shape: PieceShape::Bent,
         width_profile: Vec::new(),
         max_memory: motif_core::DEFAULT_MAX_MEMORY,
+        fit: Fit::None,
+        flip: Flip::None,
+        tint: None,
+        start_tile: None,
+        end_tile: None,
     };
 }
 
@@ -205,6 +228,11 @@ motif_core::builders! { Params {
     with_piece_shape => piece_shape: PieceShape,
     with_width_profile => width_profile: Vec<(f64, f64)>,
     with_max_memory => max_memory: u64,
+    with_fit => fit: Fit,
+    with_flip => flip: Flip,
+    with_tint => tint: Option<[u8; 3]>,
+    with_start_tile => start_tile: Option<[u32; 2]>,
+    with_end_tile => end_tile: Option<[u32; 2]>,
 }}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -309,6 +337,13 @@ impl Params {
         check_range("variety", params.variety, 0.0, 1e6)?;
         check_range("round-bends", params.round_bends, 0.0, 8.0)?;
         check_width_profile(params)?;
+        if params.fit == Fit::Stretch && params.piece_shape != PieceShape::Bent {
+            return Err(InvalidParameter::new(
+                "fit",
+                "stretch with rigid pieces",
+                "stretching pieces along the curve needs bent pieces (--pieces-shape bent)",
+            ));
+        }
         check_count("variety-radius", params.variety_radius, 1, 1000)?;
         if params.cut_alpha == 255 {
             return Err(InvalidParameter::new("cut-alpha", 255, "must be between 0 and 254"));
@@ -399,6 +434,7 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
         )
         .into());
     }
+    check_end_tiles(input, params, length)?;
     let closed = match (params.closed, input.curve.is_closed()) {
         (ClosedMode::Auto, closed) => closed,
         (ClosedMode::Open, _) => false,
@@ -412,7 +448,47 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
             .into());
         }
     };
+    if closed && (params.start_tile.is_some() || params.end_tile.is_some()) {
+        let name = if params.start_tile.is_some() { "start-tile" } else { "end-tile" };
+        return Err(
+            InvalidParameter::new(name, "on a closed curve", "a closed curve has no ends; use --closed no").into()
+        );
+    }
     Ok(closed)
+}
+
+/// Checks the start and end tiles: columns inside the first exemplar, and room left on the curve
+/// for them and at least one piece between them.
+fn check_end_tiles(input: &Input<'_>, params: &Params, length: f64) -> Result<(), InvalidParameter> {
+    let width = input.exemplar.width();
+    let mut used = 0.0;
+    for (name, tile) in [("start-tile", params.start_tile), ("end-tile", params.end_tile)] {
+        let Some([x0, x1]) = tile else { continue };
+        if x0 + 2 > x1 || x1 as usize > width {
+            return Err(InvalidParameter::new(
+                name,
+                format!("{x0},{x1}"),
+                format!("must be columns X0,X1 of the first exemplar with X0 + 2 ≤ X1 ≤ {width}"),
+            ));
+        }
+        let (first, last) = crate::exemplar::pattern_extent(input.exemplar, 0, width, params.cut_alpha);
+        if x0.max(first as u32) + 2 > x1.min(last as u32 + 1) {
+            return Err(InvalidParameter::new(
+                name,
+                format!("{x0},{x1}"),
+                format!("must cover the pattern, which spans columns {first} to {last} of the first exemplar"),
+            ));
+        }
+        used += f64::from(x1 - x0 - 1) / params.scale;
+    }
+    if used > 0.0 && used + params.piece_length > length {
+        return Err(InvalidParameter::new(
+            if params.start_tile.is_some() { "start-tile" } else { "end-tile" },
+            format!("{used:.1} px of tiles"),
+            format!("the tiles and one piece must fit on the curve ({length:.1} px)"),
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

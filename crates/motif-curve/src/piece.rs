@@ -214,6 +214,20 @@ impl PieceFrame {
         self.edge_runs.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))
     }
 
+    /// The pixels under the left and right edges, one per edge sample (offsets from the top-left
+    /// corner). A window whose sides are clear of the pattern holds whole motifs: none is cut at
+    /// its ends, which a spaced piece ([`Fit::Space`](crate::Fit::Space)) needs, since no
+    /// neighbour continues the motif across its gap.
+    pub fn side_runs(&self) -> Vec<Run> {
+        let mut offsets = Vec::with_capacity(2 * self.samples);
+        for k in 0..self.samples {
+            let right = self.top_right + self.right_direction * (k as f64 + 0.5);
+            offsets.push((0, k as i32));
+            offsets.push((right.x.floor() as i32, (right.y - 0.5).floor() as i32));
+        }
+        crate::exemplar::runs_from_offsets(offsets)
+    }
+
     /// Coverage of the piece at `u`: how many exemplar pixels inside it belong to the pattern
     /// (alpha > `cut_alpha`). One prefix-count difference per interior row run, so the cost is
     /// the piece's height in rows, not its area.

@@ -3,19 +3,20 @@
 //! and render.
 
 use motif_core::timing::StageTimer;
-use motif_core::{Progress, RgbaImage, Vec2};
+use motif_core::{InvalidParameter, Progress, RgbaImage, Vec2};
 use rayon::prelude::*;
 
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
 use crate::cost::{COST_SCALE, edge_distance, left_edges, right_edges};
 use crate::dp::{DpCounters, RowSpec};
+use crate::exemplar::Exemplar;
 use crate::layout::{Layout, MEMORY_ADVICE, memory_estimate};
 use crate::params::validate;
-use crate::piece::{Position, candidate_count};
+use crate::piece::{PieceFrame, Position, candidate_count};
 use crate::render::{Shape, rigid_shape};
 use crate::repeat::Triangle;
 use crate::stitch::Stitch;
-use crate::{ClosedMode, Error, Input, Method, Output, Params, PlacedPiece, Report};
+use crate::{ClosedMode, Error, Fit, Input, Method, Output, Params, PlacedPiece, Report};
 use crate::{avoidance, incremental, render, repeat, ribbon_pieces, solve, stitch, variety, warnings};
 
 /// [`synthesize`](crate::synthesize), reusing and updating a session's cache when one is given
@@ -29,6 +30,16 @@ pub(crate) fn synthesize_with(
     let closed = validate(input, params)?;
     let mut timer = StageTimer::new();
     timer.start("ribbon");
+    // The exemplars as the brush draws them (flipped, tinted); every later stage reads these.
+    let exemplar = params.styled_exemplar(input.exemplar);
+    let more_exemplars: Vec<RgbaImage> = if params.styles_exemplars() {
+        input.more_exemplars.iter().map(|image| params.styled_exemplar(image).into_owned()).collect()
+    } else {
+        Vec::new()
+    };
+    let more_exemplars = if params.styles_exemplars() { &more_exemplars } else { input.more_exemplars };
+    let styled = Input { exemplar: &exemplar, more_exemplars, ..*input };
+    let input = &styled;
     let layout = Layout::new(input, params, closed, cache.as_deref_mut())?;
 
     timer.start("avoidance");
@@ -119,6 +130,9 @@ fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> 
         dp_rows_reused: 0,
         rounded_bends: layout.rounded_bends,
         bend_shift_max: layout.bend_shift_max,
+        fit: params.fit,
+        fitted_piece_length: layout.fitted_piece_length,
+        fit_gap: layout.fit_gap,
     };
     if layout.unresolved_bend {
         report.warnings.push(format!(
@@ -198,6 +212,17 @@ impl Candidates {
             cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
         }
         if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
+            if let Some([x0, x1]) = layout.tile_columns(piece) {
+                let name = if piece == 0 { "start-tile" } else { "end-tile" };
+                return Err(InvalidParameter::new(
+                    name,
+                    format!("{x0},{x1}"),
+                    "no vertical position of these columns is cut cleanly (the tile must lie inside the pattern's \
+                     extent, with its top and bottom edges in transparent pixels): widen the ribbon (--width) or \
+                     choose other columns",
+                )
+                .into());
+            }
             let samples = layout.samples;
             return Err(Error::NoValidPosition { piece, samples, pattern_height: pattern_height(input.exemplar) });
         }
@@ -276,6 +301,12 @@ fn valid_positions(
             Some(positions) => positions.clone(),
             None => frame.valid_positions(&layout.exemplar, &runs, params.min_coverage),
         };
+        let positions =
+            if params.fit == Fit::Space { whole_motifs(frame, &layout.exemplar, positions) } else { positions };
+        let positions = match layout.tile_columns(i) {
+            Some([x0, _]) => positions.into_iter().filter(|u| i64::from(u[0]) == i64::from(x0)).collect(),
+            None => outside_tiles(frame, layout, positions),
+        };
         // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
         // position stays empty; the DP pays for the gap at its seams.
         if positions.is_empty() && !runs.is_empty() {
@@ -296,6 +327,34 @@ fn valid_positions(
         slots[i] = Some(lists);
     }
     Ok(slots.into_par_iter().enumerate().map(|(i, slot)| slot.unwrap_or_else(|| valid_of(i))).collect())
+}
+
+/// The positions whose sides are clear of the pattern (spaced pieces hold whole motifs); all of
+/// them when none is (a pattern with no clear column, such as a rope).
+fn whole_motifs(frame: &PieceFrame, exemplar: &Exemplar, positions: Vec<Position>) -> Vec<Position> {
+    let sides = frame.side_runs();
+    let clear: Vec<Position> =
+        positions.iter().filter(|u| sides.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))).copied().collect();
+    if clear.is_empty() { positions } else { clear }
+}
+
+/// The positions of a piece between the tiles whose window stays clear of the tiles' columns: a
+/// cap or clasp is drawn at the ends only.
+fn outside_tiles(frame: &PieceFrame, layout: &Layout, positions: Vec<Position>) -> Vec<Position> {
+    let tiles: Vec<[u32; 2]> = layout.tile_columns.into_iter().flatten().collect();
+    if tiles.is_empty() {
+        return positions;
+    }
+    let corners = frame.local_corners();
+    let low = corners.iter().map(|c| c.x).fold(f64::INFINITY, f64::min);
+    let high = corners.iter().map(|c| c.x).fold(f64::NEG_INFINITY, f64::max);
+    positions
+        .into_iter()
+        .filter(|u| {
+            let (left, right) = (f64::from(u[0]) + 0.5 + low, f64::from(u[0]) + 0.5 + high);
+            tiles.iter().all(|&[x0, x1]| right <= f64::from(x0) || left >= f64::from(x1))
+        })
+        .collect()
 }
 
 /// Refuses a pinned first position that is not one of the first piece's valid positions.
@@ -437,6 +496,7 @@ fn render_pieces(
         (0..n)
             .map(|i| ribbon_pieces::BentPiece {
                 start: layout.quads[i].start,
+                visible_end: if layout.fit_gap > 0.0 { layout.quads[i].end } else { f64::INFINITY },
                 position: (!empty[i]).then_some(positions[i]),
                 frame: &layout.frames[i],
                 remap: remap_of(i),

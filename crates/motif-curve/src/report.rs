@@ -4,6 +4,7 @@ use motif_core::{Point, RgbaImage};
 use serde::Serialize;
 
 use crate::avoidance::ForbiddenMask;
+use crate::brush::Fit;
 use crate::dp::{DpCounters, Solver};
 use crate::params::Method;
 use crate::solve::VarietyReport;
@@ -115,6 +116,12 @@ pub struct Report {
     pub rounded_bends: usize,
     /// Largest distance the rounding moved a point of the curve, canvas pixels.
     pub bend_shift_max: f64,
+    /// How the pieces met the curve's length ([`Fit`]).
+    pub fit: Fit,
+    /// The canvas length of a whole piece: the piece length, or the stretched one.
+    pub fitted_piece_length: f64,
+    /// The gap after each piece, canvas pixels (0 unless the pieces are spaced out).
+    pub fit_gap: f64,
     /// What looks wrong with the run and what to change (few valid positions, empty pieces, a
     /// ribbon no wider than the pattern).
     pub warnings: Vec<String>,

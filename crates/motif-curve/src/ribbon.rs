@@ -122,17 +122,21 @@ pub fn slice_positions(length: f64, delta: f64) -> Vec<f64> {
 }
 
 /// Slices the ribbon into pieces of length `delta` (§1.3).
+#[cfg(test)]
 pub fn slice(ribbon: &Ribbon, delta: f64) -> Vec<PieceQuad> {
     let positions = slice_positions(ribbon.length(), delta);
-    positions
-        .windows(2)
-        .map(|pair| {
-            let (start, end) = (pair[0], pair[1]);
-            PieceQuad {
-                start,
-                end,
-                corners: [ribbon.top(start), ribbon.bottom(start), ribbon.bottom(end), ribbon.top(end)],
-            }
+    let bounds: Vec<(f64, f64)> = positions.windows(2).map(|pair| (pair[0], pair[1])).collect();
+    quads(ribbon, &bounds)
+}
+
+/// The pieces of the ribbon between each pair of arc lengths.
+pub fn quads(ribbon: &Ribbon, bounds: &[(f64, f64)]) -> Vec<PieceQuad> {
+    bounds
+        .iter()
+        .map(|&(start, end)| PieceQuad {
+            start,
+            end,
+            corners: [ribbon.top(start), ribbon.bottom(start), ribbon.bottom(end), ribbon.top(end)],
         })
         .collect()
 }

@@ -77,8 +77,12 @@ pub(crate) fn forbidden_samples(
 
 /// What the renderer needs of one placed bent piece.
 pub(crate) struct BentPiece<'a> {
-    /// Arc length where the piece starts (pieces are contiguous and in order).
+    /// Arc length where the piece starts (pieces are in order).
     pub start: f64,
+    /// Arc length after which nothing is drawn until the next piece: its end when pieces are
+    /// spaced out ([`Fit::Space`](crate::Fit::Space)), otherwise infinite (contiguous pieces, and
+    /// the ribbon's far end drawn by the last one).
+    pub visible_end: f64,
     /// `None` for a piece left empty.
     pub position: Option<Position>,
     pub frame: &'a PieceFrame,
@@ -106,6 +110,9 @@ pub(crate) fn shapes<'a>(
                 let coordinates = crate::repeat::interpolate(triangle, p)?;
                 let index = pieces.partition_point(|piece| piece.start <= coordinates.x).max(1) - 1;
                 let piece = &pieces[index];
+                if coordinates.x > piece.visible_end {
+                    return None;
+                }
                 let position = piece.position?;
                 let mut local =
                     Vec2::new(piece.along_scale * (coordinates.x - piece.start), scale * (half - coordinates.y));

@@ -14,16 +14,18 @@ use serde_json::{Map, Value, json};
 
 /// The engine's types that curve runs are made of, named here so that front ends need no engine
 /// crate: an editing session re-solves only what changed ([`CurveJob::run_in_session`]).
-pub use motif_curve::{Dimension, Incremental, debug_overlay};
+pub use motif_curve::{Dimension, Fit, Flip, Incremental, debug_overlay};
 
 use crate::JobError;
-use crate::options::{Declared, Described};
+use crate::options::{Colour, Declared, Described};
 
 crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
 crate::choice_option!(Method: "synth", "repeat");
 crate::choice_option!(Solver: "exact", "reference");
 crate::choice_option!(AlphaMode: "binary", "continuous");
 crate::choice_option!(PieceShape: "rigid", "bent");
+crate::choice_option!(Fit: "none", "stretch", "space");
+crate::choice_option!(Flip: "none", "along", "across", "both");
 
 crate::declare_options! {
     /// Every option of `motif curve` that is neither a file nor the flattening tolerance of one,
@@ -128,11 +130,45 @@ crate::declare_options! {
         /// Exact closed mode: start positions tried at most before giving up the certificate.
         [value_name: "N", range: (1.0, 100_000.0)]
         closed_max_starts: usize = DEFAULTS.closed_max_starts,
+        /// How the pieces meet the curve's length, as a pattern brush fits its tiles: none cuts
+        /// the last piece where an open curve ends (the paper); stretch draws a whole number of
+        /// pieces, each stretched or squeezed along the curve; space draws as many whole pieces as
+        /// fit, with equal gaps between them, each cut where the exemplar is clear so that no motif
+        /// is cut at a gap. Stretch needs bent pieces.
+        [value_name: "none|stretch|space"]
+        fit: Fit = DEFAULTS.fit,
+        /// Mirror the exemplar before synthesis: along (the pattern runs the other way), across
+        /// (its top faces the other side of the curve) or both.
+        [value_name: "none|along|across|both"]
+        flip: Flip = DEFAULTS.flip,
+        /// Colourize the pattern as tints of this colour (#RRGGBB): black becomes the colour,
+        /// white stays white, greys become lighter tints; transparency is kept.
+        [value_name: "#RRGGBB"]
+        tint: Option<Colour> = None,
+        /// A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first
+        /// piece of an open curve (an end cap, a clasp) and joined to the next piece by the same
+        /// seam cost; the dynamic program chooses its height. Its length along the curve is
+        /// (X1 − X0) / scale.
+        [value_name: "X0,X1"]
+        start_tile: Option<[i32; 2]> = None,
+        /// An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending
+        /// at the curve's end.
+        [value_name: "X0,X1"]
+        end_tile: Option<[i32; 2]> = None,
     }
 }
 
 /// The engine's defaults, which the options take theirs from.
 const DEFAULTS: Params = Params::DEFAULT;
+
+/// A tile's columns as the engine takes them (the engine checks them against the exemplar).
+fn tile_columns(name: &str, columns: Option<[i32; 2]>) -> Result<Option<[u32; 2]>, JobError> {
+    let Some([x0, x1]) = columns else { return Ok(None) };
+    match (u32::try_from(x0), u32::try_from(x1)) {
+        (Ok(x0), Ok(x1)) => Ok(Some([x0, x1])),
+        _ => Err(motif_core::InvalidParameter::new(name, format!("{x0},{x1}"), "columns must not be negative").into()),
+    }
+}
 
 /// The margin of the engine's default canvas, fitted to the ribbon.
 fn fitted_margin() -> f64 {
@@ -261,6 +297,11 @@ impl CurveJob {
             .with_round_bends(options.round_bends)
             .with_width_profile(options.width_profile.iter().map(|&[t, f]| (t, f)).collect())
             .with_piece_shape(options.pieces_shape)
+            .with_fit(options.fit)
+            .with_flip(options.flip)
+            .with_tint(options.tint.map(|Colour(rgb)| rgb))
+            .with_start_tile(tile_columns("start-tile", options.start_tile)?)
+            .with_end_tile(tile_columns("end-tile", options.end_tile)?)
             .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory));
         params.validate()?;
         Ok(params)
@@ -296,7 +337,8 @@ impl CurveJob {
             None => motif_curve::synthesize(&input, &params, progress)?,
         };
         let fidelity = self.options.fidelity.then(|| {
-            patch_fidelity(inputs.exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
+            let exemplar = params.styled_exemplar(inputs.exemplar);
+            patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         });
         let mut figures = figures(&output.report);
         figures.extend(dimension_figures(&dimensions));
@@ -388,6 +430,11 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
         put("variety", json!(report.variety));
         put("rounded_bends", json!(report.rounded_bends));
         put("bend_shift_max", json!(report.bend_shift_max));
+    }
+    if report.fit != motif_curve::Fit::None {
+        put("fit", json!(report.fit));
+        put("fitted_piece_length", json!(report.fitted_piece_length));
+        put("fit_gap", json!(report.fit_gap));
     }
     put("warnings", json!(report.warnings));
     figures

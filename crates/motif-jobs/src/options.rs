@@ -8,8 +8,8 @@
 //! CLI builds its flags from it, Python its keywords, type stubs and `motif.options()`, the page
 //! its controls, and `docs/cli.md` is generated from the CLI. Nothing else names an option.
 
-use serde::Serialize;
 use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::JobError;
@@ -42,6 +42,8 @@ pub enum Kind {
     Position,
     /// A list of number pairs, `[[A, B], ...]` (`A:B,...` on the command line).
     Pairs,
+    /// An sRGB colour, `"#RRGGBB"` (a string everywhere).
+    Colour,
 }
 
 /// One option of a job, as declared.
@@ -225,6 +227,37 @@ impl OptionValue for Vec<[f64; 2]> {
     fn shown(&self) -> Option<String> {
         (!self.is_empty())
             .then(|| self.iter().map(|[a, b]| format!("{}:{}", number(*a), number(*b))).collect::<Vec<_>>().join(","))
+    }
+}
+
+/// An sRGB colour option value, written `#RRGGBB` (or `RRGGBB`, either case).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(try_from = "String", into = "String")]
+pub struct Colour(pub [u8; 3]);
+
+impl TryFrom<String> for Colour {
+    type Error = String;
+    fn try_from(text: String) -> Result<Self, String> {
+        let digits = text.trim().trim_start_matches('#');
+        let refused = || format!("`{text}` is not a colour: write #RRGGBB in hexadecimal, e.g. #8b1a1a");
+        if digits.len() != 6 || !digits.chars().all(|c| c.is_ascii_hexdigit()) {
+            return Err(refused());
+        }
+        let channel = |k: usize| u8::from_str_radix(&digits[2 * k..2 * k + 2], 16).map_err(|_| refused());
+        Ok(Self([channel(0)?, channel(1)?, channel(2)?]))
+    }
+}
+
+impl From<Colour> for String {
+    fn from(Colour([r, g, b]): Colour) -> Self {
+        format!("#{r:02x}{g:02x}{b:02x}")
+    }
+}
+
+impl OptionValue for Colour {
+    const KIND: Kind = Kind::Colour;
+    fn shown(&self) -> Option<String> {
+        Some(String::from(*self))
     }
 }
 

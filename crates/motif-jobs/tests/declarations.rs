@@ -25,6 +25,7 @@ fn python_type(kind: Kind) -> String {
         Kind::Size => "Tuple[int, int]".into(),
         Kind::Position => "Tuple[int, int]".into(),
         Kind::Pairs => "Sequence[Tuple[float, float]]".into(),
+        Kind::Colour => "str".into(),
         _ => "Any".into(),
     }
 }

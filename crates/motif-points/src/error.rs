@@ -57,17 +57,6 @@ pub enum Error {
         /// The attributes there are.
         available: Vec<String>,
     },
-    /// An attribute has one value at every exemplar point.
-    #[error(
-        "attribute {name:?} has the same value ({value}) at every exemplar point; it carries no structure: leave it \
-         out (choose the others with the attribute list)"
-    )]
-    ConstantAttribute {
-        /// The attribute's name.
-        name: String,
-        /// Its one value.
-        value: f64,
-    },
     /// The rotation or scale field gives an unusable frame somewhere.
     #[error(
         "the guidance fields give scale {scale} and rotation {rotation} at a quadrature point; the scale must be \

@@ -120,7 +120,14 @@ fn attribute_map(source: &PointSet, params: &Params) -> Result<AttributeMap, Err
         let variance = values.iter().map(|v| (v - mu).powi(2)).sum::<f64>() / n as f64;
         let std = variance.sqrt();
         if std <= 1e-12 * mu.abs().max(1.0) {
-            return Err(Error::ConstantAttribute { name: names[c].clone(), value: mu });
+            // One value everywhere (a normal's zero component, a fixed label): it carries no
+            // structure, so its feature is 0 at every point (no weight in any distance), and as
+            // its one allowed value it is written back exactly at every output point.
+            mean.push(mu);
+            factor.push(1.0);
+            discrete[c + 1] = vec![0.0];
+            discrete_values[c + 1] = vec![mu];
+            continue;
         }
         let weight =
             params.attribute_weights.iter().find(|(n, _)| n == &names[c]).map_or(params.attribute_weight, |w| w.1);

@@ -139,8 +139,14 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     });
     let dimension =
         |d: motif_jobs::curve::Dimension| format!("{}{}", d.value, if d.inferred { " (inferred)" } else { "" });
+    let report = &output.report;
+    let fit = match report.fit {
+        motif_jobs::curve::Fit::None => String::new(),
+        motif_jobs::curve::Fit::Stretch => format!(" (stretched to {:.1})", report.fitted_piece_length),
+        _ => format!(" (spaced by {:.1})", report.fit_gap),
+    };
     context.summary(&format!(
-        "curve: width {}, piece length {}, {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
+        "curve: width {}, piece length {}{fit}, {} pieces, total seam cost {:.1} (mean {:.1}), {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
         dimension(run.dimensions.width),
         dimension(run.dimensions.piece_length),
         output.report.pieces,

@@ -1,0 +1,168 @@
+//! Tests of the pattern-brush options (`brush`): pieces fitted to the curve's length, and the
+//! exemplar flipped and tinted.
+
+use motif_core::{NoProgress, RgbaImage};
+
+use crate::tests::{line, params};
+use crate::{Fit, Flip, Input, Output, Params, PieceShape, synthesize};
+
+/// Dark bars 10 px wide every 20 px, in rows `rows` of a 200 × 16 strip.
+fn bars(rows: std::ops::Range<usize>) -> RgbaImage {
+    RgbaImage::from_fn(200, 16, |x, y| if x % 20 < 10 && rows.contains(&y) { [40, 40, 40, 255] } else { [0; 4] })
+}
+
+/// Along a 130 px horizontal line, 16 px ribbon, 20 px pieces.
+fn run(exemplar: &RgbaImage, params: &Params) -> Output {
+    let curve = line(10.0, 40.0, 140.0, 40.0);
+    let input = Input { exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+    synthesize(&input, params, &mut NoProgress).unwrap()
+}
+
+/// The lengths of the opaque runs (alpha > 127) along the image's most opaque row, without the
+/// first and last (which the curve's ends may cut).
+fn bar_lengths(image: &RgbaImage) -> Vec<usize> {
+    let opaque = |x: usize, y: usize| image.get(x, y)[3] > 127;
+    let row = (0..image.height()).max_by_key(|&y| (0..image.width()).filter(|&x| opaque(x, y)).count()).unwrap();
+    let mut runs = Vec::new();
+    let mut length = 0;
+    for x in 0..image.width() {
+        if opaque(x, row) {
+            length += 1;
+        } else if length > 0 {
+            runs.push(length);
+            length = 0;
+        }
+    }
+    runs[1..runs.len() - 1].to_vec()
+}
+
+fn mean(values: &[usize]) -> f64 {
+    values.iter().sum::<usize>() as f64 / values.len() as f64
+}
+
+#[test]
+fn stretched_pieces_are_a_whole_number_and_stretch_the_pattern_with_them() {
+    let exemplar = bars(2..14);
+    let plain = run(&exemplar, &params(16.0, 20.0));
+    let stretched = run(&exemplar, &params(16.0, 20.0).with_fit(Fit::Stretch));
+    // 130 / 20 = 6.5 pieces: 6 whole ones and a cut one, or 7 squeezed to 18.57 px.
+    assert_eq!(plain.report.pieces, 7);
+    assert_eq!(stretched.report.pieces, 7);
+    let fitted = 130.0 / 7.0;
+    assert!((stretched.report.fitted_piece_length - fitted).abs() < 1e-9, "{}", stretched.report.fitted_piece_length);
+    assert_eq!(stretched.report.fit_gap, 0.0);
+    // The 10 px bars are squeezed by the same factor as the pieces.
+    let (plain_bars, stretched_bars) = (mean(&bar_lengths(&plain.image)), mean(&bar_lengths(&stretched.image)));
+    assert!((plain_bars - 10.0).abs() < 0.35, "{plain_bars}");
+    assert!((stretched_bars - 10.0 * fitted / 20.0).abs() < 0.35, "{stretched_bars}");
+}
+
+#[test]
+fn spaced_pieces_are_whole_with_equal_gaps_up_to_the_curves_end() {
+    let exemplar = bars(2..14);
+    let spaced = run(&exemplar, &params(16.0, 20.0).with_fit(Fit::Space));
+    // Six whole pieces; the 10 px left over makes five gaps of 2 px.
+    assert_eq!(spaced.report.pieces, 6);
+    assert!((spaced.report.fit_gap - 2.0).abs() < 1e-9, "{}", spaced.report.fit_gap);
+    assert_eq!(spaced.report.fitted_piece_length, 20.0);
+    // The bars are not stretched; every piece is whole, so the last bar is too.
+    let lengths = bar_lengths(&spaced.image);
+    assert!((mean(&lengths) - 10.0).abs() < 0.35, "{lengths:?}");
+    assert_eq!(spaced.report.empty_pieces, 0);
+}
+
+#[test]
+fn stretching_rigid_pieces_is_refused_by_name() {
+    let refused = params(16.0, 20.0).with_fit(Fit::Stretch).with_piece_shape(PieceShape::Rigid);
+    let message = refused.validate().unwrap_err().to_string();
+    assert!(message.contains("fit") && message.contains("bent"), "{message}");
+    params(16.0, 20.0).with_fit(Fit::Space).with_piece_shape(PieceShape::Rigid).validate().unwrap();
+}
+
+#[test]
+fn a_flip_across_puts_the_pattern_on_the_other_side_of_the_curve() {
+    // Bars red in their top half and blue in their bottom half, as tall as the ribbon: the red
+    // centroid lies on one side of the line, and flipped across on the other, as far from it.
+    let exemplar = RgbaImage::from_fn(200, 16, |x, y| match (x % 20 < 10, y) {
+        (true, 1..=7) => [200, 20, 20, 255],
+        (true, 8..=14) => [20, 20, 200, 255],
+        _ => [0; 4],
+    });
+    let red_offset = |output: &Output| {
+        let image = &output.image;
+        let line_y = 40.0 - output.report.canvas_origin[1];
+        let (mut sum, mut count) = (0.0, 0.0);
+        for y in 0..image.height() {
+            for x in 0..image.width() {
+                let [r, _, b, a] = image.get(x, y);
+                if a > 127 && r > b {
+                    sum += y as f64 + 0.5 - line_y;
+                    count += 1.0;
+                }
+            }
+        }
+        sum / count
+    };
+    let plain = red_offset(&run(&exemplar, &params(16.0, 20.0)));
+    let flipped = red_offset(&run(&exemplar, &params(16.0, 20.0).with_flip(Flip::Across)));
+    assert!(plain.abs() > 3.0, "{plain}");
+    assert!((plain + flipped).abs() < 0.5, "{plain} {flipped}");
+}
+
+#[test]
+fn a_tint_turns_black_into_the_colour_and_keeps_the_alpha() {
+    let exemplar = bars(2..14);
+    let colour = [180, 30, 60];
+    let plain = run(&exemplar, &params(16.0, 20.0));
+    let tinted = run(&exemplar, &params(16.0, 20.0).with_tint(Some(colour)));
+    // The bars' grey (luma 40 of 255) as a tint: each channel c + (255 − c)·40/255.
+    let expected = colour.map(|c| (u32::from(c) + ((255 - u32::from(c)) * 40 + 127) / 255) as u8);
+    let mut solid = 0;
+    for (a, b) in plain.image.pixels().iter().zip(tinted.image.pixels()) {
+        assert_eq!(a[3], b[3], "alpha kept");
+        if b[3] == 255 {
+            assert_eq!([b[0], b[1], b[2]], expected);
+            solid += 1;
+        }
+    }
+    assert!(solid > 500, "{solid}");
+}
+
+#[test]
+fn end_tiles_are_drawn_whole_at_the_curves_ends() {
+    // Bars of 10 px, with a distinct cap: a 30 px red block at columns 170..200 of the exemplar.
+    let exemplar = RgbaImage::from_fn(200, 16, |x, y| match (x, y) {
+        (170..=199, 2..=13) => [200, 20, 20, 255],
+        (_, 2..=13) if x % 20 < 10 && x < 160 => [40, 40, 40, 255],
+        _ => [0; 4],
+    });
+    let tiled = params(16.0, 20.0).with_start_tile(Some([170, 200])).with_end_tile(Some([170, 200]));
+    let output = run(&exemplar, &tiled);
+    let pieces = &output.pieces;
+    // 130 px: a 29 px start tile (column centres 170.5 to 199.5), 72 px of pieces, a 29 px end tile.
+    let column = |piece: &crate::PlacedPiece| piece.position.map(|[x, _]| x);
+    assert_eq!(column(&pieces[0]), Some(170));
+    assert_eq!(column(&pieces[pieces.len() - 1]), Some(170));
+    assert!(pieces[1..pieces.len() - 1].iter().all(|piece| column(piece) < Some(160)), "{pieces:?}");
+    assert_eq!((pieces[0].arc, pieces[pieces.len() - 1].arc), ([0.0, 29.0], [101.0, 130.0]));
+    // Red only at the two ends of the line, 30 px each.
+    let image = &output.image;
+    let row = |y: usize| -> Vec<[u8; 4]> { (0..image.width()).map(|x| image.get(x, y)).collect() };
+    let middle = (0..image.height()).max_by_key(|&y| row(y).iter().filter(|p| p[3] > 127).count()).unwrap();
+    let red: Vec<usize> =
+        row(middle).iter().enumerate().filter(|(_, p)| p[3] > 127 && p[0] > 150).map(|(x, _)| x).collect();
+    let (first, last) = (red[0], red[red.len() - 1]);
+    assert!((56..=60).contains(&red.len()), "{red:?}");
+    assert!(red.iter().all(|&x| x < first + 30 || x + 30 > last), "{red:?}");
+    assert!(last - first > 100, "{red:?}");
+    // Tiles need an open curve and columns inside the exemplar.
+    let closed = crate::tests::circle(100.0, 100.0, 60.0, 64);
+    let input = Input { exemplar: &exemplar, curve: &closed, avoidance: None, more_exemplars: &[] };
+    let message = synthesize(&input, &tiled, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("start-tile") && message.contains("closed"), "{message}");
+    let outside = params(16.0, 20.0).with_end_tile(Some([190, 210]));
+    let curve = line(10.0, 40.0, 140.0, 40.0);
+    let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let message = synthesize(&input, &outside, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("end-tile") && message.contains("200"), "{message}");
+}
