@@ -146,8 +146,8 @@ def texture(
     """Grows a texture of ``size`` = (width, height) from ``exemplar`` (``motif texture``).
 
     Options: ``patch_size`` (5), ``coarse_patch_size`` (0: off; 11 keeps structures),
-    ``structure_weight`` (0: off; 3 keeps the gaps between elements), ``quilt_block`` (0: off;
-    half the exemplar's side keeps walls whole), ``uniformity`` (3500), ``pyramid_levels``, ``search_vote_iters``,
+    ``structure_weight`` (0: off; 3 keeps the gaps between elements), ``quilt_block`` (inferred:
+    half the exemplar's side when the output is larger; 0: off), ``uniformity`` (3500), ``pyramid_levels``, ``search_vote_iters``,
     ``patchmatch_iters``, ``stop_threshold``, ``nnf`` ('patchmatch' or 'exact'), ``tileable``,
     ``max_pixels``, ``max_memory``; see ``motif texture --help``. Returns an H×W×4 uint8 array.
     """

@@ -237,8 +237,10 @@ class StylizeOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int
@@ -300,8 +302,10 @@ class PresynthOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int
@@ -346,8 +350,10 @@ class TextureOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int
@@ -391,8 +397,10 @@ class InpaintOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int
@@ -434,8 +442,10 @@ class ZoomOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int
@@ -481,8 +491,10 @@ class VideoOptions(TypedDict, total=False):
     structure_weight: float
     #: Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks of B pixels, at
     #: most the exemplar's smaller side, and optimize at the finest level only: blocks keep whole elements in
-    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Allowed:
-    #: 0–4096. Default: 0.
+    #: continuous courses (bricks, tiles), the optimization mends the seams. 0 = off, else at least 8. Not
+    #: given: `texture` infers it (half the exemplar's smaller side when the output is larger than the
+    #: exemplar, else off; the report's `quilt_block` and `quilt_block_inferred`), the other commands leave it
+    #: off. Allowed: 0–4096.
     quilt_block: int
     #: Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side). Allowed: 0–32. Default: 0.
     pyramid_levels: int

@@ -140,7 +140,7 @@ fn front_ends_reach_the_engines_only_through_jobs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let measuring = |file: &Path| {
         let name = file.file_stem().unwrap().to_string_lossy();
-        ["bench", "video_bench", "corpus", "demo"].contains(&name.as_ref())
+        ["bench", "video_bench", "native_bench", "corpus", "demo"].contains(&name.as_ref())
     };
     let mut found = Vec::new();
     for front_end in ["python/src", "web/src", "crates/motif-cli/src"] {

@@ -11,6 +11,8 @@ fn corpus(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/stylize").join(name)
 }
 
+/// `name` grown to twice its size with the `extra` flags: from random patches over the pyramid
+/// (`--quilt-block 0`) unless they name a quilt block.
 fn grown(dir: &Path, name: &str, extra: &[&str]) -> FloatImage {
     let exemplar = motif_io::read_image(&corpus(name)).unwrap();
     let size = format!("{}x{}", 2 * exemplar.width(), 2 * exemplar.height());
@@ -18,6 +20,9 @@ fn grown(dir: &Path, name: &str, extra: &[&str]) -> FloatImage {
     let exemplar_path = corpus(name);
     let mut args = vec!["texture", "--exemplar", exemplar_path.to_str().unwrap(), "--size", &size];
     args.extend(extra);
+    if !extra.contains(&"--quilt-block") {
+        args.extend(["--quilt-block", "0"]);
+    }
     args.extend(["--out", out.to_str().unwrap()]);
     let output = Command::new(env!("CARGO_BIN_EXE_motif")).args(&args).output().unwrap();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
@@ -82,4 +87,34 @@ fn quilting_keeps_regular_textures_whole() {
         let sharpness = motif_stylize::sharpness(&quilted) / motif_stylize::sharpness(&exemplar);
         assert!(sharpness > 0.9, "{name}: sharpness {sharpness:.3} of the exemplar's");
     }
+}
+
+/// With no `--quilt-block`, growing a texture infers the block, half the exemplar's smaller side
+/// (the README's example): the same bytes as that block given, reported as inferred, and the
+/// report says when a given block wins.
+#[test]
+fn growing_a_texture_infers_half_the_exemplar_as_quilt_block() {
+    let dir = tempfile::tempdir().unwrap();
+    let brick = corpus("brick.png");
+    let run = |extra: &[&str], out: &str| {
+        let (out, report) = (dir.path().join(out), dir.path().join(format!("{out}.json")));
+        let mut args = vec!["texture", "--exemplar", brick.to_str().unwrap(), "--size", "192x192"];
+        args.extend(extra);
+        args.extend(["--out", out.to_str().unwrap(), "--report", report.to_str().unwrap()]);
+        let output = Command::new(env!("CARGO_BIN_EXE_motif")).args(&args).output().unwrap();
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        let report: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(report).unwrap()).unwrap();
+        (std::fs::read(out).unwrap(), report, String::from_utf8_lossy(&output.stderr).into_owned())
+    };
+    let (inferred, report, summary) = run(&[], "inferred.png");
+    assert_eq!(report["quilt_block"], 48);
+    assert_eq!(report["quilt_block_inferred"], true);
+    assert!(summary.contains("quilt block 48 (inferred)"), "{summary}");
+    let (given, report, _) = run(&["--quilt-block", "48"], "given.png");
+    assert_eq!(report["quilt_block_inferred"], false);
+    assert_eq!(inferred, given, "the inferred block is the given one's output");
+    let (_, report, _) = run(&["--quilt-block", "0"], "off.png");
+    assert_eq!((report["quilt_block"].as_u64(), report["quilt_block_inferred"].as_bool()), (Some(0), Some(false)));
+    let (_, report, _) = run(&["--tileable"], "tile.png");
+    assert_eq!((report["quilt_block"].as_u64(), report["quilt_block_inferred"].as_bool()), (Some(0), Some(true)));
 }

@@ -51,9 +51,11 @@ crate::declare_options! {
         /// Texture synthesis: start from an image quilt (Efros and Freeman 2001) of square blocks
         /// of B pixels, at most the exemplar's smaller side, and optimize at the finest level only:
         /// blocks keep whole elements in continuous courses (bricks, tiles), the optimization mends
-        /// the seams. 0 = off, else at least 8.
+        /// the seams. 0 = off, else at least 8. Not given: `texture` infers it (half the
+        /// exemplar's smaller side when the output is larger than the exemplar, else off; the
+        /// report's `quilt_block` and `quilt_block_inferred`), the other commands leave it off.
         [value_name: "B", range: (0.0, 4096.0)]
-        quilt_block: usize = DEFAULTS.quilt_block,
+        quilt_block: Option<usize> = None,
         /// Pyramid levels; 0 = as many as fit (the coarsest at least 2·P+1 pixels a side).
         [value_name: "L", range: (0.0, 32.0)]
         pyramid_levels: usize = DEFAULTS.pyramid_levels,
@@ -90,7 +92,7 @@ impl SynthesisOptions {
             .with_patch_size(self.patch_size)
             .with_coarse_patch_size(self.coarse_patch_size)
             .with_structure_weight(self.structure_weight)
-            .with_quilt_block(self.quilt_block)
+            .with_quilt_block(self.quilt_block.unwrap_or(DEFAULTS.quilt_block))
             .with_pyramid_levels(self.pyramid_levels)
             .with_search_vote_iterations(self.search_vote_iters)
             .with_patchmatch_iterations(self.patchmatch_iters)
@@ -396,10 +398,22 @@ impl TextureJob {
         Self { size: [width, height], seed: default_seed(), max_memory: None, options: TextureJobOptions::default() }
     }
 
-    /// The engine's parameters.
+    /// The engine's parameters (a quilt block given, or none: see [`TextureJob::quilt_block`]).
     pub fn params(&self) -> Result<Params, JobError> {
         let params = self.options.shared.params(self.seed, self.max_memory).with_tileable(self.options.own.tileable);
         checked(params, &self.options)
+    }
+
+    /// The quilt block for an `exemplar_size` exemplar, `masked` or not, and whether it was
+    /// inferred: the one given, else [`motif_stylize::inferred_quilt_block`] where a quilt
+    /// applies (no mask, structure weight or tileable output), else 0 (off).
+    pub fn quilt_block(&self, exemplar_size: (usize, usize), masked: bool) -> (usize, bool) {
+        let shared = &self.options.shared;
+        match shared.quilt_block {
+            Some(block) => (block, false),
+            None if masked || self.options.own.tileable || shared.structure_weight > 0.0 => (0, true),
+            None => (motif_stylize::inferred_quilt_block(exemplar_size, (self.size[0], self.size[1])), true),
+        }
     }
 }
 

@@ -60,6 +60,13 @@ pub(crate) struct Level<'a> {
     pub active: Option<Vec<bool>>,
     /// Which target pixels voting writes (all when `None`).
     pub domain: Option<Vec<bool>>,
+    /// The largest offset of PatchMatch's random search around a match: the source's larger
+    /// side (the whole source) unless the level only refines upsampled matches
+    /// ([`crate::Params::local_search_above`]).
+    pub search_radius: usize,
+    /// Texture synthesis from a large exemplar: ω_best of the occurrence penalty counts at most
+    /// this many source pixels per searched target patch (`crate::occurrence`); `None`: all.
+    pub source_share_cap: Option<usize>,
 }
 
 /// What a level is built from.
@@ -170,6 +177,8 @@ impl<'a> Level<'a> {
             segment_centres,
             active: None,
             domain: None,
+            search_radius: source_width.max(source_height),
+            source_share_cap: None,
             style: style_samples,
         }
     }

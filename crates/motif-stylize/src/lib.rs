@@ -18,6 +18,9 @@
 //! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
 //!   upsampling (§3.5), the optional 3×3 pass, the report.
+//! - `native`: for an exemplar much larger than the output, the coarse levels search the whole
+//!   (reduced) exemplar and the finer ones refine the upsampled matches within a few pixels
+//!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7).
@@ -39,7 +42,8 @@
 //!   [`mean_feature_distance`] and [`line_contrast`], figures that see merged or cut elements and
 //!   broken courses.
 //! - `quilting`: image quilting (Efros and Freeman 2001) as the start of texture optimization
-//!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level.
+//!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level;
+//!   [`inferred_quilt_block`], the block `motif texture` uses when none is given.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -71,6 +75,7 @@ mod field;
 mod level;
 mod mask;
 mod motion;
+mod native;
 mod occurrence;
 mod params;
 mod presynth;
@@ -91,6 +96,8 @@ mod tests;
 #[cfg(test)]
 mod tests_mask;
 #[cfg(test)]
+mod tests_native;
+#[cfg(test)]
 mod tests_synthesis;
 #[cfg(test)]
 mod tests_video;
@@ -102,8 +109,10 @@ pub use error::Error;
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
+pub use native::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
+pub use quilting::inferred_quilt_block;
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure_fidelity::{nearest_patch_distance, sharpness};
 pub use structure_guidance::{line_contrast, mean_feature_distance};
@@ -204,6 +213,10 @@ pub struct LevelReport {
     pub height: usize,
     /// Patch side used.
     pub patch_size: usize,
+    /// Whether the level refined the matches upsampled from the coarser one (random search within
+    /// [`LOCAL_SEARCH_RADIUS`] pixels, no occurrence penalty: [`Params::local_search_above`])
+    /// instead of searching the whole exemplar.
+    pub local_search: bool,
     /// Mean per-pixel energy after each search (before its vote), one per iteration.
     pub energies: Vec<f64>,
     /// Wall-clock milliseconds.
@@ -265,14 +278,16 @@ fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
 /// The peak memory of one synthesis: the inputs with their coarser pyramid levels (4/3 of the
 /// finest, `sample_bytes` a value: 1 for 8-bit inputs, 4 for floats), the finest level's 8-bit
 /// patch stacks, the output with the vote's weights and change flags, the field with its costs
-/// and the occurrence counts with the search workers' changes (the public field made at the end
-/// replaces the stacks).
+/// and the occurrence counts with the search workers' changes over `occurrence_pixels` of the
+/// style (all of it, unless the finer levels refine upsampled matches without them; the public
+/// field made at the end replaces the stacks).
 pub(crate) fn memory_estimate(
     style_pixels: usize,
     style_channels: usize,
     guide_channels: usize,
     target_pixels: usize,
     sample_bytes: usize,
+    occurrence_pixels: usize,
 ) -> motif_core::MemoryEstimate {
     const PYRAMID: f64 = 4.0 / 3.0;
     let (style_pixels, target_pixels) = (style_pixels as f64, target_pixels as f64);
@@ -286,7 +301,7 @@ pub(crate) fn memory_estimate(
         .add("output and vote", target_pixels, style_channels * 4.0 + 5.0)
         .add("nearest-neighbour field", target_pixels, 8.0)
         // The counts, and the changes each search worker keeps (two workers counted).
-        .add("occurrence counts", style_pixels, 12.0);
+        .add("occurrence counts", occurrence_pixels as f64, 12.0);
     estimate
 }
 
@@ -462,14 +477,28 @@ fn target_size<I: ChannelImage>(input: &Input<I>) -> Result<(usize, usize), Erro
 fn check_memory<I: ChannelImage>(input: &Input<I>, params: &Params, target_size: (usize, usize)) -> Result<u64, Error> {
     let style = &input.style;
     let guide_channels: usize = input.guides.iter().map(|g| g.source.channels()).sum();
-    let target_pixels = target_size.0 * target_size.1;
+    let (style_pixels, target_pixels) = (style.width() * style.height(), target_size.0 * target_size.1);
+    let texture_only = input.guides.is_empty() && input.mask.is_none() && input.textures.is_none();
+    // Texture synthesis from a large exemplar: the levels that keep Ω have at most
+    // `local_search_above` exemplar pixels (`synthesis::is_local`).
+    let local = texture_only
+        && params.quilt_block == 0
+        && style_pixels > params.local_search_above
+        && style_pixels > LOCAL_SEARCH_RATIO * target_pixels;
+    let occurrence_pixels = if local { params.local_search_above } else { style_pixels };
     let mut estimate = memory_estimate(
-        style.width() * style.height(),
+        style_pixels,
         style.channels(),
         guide_channels,
         target_pixels,
         sample_bytes(style),
+        occurrence_pixels,
     );
+    if params.quilt_block > 0 {
+        // The quilt reads the exemplar as floats and lays the output as floats with its origins.
+        estimate.add("image quilt", style_pixels as f64, style.channels() as f64 * 4.0);
+        estimate.add("quilted output", target_pixels as f64, style.channels() as f64 * 4.0 + 8.0);
+    }
     if input.mask.is_some() {
         // The kept image with its pyramid, the hole per level and its dilations, and the fill's
         // start (measured: 46–48 bytes a pixel beyond the rest, 77 k to 1.2 M pixels).

@@ -2,7 +2,8 @@
 //!
 //! Every target patch matched to source centre `s` uses the `patch²` source pixels around `s`
 //! once each. The per-pixel use count ideally equals ω_best = `patch² · |target| / |source|`
-//! (Eq. 6 per segment). The penalty of a candidate patch is
+//! (Eq. 6 per segment; with [`Level::source_share_cap`](crate::level::Level) the source counts
+//! at most that many times the target). The penalty of a candidate patch is
 //! `λ · (Σ counts over its pixels / patch²) / ω_best`, i.e. 1·λ when the patch is used exactly as
 //! often as uniform use would have it; ebsynth's units, so λ = 3500 means the same here.
 //!
@@ -45,7 +46,11 @@ impl Occurrence {
         }
         let area = (level.patch * level.patch) as f32;
         let searched = (0..level.target_len()).filter(|&t| level.is_active(t)).count().max(1);
-        let global_best = area * searched as f32 / source_len as f32;
+        // With a cap (a large exemplar), uniform use is measured as if the exemplar had at most
+        // `cap` times the searched patches: uncapped, ω_best falls with the exemplar's size, the
+        // penalty of a coherent copy grows with it, and it breaks up every coherent run.
+        let sources = level.source_share_cap.map_or(source_len, |cap| source_len.min(cap * searched));
+        let global_best = area * searched as f32 / sources as f32;
         let factors = match (&level.source_labels, &level.target_restrict) {
             (Some(source_labels), Some(restrict)) => {
                 let labels = level.segment_centres.len();

@@ -61,6 +61,15 @@ pub struct Params {
     /// the seams. 0 = off (start from random patches at the coarsest level). Range 0 or 8..=4096,
     /// default 0.
     pub quilt_block: usize,
+    /// Texture synthesis from a large exemplar: a pyramid level (but the coarsest) whose exemplar
+    /// has more pixels than this and more than [`LOCAL_SEARCH_RATIO`](crate::LOCAL_SEARCH_RATIO)
+    /// times its output's refines the matches upsampled from the coarser level: its random search
+    /// stays within [`LOCAL_SEARCH_RADIUS`](crate::LOCAL_SEARCH_RADIUS) pixels of them and it runs
+    /// without the occurrence penalty (nothing of the exemplar is kept per pixel), so its time
+    /// grows with the output, not the exemplar. The coarser levels, on the exemplar reduced to at
+    /// most this many pixels, search all of it. `usize::MAX` = every level searches the whole
+    /// exemplar. Range ≥ 1, default 262 144 (512²).
+    pub local_search_above: usize,
     /// Number of pyramid levels (§3.5); 0 = as many as fit (coarsest level at least
     /// `2·patch_size + 1` pixels on each side of both source and target). Range 0..=32, default 0.
     pub pyramid_levels: usize,
@@ -129,6 +138,7 @@ impl Params {
         coarse_patch_size: 0,
         structure_weight: 0.0,
         quilt_block: 0,
+        local_search_above: 512 * 512,
         pyramid_levels: 0,
         search_vote_iterations: 6,
         patchmatch_iterations: 4,
@@ -152,6 +162,7 @@ impl Params {
     pub fn validate(&self) -> Result<(), Error> {
         check_range("style-weight", f64::from(self.style_weight), 0.0, 1000.0)?;
         check_count("max-pixels", self.max_pixels, 1, usize::MAX)?;
+        check_count("local-search-above", self.local_search_above, 1, usize::MAX)?;
         motif_core::memory::check_max_memory(self.max_memory)?;
         check_range("uniformity", f64::from(self.uniformity), 0.0, 1e6)?;
         if self.patch_size < 3 || self.patch_size.is_multiple_of(2) || self.patch_size > 31 {
@@ -193,6 +204,7 @@ motif_core::builders! { Params {
     with_coarse_patch_size => coarse_patch_size: usize,
     with_structure_weight => structure_weight: f32,
     with_quilt_block => quilt_block: usize,
+    with_local_search_above => local_search_above: usize,
     with_pyramid_levels => pyramid_levels: usize,
     with_search_vote_iterations => search_vote_iterations: usize,
     with_patchmatch_iterations => patchmatch_iterations: usize,

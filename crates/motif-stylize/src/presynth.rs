@@ -18,7 +18,7 @@ pub fn presynth_memory(
 ) -> motif_core::MemoryEstimate {
     let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
     let pixels = size.0.saturating_mul(size.1);
-    let mut estimate = memory_estimate(style_pixels, channels, 0, pixels, 4);
+    let mut estimate = memory_estimate(style_pixels, channels, 0, pixels, 4, style_pixels);
     estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0);
     estimate
 }

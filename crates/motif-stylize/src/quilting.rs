@@ -43,6 +43,21 @@ pub(crate) fn starting_field(
         .collect())
 }
 
+/// The quilt block `motif texture` uses when none is given: half the exemplar's smaller side
+/// (the block that brought every real texture of the corpus, regular or not, closest to its
+/// exemplar when grown to twice its size: `docs/stylize.md`), when the output grows the exemplar
+/// (more pixels, and its smaller side at least the exemplar's smaller side, so that at least two
+/// blocks a side are laid) and the block is at least 8 pixels; else 0, no quilt (an output no
+/// larger than its exemplar, whose pyramid search draws from the whole exemplar, and the large
+/// exemplars of native-size synthesis). At most 4 096. Front ends turn it off themselves where a
+/// quilt cannot apply (guides, masks, structure guidance, tileable output).
+pub fn inferred_quilt_block(exemplar: (usize, usize), output: (usize, usize)) -> usize {
+    let side = exemplar.0.min(exemplar.1);
+    let block = (side / 2).min(4096);
+    let grows = output.0 * output.1 > exemplar.0 * exemplar.1 && output.0.min(output.1) >= side;
+    if grows && block >= 8 { block } else { 0 }
+}
+
 /// Candidates within this factor of the best overlap error are drawn from at random (Efros and
 /// Freeman's tolerance), so the quilt does not repeat one block.
 const TOLERANCE: f64 = 1.1;
@@ -252,6 +267,25 @@ mod tests {
             }
         }
         assert_eq!(quilt(&style, (70, 55), 18, 4, &mut |_| ()), origin);
+    }
+
+    /// The inferred block is half the exemplar's smaller side when the output grows the exemplar,
+    /// at least 8, and off otherwise; the same sizes give the same block.
+    #[test]
+    fn the_inferred_block_is_half_the_exemplar_when_it_grows() {
+        assert_eq!(inferred_quilt_block((96, 96), (192, 192)), 48);
+        assert_eq!(inferred_quilt_block((156, 120), (400, 300)), 60);
+        assert_eq!(inferred_quilt_block((96, 96), (150, 100)), 48);
+        assert_eq!(inferred_quilt_block((96, 96), (300, 90)), 0, "a side below the exemplar's");
+        assert_eq!(inferred_quilt_block((1024, 1024), (1024, 1024)), 0, "no larger");
+        assert_eq!(inferred_quilt_block((8192, 8192), (1024, 1024)), 0, "native size");
+        assert_eq!(inferred_quilt_block((14, 14), (64, 64)), 0, "below 8 pixels");
+        assert_eq!(inferred_quilt_block((10000, 9000), (20000, 20000)), 4096);
+        for (w, h) in [(16, 16), (50, 70), (96, 96), (333, 200)] {
+            let block = inferred_quilt_block((w, h), (3 * w, 3 * h));
+            assert!((8..=w.min(h) / 2).contains(&block), "{w}×{h}: {block}");
+            assert_eq!(block, inferred_quilt_block((w, h), (3 * w, 3 * h)));
+        }
     }
 
     /// A quilted texture optimizes one level from the quilt's field; the same seed gives the same

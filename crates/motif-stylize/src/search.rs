@@ -232,8 +232,9 @@ impl Candidates {
         Self { centres: [0; 66], penalties: [0.0; 66], partials: [0.0; 66] }
     }
 
-    /// Random search around the match after propagation, radius halving from the source size to
-    /// 1 (Barnes et al.), plus one candidate anywhere in the pixel's own segment so that small
+    /// Random search around the match after propagation, radius halving from the level's search
+    /// radius (the source size, or a few pixels when the level refines upsampled matches) to 1
+    /// (Barnes et al.), plus one candidate anywhere in the pixel's own segment so that small
     /// segments far from the current match are still found. The candidates are drawn first, then
     /// processed in passes with no data-dependent branch between their memory reads, so the cache
     /// misses of all of them overlap instead of queueing one after another.
@@ -252,7 +253,7 @@ impl Candidates {
         let centre = best.centre as usize;
         let (sx, sy) = ((centre % level.source_width) as i64, (centre / level.source_width) as i64);
         let mut count = 0;
-        let mut radius = level.source_width.max(level.source_height) as i64;
+        let mut radius = level.search_radius as i64;
         while radius >= 1 {
             let bits = stream.next_u64();
             let cx = (sx + offset(bits as u32, radius)).clamp(x0 as i64, x1 as i64 - 1);

@@ -6,6 +6,7 @@ use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 
 use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
+use crate::native::{LOCAL_SEARCH_RADIUS, OCCURRENCE_SOURCE_SHARE, is_local, is_native};
 use crate::occurrence::Occurrence;
 use crate::search::{Field, exact_search, patchmatch_iteration};
 use crate::vote::{vote, weight_code};
@@ -110,7 +111,7 @@ fn patch_at_level(
 }
 
 /// Size of pyramid level `level` of an image of size `size`.
-fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
+pub(crate) fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
     (0..level).fold(size, |(w, h), _| (w.div_ceil(2), h.div_ceil(2)))
 }
 
@@ -175,7 +176,7 @@ pub(crate) fn run<I: ChannelImage>(
         timer.add(&report.name, report.ms);
         reports.push(report);
     }
-    let figures = Figures::new(&mut field, &level, params);
+    let figures = Figures::new(&mut field, &level, params, em.local[0]);
     let field = public_field(field, level, figures.vote_weights);
     Ok(Output {
         image,
@@ -232,6 +233,10 @@ struct Em<'p, 'a, I: ChannelImage> {
     holes: Option<Vec<Vec<bool>>>,
     /// Per level, the style channels' weights (they differ only with structure guidance).
     style_weights: Vec<Vec<f32>>,
+    /// Per level, whether it refines upsampled matches (see `native::is_local`).
+    local: Vec<bool>,
+    /// Whether the occurrence penalty caps the exemplar's share (see `native::is_native`).
+    native: bool,
 }
 
 impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
@@ -259,6 +264,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
                 .mask
                 .map(|mask| (0..levels).map(|level| hole_at(&mask.hole, problem.target_size, level)).collect()),
             style_weights,
+            local: (0..levels).map(|level| is_local(problem, params, levels, level)).collect(),
+            native: is_native(problem, params),
         }
     }
 
@@ -301,6 +308,12 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
     /// when there is one.
     fn level_of(&self, index: usize, patch: usize) -> Level<'_> {
         let mut level = Level::new(self.spec(index, patch));
+        if self.local[index] {
+            level.search_radius = LOCAL_SEARCH_RADIUS;
+        }
+        if self.native {
+            level.source_share_cap = Some(OCCURRENCE_SOURCE_SHARE);
+        }
         let domain = match (&self.problem.composition, &self.holes) {
             (Some((_, domain)), _) => domain,
             (None, Some(holes)) => &holes[index],
@@ -335,7 +348,9 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         };
         *image = self.start_image(&level, index, &field);
         level.set_target_style(image, false);
-        let mut occurrence = Occurrence::new(&level, params.uniformity);
+        // A level that refines upsampled matches searches a few pixels around each: no patch can
+        // gather many target patches, and Ω over the whole exemplar would cost what it saves.
+        let mut occurrence = Occurrence::new(&level, if self.local[index] { 0.0 } else { params.uniformity });
         let mut searcher = Searcher { params, streams: &streams, scratch };
         let mut energies = Vec::with_capacity(params.search_vote_iterations);
         let mut converged: Option<Vec<bool>> = None;
@@ -354,7 +369,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         }
         let ms = motif_core::timing::elapsed_ms(level_start);
         let (width, height) = (level.target_width, level.target_height);
-        let report = LevelReport { name: stage, width, height, patch_size: patch, energies, ms };
+        let local_search = self.local[index];
+        let report = LevelReport { name: stage, width, height, patch_size: patch, local_search, energies, ms };
         (field, level, report)
     }
 
@@ -404,7 +420,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         let ms = motif_core::timing::elapsed_ms(pass_start);
         let (width, height) = (fine.target_width, fine.target_height);
         progress.report(&stage, 1.0);
-        (fine, LevelReport { name: stage, width, height, patch_size: 3, energies, ms })
+        let local_search = self.local[0];
+        (fine, LevelReport { name: stage, width, height, patch_size: 3, local_search, energies, ms })
     }
 }
 
@@ -421,12 +438,13 @@ struct Figures {
 }
 
 impl Figures {
-    fn new(field: &mut Field, level: &Level, params: &Params) -> Self {
+    /// `local`: the finest level refined upsampled matches, without the occurrence penalty.
+    fn new(field: &mut Field, level: &Level, params: &Params, local: bool) -> Self {
         // The weights the final vote gave each patch, before the costs are recomputed for the figures.
         let area = (level.patch * level.patch) as f32;
         let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
         field.recompute_costs(level);
-        let final_lambda = if params.extra_pass_3x3 { 0.0 } else { params.uniformity };
+        let final_lambda = if params.extra_pass_3x3 || local { 0.0 } else { params.uniformity };
         let mut occurrence = Occurrence::new(level, final_lambda);
         occurrence.refresh(level, &field.matches);
         let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);

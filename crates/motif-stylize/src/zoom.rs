@@ -55,7 +55,7 @@ pub fn zoom_memory(
     let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
     let target_pixels = target.0.saturating_mul(target.1);
     let finer_guides = if levels > 1 { guide_channels + channels } else { guide_channels };
-    let mut estimate = crate::memory_estimate(style_pixels, channels, finer_guides, target_pixels, 4);
+    let mut estimate = crate::memory_estimate(style_pixels, channels, finer_guides, target_pixels, 4, style_pixels);
     let (style_pixels, target_pixels, channels) = (style_pixels as f64, target_pixels as f64, channels as f64);
     estimate
         .add("blurred style and the level's copies", style_pixels, 4.0 * (2.0 * channels + guide_channels as f64))

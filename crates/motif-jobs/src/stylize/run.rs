@@ -103,10 +103,15 @@ impl TextureJob {
         inputs: TextureInputs<I>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
-        let params = self.params()?;
+        let exemplar_size = (inputs.exemplar.width(), inputs.exemplar.height());
+        let (quilt_block, inferred) = self.quilt_block(exemplar_size, inputs.mask.is_some());
+        let params = self.params()?.with_quilt_block(quilt_block);
         let mut input = Input::texture(inputs.exemplar, self.size[0], self.size[1]);
         input.mask = inputs.mask;
-        Ok(StylizeRun::of(motif_stylize::synthesize(&input, &params, progress)?))
+        let mut run = StylizeRun::of(motif_stylize::synthesize(&input, &params, progress)?);
+        run.figures.insert("quilt_block".into(), json!(quilt_block));
+        run.figures.insert("quilt_block_inferred".into(), json!(inferred));
+        Ok(run)
     }
 }
 
@@ -114,8 +119,9 @@ impl Job for TextureJob {
     const NAME: &'static str = "texture";
     const FIELDS: &'static [&'static str] = &["size", "seed", "max-memory"];
     const SUMMARY: &'static str = "Grow a texture of any size from an exemplar image, optionally tileable";
-    const DETAILS: &'static str = "Patch-based texture synthesis (the stylize engine without guides), or \
-        image quilting with minimum-error cuts (--quilt-block).";
+    const DETAILS: &'static str = "Patch-based texture synthesis (the stylize engine without guides), started \
+        from an image quilt with minimum-error cuts when the output grows the exemplar (--quilt-block, inferred \
+        unless given); exemplars much larger than the output are searched whole only at the coarse levels.";
     type Options = TextureJobOptions;
     type Inputs<'a> = TextureInputs;
     type Run = StylizeRun;

@@ -40,7 +40,11 @@ fn bench_pair(size: usize, guide_channels: usize, seed: u64) -> Input {
     Input::guided(style, guides)
 }
 
-fn timed<I: motif_core::ChannelImage>(input: &Input<I>, params: &Params) -> anyhow::Result<(Output, f64, Option<f64>)> {
+/// One synthesis, its wall-clock seconds and the process's CPU-seconds (where known).
+pub(super) fn timed<I: motif_core::ChannelImage>(
+    input: &Input<I>,
+    params: &Params,
+) -> anyhow::Result<(Output, f64, Option<f64>)> {
     let cpu_start = cpu_seconds();
     let start = std::time::Instant::now();
     let output = synthesize(input, params, &mut NoProgress)?;
@@ -101,6 +105,9 @@ pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
     }
     if bench.names("structure") {
         figures.insert("structure".into(), structure(bench)?);
+    }
+    if bench.names("texture-native") {
+        figures.insert("texture_native".into(), super::native_bench::texture_native(bench)?);
     }
     Ok(Value::Object(figures))
 }

@@ -6,6 +6,7 @@ mod bench;
 mod cache;
 mod demo;
 mod masks;
+mod native_bench;
 mod video;
 mod video_bench;
 
@@ -296,9 +297,15 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
     if let Some(dir) = &args.debug_dir {
         write_debug(dir, output)?;
     }
+    let quilt = match (run.figures["quilt_block"].as_u64(), run.figures["quilt_block_inferred"].as_bool()) {
+        (Some(0) | None, _) => String::new(),
+        (Some(block), inferred) => {
+            format!(", quilt block {block}{}", if inferred == Some(true) { " (inferred)" } else { "" })
+        }
+    };
     context.job_figures(run.figures);
     context.summary(&format!(
-        "motif texture: {}×{}{} in {:.0} ms, energy {:.0} → {}",
+        "motif texture: {}×{}{}{quilt} in {:.0} ms, energy {:.0} → {}",
         args.size.0,
         args.size.1,
         if args.options.own.tileable { " (tileable)" } else { "" },

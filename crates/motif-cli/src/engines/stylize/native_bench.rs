@@ -1,0 +1,89 @@
+//! `motif bench --engine stylize --case texture-native`: a texture of a fixed size from exemplars
+//! of growing size (issue 34, item 5), whose time should grow with the output, not the exemplar.
+
+use motif_core::ByteImage;
+use motif_stylize::{Input, Params};
+use serde_json::{Map, Value, json};
+
+use crate::suite::Bench;
+
+/// `exemplar` repeated to `side × side` pixels. GIMP's patterns tile seamlessly, so the result has
+/// the pattern's own patches and no seams: a large exemplar for speed whose figures stay
+/// comparable across sizes (it is periodic, so it is not a fidelity case of a large photo).
+fn tiled(exemplar: &ByteImage, side: usize) -> anyhow::Result<ByteImage> {
+    let (width, height, channels) = (exemplar.width(), exemplar.height(), exemplar.channels());
+    let mut data = Vec::with_capacity(side * side * channels);
+    for y in 0..side {
+        for x in 0..side {
+            data.extend_from_slice(exemplar.pixel(x % width, y % height));
+        }
+    }
+    Ok(ByteImage::from_data(side, side, channels, data)?)
+}
+
+/// A `size²` texture from GIMP's stone wall (`data/real/stylize/stone33.png`, 156 × 156) tiled to
+/// each exemplar side, two alternating rounds: seconds (min and max), and the nearest-patch
+/// distance at 15 × 15 to the pattern (`motif_stylize::nearest_patch_distance`) and sharpness over
+/// the pattern's (below 1: washed out) of the first round. The middle exemplar also runs with
+/// every level searching the whole exemplar (`local_search_above` = max), the reference for the
+/// fidelity of the local refinement.
+pub fn texture_native(bench: &Bench) -> anyhow::Result<Value> {
+    let folder = crate::suite::corpus_folder("stylize");
+    let image = motif_io::read_image(&folder.join("stone33.png"))?;
+    let pattern = motif_jobs::stylize::style_image_channels(&image);
+    let pattern_float = pattern.to_float();
+    let (size, sides) = if bench.quick { (128, [128, 512, 1024]) } else { (1024, [1024, 4096, 8192]) };
+    let rounds = if bench.quick { 1 } else { 2 };
+    let params = Params::default().with_seed(bench.seed);
+    let mut seconds = vec![Vec::new(); sides.len()];
+    let mut fidelity = vec![None; sides.len()];
+    let figures = |output: &motif_stylize::Output| {
+        let distance = motif_stylize::nearest_patch_distance(&output.image, &pattern_float, 15, 100);
+        let sharpness = motif_stylize::sharpness(&output.image) / motif_stylize::sharpness(&pattern_float).max(1e-9);
+        (distance, sharpness)
+    };
+    for _ in 0..rounds {
+        for (index, &side) in sides.iter().enumerate() {
+            let input = Input::texture(tiled(&pattern, side)?, size, size);
+            let (output, wall, _) = super::bench::timed(&input, &params)?;
+            seconds[index].push(wall);
+            fidelity[index].get_or_insert_with(|| (figures(&output), output.report.estimated_memory_bytes));
+        }
+    }
+    let mut rows = Map::new();
+    let first = seconds[0].iter().copied().fold(f64::INFINITY, f64::min);
+    for ((side, times), fidelity) in sides.iter().zip(&seconds).zip(&fidelity) {
+        let ((distance, sharpness), memory) = fidelity.expect("one round at least");
+        let (low, high) = times.iter().fold((f64::INFINITY, 0.0_f64), |(l, h), &t| (l.min(t), h.max(t)));
+        rows.insert(
+            format!("exemplar_{side}"),
+            json!({
+                "exemplar": [side, side],
+                "wall_s_min": low,
+                "wall_s_max": high,
+                "time_over_smallest_exemplar": low / first.max(1e-9),
+                "nearest_patch_distance_15": distance,
+                "sharpness_ratio": sharpness,
+                "estimated_memory_bytes": memory,
+            }),
+        );
+    }
+    let side = sides[1];
+    let whole = params.clone().with_local_search_above(usize::MAX);
+    let (output, wall, _) = super::bench::timed(&Input::texture(tiled(&pattern, side)?, size, size), &whole)?;
+    let (distance, sharpness) = figures(&output);
+    rows.insert(
+        format!("exemplar_{side}_whole_search"),
+        json!({
+            "exemplar": [side, side],
+            "wall_s": wall,
+            "nearest_patch_distance_15": distance,
+            "sharpness_ratio": sharpness,
+            "estimated_memory_bytes": output.report.estimated_memory_bytes,
+        }),
+    );
+    rows.insert("output".into(), json!([size, size]));
+    rows.insert("rounds".into(), json!(rounds));
+    rows.insert("exemplar_source".into(), json!("GIMP's stone33 pattern (156 x 156) tiled: a speed case"));
+    Ok(Value::Object(rows))
+}
