@@ -234,6 +234,29 @@ impl EdgeSet {
         [planes[k], planes[self.stride + k], planes[2 * self.stride + k], planes[3 * self.stride + k]]
     }
 
+    /// The edges with every run of `factor` consecutive samples averaged into one (`⌈C / factor⌉`
+    /// samples; the last run may be shorter), alpha through `model`'s matching alpha again: the
+    /// coarse solver's edges (see `coarse`). Averaging keeps what a run holds, so a one-pixel
+    /// shift along the edge changes the coarse edge little.
+    pub(crate) fn downsampled(&self, model: &CostModel, factor: usize) -> EdgeSet {
+        let factor = factor.max(1);
+        let samples = self.samples.div_ceil(factor);
+        EdgeSet::from_fn(samples, self.len(), |index, column| {
+            for (k, out) in column.iter_mut().enumerate() {
+                let run = k * factor..((k + 1) * factor).min(self.samples);
+                let count = run.len() as u32;
+                let mut sum = [0_u32; 4];
+                for s in run {
+                    for (total, value) in sum.iter_mut().zip(self.sample(index, s)) {
+                        *total += u32::from(value);
+                    }
+                }
+                let [r, g, b, a] = sum.map(|total| ((total + count / 2) / count) as u8);
+                *out = [r, g, b, model.matching_alpha(a)];
+            }
+        })
+    }
+
     /// The edges reordered by `order` (used to stream predecessors in cost order).
     pub fn permuted(&self, order: &[u32]) -> EdgeSet {
         let mut out = EdgeSet::with_capacity(self.samples, order.len());
