@@ -11,8 +11,8 @@
 //! 2. **Forward and backward tables** `P` and `Q` over the cells (the exact solver's row update,
 //!    both ways, as `dp::solve_backward`): `P + Q` of a cell is the cost of the cheapest coarse
 //!    path through it.
-//! 3. **Bands.** In each row the [`kept_cells`] cells of lowest `P + Q` are kept, with their neighbours
-//!    within [`RADIUS`] cells; the band is every valid position in them (the whole row if that
+//! 3. **Bands.** In each row the cells of lowest `P + Q` are kept, with their neighbours within a
+//!    radius ([`BAND_SHAPES`]); the band is every valid position in them (the whole row if that
 //!    were empty). Row 0 and a closed curve's terminal row keep the union of their cells, so they
 //!    keep the same positions, as the closed solvers need.
 //! 4. **Refinement.** The exact solver (open or closed, `solve::solve_once`) over the bands at full
@@ -40,11 +40,12 @@ pub(crate) const TARGET_CELLS: usize = 3000;
 const MAX_FACTOR: usize = 4;
 /// Fewest samples of a coarse edge (one comparison chunk).
 const MIN_COARSE_SAMPLES: usize = 16;
-/// Positions' worth of cells of lowest `P + Q` kept per row, before the neighbours are added (on
-/// the dense chain with cells of 2, 16 and 48 cells left a gap of 7 %, 96 none).
-pub(crate) const KEPT_POSITIONS: usize = 384;
-/// Neighbouring cells added around each kept one (Chebyshev distance).
-const RADIUS: i32 = 1;
+/// Cells of lowest `P + Q` kept per row and the radius of neighbouring cells added around each
+/// (Chebyshev distance), for cells of side 2 and of side 4. Measured on the hard speed cases: on
+/// the dense chain (cells of 2), 16 or 48 cells with their neighbours left a gap of 7 %, 96 none,
+/// and 96 or 192 cells without neighbours 7 %; on the 600 × 250 chain (cells of 4), 24 cells with
+/// neighbours left 0.06 % at 106 ms per row, 48 cells without neighbours none at 21 ms.
+const BAND_SHAPES: [(usize, i32); 2] = [(96, 1), (48, 0)];
 
 /// Figures of a coarse-to-fine solve.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -119,9 +120,10 @@ pub(crate) fn factor_for(rows: &[RowSpec<'_>]) -> usize {
     factor
 }
 
-/// Cells of lowest `P + Q` kept per row: about [`KEPT_POSITIONS`] positions' worth.
-pub(crate) fn kept_cells(factor: usize) -> usize {
-    KEPT_POSITIONS.div_ceil(factor * factor).max(8)
+/// Cells kept per row and the radius of neighbours added, for cells of side `factor` (see
+/// [`BAND_SHAPES`]).
+pub(crate) fn band_shape(factor: usize) -> (usize, i32) {
+    if factor <= 2 { BAND_SHAPES[0] } else { BAND_SHAPES[1] }
 }
 
 /// Solves `rows` coarse to fine with cells of side `factor` (at 1, the exact solver on whole
@@ -316,9 +318,9 @@ impl Problem<'_> {
                 let through = |c: usize| forward[r][c].saturating_add(backward[r][c]);
                 let mut order: Vec<(u64, usize)> = (0..coarse.cells.len()).map(|c| (through(c), c)).collect();
                 order.sort_unstable();
-                let kept: Vec<Position> =
-                    order.iter().take(kept_cells(self.factor)).map(|&(_, c)| coarse.cells[c]).collect();
-                band(self.rows[r].positions, &kept, self.factor as i32, coarse.phase)
+                let (keep, radius) = band_shape(self.factor);
+                let kept: Vec<Position> = order.iter().take(keep).map(|&(_, c)| coarse.cells[c]).collect();
+                band(self.rows[r].positions, &kept, [self.factor as i32, radius], coarse.phase)
             })
             .collect();
         if closed {
@@ -335,13 +337,13 @@ impl Problem<'_> {
     }
 }
 
-/// The indices of `positions` whose cell (grid starting at `phase`) is within [`RADIUS`] of one of
-/// `cells`; every index when none is.
-fn band(positions: &[Position], cells: &[Position], factor: i32, phase: [i32; 2]) -> Vec<usize> {
+/// The indices of `positions` whose cell (side `factor`, grid starting at `phase`) is within
+/// `radius` cells of one of `cells`; every index when none is.
+fn band(positions: &[Position], cells: &[Position], [factor, radius]: [i32; 2], phase: [i32; 2]) -> Vec<usize> {
     let mut near: HashSet<Position> = HashSet::new();
     for &[x, y] in cells {
-        for dy in -RADIUS..=RADIUS {
-            for dx in -RADIUS..=RADIUS {
+        for dy in -radius..=radius {
+            for dx in -radius..=radius {
                 near.insert([x + dx, y + dy]);
             }
         }
@@ -370,8 +372,9 @@ mod tests {
     #[test]
     fn a_band_is_never_empty() {
         let positions = [[0, 0], [5, 5], [9, 9]];
-        assert_eq!(band(&positions, &[[2, 2]], 2, [0, 0]), vec![1]);
-        assert_eq!(band(&positions, &[[40, 40]], 2, [0, 0]), vec![0, 1, 2], "no position near: the whole row");
-        assert_eq!(band(&positions, &[], 2, [1, 1]), vec![0, 1, 2]);
+        assert_eq!(band(&positions, &[[2, 2]], [2, 1], [0, 0]), vec![1]);
+        assert_eq!(band(&positions, &[[2, 2]], [2, 0], [1, 1]), vec![1]);
+        assert_eq!(band(&positions, &[[40, 40]], [2, 1], [0, 0]), vec![0, 1, 2], "no position near: the whole row");
+        assert_eq!(band(&positions, &[], [2, 1], [1, 1]), vec![0, 1, 2]);
     }
 }

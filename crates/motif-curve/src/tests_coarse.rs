@@ -2,11 +2,12 @@
 //! the bands hold the whole rows, valid paths on open and closed curves, and the same bytes for
 //! any thread count.
 
+use motif_core::math;
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use proptest::prelude::*;
 
 use crate::closed::solve_closed;
-use crate::coarse::{self, kept_cells};
+use crate::coarse::{self, band_shape};
 use crate::cost::AlphaMode;
 use crate::dp::{Solver, path_cost};
 use crate::solve::Setup;
@@ -69,7 +70,7 @@ proptest! {
         let few_cells = rows.iter().all(|row| {
             let cells: std::collections::HashSet<[i32; 2]> =
                 row.positions.iter().map(|p| [p[0].div_euclid(factor as i32), p[1].div_euclid(factor as i32)]).collect();
-            cells.len() <= kept_cells(factor)
+            cells.len() <= band_shape(factor).0
         });
         if few_cells || factor == 1 {
             prop_assert_eq!(solution.cost, optimum);
@@ -84,7 +85,7 @@ fn dense_case() -> (RgbaImage, Polyline) {
     let points = (0..=60)
         .map(|i| {
             let a = f64::from(i) / 60.0;
-            Point::new(20.0 + 300.0 * a, 120.0 - 40.0 * (a * std::f64::consts::PI).sin())
+            Point::new(20.0 + 300.0 * a, 120.0 - 40.0 * math::sin(a * std::f64::consts::PI))
         })
         .collect();
     (image, Polyline::new(points, false).unwrap())
