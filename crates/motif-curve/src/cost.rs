@@ -508,6 +508,25 @@ mod tests {
         assert!(profile <= u64::from(full) && profile > 0, "{profile} {full}");
     }
 
+    #[test]
+    fn downsampled_edges_average_runs_of_samples() {
+        let model = CostModel::new(AlphaMode::Continuous, 1024.0);
+        let mut set = EdgeSet::with_capacity(5, 1);
+        set.push([[10, 0, 0, 255], [20, 0, 0, 255], [30, 0, 0, 0], [41, 0, 0, 0], [7, 8, 9, 100]].into_iter());
+        let same = set.downsampled(&model, 1);
+        assert_eq!(same.planes, set.planes);
+        let half = set.downsampled(&model, 2);
+        assert_eq!(half.samples, 3);
+        assert_eq!(
+            (0..3).map(|k| half.sample(0, k)).collect::<Vec<_>>(),
+            [[15, 0, 0, 255], [36, 0, 0, 0], [7, 8, 9, 100]]
+        );
+        let binary = CostModel::new(AlphaMode::Binary, 1024.0);
+        let mut mixed = EdgeSet::with_capacity(2, 1);
+        mixed.push([[0, 0, 0, 255], [0, 0, 0, 0]].into_iter());
+        assert_eq!(mixed.downsampled(&binary, 2).sample(0, 0)[3], 255, "binary alpha thresholds the average again");
+    }
+
     proptest::proptest! {
         /// The flat-neighbourhood shortcut of `right_edges` gives the bytes of the full
         /// interpolation, for any pixel, weights and alpha mode.
