@@ -36,8 +36,14 @@ class CurveOptions(TypedDict, total=False):
     #: repeat, the classic baseline (the exemplar repeated along the arc length and bent with the ribbon). Default: synth.
     method: Literal["synth", "repeat"]
     #: Dynamic-programming solver: exact (merged identical edges, branch and bound over a profile tree, lower
-    #: bounds and early exit) or reference (the plain O(V²C) dynamic program); both find the same optimum. Default: exact.
-    solver: Literal["exact", "reference"]
+    #: bounds and early exit) or reference (the plain O(V²C) dynamic program), which find the same optimum; or
+    #: coarse, for large or dense exemplars: the program on cells of 2–4 pixels first, then the exact one in
+    #: bands of positions around the best cells (a cost at least the optimum's; --check-gap measures the
+    #: difference). Default: exact.
+    solver: Literal["exact", "reference", "coarse"]
+    #: With --solver coarse, also run the exact solver and report the exact optimum and the coarse solver's
+    #: cost gap (exact_optimum, cost_gap); takes at least an exact run's time.
+    check_gap: bool
     #: Alpha in the matching cost: binary, the paper's ξ (alpha thresholded at 128, opaque or transparent), or
     #: continuous, ξ blended by alpha for anti-aliased and semi-transparent exemplars. Default: continuous.
     alpha: Literal["binary", "continuous"]

@@ -234,6 +234,29 @@ impl EdgeSet {
         [planes[k], planes[self.stride + k], planes[2 * self.stride + k], planes[3 * self.stride + k]]
     }
 
+    /// The edges with every run of `factor` consecutive samples averaged into one (`⌈C / factor⌉`
+    /// samples; the last run may be shorter), alpha through `model`'s matching alpha again: the
+    /// coarse solver's edges (see `coarse`). Averaging keeps what a run holds, so a one-pixel
+    /// shift along the edge changes the coarse edge little.
+    pub(crate) fn downsampled(&self, model: &CostModel, factor: usize) -> EdgeSet {
+        let factor = factor.max(1);
+        let samples = self.samples.div_ceil(factor);
+        EdgeSet::from_fn(samples, self.len(), |index, column| {
+            for (k, out) in column.iter_mut().enumerate() {
+                let run = k * factor..((k + 1) * factor).min(self.samples);
+                let count = run.len() as u32;
+                let mut sum = [0_u32; 4];
+                for s in run {
+                    for (total, value) in sum.iter_mut().zip(self.sample(index, s)) {
+                        *total += u32::from(value);
+                    }
+                }
+                let [r, g, b, a] = sum.map(|total| ((total + count / 2) / count) as u8);
+                *out = [r, g, b, model.matching_alpha(a)];
+            }
+        })
+    }
+
     /// The edges reordered by `order` (used to stream predecessors in cost order).
     pub fn permuted(&self, order: &[u32]) -> EdgeSet {
         let mut out = EdgeSet::with_capacity(self.samples, order.len());
@@ -483,6 +506,25 @@ mod tests {
         assert!(bound <= u64::from(full) && bound > 0);
         let profile = profile_bound(&model, a.profile_of(0), b.profile_of(0), 40);
         assert!(profile <= u64::from(full) && profile > 0, "{profile} {full}");
+    }
+
+    #[test]
+    fn downsampled_edges_average_runs_of_samples() {
+        let model = CostModel::new(AlphaMode::Continuous, 1024.0);
+        let mut set = EdgeSet::with_capacity(5, 1);
+        set.push([[10, 0, 0, 255], [20, 0, 0, 255], [30, 0, 0, 0], [41, 0, 0, 0], [7, 8, 9, 100]].into_iter());
+        let same = set.downsampled(&model, 1);
+        assert_eq!(same.planes, set.planes);
+        let half = set.downsampled(&model, 2);
+        assert_eq!(half.samples, 3);
+        assert_eq!(
+            (0..3).map(|k| half.sample(0, k)).collect::<Vec<_>>(),
+            [[15, 0, 0, 255], [36, 0, 0, 0], [7, 8, 9, 100]]
+        );
+        let binary = CostModel::new(AlphaMode::Binary, 1024.0);
+        let mut mixed = EdgeSet::with_capacity(2, 1);
+        mixed.push([[0, 0, 0, 255], [0, 0, 0, 0]].into_iter());
+        assert_eq!(mixed.downsampled(&binary, 2).sample(0, 0)[3], 255, "binary alpha thresholds the average again");
     }
 
     proptest::proptest! {

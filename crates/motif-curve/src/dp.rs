@@ -42,6 +42,12 @@ pub enum Solver {
     Exact,
     /// The plain `O(V²C)` dynamic program.
     Reference,
+    /// Coarse to fine (not in the paper): the DP on every `f`-th position and sample, then the
+    /// exact DP over bands of positions around the coarse optimum's best cells (see `coarse`).
+    /// Not guaranteed optimal; its cost is at least the exact optimum, and equal when the bands
+    /// hold an optimal path (the report gives the gap when the exact solver also runs).
+    #[serde(rename = "coarse")]
+    CoarseToFine,
 }
 
 /// One row of the DP table: a piece and its candidate positions.
@@ -189,13 +195,13 @@ pub(crate) fn step(
 
 /// Whether rows `a` and `b` have the same right edges (they depend on the frame's right-edge
 /// taps and on the positions).
-fn same_right_edges(a: &RowSpec<'_>, b: &RowSpec<'_>) -> bool {
+pub(crate) fn same_right_edges(a: &RowSpec<'_>, b: &RowSpec<'_>) -> bool {
     (std::ptr::eq(a.frame, b.frame) || (a.frame.samples == b.frame.samples && a.frame.right_taps == b.frame.right_taps))
         && a.positions == b.positions
 }
 
 /// Whether rows `a` and `b` have the same left edges (the positions' columns of `C` samples).
-fn same_left_edges(a: &RowSpec<'_>, b: &RowSpec<'_>) -> bool {
+pub(crate) fn same_left_edges(a: &RowSpec<'_>, b: &RowSpec<'_>) -> bool {
     a.frame.samples == b.frame.samples && a.positions == b.positions
 }
 
@@ -210,7 +216,8 @@ fn step_on(
 ) -> RowResult {
     match solver {
         Solver::Reference => reference_row(model, previous, rights, lefts),
-        Solver::Exact => {
+        // The coarse-to-fine solver refines its bands with the exact solver's rows.
+        Solver::Exact | Solver::CoarseToFine => {
             let top_right = before.frame.top_right;
             let shift = [top_right.x.round() as i32, top_right.y.round() as i32];
             distinct_row(model, previous, rights, lefts, |predecessors, successors| {
@@ -278,7 +285,7 @@ pub(crate) struct Seeds {
 impl Seeds {
     /// Guesses for the distinct edges: predecessor and position indices are those of
     /// `predecessors` and `successors` (every original position maps to its group).
-    fn new(
+    pub(crate) fn new(
         previous: &[Position],
         current: &[Position],
         shift: [i32; 2],
@@ -328,7 +335,7 @@ impl Seeds {
     }
 
     /// No guesses at all (for the backward table, where positions and edges swap roles).
-    fn none(count: usize) -> Self {
+    pub(crate) fn none(count: usize) -> Self {
         Self {
             previous: Vec::new(),
             origin: [0, 0],
@@ -357,7 +364,7 @@ impl Seeds {
 /// to any other edge, so only one of each group needs to enter the search: periodic exemplars,
 /// flat or empty regions and repeated motifs give thousands of positions but a few hundred
 /// distinct columns.
-struct DistinctEdges {
+pub(crate) struct DistinctEdges {
     /// One original index per group, its lowest by priority then index; ascending, so comparing group
     /// indices compares original indices (the solvers' tie-break).
     representatives: Vec<u32>,
@@ -435,7 +442,7 @@ impl DistinctEdges {
 /// identical right edges only the representative (lowest `P`, then lowest index) can be the
 /// reference's argmin, since every member has the same `D`; identical left edges pose the same
 /// minimisation, so they share its answer.
-fn distinct_row(
+pub(crate) fn distinct_row(
     model: &CostModel,
     previous: &[u64],
     rights: &EdgeSet,

@@ -17,8 +17,9 @@
 //!   profiles and alpha masks, for the exact solver's pruning (not in the paper).
 //! - `dp`: the dynamic program of Eq. 1 with backtracking (§1.4, §2): the plain reference
 //!   solver, the exact fast solver (its branch and bound in `profile_tree`) and a brute-force
-//!   enumerator for tests; `solve` runs it (or `closed`) and the repetition control of
-//!   `variety` (not in the paper).
+//!   enumerator for tests; `coarse`, the coarse-to-fine solver (not in the paper: the DP on
+//!   cells of `f × f` positions, then the exact DP in bands around the coarse optimum); `solve`
+//!   runs them (or `closed`) and the repetition control of `variety` (not in the paper).
 //! - `closed`: closed curves, the single-DP approximation and an exact, certified mode (§1.5).
 //! - `avoidance`: avoidance maps and fold-over detection (§3.1).
 //! - `stitch`: the edge alignment of Eq. 2–3 and its propagation inside pieces (§3.2).
@@ -67,6 +68,7 @@ mod bounds;
 mod brush;
 mod canvas;
 mod closed;
+mod coarse;
 mod cost;
 mod dp;
 mod exemplar;
@@ -94,6 +96,7 @@ mod warnings;
 use motif_core::{InvalidParameter, Polyline, Progress, RgbaImage};
 
 pub use crate::brush::{Fit, Flip};
+pub use crate::coarse::CoarseReport;
 pub use crate::cost::AlphaMode;
 pub use crate::dp::Solver;
 pub use crate::fidelity::{PatchFidelity, patch_fidelity};
@@ -164,5 +167,7 @@ pub fn synthesize(input: &Input<'_>, params: &Params, progress: &mut dyn Progres
 mod tests;
 #[cfg(test)]
 mod tests_brush;
+#[cfg(test)]
+mod tests_coarse;
 #[cfg(test)]
 mod tests_features;

@@ -83,8 +83,13 @@ pub struct Params {
     pub closed: ClosedMode,
     /// Synthesis or the repeat baseline. Default [`Method::Synthesis`].
     pub method: Method,
-    /// DP solver (§1.4, §2). Default [`Solver::Exact`]; both give the same optimum.
+    /// DP solver (§1.4, §2). Default [`Solver::Exact`]; the exact and reference solvers give the
+    /// same optimum, [`Solver::CoarseToFine`] a cost at least as high (equal on small problems).
     pub solver: Solver,
+    /// With [`Solver::CoarseToFine`], also run the exact solver and report the coarse solver's
+    /// cost gap (`Report::exact_optimum`, `Report::cost_gap`); the run then takes at least as long
+    /// as an exact one. Default false.
+    pub check_gap: bool,
     /// Binary (the paper's ξ) or continuous alpha in ξ (§1). Default [`AlphaMode::Continuous`].
     pub alpha_mode: AlphaMode,
     /// `γ`, the cost of matching an opaque with a transparent pixel (§1). Finite, in
@@ -172,6 +177,7 @@ impl Params {
         closed: ClosedMode::Auto,
         method: Method::Synthesis,
         solver: Solver::Exact,
+        check_gap: false,
         alpha_mode: AlphaMode::Continuous,
         mismatch_penalty: 1024.0,
         stitch: false,
@@ -211,6 +217,7 @@ motif_core::builders! { Params {
     with_closed => closed: ClosedMode,
     with_method => method: Method,
     with_solver => solver: Solver,
+    with_check_gap => check_gap: bool,
     with_alpha_mode => alpha_mode: AlphaMode,
     with_mismatch_penalty => mismatch_penalty: f64,
     with_stitch => stitch: bool,

@@ -5,6 +5,7 @@ use serde::Serialize;
 
 use crate::avoidance::ForbiddenMask;
 use crate::brush::Fit;
+use crate::coarse::CoarseReport;
 use crate::dp::{DpCounters, Solver};
 use crate::params::Method;
 use crate::solve::VarietyReport;
@@ -50,6 +51,17 @@ pub struct Report {
 
     /// Solver used.
     pub solver: Solver,
+    /// The coarse-to-fine solver's figures (cell side, positions and band sizes per row, coarse
+    /// and refinement milliseconds); `None` with the other solvers.
+    pub coarse: Option<CoarseReport>,
+    /// `Ω` of the exact solver (paper units), when it ran beside the coarse-to-fine one
+    /// (`Params::check_gap`).
+    pub exact_optimum: Option<f64>,
+    /// The coarse-to-fine solver's `Ω` less the exact optimum (paper units, ≥ 0; 0: it found an
+    /// optimum), when the exact solver ran too.
+    pub cost_gap: Option<f64>,
+    /// `cost_gap` as a fraction of the coarse-to-fine `Ω` (0 when that is 0).
+    pub cost_gap_fraction: Option<f64>,
     /// Number of pieces.
     pub pieces: usize,
     /// `C`, samples per edge.

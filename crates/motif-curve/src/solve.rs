@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use crate::closed;
+use crate::coarse::{self, CoarseReport};
 use rayon::prelude::*;
 
 use crate::cost::{COST_SCALE, CostModel, edge_distance, left_edges, right_edges};
@@ -23,6 +24,8 @@ pub(crate) struct Solution {
     pub closed_certified: Option<bool>,
     pub closed_starts_tried: usize,
     pub closed_directly: bool,
+    /// The coarse-to-fine solver's figures (with [`Solver::CoarseToFine`]).
+    pub coarse: Option<CoarseReport>,
 }
 
 /// How the closed solvers run.
@@ -34,9 +37,12 @@ pub(crate) struct Setup {
     pub closed_max_starts: usize,
     /// The repetition rule (weight 0: none).
     pub rule: Rule,
+    /// With the coarse-to-fine solver, also run the exact one for the cost gap.
+    pub check_gap: bool,
 }
 
-/// Solves `rows` once (closed curves: `rows` ends with the terminal row).
+/// Solves `rows` once (closed curves: `rows` ends with the terminal row). The coarse-to-fine
+/// solver runs without the cache (its rows are not those of the exact table).
 pub(crate) fn solve_once(
     exemplar: &Exemplar,
     model: &CostModel,
@@ -45,6 +51,12 @@ pub(crate) fn solve_once(
     cache: Option<&mut Cache>,
     on_row: &mut dyn FnMut(usize),
 ) -> Solution {
+    if setup.solver == Solver::CoarseToFine {
+        let factor = coarse::factor_for(rows);
+        let (mut solution, figures) = coarse::solve(exemplar, model, rows, setup, factor, on_row);
+        solution.coarse = Some(figures);
+        return solution;
+    }
     if setup.closed {
         let cycle = closed::solve_closed(
             exemplar,
@@ -63,6 +75,7 @@ pub(crate) fn solve_once(
             closed_certified: cycle.certified,
             closed_starts_tried: cycle.starts_tried,
             closed_directly: cycle.closed_directly,
+            coarse: None,
         }
     } else {
         let table = match cache {
@@ -86,6 +99,7 @@ pub(crate) fn solve_once(
             closed_certified: None,
             closed_starts_tried: 0,
             closed_directly: false,
+            coarse: None,
         }
     }
 }
@@ -100,6 +114,8 @@ pub struct VarietyReport {
     /// `E = Ω + W · repeated pairs` of the result (paper units).
     pub energy: f64,
     /// `Ω*`, the unpenalised optimum: no result can have a lower `E` (paper units).
+    /// With the coarse-to-fine solver, `Ω*` is the exact solver's optimum when it ran too
+    /// (`check_gap`), else the coarse-to-fine `Ω`, which is then no bound.
     pub lower_bound: f64,
     /// `(E − Ω*) / E`: how far above the lower bound the result is at most, as a fraction of `E`
     /// (0: proven optimal).
@@ -115,6 +131,10 @@ pub struct VarietyReport {
 /// The result of [`optimise`]: the solution, its repeated pairs and the variety figures.
 pub(crate) struct Optimised {
     pub solution: Solution,
+    /// `Ω` of the dynamic program's path (before the descent of the repetition control).
+    pub dp_cost: u64,
+    /// The exact optimum of `Ω`, when the exact solver ran beside the coarse-to-fine one.
+    pub exact_optimum: Option<u64>,
     pub repeated_pairs: usize,
     pub distinct_windows: usize,
     pub variety: Option<VarietyReport>,
@@ -138,16 +158,21 @@ pub(crate) fn optimise(
         (0..pieces).map(|i| (!empty[i]).then(|| rows[i].positions[path[i]])).collect()
     };
     let mut solution = solve_once(exemplar, model, rows, setup, cache, on_row);
+    let dp_cost = solution.cost;
+    let exact_optimum = (setup.solver == Solver::CoarseToFine && setup.check_gap)
+        .then(|| solve_once(exemplar, model, rows, Setup { solver: Solver::Exact, ..setup }, None, &mut |_| {}).cost);
     let first_pairs = rule.repeated_pairs(&windows(&solution.path));
     if rule.weight == 0 {
         return Optimised {
+            dp_cost,
+            exact_optimum,
             repeated_pairs: first_pairs,
             distinct_windows: rule.distinct_windows(&windows(&solution.path)),
             solution,
             variety: None,
         };
     }
-    let lower_bound = solution.cost;
+    let lower_bound = exact_optimum.unwrap_or(solution.cost);
     let energy_of = |cost: u64, pairs: usize| cost + rule.weight * pairs as u64;
     let first_energy = energy_of(solution.cost, first_pairs);
     let descent_moves = descend(exemplar, model, rows, rule, empty, &mut solution.path);
@@ -160,12 +185,14 @@ pub(crate) fn optimise(
         radius: rule.radius,
         energy: to_paper(energy),
         lower_bound: to_paper(lower_bound),
-        gap: if energy == 0 { 0.0 } else { (energy - lower_bound) as f64 / energy as f64 },
+        gap: if energy == 0 { 0.0 } else { energy.saturating_sub(lower_bound) as f64 / energy as f64 },
         descent_moves,
         repeated_pairs_unpenalised: first_pairs,
         energy_unpenalised: to_paper(first_energy),
     };
     Optimised {
+        dp_cost,
+        exact_optimum,
         distinct_windows: rule.distinct_windows(&windows(&solution.path)),
         repeated_pairs,
         solution,

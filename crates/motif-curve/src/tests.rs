@@ -14,15 +14,15 @@ use crate::ribbon::{Ribbon, slice};
 use crate::{Canvas, ClosedMode, Error, Input, Method, Params, PieceShape, synthesize};
 
 /// A small problem built from raw parts, for solver tests.
-struct Problem {
-    exemplar: Exemplar,
-    model: CostModel,
-    frames: Vec<PieceFrame>,
-    valid: Vec<Vec<Position>>,
+pub(crate) struct Problem {
+    pub(crate) exemplar: Exemplar,
+    pub(crate) model: CostModel,
+    pub(crate) frames: Vec<PieceFrame>,
+    pub(crate) valid: Vec<Vec<Position>>,
 }
 
 impl Problem {
-    fn new(image: &RgbaImage, curve: &Polyline, width: f64, delta: f64, mode: AlphaMode) -> Self {
+    pub(crate) fn new(image: &RgbaImage, curve: &Polyline, width: f64, delta: f64, mode: AlphaMode) -> Self {
         let ribbon = Ribbon::new(curve, width).unwrap();
         let samples = width.ceil() as usize;
         let frames: Vec<PieceFrame> = slice(&ribbon, delta).iter().map(|q| PieceFrame::new(q, 1.0, samples)).collect();
@@ -32,7 +32,7 @@ impl Problem {
         Self { exemplar, model: CostModel::new(mode, 1024.0), frames, valid }
     }
 
-    fn rows(&self, terminal: bool) -> Vec<RowSpec<'_>> {
+    pub(crate) fn rows(&self, terminal: bool) -> Vec<RowSpec<'_>> {
         let mut rows: Vec<RowSpec<'_>> =
             self.frames.iter().zip(&self.valid).map(|(frame, positions)| RowSpec { frame, positions }).collect();
         if terminal {
@@ -41,7 +41,7 @@ impl Problem {
         rows
     }
 
-    fn combinations(&self) -> usize {
+    pub(crate) fn combinations(&self) -> usize {
         self.valid.iter().map(Vec::len).product()
     }
 }
@@ -61,7 +61,7 @@ pub(crate) fn random_exemplar(width: usize, height: usize, cells: &[u8]) -> Rgba
     })
 }
 
-fn best_open(problem: &Problem, solver: Solver) -> (u64, Vec<usize>) {
+pub(crate) fn best_open(problem: &Problem, solver: Solver) -> (u64, Vec<usize>) {
     let rows = problem.rows(false);
     let table = solve(&problem.exemplar, &problem.model, &rows, solver, &mut |_| {});
     let last = (0..table.last_costs.len()).min_by_key(|&i| (table.last_costs[i], i)).unwrap();

@@ -155,6 +155,11 @@ fn end_tiles_are_drawn_whole_at_the_curves_ends() {
     assert!((56..=60).contains(&red.len()), "{red:?}");
     assert!(red.iter().all(|&x| x < first + 30 || x + 30 > last), "{red:?}");
     assert!(last - first > 100, "{red:?}");
+    // A tile exactly one piece long has the pieces' frame, and still its own positions.
+    let same_frame = run(&exemplar, &params(16.0, 20.0).with_start_tile(Some([170, 191])));
+    assert_eq!(same_frame.pieces[0].arc, [0.0, 20.0]);
+    assert_eq!(column(&same_frame.pieces[0]), Some(170));
+    assert!(same_frame.pieces[1..].iter().all(|piece| column(piece) < Some(160)), "{:?}", same_frame.pieces);
     // Tiles need an open curve and columns inside the exemplar.
     let closed = crate::tests::circle(100.0, 100.0, 60.0, 64);
     let input = Input { exemplar: &exemplar, curve: &closed, avoidance: None, more_exemplars: &[] };

@@ -21,7 +21,7 @@ use crate::options::{Colour, Declared, Described};
 
 crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
 crate::choice_option!(Method: "synth", "repeat");
-crate::choice_option!(Solver: "exact", "reference");
+crate::choice_option!(Solver: "exact", "reference", "coarse");
 crate::choice_option!(AlphaMode: "binary", "continuous");
 crate::choice_option!(PieceShape: "rigid", "bent");
 crate::choice_option!(Fit: "none", "stretch", "space");
@@ -67,9 +67,14 @@ crate::declare_options! {
         method: Method = DEFAULTS.method,
         /// Dynamic-programming solver: exact (merged identical edges, branch and bound over a
         /// profile tree, lower bounds and early exit) or reference (the plain O(V²C) dynamic
-        /// program); both find the same optimum.
-        [value_name: "exact|reference"]
+        /// program), which find the same optimum; or coarse, for large or dense exemplars: the
+        /// program on cells of 2–4 pixels first, then the exact one in bands of positions around
+        /// the best cells (a cost at least the optimum's; --check-gap measures the difference).
+        [value_name: "exact|reference|coarse"]
         solver: Solver = DEFAULTS.solver,
+        /// With --solver coarse, also run the exact solver and report the exact optimum and the
+        /// coarse solver's cost gap (exact_optimum, cost_gap); takes at least an exact run's time.
+        check_gap: bool = DEFAULTS.check_gap,
         /// Alpha in the matching cost: binary, the paper's ξ (alpha thresholded at 128, opaque or
         /// transparent), or continuous, ξ blended by alpha for anti-aliased and semi-transparent
         /// exemplars.
@@ -281,6 +286,7 @@ impl CurveJob {
             .with_closed(options.closed)
             .with_method(options.method)
             .with_solver(options.solver)
+            .with_check_gap(options.check_gap)
             .with_alpha_mode(options.alpha)
             .with_mismatch_penalty(options.gamma)
             .with_stitch(options.stitch)
@@ -395,6 +401,14 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
     put("estimated_memory_bytes", json!(report.estimated_memory_bytes));
     put("method", json!(report.method));
     put("solver", json!(report.solver));
+    if report.coarse.is_some() {
+        put("coarse", json!(report.coarse));
+    }
+    if report.exact_optimum.is_some() {
+        put("exact_optimum", json!(report.exact_optimum));
+        put("cost_gap", json!(report.cost_gap));
+        put("cost_gap_fraction", json!(report.cost_gap_fraction));
+    }
     put("pieces", json!(report.pieces));
     put("samples_per_edge", json!(report.samples_per_edge));
     put("canvas", json!(report.canvas));

@@ -48,6 +48,8 @@ teeth       openclipart-svg $oc/special/patterns/pattern-triangles-1.svg 250
 chain_wide  openclipart-svg $oc/signs_and_symbols/money/gold_chain_of_round_lin_01.svg 400
 chain_small openclipart-svg $oc/signs_and_symbols/money/gold_chain_of_round_lin_01.svg 258
 filigree_wide inkscape      usr/share/inkscape/examples/eastern-motive-P4G.svg 560
+chain_dense openclipart-svg $oc/signs_and_symbols/money/gold_chain_curved_as_a__01.svg 1000
+chain_large openclipart-svg $oc/signs_and_symbols/money/gold_chain_of_round_lin_01.svg 700
 TABLE
 "$PYTHON" "$here/exemplars.py" "$tmp/render" "$here"
 

@@ -31,6 +31,10 @@ STRIPS = {
     "chain_wide": (None, 43.2, (51, 223, 395, 344)),
     "chain_small": (None, 43.2, (33, 142, 233, 224)),
     "filigree_wide": (None, 0.0, (138, 220, 463, 284)),
+    # The hard speed cases (issue 34): a densely drawn chain of small links, where a wide ribbon
+    # leaves over 20 % of the positions valid, and the round-link chain at its native size.
+    "chain_dense": (None, 0.0, (350, 262, 550, 344)),
+    "chain_large": (None, 43.2, (110, 370, 710, 620)),
 }
 
 

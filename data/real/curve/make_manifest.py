@@ -2,7 +2,8 @@
 
     python make_manifest.py DIR
 
-Every exemplar must be an RGBA PNG under 100 KB with a transparent background; its pattern height
+Every exemplar must be an RGBA PNG under 100 KB (150 KB for the native-size speed case) with a
+transparent background; its pattern height
 (rows holding a pixel of alpha > 8, the default --cut-alpha of `motif curve`) must be below the
 case's ribbon width. A frieze whose motif fills the strip (opaque pixels in its first and last
 rows) gets width = strip height + 16. Every curve must parse: an SVG with one <path>, or a CSV
@@ -151,12 +152,32 @@ CASES = [
         "kind": "speed case: a lace frieze filling its strip, 325 × 64 (the paper's second exemplar size), width 80",
         "notes": "Speed target: at most 100 ms per DP row.",
     },
+    {
+        "name": "chain_dense_sweep",
+        "exemplar": "chain_dense.png",
+        "path": "flourish_sweep.svg",
+        "width": 124,
+        "piece_length": 20,
+        "kind": "hard speed case: a densely drawn chain of small round links, 200 × 82, on a ribbon wide enough to leave 27 % of the positions valid",
+        "notes": "Speed target (issue 34): at most 15 ms per DP row.",
+    },
+    {
+        "name": "chain_large_flourish",
+        "exemplar": "chain_large.png",
+        "path": "flourish.svg",
+        "width": 92,
+        "piece_length": 14.3,
+        "scale": 2.5,
+        "max_bytes": 150_000,
+        "kind": "hard speed case: the round-link chain at a native 600 × 250 (C = 230) in 100 pieces along the flourish",
+        "notes": "Speed target (issue 34): at most 60 ms per DP row and 10 s in all.",
+    },
 ]
 
 
-def check_exemplar(path: Path):
-    if path.stat().st_size > 100_000:
-        raise SystemExit(f"{path.name}: {path.stat().st_size} bytes, over 100 KB")
+def check_exemplar(path: Path, max_bytes: int = 100_000):
+    if path.stat().st_size > max_bytes:
+        raise SystemExit(f"{path.name}: {path.stat().st_size} bytes, over {max_bytes // 1000} KB")
     im = Image.open(path)
     if im.mode != "RGBA":
         raise SystemExit(f"{path.name}: mode {im.mode}, expected RGBA")
@@ -188,11 +209,12 @@ def main() -> None:
     here = Path(sys.argv[1])
     out = []
     for case in CASES:
-        size, pattern_height, fills = check_exemplar(here / case["exemplar"])
+        size, pattern_height, fills = check_exemplar(here / case["exemplar"], case.get("max_bytes", 100_000))
         closed = check_curve(here / case["path"])
-        if case["width"] <= pattern_height:
-            raise SystemExit(f"{case['name']}: width {case['width']} <= pattern height {pattern_height}")
-        if fills and case["width"] != size[1] + 16:
+        scale = case.get("scale", 1.0)
+        if case["width"] * scale <= pattern_height:
+            raise SystemExit(f"{case['name']}: width × scale {case['width'] * scale} <= pattern height {pattern_height}")
+        if fills and case["width"] * scale != size[1] + 16:
             raise SystemExit(f"{case['name']}: a frieze filling its strip wants width = {size[1]} + 16")
         out.append(
             {
@@ -201,7 +223,7 @@ def main() -> None:
                 "path": case["path"],
                 "width": case["width"],
                 "piece_length": case["piece_length"],
-                "scale": 1.0,
+                "scale": scale,
                 "variety": case.get("variety", 0),
                 "kind": case["kind"],
                 "exemplar_size": list(size),

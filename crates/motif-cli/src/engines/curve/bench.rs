@@ -41,7 +41,7 @@ fn one() -> f64 {
     1.0
 }
 
-/// The parameters of a case.
+/// The parameters of a case (the exact solver).
 pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
     let mut params = CurveParams::default();
     params.width = case.width;
@@ -54,9 +54,17 @@ pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
 
 /// One run of a case: the output, its wall time and its patch fidelity.
 pub fn run(folder: &Path, case: &CorpusCase, method: Method) -> anyhow::Result<(CurveOutput, f64, PatchFidelity)> {
+    run_with(folder, case, params_of(case, method))
+}
+
+/// One run of a case with `params`.
+fn run_with(
+    folder: &Path,
+    case: &CorpusCase,
+    params: CurveParams,
+) -> anyhow::Result<(CurveOutput, f64, PatchFidelity)> {
     let exemplar = motif_io::read_image(&folder.join(&case.exemplar))?;
     let curve = super::read_curve(&folder.join(&case.path), 0.1)?;
-    let params = params_of(case, method);
     let input = CurveInput { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
     let start = std::time::Instant::now();
     let output = motif_curve::synthesize(&input, &params, &mut NoProgress)
@@ -76,9 +84,31 @@ fn fidelity_json(figures: &PatchFidelity) -> Value {
     })
 }
 
-/// The figures of one case: synthesis and the repeat baseline.
+/// The coarse-to-fine solver on a case, against the exact solver's optimum `exact` (paper units):
+/// its DP time, its cost and the gap, and its fidelity.
+fn coarse_figures(folder: &Path, case: &CorpusCase, exact: f64) -> anyhow::Result<Value> {
+    let params = params_of(case, Method::Synthesis).with_solver(Solver::CoarseToFine);
+    let (output, seconds, fidelity) = run_with(folder, case, params)?;
+    let report = &output.report;
+    let gap = report.dp_optimum - exact;
+    Ok(json!({
+        "seconds": seconds,
+        "dp_row_ms_median": report.dp_row_ms_median,
+        "dp_row_ms_max": report.dp_row_ms_max,
+        "dp_optimum": report.dp_optimum,
+        "exact_optimum": exact,
+        "cost_gap": gap,
+        "cost_gap_fraction": if report.dp_optimum > 0.0 { gap / report.dp_optimum } else { 0.0 },
+        "coarse": report.coarse,
+        "fidelity": fidelity_json(&fidelity),
+    }))
+}
+
+/// The figures of one case: synthesis (the exact solver, then the coarse-to-fine one) and the
+/// repeat baseline.
 pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
     let (output, seconds, fidelity) = run(folder, case, Method::Synthesis)?;
+    let coarse = coarse_figures(folder, case, output.report.dp_optimum)?;
     let (_, repeat_seconds, repeat) = run(folder, case, Method::Repeat)?;
     let report = &output.report;
     Ok(json!({
@@ -98,6 +128,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
         "empty_pieces": report.empty_pieces,
         "warnings": report.warnings,
         "fidelity": fidelity_json(&fidelity),
+        "coarse_to_fine": coarse,
         "repeat_baseline": { "seconds": repeat_seconds, "fidelity": fidelity_json(&repeat) },
     }))
 }
