@@ -54,7 +54,7 @@
 //! let curve = Polyline::new(arc, false).unwrap();
 //! let params = Params::default().with_width(24.0).with_piece_length(12.0);
 //! params.validate().unwrap();
-//! let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+//! let input = Input::new(&exemplar, &curve);
 //! let output = synthesize(&input, &params, &mut NoProgress).unwrap();
 //! assert!(output.report.pieces > 10);
 //! // Bent pieces continue the rings across every seam.
@@ -121,6 +121,23 @@ pub struct Input<'a> {
     /// Optional avoidance map over the canvas (white = forbidden, §3.1); it must have the canvas
     /// size, and with a fitted canvas it sets the canvas size (origin at the document origin).
     pub avoidance: Option<&'a RgbaImage>,
+}
+
+impl<'a> Input<'a> {
+    /// One exemplar along `curve`, with no avoidance map.
+    pub fn new(exemplar: &'a RgbaImage, curve: &'a Polyline) -> Self {
+        Self { exemplar, curve, more_exemplars: &[], avoidance: None }
+    }
+
+    /// These exemplars mixed with the first.
+    pub fn with_more_exemplars(self, more_exemplars: &'a [RgbaImage]) -> Self {
+        Self { more_exemplars, ..self }
+    }
+
+    /// With an avoidance map over the canvas.
+    pub fn with_avoidance(self, avoidance: &'a RgbaImage) -> Self {
+        Self { avoidance: Some(avoidance), ..self }
+    }
 }
 
 /// Errors of the curve engine.

@@ -14,7 +14,7 @@ fn bars(rows: std::ops::Range<usize>) -> RgbaImage {
 /// Along a 130 px horizontal line, 16 px ribbon, 20 px pieces.
 fn run(exemplar: &RgbaImage, params: &Params) -> Output {
     let curve = line(10.0, 40.0, 140.0, 40.0);
-    let input = Input { exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input::new(exemplar, &curve);
     synthesize(&input, params, &mut NoProgress).unwrap()
 }
 
@@ -162,12 +162,12 @@ fn end_tiles_are_drawn_whole_at_the_curves_ends() {
     assert!(same_frame.pieces[1..].iter().all(|piece| column(piece) < Some(160)), "{:?}", same_frame.pieces);
     // Tiles need an open curve and columns inside the exemplar.
     let closed = crate::tests::circle(100.0, 100.0, 60.0, 64);
-    let input = Input { exemplar: &exemplar, curve: &closed, avoidance: None, more_exemplars: &[] };
+    let input = Input::new(&exemplar, &closed);
     let message = synthesize(&input, &tiled, &mut NoProgress).unwrap_err().to_string();
     assert!(message.contains("start-tile") && message.contains("closed"), "{message}");
     let outside = params(16.0, 20.0).with_end_tile(Some([190, 210]));
     let curve = line(10.0, 40.0, 140.0, 40.0);
-    let input = Input { exemplar: &exemplar, curve: &curve, avoidance: None, more_exemplars: &[] };
+    let input = Input::new(&exemplar, &curve);
     let message = synthesize(&input, &outside, &mut NoProgress).unwrap_err().to_string();
     assert!(message.contains("end-tile") && message.contains("200"), "{message}");
 }

@@ -332,12 +332,8 @@ impl CurveJob {
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
         let (params, dimensions) = self.params(&inputs)?;
-        let input = Input {
-            exemplar: inputs.exemplar,
-            curve: inputs.curve,
-            avoidance: inputs.avoidance,
-            more_exemplars: inputs.more_exemplars,
-        };
+        let input = Input { avoidance: inputs.avoidance, ..Input::new(inputs.exemplar, inputs.curve) }
+            .with_more_exemplars(inputs.more_exemplars);
         let output = match session {
             Some(session) => session.synthesize(&input, &params, progress)?,
             None => motif_curve::synthesize(&input, &params, progress)?,
