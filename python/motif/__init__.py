@@ -491,7 +491,7 @@ def strokes(
     along: Optional[ArrayLike] = None,
     region: Optional[ArrayLike] = None,
     size: Optional[Tuple[float, float]] = None,
-    tolerance: float = 0.1,
+    tolerance: Optional[float] = None,
     density_map: Optional[ArrayLike] = None,
     scale_map: Optional[ArrayLike] = None,
     seed: int = 1,
@@ -511,7 +511,8 @@ def strokes(
     density relative to the reference's; the scale is 2^(2·grey − 1).
 
     ``size`` is the output document's (width, height) (default: the rectangle, or the target's
-    extent). Options: ``fit``, ``rings``, ``variation``, ``position_variation``,
+    extent). ``tolerance`` flattens the reference's curves, as ``--tolerance`` (default and range
+    declared once, in motif-jobs: 0.1, 0.001–100). Options: ``fit``, ``rings``, ``variation``, ``position_variation``,
     ``allow_overlaps``, ``thresholds`` (a dict of shape, par, ov, sup, col, attr),
     ``lloyd_iterations``, ``max_memory``. Returns SVG text.
     """
@@ -534,7 +535,8 @@ def strokes(
         fixed["scale"] = float(scale)
     job = _job("strokes", fixed, options)
     maps = [None if m is None else _image(m, name) for m, name in ((density_map, "density_map"), (scale_map, "scale_map"))]
-    svg, report_text = _motif.strokes(reference_svg, job, document, float(tolerance), threads, *maps)
+    tolerance = None if tolerance is None else float(tolerance)
+    svg, report_text = _motif.strokes(reference_svg, job, document, tolerance, threads, *maps)
     return _finish(svg, report_text, report)
 
 

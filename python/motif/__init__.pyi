@@ -112,7 +112,7 @@ def points(
 def strokes(
     reference_svg: str, scale: Optional[float] = ..., *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
-    size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: Optional[float] = ...,
     density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
 ) -> str: ...
@@ -120,7 +120,7 @@ def strokes(
 def strokes(
     reference_svg: str, scale: Optional[float] = ..., *, rect: Optional[Tuple[float, float]] = ...,
     along: Optional[npt.ArrayLike] = ..., region: Optional[npt.ArrayLike] = ...,
-    size: Optional[Tuple[float, float]] = ..., tolerance: float = ...,
+    size: Optional[Tuple[float, float]] = ..., tolerance: Optional[float] = ...,
     density_map: Optional[npt.ArrayLike] = ..., scale_map: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[True], **options: Any
 ) -> Tuple[str, Dict[str, Any]]: ...

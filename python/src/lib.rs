@@ -500,18 +500,23 @@ fn points<'py>(
 /// `motif strokes`: (SVG text, report JSON). The reference is SVG text; the output document is
 /// `size` (width, height) user units; the maps are images over the target region's bounds.
 #[pyfunction]
-#[pyo3(signature = (reference_svg, job, size, tolerance=0.1, threads=None, density_map=None, scale_map=None))]
+#[pyo3(signature = (reference_svg, job, size, tolerance=None, threads=None, density_map=None, scale_map=None))]
 #[allow(clippy::too_many_arguments, reason = "a Python function's keyword arguments")]
 fn strokes(
     py: Python<'_>,
     reference_svg: &str,
     job: &str,
     size: (f64, f64),
-    tolerance: f64,
+    tolerance: Option<f64>,
     threads: Option<usize>,
     density_map: Option<PyReadonlyArrayDyn<'_, u8>>,
     scale_map: Option<PyReadonlyArrayDyn<'_, u8>>,
 ) -> PyResult<(String, String)> {
+    use motif_jobs::options::Declared as _;
+    let mut svg_options = motif_jobs::options::SvgOptions::default();
+    svg_options.tolerance = tolerance.unwrap_or(svg_options.tolerance);
+    svg_options.check_ranges().map_err(job_error)?;
+    let tolerance = svg_options.tolerance;
     let density_map = tone_map(density_map, "density_map")?;
     let scale_map = tone_map(scale_map, "scale_map")?;
     let job: motif_jobs::strokes::StrokesJob = description(job)?;

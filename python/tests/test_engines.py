@@ -119,6 +119,10 @@ def test_strokes_equal_the_cli(cli, tmp_path):
     svg, report = motif.strokes(reference, 30, rect=(400, 300), report=True)
     assert svg == (tmp_path / "out.svg").read_text()
     assert report["output_elements"] >= 1
+    # The flattening tolerance's default and range are the CLI's (one declaration).
+    assert motif.strokes(reference, 30, rect=(400, 300), tolerance=0.1) == svg
+    with pytest.raises(motif.OptionError, match="tolerance"):
+        motif.strokes(reference, 30, rect=(400, 300), tolerance=0)
 
 
 def test_strokes_infer_the_scale_as_the_cli(cli, tmp_path):

@@ -435,6 +435,17 @@ macro_rules! declare_options {
     };
 }
 
+crate::declare_options! {
+    /// How front ends flatten the curves of the SVG files they read (a curve's path, a stroke
+    /// reference, a region's outline), declared once.
+    pub struct SvgOptions {
+        /// Curve flattening tolerance for SVG paths, in the drawing's units (pixels): the largest
+        /// distance between a curve and the polyline that replaces it.
+        [value_name: "T", range: (0.001, 100.0)]
+        tolerance: f64 = 0.1,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -11,6 +11,7 @@ use clap::Args;
 use motif_core::{Point, Polyline};
 use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob, CurveOptions};
+use motif_jobs::options::{Declared as _, SvgOptions};
 use serde_json::json;
 
 use crate::context::Context;
@@ -36,9 +37,9 @@ pub struct CurveArgs {
     /// Every option of the job.
     #[command(flatten)]
     pub options: JobArgs<CurveOptions>,
-    /// Curve flattening tolerance for SVG paths, pixels, 0.001–100.
-    #[arg(long, value_name = "T", default_value_t = 0.1)]
-    pub tolerance: f64,
+    /// How SVG curves are flattened ([`SvgOptions`], declared in `motif_jobs::options`).
+    #[command(flatten)]
+    pub svg: JobArgs<SvgOptions>,
     /// Also write the result with the ribbon, piece borders, forbidden areas and per-seam cost
     /// (heat colour, green = cheap, red = expensive) drawn on top (PNG).
     #[arg(long, value_name = "OUT.png")]
@@ -92,13 +93,8 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         .iter()
         .map(|path| motif_io::read_image_within(path, budget))
         .collect::<Result<Vec<_>, _>>()?;
-    if !(args.tolerance.is_finite() && (0.001..=100.0).contains(&args.tolerance)) {
-        bail!(
-            "invalid tolerance = {}: must be between 0.001 and 100 pixels",
-            motif_core::error::number(args.tolerance)
-        );
-    }
-    let curve = read_curve(&args.path, args.tolerance)?;
+    args.svg.options.check_ranges()?;
+    let curve = read_curve(&args.path, args.svg.options.tolerance)?;
     let avoidance = args.avoid.as_deref().map(|path| motif_io::read_image_within(path, budget)).transpose()?;
     let inputs = CurveInputs {
         exemplar: &exemplar,

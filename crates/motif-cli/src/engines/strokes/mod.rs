@@ -13,6 +13,7 @@ use kurbo::BezPath;
 use motif_core::{Point, Polyline};
 use motif_io::SvgWriter;
 use motif_jobs::Job;
+use motif_jobs::options::{Declared as _, SvgOptions};
 use motif_jobs::strokes::{
     Analysis, RunScale, Stroke, StrokesInputs, StrokesJob, StrokesOptions, StrokesRun, Target, TargetSpec, ToneMap,
     draw_stroke, reference_from_svg, strokes_svg,
@@ -59,10 +60,9 @@ pub struct StrokesArgs {
     /// apart.
     #[arg(long, value_name = "MAP.png")]
     pub scale_map: Option<PathBuf>,
-    /// Curve flattening tolerance in drawing units (maximum distance between a curve and its
-    /// polyline), > 0.
-    #[arg(long, value_name = "T", default_value_t = 0.1)]
-    pub tolerance: f64,
+    /// How SVG curves are flattened ([`SvgOptions`], declared in `motif_jobs::options`).
+    #[command(flatten)]
+    pub svg: JobArgs<SvgOptions>,
     /// Also draw the analysed reference here (SVG): each element's strokes in its cluster colour,
     /// its box, and the neighbourhood graph between element centres.
     #[arg(long, value_name = "ANALYSIS.svg")]
@@ -109,7 +109,7 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
     if let Some(file) = &args.along {
         let document = motif_io::read_svg(file)?;
         for path in &document.paths {
-            if let Some(polyline) = first_subpath(&path.path, args.tolerance)? {
+            if let Some(polyline) = first_subpath(&path.path, args.svg.options.tolerance)? {
                 return Ok((TargetSpec::Along(listed(&polyline)), document.width, document.height));
             }
         }
@@ -118,7 +118,7 @@ fn read_target(args: &StrokesArgs) -> anyhow::Result<(TargetSpec, f64, f64)> {
     if let Some(file) = &args.region {
         let document = motif_io::read_svg(file)?;
         for path in &document.paths {
-            let Some(outline) = first_subpath(&path.path, args.tolerance)? else { continue };
+            let Some(outline) = first_subpath(&path.path, args.svg.options.tolerance)? else { continue };
             if !outline.is_closed() {
                 continue;
             }
@@ -252,10 +252,11 @@ pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     if !(args.png_scale.is_finite() && args.png_scale > 0.0) {
         bail!("invalid png-scale = {}: must be a finite number > 0", args.png_scale);
     }
+    args.svg.options.check_ranges()?;
     // The options are checked before any file is read (the target is not needed for that).
     job_of(args, context.seed, TargetSpec::Rect([1.0, 1.0])).params()?;
     let reference = motif_io::read_svg(&args.reference)?;
-    let strokes = reference_from_svg(&reference, args.tolerance)
+    let strokes = reference_from_svg(&reference, args.svg.options.tolerance)
         .with_context(|| format!("cannot read the reference {}", args.reference.display()))?;
     let (target, width, height) = read_target(args)?;
     let job = StrokesJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed, target) };
