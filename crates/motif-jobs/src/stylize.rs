@@ -422,12 +422,22 @@ impl InpaintJob {
     pub fn new() -> Self {
         Self { seed: default_seed(), max_memory: None, options: SynthesisOptions::default() }
     }
+
+    /// The engine's parameters.
+    pub fn params(&self) -> Result<Params, JobError> {
+        checked(self.options.params(self.seed, self.max_memory), &self.options)
+    }
 }
 
 impl ZoomJob {
     /// A job for `width × height` levels with every other option at its default.
     pub fn new(width: usize, height: usize) -> Self {
         Self { size: [width, height], seed: default_seed(), max_memory: None, options: ZoomJobOptions::default() }
+    }
+
+    /// The engine's parameters for every level.
+    pub fn params(&self) -> Result<Params, JobError> {
+        checked(self.options.shared.params(self.seed, self.max_memory), &self.options)
     }
 
     /// The whole run's estimated peak memory for `exemplar`, bytes (checked by [`Job::run`](crate::Job::run)

@@ -5,7 +5,7 @@ use motif_core::{ByteImage, ChannelImage, FloatImage, InvalidParameter, Progress
 use motif_stylize::{Guide, Input, Mask, Output, PresynthInput, SegmentTexture};
 use serde_json::{Map, Value, json};
 
-use super::{GuidePair, InpaintJob, PresynthJob, StylizeJob, TextureJob, ZoomJob, checked};
+use super::{GuidePair, InpaintJob, PresynthJob, StylizeJob, TextureJob, ZoomJob};
 use super::{PresynthJobOptions, StylizeJobOptions, SynthesisOptions, TextureJobOptions, ZoomJobOptions};
 use crate::{Finished, Job, JobError};
 
@@ -147,7 +147,7 @@ impl InpaintJob {
         inputs: InpaintInputs<I>,
         progress: &mut dyn Progress,
     ) -> Result<StylizeRun, JobError> {
-        let params = checked(self.options.params(self.seed, self.max_memory), &self.options)?;
+        let params = self.params()?;
         let input = Input::inpaint(inputs.image, inputs.hole);
         Ok(StylizeRun::of(motif_stylize::synthesize(&input, &params, progress)?))
     }
@@ -190,7 +190,7 @@ impl Job for ZoomJob {
 
     /// Synthesizes the zoom levels of a texture of the exemplar, outermost first.
     fn run(&self, exemplar: FloatImage, progress: &mut dyn Progress) -> Result<ZoomRun, JobError> {
-        let params = checked(self.options.shared.params(self.seed, self.max_memory), &self.options)?;
+        let params = self.params()?;
         let estimate = self.memory_bytes(&exemplar);
         let input = Input::texture(exemplar, self.size[0], self.size[1]);
         let (factor, levels) = (self.options.own.factor, self.options.own.levels);
