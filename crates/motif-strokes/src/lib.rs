@@ -95,7 +95,7 @@ use maps::Maps;
 use matching::{Limits, MeasureTable};
 use placement::{Placement, Scene, placed_strokes, resolve_overlaps};
 use seeds::Density;
-use synthesis::{Layout, ReferenceRings, grow, layout_path, layout_region};
+use synthesis::{Growth, Layout, ReferenceRings, grow, layout_path, layout_region};
 
 /// Where to synthesize.
 #[derive(Debug, Clone, PartialEq)]
@@ -318,6 +318,92 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     progress.report("analysis", 1.0);
 
     timer.start("seeds");
+    let seeding = seed_target(input, params, &analysis, &streams, progress)?;
+
+    timer.start("match");
+    let limits = Limits::new(&params.thresholds, analysis.mean_length);
+    let frames: Vec<OrientedBox> = (0..analysis.elements.len()).map(|i| analysis.pattern_frame(i)).collect();
+    let appearances: Vec<Appearance> = analysis.elements.iter().map(|e| e.appearance()).collect();
+    let table = MeasureTable::new(&frames, &appearances, &limits);
+    let reference_rings = ReferenceRings::new(&analysis, rings);
+    let usable: Vec<bool> = (0..analysis.elements.len()).map(|i| analysis.is_usable(i)).collect();
+    let mut growth = grow(&seeding.layout, rings, &reference_rings, &table, &usable, &streams, progress);
+
+    timer.start("variation");
+    let mut placements = place_elements(input, params, &analysis, &seeding, &growth, &limits, &streams);
+
+    timer.start("overlaps");
+    let layout = &seeding.layout;
+    let (kept, overlap) = if params.avoid_overlaps {
+        let scene = Scene {
+            analysis: &analysis,
+            strokes: &input.strokes,
+            target: &input.target,
+            layout,
+            rings,
+            reference: &reference_rings,
+            table: &table,
+            streams: &streams,
+        };
+        resolve_overlaps(&scene, &mut placements, &mut growth.assigned, &mut growth.matched, &growth.order)
+    } else {
+        (vec![true; layout.len()], OverlapFigures::default())
+    };
+
+    timer.start("output");
+    let placed = PlacedOutput::of(&analysis, &input.strokes, &placements, &kept, &growth.matched);
+    let overlap =
+        if params.avoid_overlaps { overlap } else { placed.overlap_rates(overlap, &analysis, &input.strokes) };
+    let target_edges = layout
+        .graph
+        .edges()
+        .filter(|&(a, b)| kept[a] && kept[b])
+        .map(|(a, b)| (placed.output_index[a], placed.output_index[b]))
+        .collect();
+    let stages_ms = timer.finish();
+    let PlacedOutput { strokes, elements: synthesized, .. } = placed;
+    let matched_elements = synthesized.iter().filter(|element| element.matched).count();
+    let report = Report {
+        estimated_memory_bytes: seeding.estimated_memory_bytes,
+        reference_strokes: input.strokes.len(),
+        reference_elements: analysis.elements.len(),
+        border_elements: analysis.border.iter().filter(|&&b| b).count(),
+        fragment_elements: analysis.fragments.iter().filter(|&&f| f).count(),
+        output_elements: synthesized.len(),
+        output_strokes: strokes.len(),
+        expected_elements: seeding.expected,
+        matched_elements,
+        fallback_elements: synthesized.len() - matched_elements,
+        candidate_fraction: matched_elements as f64 / synthesized.len().max(1) as f64,
+        mean_candidates: growth.mean_candidates,
+        rings,
+        lloyd_iterations: layout.lloyd_iterations,
+        skewed_triangles_removed: analysis.skewed_triangles,
+        overlap,
+        stages_ms,
+    };
+    Ok(Output { strokes, elements: synthesized, target_edges, analysis, report })
+}
+
+/// The seeds stage's result: the maps over the target, the element count it was sized for, and
+/// the seed layout.
+struct Seeding<'a> {
+    maps: Maps<'a>,
+    /// N_ref · A_tar / A_ref times the maps' mean relative density, before rounding.
+    expected: f64,
+    estimated_memory_bytes: u64,
+    layout: Layout,
+}
+
+/// The seeds stage: sizes the output from the reference's density (refusing blank maps and
+/// counts, matching or memory past their limits) and lays the seeds out on the target.
+fn seed_target<'a>(
+    input: &'a Input,
+    params: &Params,
+    analysis: &Analysis,
+    streams: &SeedStreams,
+    progress: &mut dyn Progress,
+) -> Result<Seeding<'a>, Error> {
     let target_area = match &input.target {
         Target::Path(path) => path.length(),
         Target::Region(region) => region.area(),
@@ -348,115 +434,95 @@ pub fn synthesize(input: &Input, params: &Params, progress: &mut dyn Progress) -
     let count = (expected.round() as usize).max(1);
     check_matching_cost(count, analysis.elements.len())?;
     let estimated_memory_bytes =
-        memory_estimate(&analysis, &input.strokes, count).check(params.max_memory, MEMORY_ADVICE)?;
+        memory_estimate(analysis, &input.strokes, count).check(params.max_memory, MEMORY_ADVICE)?;
     progress.report("seeds", 0.0);
     let layout = match &input.target {
-        Target::Path(path) => layout_path(path, count, analysis.frame_angle, params.lloyd_iterations, &streams),
-        Target::Region(region) => layout_region(region, count, params.lloyd_iterations, &density, &streams),
+        Target::Path(path) => layout_path(path, count, analysis.frame_angle, params.lloyd_iterations, streams),
+        Target::Region(region) => layout_region(region, count, params.lloyd_iterations, &density, streams),
     };
     progress.report("seeds", 1.0);
+    Ok(Seeding { maps, expected, estimated_memory_bytes, layout })
+}
 
-    timer.start("match");
-    let frames: Vec<OrientedBox> = (0..analysis.elements.len()).map(|i| analysis.pattern_frame(i)).collect();
-    let appearances: Vec<Appearance> = analysis.elements.iter().map(|e| e.appearance()).collect();
-    let limits = Limits::new(&params.thresholds, analysis.mean_length);
-    let table = MeasureTable::new(&frames, &appearances, &limits);
-    let reference_rings = ReferenceRings::new(&analysis, rings);
-    let usable: Vec<bool> = (0..analysis.elements.len()).map(|i| analysis.is_usable(i)).collect();
-    let mut growth = grow(&layout, rings, &reference_rings, &table, &usable, &streams, progress);
-
-    timer.start("variation");
-    let exchanges = variation::exchange(&growth.assigned, &analysis, &limits, params.variation, &streams);
+/// The variation stage: each seed's matched element with its exchanged parameters, its position
+/// (shifted with position variation) and its scale from the scale map.
+fn place_elements(
+    input: &Input,
+    params: &Params,
+    analysis: &Analysis,
+    seeding: &Seeding,
+    growth: &Growth,
+    limits: &Limits,
+    streams: &SeedStreams,
+) -> Vec<Placement> {
+    let layout = &seeding.layout;
+    let exchanges = variation::exchange(&growth.assigned, analysis, limits, params.variation, streams);
     let positions = if params.position_variation {
-        shifted_positions(&layout, &growth.assigned, &analysis, &input.target)
+        shifted_positions(layout, &growth.assigned, analysis, &input.target)
     } else {
         layout.positions.clone()
     };
-    let mut placements: Vec<Placement> = (0..layout.len())
+    (0..layout.len())
         .map(|seed| Placement {
             reference: growth.assigned[seed],
             position: positions[seed],
             rotation: layout.rotations[seed] + exchanges[seed].rotation,
             exchange: exchanges[seed],
-            scale: maps.scale_at(positions[seed]),
+            scale: seeding.maps.scale_at(positions[seed]),
         })
-        .collect();
+        .collect()
+}
 
-    timer.start("overlaps");
-    let (kept, overlap) = if params.avoid_overlaps {
-        let scene = Scene {
-            analysis: &analysis,
-            strokes: &input.strokes,
-            target: &input.target,
-            layout: &layout,
-            rings,
-            reference: &reference_rings,
-            table: &table,
-            streams: &streams,
-        };
-        resolve_overlaps(&scene, &mut placements, &mut growth.assigned, &mut growth.matched, &growth.order)
-    } else {
-        (vec![true; layout.len()], OverlapFigures::default())
-    };
+/// The output stage: the kept placements' strokes, element by element.
+struct PlacedOutput {
+    strokes: Vec<Stroke>,
+    elements: Vec<SynthesizedElement>,
+    /// Each seed's index in `elements` (`usize::MAX` for seeds dropped by overlap resolution).
+    output_index: Vec<usize>,
+}
 
-    timer.start("output");
-    let mut strokes = Vec::new();
-    let mut synthesized = Vec::with_capacity(layout.len());
-    let mut output_index = vec![usize::MAX; layout.len()];
-    for (seed, placement) in placements.iter().enumerate() {
-        if !kept[seed] {
-            continue;
+impl PlacedOutput {
+    fn of(
+        analysis: &Analysis,
+        reference: &[Stroke],
+        placements: &[Placement],
+        kept: &[bool],
+        matched: &[bool],
+    ) -> PlacedOutput {
+        let mut strokes = Vec::new();
+        let mut elements = Vec::with_capacity(placements.len());
+        let mut output_index = vec![usize::MAX; placements.len()];
+        for (seed, placement) in placements.iter().enumerate() {
+            if !kept[seed] {
+                continue;
+            }
+            let start = strokes.len();
+            strokes.extend(placed_strokes(analysis, reference, placement));
+            output_index[seed] = elements.len();
+            elements.push(SynthesizedElement {
+                reference: placement.reference as usize,
+                position: placement.position,
+                rotation: placement.rotation,
+                scale: placement.scale,
+                matched: matched[seed],
+                exchange: placement.exchange,
+                strokes: start..strokes.len(),
+            });
         }
-        let start = strokes.len();
-        strokes.extend(placed_strokes(&analysis, &input.strokes, placement));
-        output_index[seed] = synthesized.len();
-        synthesized.push(SynthesizedElement {
-            reference: placement.reference as usize,
-            position: placement.position,
-            rotation: placement.rotation,
-            scale: placement.scale,
-            matched: growth.matched[seed],
-            exchange: placement.exchange,
-            strokes: start..strokes.len(),
-        });
+        PlacedOutput { strokes, elements, output_index }
     }
-    let mut overlap = overlap;
-    if !params.avoid_overlaps {
-        overlap.reference_rate = placement::reference_overlap_rate(&analysis, &input.strokes);
-        let footprints: Vec<overlap::Footprint> = synthesized
+
+    /// Overlap rates measured after the fact, when overlaps were not resolved.
+    fn overlap_rates(&self, mut overlap: OverlapFigures, analysis: &Analysis, reference: &[Stroke]) -> OverlapFigures {
+        overlap.reference_rate = placement::reference_overlap_rate(analysis, reference);
+        let footprints: Vec<overlap::Footprint> = self
+            .elements
             .iter()
-            .map(|element| overlap::Footprint::of_strokes(&strokes[element.strokes.clone()]))
+            .map(|element| overlap::Footprint::of_strokes(&self.strokes[element.strokes.clone()]))
             .collect();
         overlap.output_rate = overlap::overlap_rate(&footprints);
+        overlap
     }
-    let target_edges = layout
-        .graph
-        .edges()
-        .filter(|&(a, b)| kept[a] && kept[b])
-        .map(|(a, b)| (output_index[a], output_index[b]))
-        .collect();
-    let stages_ms = timer.finish();
-    let matched_elements = synthesized.iter().filter(|element| element.matched).count();
-    let report = Report {
-        estimated_memory_bytes,
-        reference_strokes: input.strokes.len(),
-        reference_elements: analysis.elements.len(),
-        border_elements: analysis.border.iter().filter(|&&b| b).count(),
-        fragment_elements: analysis.fragments.iter().filter(|&&f| f).count(),
-        output_elements: synthesized.len(),
-        output_strokes: strokes.len(),
-        expected_elements: expected,
-        matched_elements,
-        fallback_elements: synthesized.len() - matched_elements,
-        candidate_fraction: matched_elements as f64 / synthesized.len().max(1) as f64,
-        mean_candidates: growth.mean_candidates,
-        rings,
-        lloyd_iterations: layout.lloyd_iterations,
-        skewed_triangles_removed: analysis.skewed_triangles,
-        overlap,
-        stages_ms,
-    };
-    Ok(Output { strokes, elements: synthesized, target_edges, analysis, report })
 }
 
 /// Position variation mapped back to the document; positions that would leave a region stay.

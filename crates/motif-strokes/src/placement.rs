@@ -177,9 +177,8 @@ pub fn resolve_overlaps(
     let analysis = scene.analysis;
     let reference_rate = reference_overlap_rate(analysis, scene.strokes);
     let mut figures = OverlapFigures { avoided: true, reference_rate, ..OverlapFigures::default() };
-    let footprint_of =
-        |placement: &Placement| Footprint::of_strokes(&placed_strokes(analysis, scene.strokes, placement));
-    let mut footprints: Vec<Footprint> = placements.par_iter().map(footprint_of).collect();
+    let mut footprints: Vec<Footprint> =
+        placements.par_iter().map(|placement| footprint_of(scene, placement)).collect();
     let mut kept = vec![false; placements.len()];
     let mut index = FootprintIndex::empty();
     let mut settled = 0usize;
@@ -188,9 +187,6 @@ pub fn resolve_overlaps(
     let mut overlapping_count = 0usize;
     let spacing = if analysis.along_path { analysis.area_per_element } else { analysis.area_per_element.sqrt() };
     let mut scratch = SeedScratch::default();
-    let meets = |footprint: &Footprint, index: &FootprintIndex, footprints: &[Footprint]| -> Vec<usize> {
-        index.near(footprint).into_iter().filter(|&j| footprint.overlaps(&footprints[j])).collect()
-    };
     for &seed in order {
         let met = meets(&footprints[seed], &index, &footprints);
         let newly = 1 + met.iter().filter(|&&j| !overlapping[j]).count();
@@ -208,76 +204,8 @@ pub fn resolve_overlaps(
             continue;
         }
         figures.met_when_placed += 1;
-        let original = placements[seed];
-        let own_position = scene.layout.positions[seed];
-        let own_rotation = scene.layout.rotations[seed];
-        let mut tries: Vec<(Placement, usize)> = Vec::new();
-        if original.position != own_position {
-            tries.push((Placement { position: own_position, ..original }, 0));
-        }
-        let unchanged =
-            Placement { position: own_position, rotation: own_rotation, exchange: Exchange::default(), ..original };
-        if original.exchange != Exchange::default() {
-            tries.push((unchanged, 1));
-        }
-        let mut cleared = None;
-        for (placement, way) in tries {
-            let footprint = footprint_of(&placement);
-            if meets(&footprint, &index, &footprints).is_empty() {
-                cleared = Some((placement, footprint, way));
-                break;
-            }
-        }
-        if cleared.is_none()
-            && score_seed(scene.layout, seed, scene.rings, assigned, scene.reference, scene.table, &mut scratch)
-        {
-            let mut others: Vec<u32> = (0..scene.reference.len() as u32)
-                .filter(|&r| {
-                    r != original.reference && analysis.is_usable(r as usize) && scratch.violations[r as usize] < 1.0
-                })
-                .collect();
-            let mut stream = scene.streams.stream("overlap", seed as u64);
-            // A partial Fisher–Yates shuffle: the first few in random order.
-            let tried = others.len().min(OTHER_ELEMENTS_TRIED);
-            for i in 0..tried {
-                let j = stream.random_range(i..others.len());
-                others.swap(i, j);
-            }
-            for &other in &others[..tried] {
-                let placement = Placement { reference: other, ..unchanged };
-                let footprint = footprint_of(&placement);
-                if meets(&footprint, &index, &footprints).is_empty() {
-                    cleared = Some((placement, footprint, 2));
-                    break;
-                }
-            }
-        }
-        if cleared.is_none()
-            && let Target::Region(region) = scene.target
-        {
-            let here = bounds_centre(&footprints[seed]);
-            let away = met.iter().fold(Vec2::ZERO, |sum, &j| {
-                let d = here - bounds_centre(&footprints[j]);
-                let length = vector::length(d);
-                if length > 1e-12 { sum + d / length } else { sum }
-            });
-            if vector::length(away) > 1e-12 {
-                let direction = vector::normalized(away);
-                for step in MOVES {
-                    let position = own_position + direction * (step * spacing);
-                    if !region.contains(position) {
-                        break;
-                    }
-                    let placement = Placement { position, ..unchanged };
-                    let footprint = footprint_of(&placement);
-                    if meets(&footprint, &index, &footprints).is_empty() {
-                        cleared = Some((placement, footprint, 3));
-                        break;
-                    }
-                }
-            }
-        }
-        match cleared {
+        let clearing = Clearing { scene, index: &index, footprints: &footprints, spacing };
+        match clearing.clear(seed, placements[seed], &met, assigned, &mut scratch) {
             Some((placement, footprint, way)) => {
                 match way {
                     0 => figures.cleared_by_seed_position += 1,
@@ -310,4 +238,113 @@ pub fn resolve_overlaps(
         figures.output_rate = crate::overlap::overlap_rate(&kept_footprints);
     }
     (kept, figures)
+}
+
+/// The ink footprint of a placed element.
+fn footprint_of(scene: &Scene<'_>, placement: &Placement) -> Footprint {
+    Footprint::of_strokes(&placed_strokes(scene.analysis, scene.strokes, placement))
+}
+
+/// The settled elements whose ink meets `footprint`.
+fn meets(footprint: &Footprint, index: &FootprintIndex, footprints: &[Footprint]) -> Vec<usize> {
+    index.near(footprint).into_iter().filter(|&j| footprint.overlaps(&footprints[j])).collect()
+}
+
+/// A placement that meets no settled element, its footprint, and how it was found (0: the seed's
+/// own position, 1: the unchanged element, 2: another reference element, 3: a move away).
+type Cleared = (Placement, Footprint, usize);
+
+/// What clearing one seed's overlap reads: the scene and the elements settled so far.
+struct Clearing<'a, 's> {
+    scene: &'a Scene<'s>,
+    index: &'a FootprintIndex,
+    footprints: &'a [Footprint],
+    /// The seed spacing, in drawing units.
+    spacing: f64,
+}
+
+impl Clearing<'_, '_> {
+    /// `placement` with its footprint, if it meets no settled element.
+    fn if_clear(&self, placement: Placement, way: usize) -> Option<Cleared> {
+        let footprint = footprint_of(self.scene, &placement);
+        meets(&footprint, self.index, self.footprints).is_empty().then_some((placement, footprint, way))
+    }
+
+    /// The first clear placement of `seed` among: its own seed position, the element unchanged,
+    /// other reference elements that pass the neighbourhood test, and moves away from the elements
+    /// met (in a region).
+    fn clear(
+        &self,
+        seed: usize,
+        original: Placement,
+        met: &[usize],
+        assigned: &[u32],
+        scratch: &mut SeedScratch,
+    ) -> Option<Cleared> {
+        let scene = self.scene;
+        let own_position = scene.layout.positions[seed];
+        let own_rotation = scene.layout.rotations[seed];
+        let mut tries: Vec<(Placement, usize)> = Vec::new();
+        if original.position != own_position {
+            tries.push((Placement { position: own_position, ..original }, 0));
+        }
+        let unchanged =
+            Placement { position: own_position, rotation: own_rotation, exchange: Exchange::default(), ..original };
+        if original.exchange != Exchange::default() {
+            tries.push((unchanged, 1));
+        }
+        if let Some(cleared) = tries.into_iter().find_map(|(placement, way)| self.if_clear(placement, way)) {
+            return Some(cleared);
+        }
+        if score_seed(scene.layout, seed, scene.rings, assigned, scene.reference, scene.table, scratch)
+            && let Some(cleared) = self.by_other_element(seed, unchanged, scratch)
+        {
+            return Some(cleared);
+        }
+        self.by_move(seed, unchanged, met)
+    }
+
+    /// Up to [`OTHER_ELEMENTS_TRIED`] other usable reference elements that pass the neighbourhood
+    /// test (scored in `scratch`), in random order.
+    fn by_other_element(&self, seed: usize, unchanged: Placement, scratch: &SeedScratch) -> Option<Cleared> {
+        let analysis = self.scene.analysis;
+        let mut others: Vec<u32> = (0..self.scene.reference.len() as u32)
+            .filter(|&r| {
+                r != unchanged.reference && analysis.is_usable(r as usize) && scratch.violations[r as usize] < 1.0
+            })
+            .collect();
+        let mut stream = self.scene.streams.stream("overlap", seed as u64);
+        // A partial Fisher–Yates shuffle: the first few in random order.
+        let tried = others.len().min(OTHER_ELEMENTS_TRIED);
+        for i in 0..tried {
+            let j = stream.random_range(i..others.len());
+            others.swap(i, j);
+        }
+        others[..tried].iter().find_map(|&other| self.if_clear(Placement { reference: other, ..unchanged }, 2))
+    }
+
+    /// The unchanged element moved away from the elements met, in steps of [`MOVES`], while it
+    /// stays in the region (regions only).
+    fn by_move(&self, seed: usize, unchanged: Placement, met: &[usize]) -> Option<Cleared> {
+        let Target::Region(region) = self.scene.target else { return None };
+        let here = bounds_centre(&self.footprints[seed]);
+        let away = met.iter().fold(Vec2::ZERO, |sum, &j| {
+            let d = here - bounds_centre(&self.footprints[j]);
+            let length = vector::length(d);
+            if length > 1e-12 { sum + d / length } else { sum }
+        });
+        if vector::length(away) > 1e-12 {
+            let direction = vector::normalized(away);
+            for step in MOVES {
+                let position = unchanged.position + direction * (step * self.spacing);
+                if !region.contains(position) {
+                    break;
+                }
+                if let Some(cleared) = self.if_clear(Placement { position, ..unchanged }, 3) {
+                    return Some(cleared);
+                }
+            }
+        }
+        None
+    }
 }

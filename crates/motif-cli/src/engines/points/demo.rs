@@ -2,6 +2,7 @@
 
 use std::path::Path;
 
+use motif_core::TriangleMesh;
 use motif_io::PointFormat;
 use motif_points::PointSet;
 use motif_points::samples::{hex_exemplar, lattice_exemplar, leaf_exemplar};
@@ -16,6 +17,14 @@ fn write_set(path: &Path, set: &PointSet) -> anyhow::Result<()> {
 
 /// Built-in examples for `motif demo`.
 pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    hex_cases(demo)?;
+    element_and_lattice_cases(demo)?;
+    let bull = atoms_in_bull(demo)?;
+    pines_on_bull(demo, bull)
+}
+
+/// A hexagonal exemplar synthesized into a box and brushed along a stroke.
+fn hex_cases(demo: &mut Demo) -> anyhow::Result<()> {
     write_set(&demo.path("points-hex.ply"), &hex_exemplar(16, 16, 0.12, 3))?;
     demo.case(DemoCase {
         title: "points: a jittered hexagonal grid in a box".into(),
@@ -77,6 +86,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    Ok(())
+}
+
+/// Rigid three-point leaves among free points, and a 3D lattice.
+fn element_and_lattice_cases(demo: &mut Demo) -> anyhow::Result<()> {
     write_set(&demo.path("points-leaves.ply"), &leaf_exemplar(5))?;
     demo.case(DemoCase {
         title: "points: rigid elements mixed with free points".into(),
@@ -135,6 +149,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    Ok(())
+}
+
+/// Protein atoms filling a real closed mesh; returns the mesh (CGAL's bull) scaled to 78 Å.
+fn atoms_in_bull(demo: &mut Demo) -> anyhow::Result<TriangleMesh> {
     // Real data in a real volume: protein atoms (PDB 1TII, CC0) fill CGAL's bull (CC0), scaled from
     // its unit length to 78 Å so that it holds about 1 500 atoms at the exemplar's density.
     let bull_path = demo.path("points-bull.obj");
@@ -180,6 +199,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    Ok(bull)
+}
+
+/// Pine positions laid on the surface of `bull` (scaled to 78 Å) rescaled to 400 units.
+fn pines_on_bull(demo: &mut Demo, mut bull: TriangleMesh) -> anyhow::Result<()> {
     // A real planar pattern on a real surface: the 71 Swedish pines (spatstat, GPL-2+ data; see
     // data/real/points) on the bull scaled to 400 units (pines in decimetres: about 1 300 trees),
     // each planted as CGAL's tripod (CC0), lying along the direction of least curvature.

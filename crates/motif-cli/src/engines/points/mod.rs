@@ -15,7 +15,7 @@ use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
 use motif_jobs::Job;
 use motif_jobs::points::{
-    DomainSpec, FieldMaps, PointSet, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
+    DomainSpec, FieldMaps, Output, PointSet, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
 };
 use serde_json::Value;
 
@@ -247,86 +247,22 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
 
 /// Runs `motif points`.
 pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
-    let mut inputs: Vec<&Path> = vec![&args.exemplar];
-    if let Some(existing) = &args.existing {
-        inputs.push(existing);
-    }
-    inputs.extend(args.along.as_deref());
-    // A domain that is not a box is a region SVG, an input too.
-    let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(|domain| {
-        Path::new(domain.strip_prefix("volume:").or_else(|| domain.strip_prefix("surface:")).unwrap_or(domain))
-    });
-    inputs.extend(region);
-    let directions_file =
-        args.surface_directions.as_deref().filter(|d| *d != "curvature" && !d.contains(',')).map(Path::new);
-    inputs.extend(directions_file);
-    inputs.extend(args.rotation_map.as_deref());
-    inputs.extend(args.scale_map.as_deref());
-    inputs.extend(args.element_mesh.as_deref());
+    let inputs = input_paths(args);
     context.check_output(&args.out, &inputs)?;
     for extra in args.preview.iter().chain(&args.surface_out) {
         context.check_output(extra, &inputs)?;
     }
     let (exemplar, integer) = read_set(&args.exemplar, "exemplar")?;
-    let normal_columns = |set: &PointSet| -> Option<[usize; 3]> {
-        let find = |name: &str| set.attribute_names.iter().position(|n| n == name);
-        Some([find("nx")?, find("ny")?, find("nz")?])
-    };
-    let element = match &args.element_mesh {
-        Some(path) => {
-            if let Some(size) = args.element_size
-                && !(size.is_finite() && size > 0.0)
-            {
-                bail!("--element-size {size}: give a size > 0 (exemplar units)");
-            }
-            let mut mesh = motif_io::read_mesh(path)?;
-            let Some((low, high)) = mesh.bounds() else {
-                bail!("--element-mesh {}: the mesh has no triangles", path.display())
-            };
-            let side = (0..3).map(|a| high[a] - low[a]).fold(0.0, f64::max);
-            if !(side > 0.0 && side.is_finite()) {
-                bail!("--element-mesh {}: the mesh has no extent", path.display());
-            }
-            // The anchor that goes to each point: the base's middle.
-            let anchor = [0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), low[2]];
-            mesh.vertices.iter_mut().for_each(|v| *v = std::array::from_fn(|a| v[a] - anchor[a]));
-            Some((mesh, side))
-        }
-        None => None,
-    };
-    if args.surface_out.is_some()
-        && element.is_none()
-        && (exemplar.dimension != 3 || normal_columns(&exemplar).is_none())
-    {
-        bail!(
-            "--surface-out needs a 3D exemplar with normals (attributes nx, ny, nz); {} is {}D with attributes [{}]",
-            args.exemplar.display(),
-            exemplar.dimension,
-            exemplar.attribute_names.join(", ")
-        );
-    }
-    if let (Some(_), None, Some(chosen)) = (&args.surface_out, &element, &args.options.attributes)
-        && let Some(missing) = ["nx", "ny", "nz"].iter().find(|name| !chosen.iter().any(|c| c == *name))
-    {
-        bail!(
-            "--surface-out needs the normals nx, ny, nz among the synthesized attributes, but --attributes {} leaves \
-             out {missing}: add nx,ny,nz to --attributes or drop --surface-out",
-            chosen.join(",")
-        );
-    }
+    let element = read_element_mesh(args)?;
+    check_surface_out(args, &exemplar, element.is_some())?;
     let existing = match &args.existing {
         Some(path) => Some(read_set(path, "existing points")?.0),
         None => None,
     };
     let job = PointsJob { max_memory: Some(context.max_memory), ..job_of(args, context.seed)? };
     let shown_exemplar = args.preview.as_ref().map(|_| exemplar.clone());
-    let read_map = |file: &Option<PathBuf>| -> anyhow::Result<Option<motif_core::ToneMap>> {
-        let budget = motif_io::ImageBudget::map(context.max_memory);
-        file.as_deref()
-            .map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image_within(file, budget)?)))
-            .transpose()
-    };
-    let maps = FieldMaps { rotation: read_map(&args.rotation_map)?, scale: read_map(&args.scale_map)? };
+    let maps =
+        FieldMaps { rotation: read_map(&args.rotation_map, context)?, scale: read_map(&args.scale_map, context)? };
     // Checked here so that the error names the files.
     let mut checked = job.params(exemplar.dimension, &integer)?;
     maps.apply(&job.engine_domain()?, exemplar.dimension, &mut checked).with_context(|| {
@@ -343,44 +279,141 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         format => format,
     };
     motif_io::write_points(&args.out, &points_to_table(&output.points, &integer), format)?;
-    let mut surface = None;
-    if let (Some(path), Some((mesh, side))) = (&args.surface_out, &element) {
-        let placed = meshes::place_elements(&output, mesh, *side, args.element_size)
-            .with_context(|| format!("--element-mesh {}", args.element_mesh.as_deref().unwrap_or(path).display()))?;
-        motif_io::write_obj(path, &placed, "element meshes placed by motif points")?;
-        surface = Some(placed);
-    } else if let Some(path) = &args.surface_out {
-        let Some(columns) = normal_columns(&output.points) else {
-            bail!("--surface-out {}: the synthesized points have no normals (nx, ny, nz)", path.display());
-        };
-        let positions: Vec<[f64; 3]> =
-            (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
-        let normals: Vec<[f64; 3]> =
-            (0..output.points.len()).map(|i| columns.map(|c| output.points.attributes_of(i)[c])).collect();
-        let mesh = motif_jobs::points::reconstruct_surface(&positions, &normals)
-            .with_context(|| format!("cannot reconstruct a surface for {}", path.display()))?;
-        motif_io::write_obj(path, &mesh, "surface reconstructed by motif points (implicit MLS, surface nets)")?;
-        surface = Some(mesh);
-    }
+    let surface = write_surface(args, &output, element.as_ref())?;
     if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
+        // Elements are drawn on the surface they were placed on.
+        let backdrop = match (&element, &job.domain) {
+            (Some(_), DomainSpec::Surface(spec)) => Some(&spec.mesh),
+            _ => None,
+        };
         let svg = preview::preview_svg(
             exemplar,
             &output.points,
             &output.report.fidelity,
             args.colour_by.as_deref(),
             surface.as_ref(),
-            // Elements are drawn on the surface they were placed on.
-            match (&element, &job.domain) {
-                (Some(_), DomainSpec::Surface(spec)) => Some(&spec.mesh),
-                _ => None,
-            },
+            backdrop,
         )?;
         context.check_render(output.report.estimated_memory_bytes, &svg, 1.0)?;
         let image = motif_io::render_svg(&svg, 1.0, Path::new("preview"))?;
         motif_io::write_png(preview, &image)?;
     }
     context.job_figures(run.figures);
-    context.summary(&format!(
+    context.summary(&summary(&output));
+    Ok(())
+}
+
+/// Every file `args` reads (exemplar, existing points, stroke, domain file, direction and maps,
+/// element mesh), for the output checks.
+fn input_paths(args: &PointsArgs) -> Vec<&Path> {
+    let mut inputs: Vec<&Path> = vec![&args.exemplar];
+    if let Some(existing) = &args.existing {
+        inputs.push(existing);
+    }
+    inputs.extend(args.along.as_deref());
+    // A domain that is not a box is a region SVG, an input too.
+    let region = args.domain.as_deref().filter(|domain| !domain.starts_with("box:")).map(|domain| {
+        Path::new(domain.strip_prefix("volume:").or_else(|| domain.strip_prefix("surface:")).unwrap_or(domain))
+    });
+    inputs.extend(region);
+    let directions_file =
+        args.surface_directions.as_deref().filter(|d| *d != "curvature" && !d.contains(',')).map(Path::new);
+    inputs.extend(directions_file);
+    inputs.extend(args.rotation_map.as_deref());
+    inputs.extend(args.scale_map.as_deref());
+    inputs.extend(args.element_mesh.as_deref());
+    inputs
+}
+
+/// The columns of the normals nx, ny, nz in `set`, if it has them.
+fn normal_columns(set: &PointSet) -> Option<[usize; 3]> {
+    let find = |name: &str| set.attribute_names.iter().position(|n| n == name);
+    Some([find("nx")?, find("ny")?, find("nz")?])
+}
+
+/// `--element-mesh` with its anchor (the base's middle) moved to the origin, and its largest side.
+fn read_element_mesh(args: &PointsArgs) -> anyhow::Result<Option<(motif_core::TriangleMesh, f64)>> {
+    let Some(path) = &args.element_mesh else { return Ok(None) };
+    if let Some(size) = args.element_size
+        && !(size.is_finite() && size > 0.0)
+    {
+        bail!("--element-size {size}: give a size > 0 (exemplar units)");
+    }
+    let mut mesh = motif_io::read_mesh(path)?;
+    let Some((low, high)) = mesh.bounds() else {
+        bail!("--element-mesh {}: the mesh has no triangles", path.display())
+    };
+    let side = (0..3).map(|a| high[a] - low[a]).fold(0.0, f64::max);
+    if !(side > 0.0 && side.is_finite()) {
+        bail!("--element-mesh {}: the mesh has no extent", path.display());
+    }
+    // The anchor that goes to each point: the base's middle.
+    let anchor = [0.5 * (low[0] + high[0]), 0.5 * (low[1] + high[1]), low[2]];
+    mesh.vertices.iter_mut().for_each(|v| *v = std::array::from_fn(|a| v[a] - anchor[a]));
+    Ok(Some((mesh, side)))
+}
+
+/// Without element meshes, `--surface-out` reconstructs from normals: the exemplar must be 3D with
+/// nx, ny, nz, and `--attributes` must keep them.
+fn check_surface_out(args: &PointsArgs, exemplar: &PointSet, has_element: bool) -> anyhow::Result<()> {
+    if args.surface_out.is_some() && !has_element && (exemplar.dimension != 3 || normal_columns(exemplar).is_none()) {
+        bail!(
+            "--surface-out needs a 3D exemplar with normals (attributes nx, ny, nz); {} is {}D with attributes [{}]",
+            args.exemplar.display(),
+            exemplar.dimension,
+            exemplar.attribute_names.join(", ")
+        );
+    }
+    if let (Some(_), false, Some(chosen)) = (&args.surface_out, has_element, &args.options.attributes)
+        && let Some(missing) = ["nx", "ny", "nz"].iter().find(|name| !chosen.iter().any(|c| c == *name))
+    {
+        bail!(
+            "--surface-out needs the normals nx, ny, nz among the synthesized attributes, but --attributes {} leaves \
+             out {missing}: add nx,ny,nz to --attributes or drop --surface-out",
+            chosen.join(",")
+        );
+    }
+    Ok(())
+}
+
+/// A rotation or scale map image, read within the run's memory budget.
+fn read_map(file: &Option<PathBuf>, context: &Context) -> anyhow::Result<Option<motif_core::ToneMap>> {
+    let budget = motif_io::ImageBudget::map(context.max_memory);
+    file.as_deref()
+        .map(|file| Ok(motif_core::ToneMap::from_image(&motif_io::read_image_within(file, budget)?)))
+        .transpose()
+}
+
+/// Writes `--surface-out`: the element meshes placed on the points, or else a surface reconstructed
+/// from their normals. Returns the mesh written.
+fn write_surface(
+    args: &PointsArgs,
+    output: &Output,
+    element: Option<&(motif_core::TriangleMesh, f64)>,
+) -> anyhow::Result<Option<motif_core::TriangleMesh>> {
+    let Some(path) = &args.surface_out else { return Ok(None) };
+    if let Some((mesh, side)) = element {
+        let placed = meshes::place_elements(output, mesh, *side, args.element_size)
+            .with_context(|| format!("--element-mesh {}", args.element_mesh.as_deref().unwrap_or(path).display()))?;
+        motif_io::write_obj(path, &placed, "element meshes placed by motif points")?;
+        return Ok(Some(placed));
+    }
+    let Some(columns) = normal_columns(&output.points) else {
+        bail!("--surface-out {}: the synthesized points have no normals (nx, ny, nz)", path.display());
+    };
+    let positions: Vec<[f64; 3]> =
+        (0..output.points.len()).map(|i| std::array::from_fn(|a| output.points.position(i)[a])).collect();
+    let normals: Vec<[f64; 3]> =
+        (0..output.points.len()).map(|i| columns.map(|c| output.points.attributes_of(i)[c])).collect();
+    let mesh = motif_jobs::points::reconstruct_surface(&positions, &normals)
+        .with_context(|| format!("cannot reconstruct a surface for {}", path.display()))?;
+    motif_io::write_obj(path, &mesh, "surface reconstructed by motif points (implicit MLS, surface nets)")?;
+    Ok(Some(mesh))
+}
+
+/// The run's summary line: counts, final energy and fidelity against the random and tiled baselines.
+fn summary(output: &Output) -> String {
+    format!(
         "motif points: {} points ({} added, {} removed; density {:.0} % of the exemplar's), T = {:.4}, \
          nearest-neighbour distance {:.3} (random {:.3}, tiled {:.3}), g(r) distance {:.3} (random {:.3}, tiled {:.3})",
         output.points.len(),
@@ -394,8 +427,7 @@ pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
         output.report.fidelity.output.radial_distribution,
         output.report.fidelity.random.radial_distribution,
         output.report.fidelity.tiled.radial_distribution,
-    ));
-    Ok(())
+    )
 }
 
 /// The points engine in the registry.

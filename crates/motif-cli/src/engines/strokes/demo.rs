@@ -24,6 +24,15 @@ fn strs(items: &[&str]) -> Vec<String> {
 
 /// The built-in examples: sketchy hatching along a wave (1D) and small figures in a blob (2D).
 pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    hatching_along_wave(demo)?;
+    brushes_along_arc(demo)?;
+    figures_in_blob(demo)?;
+    cactus_spines(demo)?;
+    Ok(())
+}
+
+/// Sketchy hatches along a wave (1D).
+fn hatching_along_wave(demo: &mut Demo) -> anyhow::Result<()> {
     // 1D: sketchy hatches (three overlapping strokes each) whose tilt turns smoothly and whose
     // colours alternate, with irregular spacing.
     let row = HatchRow { count: 36, jitter: 2.0, ..HatchRow::default() };
@@ -69,6 +78,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         ]),
     })?;
 
+    Ok(())
+}
+
+/// Brush strokes of varying width along an arc (1D).
+fn brushes_along_arc(demo: &mut Demo) -> anyhow::Result<()> {
     // 1D: single brush strokes whose width swells and shrinks along the row, fitted by contour.
     let brush_row = HatchRow { count: 30, spacing: 14.0, length: 18.0, strokes_per_hatch: 1, ..HatchRow::default() };
     let mut brushes = hatch_row(&brush_row, Point::new(20.0, 30.0), |_| 0.35, |_| [60, 60, 60, 255], demo.seed());
@@ -112,6 +126,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         ]),
     })?;
 
+    Ok(())
+}
+
+/// Small figures filling a blob (2D).
+fn figures_in_blob(demo: &mut Demo) -> anyhow::Result<()> {
     // 2D: small three-stroke figures of two kinds on a jittered grid, filling a blob.
     let field = FigureField { columns: 8, rows: 6, ..FigureField::default() };
     let figures = figure_field(&field, Point::new(20.0, 20.0), demo.seed());
@@ -150,6 +169,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
             "strokes-figures-output.png",
         ]),
     })?;
+    Ok(())
+}
+
+/// Spines from a real drawing shading a real photo (2D).
+fn cactus_spines(demo: &mut Demo) -> anyhow::Result<()> {
     // 2D on real data: spines cut from a public-domain cactus drawing shade a public-domain photo
     // (both from `data/real/strokes/`, built into the binary so the demo needs no checkout).
     motif_io::write_bytes(

@@ -13,6 +13,14 @@ fn to_png(image: &FloatImage) -> RgbaImage {
 /// Built-in examples: a map stylized with segments, the pre-synthesized speed-up, a tileable
 /// texture.
 pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+    map_cases(demo)?;
+    tile_case(demo)?;
+    stone_hole_case(demo)?;
+    super::video_bench::demo_case(demo)
+}
+
+/// A map stylized in crayon with segments, then with pre-synthesized textures per segment.
+fn map_cases(demo: &mut Demo) -> anyhow::Result<()> {
     // Directory arguments are given as full paths (Demo resolves only file names).
     let debug_dir = demo.path("stylize-debug").to_string_lossy().into_owned();
     let presynth_dir = demo.path("stylize-presynth").to_string_lossy().into_owned();
@@ -98,6 +106,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    Ok(())
+}
+
+/// A seamless tile grown from a small exemplar.
+fn tile_case(demo: &mut Demo) -> anyhow::Result<()> {
     let exemplar = samples::crayon_style(&samples::map_guide(64, 64, 2, 14), 15);
     motif_io::write_png(&demo.path("texture-exemplar.png"), &to_png(&exemplar))?;
     demo.case(DemoCase {
@@ -120,6 +133,11 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
+    Ok(())
+}
+
+/// A disc-shaped hole in a real stone texture, filled from the rest of it.
+fn stone_hole_case(demo: &mut Demo) -> anyhow::Result<()> {
     // Real data: a hole cut into GIMP's stone pattern (GPL-3+, data/real/stylize), painted red so
     // that any copy of it would show, filled from the rest of the image.
     let stone_path = demo.path("inpaint-stone.png");
@@ -161,5 +179,5 @@ pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
         .map(String::from)
         .to_vec(),
     })?;
-    super::video_bench::demo_case(demo)
+    Ok(())
 }

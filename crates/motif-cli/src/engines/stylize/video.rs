@@ -61,36 +61,12 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
     let out = FramePattern::parse(&args.out).context("--out")?;
     let frames = pattern.find_consecutive().context("--frames")?;
     let numbers: Vec<u64> = frames.iter().map(|(number, _)| *number).collect();
-    let describe_range = || {
-        format!("{} frames numbered {}–{} match {}", numbers.len(), numbers[0], numbers[numbers.len() - 1], args.frames)
-    };
-    let mut keys: Vec<(usize, PathBuf)> = Vec::new();
-    for key in &args.keys {
-        let (number, path) = key
-            .split_once(':')
-            .with_context(|| format!("--key {key}: give a frame number and a file, as 0:style.png"))?;
-        let number: u64 =
-            number.trim().parse().with_context(|| format!("--key {key}: {number:?} is not a frame number"))?;
-        let position = numbers
-            .binary_search(&number)
-            .map_err(|_| anyhow::anyhow!("--key {key}: there is no frame {number} ({})", describe_range()))?;
-        if keys.iter().any(|(p, _)| *p == position) {
-            bail!("--key {key}: frame {number} has two keyframes; give one");
-        }
-        keys.push((position, PathBuf::from(path)));
-    }
-    keys.sort();
+    let keys = parse_keys(args, &numbers)?;
     let mut inputs: Vec<&Path> = frames.iter().map(|(_, path)| path.as_path()).collect();
     inputs.extend(keys.iter().map(|(_, path)| path.as_path()));
     inputs.extend(args.mask.as_deref());
     let intervals = VideoJob::intervals(frames.len(), &keys.iter().map(|(p, _)| *p).collect::<Vec<_>>());
-    let chosen: Vec<usize> = match args.interval {
-        Some(i) if i == 0 || i > intervals.len() => {
-            bail!("--interval {i}: the keyframes make {} intervals, counted from 1", intervals.len())
-        }
-        Some(i) => vec![i - 1],
-        None => (0..intervals.len()).collect(),
-    };
+    let chosen = chosen_intervals(args.interval, intervals.len())?;
     // A keyframe ends one interval and starts the next: each output is checked once.
     let mut positions: Vec<usize> = chosen.iter().flat_map(|&i| intervals[i].first..=intervals[i].last).collect();
     positions.dedup();
@@ -100,39 +76,8 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
 
     let first = read_frame(&frames[0].1, None, context.max_memory)?;
     let size = (first.width(), first.height());
-    let mut styles: Vec<RgbaImage> = Vec::new();
-    for (_, path) in &keys {
-        let style = load(path, context.max_memory)?;
-        if (style.width(), style.height()) != size {
-            bail!(
-                "keyframe {} is {}×{} but the frames are {}×{}",
-                path.display(),
-                style.width(),
-                style.height(),
-                size.0,
-                size.1
-            );
-        }
-        styles.push(style);
-    }
-    let styles = video_styles(&styles);
-    let mask = match &args.mask {
-        Some(path) => {
-            let image = load(path, context.max_memory)?;
-            if (image.width(), image.height()) != size {
-                bail!(
-                    "the mask {} is {}×{} but the frames are {}×{}",
-                    path.display(),
-                    image.width(),
-                    image.height(),
-                    size.0,
-                    size.1
-                );
-            }
-            Some(hole_of(&image))
-        }
-        None => None,
-    };
+    let styles = video_styles(&read_keyframes(&keys, size, context.max_memory)?);
+    let mask = read_mask(args.mask.as_deref(), size, context.max_memory)?;
 
     let job =
         VideoJob { seed: context.seed, max_memory: Some(context.max_memory), options: args.options.options.clone() };
@@ -180,6 +125,93 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         }
         reports.push((i + 1, [first_number, last_number], output.report));
     }
+    let keyframes: Vec<u64> = keys.iter().map(|(p, _)| numbers[*p]).collect();
+    report_video(context, args, frames.len(), keyframes, reports);
+    Ok(())
+}
+
+/// The `--key` arguments as (frame position, style file), in frame order; each names an existing
+/// frame, at most once.
+fn parse_keys(args: &VideoArgs, numbers: &[u64]) -> anyhow::Result<Vec<(usize, PathBuf)>> {
+    let describe_range = || {
+        format!("{} frames numbered {}–{} match {}", numbers.len(), numbers[0], numbers[numbers.len() - 1], args.frames)
+    };
+    let mut keys: Vec<(usize, PathBuf)> = Vec::new();
+    for key in &args.keys {
+        let (number, path) = key
+            .split_once(':')
+            .with_context(|| format!("--key {key}: give a frame number and a file, as 0:style.png"))?;
+        let number: u64 =
+            number.trim().parse().with_context(|| format!("--key {key}: {number:?} is not a frame number"))?;
+        let position = numbers
+            .binary_search(&number)
+            .map_err(|_| anyhow::anyhow!("--key {key}: there is no frame {number} ({})", describe_range()))?;
+        if keys.iter().any(|(p, _)| *p == position) {
+            bail!("--key {key}: frame {number} has two keyframes; give one");
+        }
+        keys.push((position, PathBuf::from(path)));
+    }
+    keys.sort();
+    Ok(keys)
+}
+
+/// The intervals to run (indices from 0): `--interval`, counted from 1, or all of them.
+fn chosen_intervals(interval: Option<usize>, count: usize) -> anyhow::Result<Vec<usize>> {
+    Ok(match interval {
+        Some(i) if i == 0 || i > count => {
+            bail!("--interval {i}: the keyframes make {count} intervals, counted from 1")
+        }
+        Some(i) => vec![i - 1],
+        None => (0..count).collect(),
+    })
+}
+
+/// The keyframes' style images, each of the frames' size.
+fn read_keyframes(keys: &[(usize, PathBuf)], size: (usize, usize), max_memory: u64) -> anyhow::Result<Vec<RgbaImage>> {
+    let mut styles: Vec<RgbaImage> = Vec::new();
+    for (_, path) in keys {
+        let style = load(path, max_memory)?;
+        if (style.width(), style.height()) != size {
+            bail!(
+                "keyframe {} is {}×{} but the frames are {}×{}",
+                path.display(),
+                style.width(),
+                style.height(),
+                size.0,
+                size.1
+            );
+        }
+        styles.push(style);
+    }
+    Ok(styles)
+}
+
+/// `--mask` as the hole to synthesize, of the frames' size.
+fn read_mask(path: Option<&Path>, size: (usize, usize), max_memory: u64) -> anyhow::Result<Option<Vec<bool>>> {
+    let Some(path) = path else { return Ok(None) };
+    let image = load(path, max_memory)?;
+    if (image.width(), image.height()) != size {
+        bail!(
+            "the mask {} is {}×{} but the frames are {}×{}",
+            path.display(),
+            image.width(),
+            image.height(),
+            size.0,
+            size.1
+        );
+    }
+    Ok(Some(hole_of(&image)))
+}
+
+/// The run's figures (intervals, frames synthesized, time per frame, flicker) and summary line.
+fn report_video(
+    context: &mut Context,
+    args: &VideoArgs,
+    frame_count: usize,
+    keyframes: Vec<u64>,
+    reports: Vec<(usize, [u64; 2], IntervalReport)>,
+) {
+    let keyframe_count = keyframes.len();
     let figures: Vec<IntervalReport> = reports.iter().map(|(_, _, report)| report.clone()).collect();
     let synthesized: usize = figures.iter().map(|r| r.synthesized_frames).sum();
     let motion_ms: f64 = figures.iter().map(|r| r.motion_ms).sum();
@@ -190,8 +222,8 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
         .map(|(interval, frames, figures)| json!({ "interval": interval, "frames": frames, "figures": figures }))
         .collect();
     let seconds_per_frame = (motion_ms + synthesis_ms) / 1000.0 / synthesized.max(1) as f64;
-    context.figure("frames", frames.len());
-    context.figure("keyframes", keys.iter().map(|(p, _)| numbers[*p]).collect::<Vec<_>>());
+    context.figure("frames", frame_count);
+    context.figure("keyframes", keyframes);
     context.figure("intervals", reports);
     context.figure("synthesized_frames", synthesized);
     context.figure("seconds_per_frame", seconds_per_frame);
@@ -199,8 +231,6 @@ pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> 
     context.summary(&format!(
         "motif video: {synthesized} frames synthesized from {} keyframes, {seconds_per_frame:.2} s per frame, flicker \
          {flicker:.4} → {}",
-        keys.len(),
-        args.out
+        keyframe_count, args.out
     ));
-    Ok(())
 }
