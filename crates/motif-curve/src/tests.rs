@@ -179,6 +179,12 @@ pub(crate) fn circle(cx: f64, cy: f64, radius: f64, count: usize) -> Polyline {
     Polyline::new(points.collect(), true).unwrap()
 }
 
+/// A synthesis on a pool of `threads` threads.
+pub(crate) fn on_threads(threads: usize, input: &Input<'_>, params: &Params) -> crate::Output {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    pool.install(|| synthesize(input, params, &mut NoProgress).unwrap())
+}
+
 pub(crate) fn params(width: f64, piece_length: f64) -> Params {
     Params { width, piece_length, ..Params::default() }
 }
@@ -380,17 +386,7 @@ fn same_input_same_bytes_for_any_thread_count() {
     let mut p = params(16.0, 14.0);
     p.stitch = true;
     p.closed = ClosedMode::Exact;
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| {
-            synthesize(
-                &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
-                &p,
-                &mut NoProgress,
-            )
-            .unwrap()
-        })
-    };
+    let run = |threads: usize| on_threads(threads, &Input::new(&image, &curve), &p);
     let (one, two) = (run(1), run(2));
     assert_eq!(one.image, two.image);
     assert_eq!(one.pieces, two.pieces);

@@ -97,17 +97,7 @@ fn coarse_to_fine_reports_its_gap_and_keeps_the_bytes_for_any_thread_count() {
     let mut p = params(60.0, 20.0);
     p.solver = Solver::CoarseToFine;
     p.check_gap = true;
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| {
-            synthesize(
-                &Input { exemplar: &image, curve: &curve, avoidance: None, more_exemplars: &[] },
-                &p,
-                &mut NoProgress,
-            )
-            .unwrap()
-        })
-    };
+    let run = |threads: usize| crate::tests::on_threads(threads, &Input::new(&image, &curve), &p);
     let (one, two) = (run(1), run(2));
     assert_eq!(one.image, two.image);
     assert_eq!(one.pieces, two.pieces);
