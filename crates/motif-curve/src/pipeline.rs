@@ -354,13 +354,15 @@ fn valid_positions(
     Ok(keys.iter().map(|(signature, _)| lists[signature].clone()).collect())
 }
 
-/// The positions whose sides are clear of the pattern (spaced pieces hold whole motifs); all of
-/// them when none is (a pattern with no clear column, such as a rope).
+/// The positions whose sides cut the fewest pattern pixels (spaced pieces, whose motifs no
+/// neighbour continues across a gap): those with clear sides, which hold whole motifs, or, for a
+/// pattern with no clear column (interlocked links, a rope), those that cut it least.
 fn whole_motifs(frame: &PieceFrame, exemplar: &Exemplar, positions: Vec<Position>) -> Vec<Position> {
     let sides = frame.side_runs();
-    let clear: Vec<Position> =
-        positions.iter().filter(|u| sides.iter().all(|run| exemplar.run_is_clear(run, u[0], u[1]))).copied().collect();
-    if clear.is_empty() { positions } else { clear }
+    let cut = |u: &Position| sides.iter().map(|run| exemplar.run_occupied(run, u[0], u[1])).sum::<u32>();
+    let cuts: Vec<u32> = positions.iter().map(cut).collect();
+    let least = cuts.iter().copied().min().unwrap_or(0);
+    positions.into_iter().zip(cuts).filter(|&(_, c)| c == least).map(|(u, _)| u).collect()
 }
 
 /// The positions of a piece between the tiles whose window stays clear of the tiles' columns: a

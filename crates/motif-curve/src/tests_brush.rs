@@ -72,6 +72,35 @@ fn spaced_pieces_are_whole_with_equal_gaps_up_to_the_curves_end() {
 }
 
 #[test]
+fn spaced_pieces_of_a_pattern_with_no_clear_column_cut_it_least() {
+    // Bars joined by a thin line through the middle row: every window's sides cross the line, and
+    // the spaced pieces cut only the line, never a bar.
+    let exemplar = RgbaImage::from_fn(200, 16, |x, y| match (x % 20 < 10, y) {
+        (true, 2..=13) | (false, 7) => [40, 40, 40, 255],
+        _ => [0; 4],
+    });
+    let spaced = run(&exemplar, &params(16.0, 20.0).with_fit(Fit::Space));
+    assert_eq!(spaced.report.pieces, 6);
+    // The bars, measured along a row the line does not cross, are whole.
+    let image = &spaced.image;
+    let row = (0..image.height())
+        .filter(|&y| (0..image.width()).any(|x| image.get(x, y)[3] > 127))
+        .nth(3)
+        .expect("rows of bars");
+    let mut runs = Vec::new();
+    let mut length = 0;
+    for x in 0..image.width() {
+        if image.get(x, row)[3] > 127 {
+            length += 1;
+        } else if length > 0 {
+            runs.push(length);
+            length = 0;
+        }
+    }
+    assert!(runs.len() >= 6 && runs.iter().all(|&r| (9..=11).contains(&r)), "{runs:?}");
+}
+
+#[test]
 fn stretching_rigid_pieces_is_refused_by_name() {
     let refused = params(16.0, 20.0).with_fit(Fit::Stretch).with_piece_shape(PieceShape::Rigid);
     let message = refused.validate().unwrap_err().to_string();
