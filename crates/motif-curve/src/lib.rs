@@ -71,6 +71,7 @@ mod closed;
 mod coarse;
 mod cost;
 mod dp;
+mod error;
 mod exemplar;
 mod fidelity;
 mod incremental;
@@ -93,12 +94,13 @@ mod tight_bends;
 mod variety;
 mod warnings;
 
-use motif_core::{InvalidParameter, Polyline, Progress, RgbaImage};
+use motif_core::{Polyline, Progress, RgbaImage};
 
 pub use crate::brush::{Fit, Flip};
 pub use crate::coarse::CoarseReport;
 pub use crate::cost::AlphaMode;
 pub use crate::dp::Solver;
+pub use crate::error::{Error, InputError, LimitError};
 pub use crate::fidelity::{PatchFidelity, patch_fidelity};
 pub use crate::incremental::Incremental;
 pub use crate::infer::{Dimension, Dimensions, pattern_period};
@@ -138,41 +140,6 @@ impl<'a> Input<'a> {
     pub fn with_avoidance(self, avoidance: &'a RgbaImage) -> Self {
         Self { avoidance: Some(avoidance), ..self }
     }
-}
-
-/// Errors of the curve engine.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum Error {
-    /// A parameter or input is outside what the engine accepts.
-    #[error(transparent)]
-    InvalidParameter(#[from] InvalidParameter),
-    /// A piece has no position that slices the pattern completely.
-    #[error(
-        "no valid exemplar position for piece {piece}: the ribbon is {samples} exemplar pixels wide (width × scale) \
-         but the pattern is {pattern_height} pixels tall; use a wider ribbon, a larger scale or shorter pieces"
-    )]
-    NoValidPosition {
-        /// The piece.
-        piece: usize,
-        /// `C`.
-        samples: usize,
-        /// Height of the exemplar's non-transparent rows.
-        pattern_height: usize,
-    },
-    /// The run's estimated memory passes [`Params::max_memory`].
-    #[error(transparent)]
-    TooMuchMemory(#[from] motif_core::TooMuchMemory),
-    /// The pinned first position is not valid.
-    #[error("pin-first position ({x}, {y}) is not a valid position of the first piece ({count} valid positions exist)")]
-    InvalidPin {
-        /// x.
-        x: i32,
-        /// y.
-        y: i32,
-        /// Number of valid positions of the first piece.
-        count: usize,
-    },
 }
 
 /// Synthesizes the pattern of `input.exemplar` along `input.curve`.

@@ -324,7 +324,7 @@ impl Params {
     /// Checks every parameter on its own (the checks that need the inputs, such as the piece
     /// length against the curve's length, run in [`synthesize`](crate::synthesize)). The error
     /// names the parameter as the CLI flag does and says what is allowed
-    /// ([`Error::InvalidParameter`]).
+    /// ([`Error::Parameter`]).
     pub fn validate(&self) -> Result<(), Error> {
         Ok(self.check()?)
     }

@@ -6,6 +6,7 @@ use motif_core::timing::StageTimer;
 use motif_core::{InvalidParameter, Progress, RgbaImage, Vec2};
 use rayon::prelude::*;
 
+use crate::InputError;
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
 use crate::cost::{COST_SCALE, edge_distance, left_edges, right_edges};
 use crate::dp::{DpCounters, RowSpec};
@@ -229,7 +230,11 @@ impl Candidates {
                 .into());
             }
             let samples = layout.samples;
-            return Err(Error::NoValidPosition { piece, samples, pattern_height: pattern_height(input.exemplar) });
+            return Err(Error::Input(InputError::NoValidPosition {
+                piece,
+                samples,
+                pattern_height: pattern_height(input.exemplar),
+            }));
         }
         let (valid, empty): (Vec<Vec<Position>>, Vec<bool>) = valid.into_iter().map(|(p, e, _)| (p, e)).unzip();
         let candidates = Self { valid, empty, forbidden_samples, triangles, stretch };
@@ -388,9 +393,11 @@ fn outside_tiles(frame: &PieceFrame, layout: &Layout, positions: Vec<Position>) 
 fn check_pin(params: &Params, candidates: &Candidates) -> Result<(), Error> {
     let (valid, empty) = (&candidates.valid[0], candidates.empty[0]);
     match params.pin_first {
-        Some(pin) if !valid.contains(&pin) || empty => {
-            Err(Error::InvalidPin { x: pin[0], y: pin[1], count: if empty { 0 } else { valid.len() } })
-        }
+        Some(pin) if !valid.contains(&pin) || empty => Err(Error::Input(InputError::InvalidPin {
+            x: pin[0],
+            y: pin[1],
+            count: if empty { 0 } else { valid.len() },
+        })),
         _ => Ok(()),
     }
 }

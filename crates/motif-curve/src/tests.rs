@@ -5,6 +5,7 @@ use motif_core::math;
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use proptest::prelude::*;
 
+use crate::InputError;
 use crate::closed::solve_closed;
 use crate::cost::{AlphaMode, CostModel};
 use crate::dp::{RowSpec, Solver, brute_force, path_cost, solve};
@@ -334,14 +335,14 @@ fn pinning_fixes_the_first_position() {
             assert_eq!(pinned.pieces[0].position, Some(pin));
             assert!(pinned.report.total_cost >= free.report.total_cost);
         }
-        Err(error) => assert!(matches!(error, Error::InvalidPin { .. }), "{error}"),
+        Err(error) => assert!(matches!(error, Error::Input(InputError::InvalidPin { .. })), "{error}"),
     }
     p.pin_first = Some(first);
     let pinned = synthesize(&input, &p, &mut NoProgress).unwrap();
     assert_eq!(pinned.pieces[0].position, Some(first));
     assert_eq!(pinned.report.total_cost, free.report.total_cost);
     p.pin_first = Some([-1000, 5]);
-    assert!(matches!(synthesize(&input, &p, &mut NoProgress), Err(Error::InvalidPin { .. })));
+    assert!(matches!(synthesize(&input, &p, &mut NoProgress), Err(Error::Input(InputError::InvalidPin { .. }))));
 }
 
 #[test]
@@ -539,6 +540,6 @@ fn min_coverage_out_of_range_is_rejected() {
             &p,
             &mut NoProgress,
         );
-        assert!(matches!(result, Err(Error::InvalidParameter(_))), "{bad}");
+        assert!(matches!(result, Err(Error::Parameter(_))), "{bad}");
     }
 }

@@ -207,7 +207,7 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
     let exact = synthesize(&input, &params(24.0, 14.0).with_max_memory(estimate), &mut NoProgress).unwrap();
     assert_eq!(exact.image, output.image);
     let error = synthesize(&input, &params(24.0, 14.0).with_max_memory(estimate - 1), &mut NoProgress).unwrap_err();
-    assert!(matches!(error, crate::Error::TooMuchMemory(_)), "{error}");
+    assert!(matches!(error, crate::Error::Limit(crate::LimitError::Memory(_))), "{error}");
     assert!(error.to_string().contains("max-memory"), "{error}");
     assert!(params(24.0, 14.0).with_max_memory(1000).validate().unwrap_err().to_string().contains("max-memory"));
 }

@@ -41,7 +41,8 @@ pub enum ErrorKind {
 }
 
 impl JobError {
-    /// The kind of problem, for front ends that raise one error type per kind.
+    /// The kind of problem, for front ends that raise one error type per kind: the category the
+    /// engine's error already carries (its `Parameter`, `Input` or `Limit` variant).
     pub fn kind(&self) -> ErrorKind {
         use motif_curve::Error as Curve;
         use motif_points::Error as Points;
@@ -49,20 +50,14 @@ impl JobError {
         use motif_stylize::Error as Stylize;
         match self {
             Self::InvalidParameter(_)
-            | Self::Curve(Curve::InvalidParameter(_))
-            | Self::Points(Points::InvalidParameter(_))
-            | Self::Strokes(Strokes::InvalidParameter(_))
-            | Self::Stylize(Stylize::InvalidParameter(_)) => ErrorKind::Option,
-            Self::Curve(Curve::TooMuchMemory(_))
-            | Self::Points(
-                Points::TooMuchMemory(_) | Points::TooManyPoints { .. } | Points::TooManyQuadraturePoints { .. },
-            )
-            | Self::Strokes(
-                Strokes::TooMuchMemory(_) | Strokes::TooManyElements { .. } | Strokes::TooMuchMatching { .. },
-            )
-            | Self::Stylize(Stylize::TooMuchMemory(_) | Stylize::TooMuchWork { .. } | Stylize::FieldTooLarge { .. }) => {
-                ErrorKind::Limit
-            }
+            | Self::Curve(Curve::Parameter(_))
+            | Self::Points(Points::Parameter(_))
+            | Self::Strokes(Strokes::Parameter(_))
+            | Self::Stylize(Stylize::Parameter(_)) => ErrorKind::Option,
+            Self::Curve(Curve::Limit(_))
+            | Self::Points(Points::Limit(_))
+            | Self::Strokes(Strokes::Limit(_))
+            | Self::Stylize(Stylize::Limit(_)) => ErrorKind::Limit,
             _ => ErrorKind::Input,
         }
     }
@@ -71,10 +66,10 @@ impl JobError {
     /// holds itself).
     pub fn too_much_memory(&self) -> Option<&motif_core::TooMuchMemory> {
         match self {
-            Self::Curve(motif_curve::Error::TooMuchMemory(error))
-            | Self::Points(motif_points::Error::TooMuchMemory(error))
-            | Self::Strokes(motif_strokes::Error::TooMuchMemory(error))
-            | Self::Stylize(motif_stylize::Error::TooMuchMemory(error)) => Some(error),
+            Self::Curve(motif_curve::Error::Limit(motif_curve::LimitError::Memory(error)))
+            | Self::Points(motif_points::Error::Limit(motif_points::LimitError::Memory(error)))
+            | Self::Strokes(motif_strokes::Error::Limit(motif_strokes::LimitError::Memory(error)))
+            | Self::Stylize(motif_stylize::Error::Limit(motif_stylize::LimitError::Memory(error))) => Some(error),
             _ => None,
         }
     }

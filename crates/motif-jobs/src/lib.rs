@@ -8,7 +8,8 @@
 //! turns into validated engine parameters ([`points::PointsJob::params`]), runs
 //! ([`points::PointsJob::run`]) and reports its figures as one JSON object
 //! ([`points::figures`]) under the same keys whichever front end asked. No front end parses sizes,
-//! fields or enums itself.
+//! fields or enums itself; text forms that a command line writes (`--domain box:W,H`,
+//! `--scale-along A,B`) are parsed here too ([`points::DomainArgument`]).
 //!
 //! The crate is pure (no I/O, builds for `wasm32`). Every engine has its jobs here: `curve`, `points`,
 //! `strokes` and `stylize` (with `texture` and `presynth`).

@@ -533,5 +533,9 @@ fn domain_bounds(domain: &Domain) -> motif_core::kurbo::Rect {
     }
 }
 
+mod syntax;
+
+pub use syntax::{DOMAIN_SYNTAX, DomainArgument, parse_scale_along};
+
 #[cfg(test)]
 mod tests;

@@ -3,6 +3,7 @@
 
 use motif_core::Point;
 
+use crate::InputError;
 use crate::error::{DomainProblem, Error};
 use crate::linear::{self, Matrix, Vector};
 use crate::mesh_surface::MeshSurface;
@@ -265,7 +266,7 @@ impl<const D: usize> Region<D> {
         let angle = rotation.value(p, 0.0).to_radians();
         let s = own_scale * scale.value(p, 1.0);
         if !(s.is_finite() && s > 0.0 && angle.is_finite()) {
-            return Err(Error::InvalidField { scale: s, rotation: angle });
+            return Err(Error::Input(InputError::InvalidField { scale: s, rotation: angle }));
         }
         Ok((linear::mat_mul(&own_rotation, &linear::rotation_xy::<D>(angle)), s))
     }

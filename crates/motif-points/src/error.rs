@@ -3,13 +3,33 @@
 
 use motif_core::InvalidParameter;
 
-/// Everything that can go wrong; messages are lower-case and say what to change.
+/// Everything that can go wrong, grouped as image-rs groups its errors: a parameter out of its
+/// range, an input the engine cannot use, or a run that would pass a limit. Messages are
+/// lower-case and say what to change.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
     /// A parameter is outside its range.
     #[error(transparent)]
-    InvalidParameter(#[from] InvalidParameter),
+    Parameter(#[from] InvalidParameter),
+    /// An input point set, domain, mesh or attribute cannot be used as given.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The run would pass a limit on points, quadrature points or memory.
+    #[error(transparent)]
+    Limit(#[from] LimitError),
+}
+
+impl From<motif_core::TooMuchMemory> for Error {
+    fn from(error: motif_core::TooMuchMemory) -> Self {
+        Self::Limit(LimitError::Memory(error))
+    }
+}
+
+/// An input point set, domain, mesh or attribute cannot be used as given ([`Error::Input`]).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum InputError {
     /// A point set's shape or values are unusable.
     #[error("{set}: {problem}")]
     PointSet {
@@ -71,6 +91,12 @@ pub enum Error {
     /// The domain is unusable: malformed, or holding less than one point at the exemplar's density.
     #[error("unusable domain: {0}")]
     EmptyDomain(DomainProblem),
+}
+
+/// The run would pass a limit on points, quadrature points or memory ([`Error::Limit`]).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum LimitError {
     /// The domain needs more quadrature points than the memory cap allows.
     #[error(
         "domain too large: it needs {count} quadrature points, more than the {limit} allowed (about 2 GB); make it \
@@ -95,10 +121,10 @@ pub enum Error {
     },
     /// The run's estimated memory passes [`Params::max_memory`](crate::Params::max_memory).
     #[error(transparent)]
-    TooMuchMemory(#[from] motif_core::TooMuchMemory),
+    Memory(#[from] motif_core::TooMuchMemory),
 }
 
-/// What is wrong with a point set ([`Error::PointSet`]).
+/// What is wrong with a point set ([`InputError::PointSet`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum PointSetProblem {
@@ -158,7 +184,7 @@ pub enum PointSetProblem {
     },
 }
 
-/// What is wrong with a domain ([`Error::EmptyDomain`]).
+/// What is wrong with a domain ([`InputError::EmptyDomain`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum DomainProblem {
@@ -248,7 +274,7 @@ pub enum DomainProblem {
     },
 }
 
-/// Where an unknown attribute was named ([`Error::UnknownAttribute`]).
+/// Where an unknown attribute was named ([`InputError::UnknownAttribute`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum AttributeRole {

@@ -120,7 +120,7 @@ mod triangles;
 mod volume;
 
 pub use domain::MAX_STROKE_SCALE;
-pub use error::{AttributeRole, DomainProblem, Error, PointSetProblem};
+pub use error::{AttributeRole, DomainProblem, Error, InputError, LimitError, PointSetProblem};
 pub use fidelity::{Distances, Fidelity, Statistics};
 pub use pair_statistics::StatisticsRefinement;
 pub use params::{
@@ -137,11 +137,13 @@ pub use surface::reconstruct_surface;
 /// indices, no degenerate triangle, one finite nonzero direction or one per vertex), so that a
 /// front end can name the file before any work. Open meshes are fine on a surface.
 pub fn check_surface_mesh(mesh: &motif_core::TriangleMesh, directions: &SurfaceDirections) -> Result<(), Error> {
-    mesh_surface::MeshSurface::new(mesh, directions).map(|_| ()).map_err(Error::EmptyDomain)
+    mesh_surface::MeshSurface::new(mesh, directions)
+        .map(|_| ())
+        .map_err(|problem| Error::Input(InputError::EmptyDomain(problem)))
 }
 
 /// Checks a mesh for a volume domain (triangles, finite vertices, valid indices, no degenerate
 /// triangle, closed), so that a front end can name the file before any work.
 pub fn check_volume_mesh(mesh: &motif_core::TriangleMesh) -> Result<(), Error> {
-    volume::MeshVolume::new(mesh).map(|_| ()).map_err(Error::EmptyDomain)
+    volume::MeshVolume::new(mesh).map(|_| ()).map_err(|problem| Error::Input(InputError::EmptyDomain(problem)))
 }

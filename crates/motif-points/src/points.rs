@@ -1,5 +1,6 @@
 //! Point sets with attributes and optional element ids (§4.1, Eq. 1).
 
+use crate::InputError;
 use crate::{Error, PointSetProblem};
 
 /// The largest coordinate magnitude a point set may hold: the extent of a set within ±1e100 is
@@ -53,7 +54,7 @@ impl PointSet {
 
     /// Checks shapes and values; `what` names the set in messages ("exemplar", "existing points").
     pub fn validate(&self, what: &str) -> Result<(), Error> {
-        let problem = |problem: PointSetProblem| Error::PointSet { set: what.to_string(), problem };
+        let problem = |problem: PointSetProblem| Error::Input(InputError::PointSet { set: what.to_string(), problem });
         if self.dimension != 2 && self.dimension != 3 {
             return Err(problem(PointSetProblem::Dimension(self.dimension)));
         }

@@ -18,6 +18,7 @@ use crate::linear::{self, Vector};
 use crate::model::{Exemplar, ExemplarElement, Rigid, State};
 use crate::params::{Input, Params};
 use crate::setup::{AttributeMap, Setup};
+use crate::{InputError, LimitError};
 
 /// Three significant digits, for limits quoted in messages.
 const MEMORY_ADVICE: &str = "use a smaller domain, a larger scale or a smaller neighbourhood";
@@ -73,30 +74,30 @@ fn attribute_columns(source: &PointSet, params: &Params) -> Result<(Vec<String>,
         match source.attribute_names.iter().position(|c| c == name) {
             Some(c) => columns.push(c),
             None => {
-                return Err(Error::UnknownAttribute {
+                return Err(Error::Input(InputError::UnknownAttribute {
                     name: name.clone(),
                     role: AttributeRole::Synthesized,
                     available: source.attribute_names.clone(),
-                });
+                }));
             }
         }
     }
     for name in params.discrete_attributes.iter().chain(&params.continuous_attributes) {
         if !names.contains(name) {
-            return Err(Error::UnknownAttribute {
+            return Err(Error::Input(InputError::UnknownAttribute {
                 name: name.clone(),
                 role: AttributeRole::DiscreteOrContinuous,
                 available: names.clone(),
-            });
+            }));
         }
     }
     for (name, weight) in &params.attribute_weights {
         if !names.contains(name) {
-            return Err(Error::UnknownAttribute {
+            return Err(Error::Input(InputError::UnknownAttribute {
                 name: name.clone(),
                 role: AttributeRole::Weighted,
                 available: names.clone(),
-            });
+            }));
         }
         check_range(&format!("attribute weight of {name}"), *weight, 1e-6, 100.0)?;
     }
@@ -284,7 +285,7 @@ fn region<const D: usize>(input: &Input, params: &Params) -> Result<Region<D>, E
         estimate.add("mesh triangles", mesh.triangles.len() as f64, 72.0 + 64.0 + 6.0 * 16.0);
         estimate.check(params.max_memory, MEMORY_ADVICE)?;
     }
-    Region::<D>::new(&input.domain).map_err(Error::EmptyDomain)
+    Region::<D>::new(&input.domain).map_err(|problem| Error::Input(InputError::EmptyDomain(problem)))
 }
 
 /// The points of an earlier synthesis (progressive synthesis; none otherwise) as the domain sees
@@ -392,10 +393,10 @@ fn expected_points<const D: usize>(
         }
     }
     if expected > params.max_points as f64 {
-        return Err(Error::TooManyPoints { expected, limit: params.max_points });
+        return Err(Error::Limit(LimitError::TooManyPoints { expected, limit: params.max_points }));
     }
     if quadrature.len() == 0 || (expected < 1.0 && input.existing.is_none()) {
-        return Err(Error::EmptyDomain(DomainProblem::TooSmall { expected }));
+        return Err(Error::Input(InputError::EmptyDomain(DomainProblem::TooSmall { expected })));
     }
     Ok((expected, node_share))
 }
@@ -417,11 +418,11 @@ fn existing_state<const D: usize>(
         match set.attribute_names.iter().position(|c| c == name) {
             Some(c) => map.push(c),
             None => {
-                return Err(Error::UnknownAttribute {
+                return Err(Error::Input(InputError::UnknownAttribute {
                     name: name.clone(),
                     role: AttributeRole::Existing,
                     available: set.attribute_names.clone(),
-                });
+                }));
             }
         }
     }
@@ -516,12 +517,12 @@ pub(crate) fn prepare<const D: usize>(input: &Input, params: &Params) -> Result<
 /// Why an exemplar has no positive spacing: all its points at one place, or each doubled.
 fn zero_spacing_error<const D: usize>(positions: &[Vector<D>]) -> Error {
     if positions.iter().all(|p| *p == positions[0]) {
-        return Error::CoincidentPoints;
+        return Error::Input(InputError::CoincidentPoints);
     }
     let mut order: Vec<usize> = (0..positions.len()).collect();
     order.sort_by(|&a, &b| positions[a].partial_cmp(&positions[b]).expect("coordinates are finite"));
     match order.windows(2).find(|w| positions[w[0]] == positions[w[1]]) {
-        Some(w) => Error::DuplicatedPoints { first: w[0].min(w[1]), second: w[0].max(w[1]) },
-        None => Error::CoincidentPoints,
+        Some(w) => Error::Input(InputError::DuplicatedPoints { first: w[0].min(w[1]), second: w[0].max(w[1]) }),
+        None => Error::Input(InputError::CoincidentPoints),
     }
 }

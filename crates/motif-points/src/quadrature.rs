@@ -1,6 +1,7 @@
 //! The quadrature points `q_k` (§4.3): a regular grid over the domain's bounds, the nodes inside
 //! it kept, each with the frame `s_k R_k` of Eq. 8; membership and neighbour queries on the grid.
 
+use crate::LimitError;
 use crate::domain::Region;
 use crate::error::Error;
 use crate::linear::{self, Matrix, Vector};
@@ -48,7 +49,7 @@ impl<const D: usize> Quadrature<D> {
         let dims: [usize; D] = std::array::from_fn(|a| ((high[a] - low[a]) / spacing).floor().max(0.0) as usize + 1);
         let total = dims.iter().try_fold(1usize, |acc, &d| acc.checked_mul(d)).unwrap_or(usize::MAX);
         if total > 60_000_000 {
-            return Err(Error::TooManyQuadraturePoints { count: total, limit: 60_000_000 });
+            return Err(Error::Limit(LimitError::TooManyQuadraturePoints { count: total, limit: 60_000_000 }));
         }
         // Centre the grid inside the bounds so that both sides get the same margin.
         let origin: Vector<D> =

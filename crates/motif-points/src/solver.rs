@@ -6,6 +6,7 @@ use motif_core::timing::Clock;
 use motif_core::{InvalidParameter, Progress, SeedStreams, StageTimer};
 use serde::Serialize;
 
+use crate::InputError;
 use crate::energy::{Evaluation, Problem};
 use crate::error::{DomainProblem, Error};
 use crate::fidelity::Fidelity;
@@ -147,18 +148,21 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     let exemplar = &input.exemplar;
     exemplar.validate("exemplar")?;
     if exemplar.len() < 3 {
-        return Err(Error::TooFewPoints { count: exemplar.len() });
+        return Err(Error::Input(InputError::TooFewPoints { count: exemplar.len() }));
     }
     let surface = matches!(input.domain, Domain::Surface { .. });
     if surface && exemplar.dimension != 2 {
-        return Err(Error::EmptyDomain(DomainProblem::SurfaceExemplar(exemplar.dimension)));
+        return Err(Error::Input(InputError::EmptyDomain(DomainProblem::SurfaceExemplar(exemplar.dimension))));
     }
     if let Some(existing) = &input.existing {
         existing.validate("existing points")?;
         // On a surface the output, and so the existing points, are 3D.
         let output_dimension = if surface { 3 } else { exemplar.dimension };
         if existing.dimension != output_dimension {
-            return Err(Error::DimensionMismatch { existing: existing.dimension, exemplar: output_dimension });
+            return Err(Error::Input(InputError::DimensionMismatch {
+                existing: existing.dimension,
+                exemplar: output_dimension,
+            }));
         }
     }
     params.validate()?;
@@ -175,7 +179,7 @@ fn check_exemplar_window(exemplar: &PointSet, low: &[f64], high: &[f64]) -> Resu
         let corner = |c: &[f64]| c.iter().map(|&v| number(v)).collect::<Vec<_>>().join(",");
         format!("{} to {}", corner(low), corner(high))
     };
-    let invalid = |allowed: String| Error::InvalidParameter(InvalidParameter::new("exemplar-window", shown(), allowed));
+    let invalid = |allowed: String| Error::Parameter(InvalidParameter::new("exemplar-window", shown(), allowed));
     if low.len() != d || high.len() != d {
         return Err(invalid(format!("the exemplar is {d}D: it needs {d} lower and {d} upper values")));
     }

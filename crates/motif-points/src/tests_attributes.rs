@@ -3,6 +3,7 @@
 
 use motif_core::NoProgress;
 
+use crate::InputError;
 use crate::error::Error;
 use crate::params::{Domain, Initialization, Input, Params};
 use crate::samples::{hex_exemplar, ripple_exemplar};
@@ -112,14 +113,18 @@ fn unusable_attribute_columns_are_clear_errors() {
     let missing = with_attribute(hex_exemplar(8, 8, 0.1, 1), |i, v| if i == 5 { f64::NAN } else { v });
     let message =
         match synthesize(&Input { exemplar: missing, domain: domain(), existing: None }, &params(), &mut NoProgress) {
-            Err(error @ (Error::PointSet { .. } | Error::UnknownAttribute { .. })) => error.to_string(),
+            Err(
+                error @ (Error::Input(InputError::PointSet { .. }) | Error::Input(InputError::UnknownAttribute { .. })),
+            ) => error.to_string(),
             other => panic!("{other:?}"),
         };
     assert!(message.contains("\"shade\"") && message.contains("point 5"), "{message}");
     let weights = Params { attribute_weights: vec![("size".into(), 2.0)], ..params() };
     let exemplar = hex_exemplar(8, 8, 0.1, 1);
     let message = match synthesize(&Input { exemplar, domain: domain(), existing: None }, &weights, &mut NoProgress) {
-        Err(error @ (Error::PointSet { .. } | Error::UnknownAttribute { .. })) => error.to_string(),
+        Err(
+            error @ (Error::Input(InputError::PointSet { .. }) | Error::Input(InputError::UnknownAttribute { .. })),
+        ) => error.to_string(),
         other => panic!("{other:?}"),
     };
     assert!(message.contains("\"size\""), "{message}");

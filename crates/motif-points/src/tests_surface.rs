@@ -5,7 +5,7 @@ use motif_core::{NoProgress, TriangleMesh};
 
 use crate::mesh_surface::MeshSurface;
 use crate::samples::hex_exemplar;
-use crate::{Domain, DomainProblem, Error, Initialization, Input, Params, SurfaceDirections, synthesize};
+use crate::{Domain, DomainProblem, Error, Initialization, Input, InputError, Params, SurfaceDirections, synthesize};
 
 /// The square `[0, side]²` in the plane z = `height`, as `cells × cells` pairs of triangles.
 pub(crate) fn flat_mesh(side: f64, cells: u32, height: f64) -> TriangleMesh {
@@ -134,7 +134,7 @@ fn bad_surfaces_are_refused() {
         &params(),
         &mut NoProgress,
     ) {
-        Err(Error::EmptyDomain(problem)) => problem,
+        Err(Error::Input(InputError::EmptyDomain(problem))) => problem,
         other => panic!("expected a domain error, got {:?}", other.map(|o| o.points.len())),
     };
     let curvature = SurfaceDirections::Curvature;
@@ -154,6 +154,6 @@ fn bad_surfaces_are_refused() {
     let surface = Domain::Surface { mesh: flat_mesh(5.0, 2, 0.0), directions: curvature };
     assert!(matches!(
         synthesize(&Input::new(cloud, surface), &params(), &mut NoProgress),
-        Err(Error::EmptyDomain(DomainProblem::SurfaceExemplar(3)))
+        Err(Error::Input(InputError::EmptyDomain(DomainProblem::SurfaceExemplar(3))))
     ));
 }

@@ -8,6 +8,7 @@ use crate::error::Error;
 use crate::linear::{self, Vector};
 use crate::params::{BrushStroke, Domain, Field, Initialization, Input, Params};
 use crate::tests::{box_domain, interior_nearest, jittered_grid, positions_of, quick_params, rows};
+use crate::{InputError, LimitError};
 use crate::{PointSet, synthesize};
 
 /// Fraction of interior nearest-neighbour distances within 20 % of the grid spacing 1.
@@ -357,9 +358,12 @@ fn extreme_exemplars_and_stroke_scales_are_refused_by_name() {
         doubled.positions.extend(p.iter().chain(&p));
     }
     let error = run(doubled, box_domain(5.0, 5.0)).unwrap_err();
-    assert!(matches!(error, Error::DuplicatedPoints { .. }) && error.to_string().contains("duplicate"), "{error}");
+    assert!(
+        matches!(error, Error::Input(InputError::DuplicatedPoints { .. })) && error.to_string().contains("duplicate"),
+        "{error}"
+    );
     let same = PointSet::new(2, vec![2.0; 8]);
-    assert!(matches!(run(same, box_domain(5.0, 5.0)).unwrap_err(), Error::CoincidentPoints));
+    assert!(matches!(run(same, box_domain(5.0, 5.0)).unwrap_err(), Error::Input(InputError::CoincidentPoints)));
     // A scale ratio of 1e300 along a stroke rounded the far end to scale 0.
     let stroke =
         BrushStroke { points: vec![vec![0.0, 0.0], vec![0.0, 8.0]], width: 3.0, scale_start: 1e300, scale_end: 1.0 };
@@ -381,12 +385,12 @@ fn bad_input_gives_clear_errors() {
     assert!(error.to_string().contains("non-finite coordinate"), "{error}");
     let grid = jittered_grid(5, 0.1, 1);
     let error = run(grid.clone(), Params { neighbourhood: Some(0.0), ..quick_params() }, domain.clone()).unwrap_err();
-    assert!(matches!(error, Error::InvalidParameter(_)) && error.to_string().contains("neighbourhood"), "{error}");
+    assert!(matches!(error, Error::Parameter(_)) && error.to_string().contains("neighbourhood"), "{error}");
     let error = run(grid.clone(), Params { neighbourhood: Some(-1.0), ..quick_params() }, domain.clone()).unwrap_err();
     assert!(error.to_string().contains("neighbourhood"), "{error}");
     let empty = box_domain(0.0, 5.0);
     let error = run(grid.clone(), quick_params(), empty).unwrap_err();
-    assert!(matches!(error, Error::EmptyDomain(_)), "{error}");
+    assert!(matches!(error, Error::Input(InputError::EmptyDomain(_))), "{error}");
     let tiny = Domain::Box { min: vec![0.0, 0.0], max: vec![0.1, 0.1] };
     let error = run(grid.clone(), quick_params(), tiny).unwrap_err();
     assert!(error.to_string().contains("unusable domain"), "{error}");
@@ -394,8 +398,12 @@ fn bad_input_gives_clear_errors() {
     let huge = Domain::Box { min: vec![0.0, 0.0], max: vec![1e6, 1e6] };
     let error = run(grid.clone(), quick_params(), huge).unwrap_err();
     assert!(
-        matches!(error, Error::TooManyQuadraturePoints { .. } | Error::TooManyPoints { .. } | Error::TooMuchMemory(_))
-            && (error.to_string().contains("too large") || error.to_string().contains("max-memory")),
+        matches!(
+            error,
+            Error::Limit(LimitError::TooManyQuadraturePoints { .. })
+                | Error::Limit(LimitError::TooManyPoints { .. })
+                | Error::Limit(LimitError::Memory(_))
+        ) && (error.to_string().contains("too large") || error.to_string().contains("max-memory")),
         "{error}"
     );
     let wrong_dimension = Domain::Box { min: vec![0.0; 3], max: vec![1.0; 3] };
@@ -441,11 +449,14 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
     assert_eq!(same.points, output.points);
     if estimate > 1 << 20 {
         let error = run(grid, quick_params().with_max_memory(estimate - 1), domain).unwrap_err();
-        assert!(matches!(error, Error::TooMuchMemory(_)), "{error}");
+        assert!(matches!(error, Error::Limit(LimitError::Memory(_))), "{error}");
     } else {
         // A domain a thousand times larger passes a 1 MiB limit.
         let large = box_domain(300.0, 300.0);
         let error = run(grid, quick_params().with_max_memory(1 << 20), large).unwrap_err();
-        assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+        assert!(
+            matches!(error, Error::Limit(LimitError::Memory(_))) && error.to_string().contains("max-memory"),
+            "{error}"
+        );
     }
 }

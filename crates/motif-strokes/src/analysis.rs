@@ -6,6 +6,7 @@ use motif_core::Point;
 use motif_core::{math, vector};
 
 use crate::Error;
+use crate::InputError;
 use crate::border::flag_border;
 use crate::cluster::{Element, cluster};
 use crate::distribution::{Graph, neighbourhood_size, shift_from_offsets, unskewed_delaunay};
@@ -89,7 +90,7 @@ pub fn fit_sets(strokes: &[Stroke], params: &Params) -> Vec<FitSet> {
 pub fn analyse(strokes: &[Stroke], params: &Params, along_path: bool) -> Result<Analysis, Error> {
     params.validate()?;
     if strokes.is_empty() {
-        return Err(Error::NoStrokes);
+        return Err(Error::Input(InputError::NoStrokes));
     }
     let sets = fit_sets(strokes, params);
     let elements = cluster(strokes, &sets, params.scale);

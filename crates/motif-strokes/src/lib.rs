@@ -83,7 +83,7 @@ pub use analysis::{Analysis, analyse};
 pub use attributes::{Appearance, Attributes};
 pub use cluster::{ClusteringComparison, Element, compare_clustering, merge_height};
 pub use element::OrientedBox;
-pub use error::Error;
+pub use error::{Error, InputError, LimitError};
 pub use motif_core::ToneMap;
 pub use params::{FitPoints, Params, Thresholds};
 pub use placement::OverlapFigures;
@@ -207,12 +207,12 @@ pub struct Output {
 fn validate(input: &Input, params: &Params) -> Result<(), Error> {
     params.validate()?;
     if input.strokes.is_empty() {
-        return Err(Error::NoStrokes);
+        return Err(Error::Input(InputError::NoStrokes));
     }
     if let Target::Region(region) = &input.target
         && !region.is_simple()
     {
-        return Err(Error::SelfIntersectingRegion);
+        return Err(Error::Input(InputError::SelfIntersectingRegion));
     }
     for (name, map) in [("density-map", &input.density_map), ("scale-map", &input.scale_map)] {
         let Some(map) = map else { continue };
@@ -236,7 +236,7 @@ fn validate(input: &Input, params: &Params) -> Result<(), Error> {
 pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
     match Polygon::new(points.clone()) {
         Ok(region) if region.is_simple() => Ok(region),
-        Ok(_) => Err(Error::SelfIntersectingRegion),
+        Ok(_) => Err(Error::Input(InputError::SelfIntersectingRegion)),
         Err(error) => {
             let mut kept: Vec<Point> = Vec::with_capacity(points.len());
             for p in points {
@@ -248,7 +248,7 @@ pub fn region_from_outline(points: Vec<Point>) -> Result<Polygon, Error> {
                 kept.pop();
             }
             let crossing = motif_core::geometry::outline_crosses_itself(&kept);
-            if crossing { Err(Error::SelfIntersectingRegion) } else { Err(error.into()) }
+            if crossing { Err(Error::Input(InputError::SelfIntersectingRegion)) } else { Err(error.into()) }
         }
     }
 }
@@ -268,12 +268,12 @@ fn check_matching_cost(outputs: usize, references: usize) -> Result<(), Error> {
     if comparisons <= MAX_COMPARISONS {
         return Ok(());
     }
-    Err(Error::TooMuchMatching {
+    Err(Error::Limit(LimitError::TooMuchMatching {
         outputs,
         references,
         minutes: comparisons * SECONDS_PER_COMPARISON / 60.0,
         limit_minutes: MAX_COMPARISONS * SECONDS_PER_COMPARISON / 60.0,
-    })
+    }))
 }
 
 const MEMORY_ADVICE: &str = "use a smaller target, a larger scale or a simpler reference";
@@ -423,13 +423,13 @@ fn seed_target<'a>(
     };
     let expected = analysis.elements.len() as f64 * target_area / analysis.reference_area() * density.mean;
     if !maps.is_uniform() && expected < 0.5 {
-        return Err(Error::BlankDensityMap);
+        return Err(Error::Input(InputError::BlankDensityMap));
     }
     if !expected.is_finite() || expected > params.max_elements as f64 {
-        return Err(Error::TooManyElements {
+        return Err(Error::Limit(LimitError::TooManyElements {
             count: expected.min(usize::MAX as f64) as usize,
             limit: params.max_elements,
-        });
+        }));
     }
     let count = (expected.round() as usize).max(1);
     check_matching_cost(count, analysis.elements.len())?;
@@ -564,7 +564,7 @@ mod tests {
         // A reference of 113 k strokes (38 k elements) grown over a target as large.
         let error = check_matching_cost(38_000, 38_000).unwrap_err();
         let message = error.to_string();
-        assert!(matches!(error, Error::TooMuchMatching { .. }), "{message}");
+        assert!(matches!(error, Error::Limit(LimitError::TooMuchMatching { .. })), "{message}");
         assert!(message.contains("about 36 minutes") && message.contains("38000 reference elements"), "{message}");
     }
 }

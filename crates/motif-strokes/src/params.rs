@@ -128,7 +128,7 @@ impl Params {
         seed: 0,
     };
 
-    /// Checks every field; the first bad one is returned ([`Error::InvalidParameter`]).
+    /// Checks every field; the first bad one is returned ([`Error::Parameter`]).
     pub fn validate(&self) -> Result<(), Error> {
         Ok(self.check()?)
     }

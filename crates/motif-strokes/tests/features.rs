@@ -3,6 +3,7 @@
 
 use motif_core::random::Rng;
 use motif_core::{NoProgress, Point, Polygon, Polyline, SeedStreams, math};
+use motif_strokes::InputError;
 use motif_strokes::samples::{FigureField, figure_field};
 use motif_strokes::{Error, Input, Output, Params, Stroke, Target, ToneMap, synthesize};
 
@@ -132,7 +133,10 @@ fn bad_maps_give_clear_errors() {
     assert!(error.contains("scale-map") && error.contains("region"), "{error}");
     let white = ToneMap::from_grey(2, 1, vec![1.0, 1.0]).unwrap();
     let input = Input { density_map: Some(white), ..Input::new(strokes, rect(600.0, 300.0)) };
-    assert_eq!(synthesize(&input, &params(4.0, 1), &mut NoProgress).unwrap_err(), Error::BlankDensityMap);
+    assert_eq!(
+        synthesize(&input, &params(4.0, 1), &mut NoProgress).unwrap_err(),
+        Error::Input(InputError::BlankDensityMap)
+    );
 }
 
 #[test]

@@ -4,6 +4,7 @@ use motif_core::{NoProgress, Point, Polygon, Polyline};
 use motif_core::{math, vector};
 use motif_strokes::samples::{FigureField, HatchRow, figure_field, hatch_row};
 use motif_strokes::{Error, Input, Output, Params, Stroke, Target, region_from_outline, synthesize};
+use motif_strokes::{InputError, LimitError};
 
 const RED: [u8; 4] = [220, 30, 30, 255];
 const BLUE: [u8; 4] = [30, 30, 220, 255];
@@ -210,7 +211,7 @@ fn bad_input_gives_clear_errors() {
     let strokes = figure_field(&FigureField { columns: 3, rows: 3, ..FigureField::default() }, Point::ORIGIN, 7);
     let region = Target::Region(l_shape(200.0));
     let error = synthesize(&Input::new(vec![], region.clone()), &params(4.0), &mut NoProgress).unwrap_err();
-    assert_eq!(error, Error::NoStrokes);
+    assert_eq!(error, Error::Input(InputError::NoStrokes));
     assert!(error.to_string().contains("no strokes"));
     for scale in [0.0, -1.0, f64::NAN] {
         let error =
@@ -226,17 +227,17 @@ fn bad_input_gives_clear_errors() {
     .unwrap();
     let error =
         synthesize(&Input::new(strokes.clone(), Target::Region(bowtie)), &params(4.0), &mut NoProgress).unwrap_err();
-    assert_eq!(error, Error::SelfIntersectingRegion);
+    assert_eq!(error, Error::Input(InputError::SelfIntersectingRegion));
     let symmetric_bowtie =
         vec![Point::new(0.0, 0.0), Point::new(100.0, 100.0), Point::new(100.0, 0.0), Point::new(0.0, 100.0)];
-    assert_eq!(region_from_outline(symmetric_bowtie), Err(Error::SelfIntersectingRegion));
+    assert_eq!(region_from_outline(symmetric_bowtie), Err(Error::Input(InputError::SelfIntersectingRegion)));
     let flat = vec![Point::new(0.0, 0.0), Point::new(10.0, 0.0), Point::new(20.0, 0.0)];
     let error = region_from_outline(flat).unwrap_err();
     assert!(error.to_string().contains("area > 0"), "{error}");
     let huge =
         Target::Region(Polygon::new(vec![Point::new(0.0, 0.0), Point::new(1e6, 0.0), Point::new(1e6, 1e6)]).unwrap());
     let error = synthesize(&Input::new(strokes.clone(), huge), &params(4.0), &mut NoProgress).unwrap_err();
-    assert!(matches!(error, Error::TooManyElements { .. }), "{error}");
+    assert!(matches!(error, Error::Limit(LimitError::TooManyElements { .. })), "{error}");
     let mut bad = params(4.0);
     bad.thresholds.overlap = 1.0;
     let error = synthesize(&Input::new(strokes, region), &bad, &mut NoProgress).unwrap_err();
@@ -316,5 +317,8 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
         &mut NoProgress,
     )
     .unwrap_err();
-    assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+    assert!(
+        matches!(error, Error::Limit(LimitError::Memory(_))) && error.to_string().contains("max-memory"),
+        "{error}"
+    );
 }

@@ -9,6 +9,7 @@
 
 use motif_core::FloatImage;
 
+use crate::InputError;
 use crate::{Error, NearestNeighbourField, SegmentLabels, SegmentTexture};
 
 /// Pixels closer than `band` to a segment edge (none when `band` is 0 or there is one segment).
@@ -155,43 +156,47 @@ pub(crate) fn compose_textures(
     band_width: usize,
 ) -> Result<Composition, Error> {
     if textures.is_empty() {
-        return Err(Error::NoTextures);
+        return Err(Error::Input(InputError::NoTextures));
     }
     for (index, texture) in textures.iter().enumerate() {
         if texture.image.is_empty() {
-            return Err(Error::EmptyImage(format!("pre-synthesized texture {}", index + 1)));
+            return Err(Error::Input(InputError::EmptyImage(format!("pre-synthesized texture {}", index + 1))));
         }
         if texture.image.channels() != channels {
-            return Err(Error::TextureChannels {
+            return Err(Error::Input(InputError::TextureChannels {
                 texture: index + 1,
                 channels: texture.image.channels(),
                 style_channels: channels,
-            });
+            }));
         }
         if let Some(field) = &texture.field {
             let (tw, th) = (texture.image.width(), texture.image.height());
             if field.width != tw || field.height != th || field.matches.len() != tw * th {
-                return Err(Error::TextureFieldSize {
+                return Err(Error::Input(InputError::TextureFieldSize {
                     texture: index + 1,
                     field_width: field.width,
                     field_height: field.height,
                     width: tw,
                     height: th,
-                });
+                }));
             }
             let outside =
                 |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
             if field.matches.iter().any(outside) {
-                return Err(Error::TextureFieldOutside { texture: index + 1, style_width, style_height });
+                return Err(Error::Input(InputError::TextureFieldOutside {
+                    texture: index + 1,
+                    style_width,
+                    style_height,
+                }));
             }
             if field.source_width != style_width || field.source_height != style_height {
-                return Err(Error::TextureFieldSource {
+                return Err(Error::Input(InputError::TextureFieldSource {
                     texture: index + 1,
                     source_width: field.source_width,
                     source_height: field.source_height,
                     style_width,
                     style_height,
-                });
+                }));
             }
         }
     }

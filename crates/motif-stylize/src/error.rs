@@ -2,15 +2,33 @@
 
 use motif_core::InvalidParameter;
 
-/// Everything that can go wrong in stylization or texture synthesis.
-///
-/// All variants describe bad input; the engine itself never fails on valid input.
+/// Everything that can go wrong, grouped as image-rs groups its errors: a parameter out of its
+/// range, an input the engine cannot use, or a run that would pass a limit. Messages are
+/// lower-case and say what to change.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// A numeric parameter is out of its range.
+    /// A parameter is outside its range.
     #[error(transparent)]
-    InvalidParameter(#[from] InvalidParameter),
+    Parameter(#[from] InvalidParameter),
+    /// An input image, mask, guide, texture cache, field or video cannot be used as given.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The run would pass a limit on pixels, memory or a field encoding.
+    #[error(transparent)]
+    Limit(#[from] LimitError),
+}
+
+impl From<motif_core::TooMuchMemory> for Error {
+    fn from(error: motif_core::TooMuchMemory) -> Self {
+        Self::Limit(LimitError::Memory(error))
+    }
+}
+
+/// An input image, mask, guide, texture cache, field or video cannot be used as given ([`Error::Input`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum InputError {
     /// An input image has no pixels.
     #[error("the {0} image is empty")]
     EmptyImage(String),
@@ -97,20 +115,6 @@ pub enum Error {
     /// Neither target guides nor an output size say how big the output is.
     #[error("no target guide and no output size: give guides or a size")]
     MissingTargetSize,
-    /// The run would synthesize more pixels than the limit allows.
-    #[error(
-        "the run would synthesize {pixels} pixels, more than the {max_pixels} allowed (max-pixels; about 15 CPU-seconds \
-         per megapixel): use a smaller size, or raise max-pixels"
-    )]
-    TooMuchWork {
-        /// Output pixels (summed over the textures of a presynthesis).
-        pixels: usize,
-        /// The limit ([`crate::Params::max_pixels`]).
-        max_pixels: usize,
-    },
-    /// The run's estimated memory passes [`crate::Params::max_memory`].
-    #[error(transparent)]
-    TooMuchMemory(#[from] motif_core::TooMuchMemory),
     /// An exact palette of the segment guide would have too many colours.
     #[error(
         "segments: the segment guide has {colours} distinct colours (more than {max}); quantize it with k-means (a \
@@ -227,16 +231,6 @@ pub enum Error {
         /// The patch side.
         patch: usize,
     },
-    /// A field's source is too large for its PNG encoding.
-    #[error("nearest-neighbour field: a {width}×{height} source does not fit the PNG encoding (at most {max} a side)")]
-    FieldTooLarge {
-        /// The source's width.
-        width: usize,
-        /// The source's height.
-        height: usize,
-        /// The encoding's limit.
-        max: usize,
-    },
     /// A decoded field points where no whole patch of the source fits.
     #[error(
         "nearest-neighbour field: pixel ({x}, {y}) points at ({source_x}, {source_y}), outside the \
@@ -279,5 +273,35 @@ pub enum Error {
         frame: usize,
         /// The keyframe before it.
         previous: usize,
+    },
+}
+
+/// The run would pass a limit on pixels, memory or a field encoding ([`Error::Limit`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LimitError {
+    /// The run would synthesize more pixels than the limit allows.
+    #[error(
+        "the run would synthesize {pixels} pixels, more than the {max_pixels} allowed (max-pixels; about 15 CPU-seconds \
+         per megapixel): use a smaller size, or raise max-pixels"
+    )]
+    TooMuchWork {
+        /// Output pixels (summed over the textures of a presynthesis).
+        pixels: usize,
+        /// The limit ([`crate::Params::max_pixels`]).
+        max_pixels: usize,
+    },
+    /// The run's estimated memory passes [`crate::Params::max_memory`].
+    #[error(transparent)]
+    Memory(#[from] motif_core::TooMuchMemory),
+    /// A field's source is too large for its PNG encoding.
+    #[error("nearest-neighbour field: a {width}×{height} source does not fit the PNG encoding (at most {max} a side)")]
+    FieldTooLarge {
+        /// The source's width.
+        width: usize,
+        /// The source's height.
+        height: usize,
+        /// The encoding's limit.
+        max: usize,
     },
 }

@@ -9,6 +9,7 @@ use motif_core::{ChannelImage, FloatImage, RgbaImage};
 
 use crate::Error;
 use crate::vote::weight_of_code;
+use crate::{InputError, LimitError};
 
 /// For each target pixel, the centre `[x, y]` of the source patch it was matched to (`None`
 /// for pixels that were not searched, e.g. copied from pre-synthesized textures).
@@ -40,11 +41,11 @@ impl NearestNeighbourField {
     /// up to 4096 pixels a side.
     pub fn to_rgba(&self) -> Result<RgbaImage, Error> {
         if self.source_width > MAX_ENCODED_SIDE || self.source_height > MAX_ENCODED_SIDE {
-            return Err(Error::FieldTooLarge {
+            return Err(Error::Limit(LimitError::FieldTooLarge {
                 width: self.source_width,
                 height: self.source_height,
                 max: MAX_ENCODED_SIDE,
-            });
+            }));
         }
         let pixels = self
             .matches
@@ -120,7 +121,7 @@ impl NearestNeighbourField {
         if let Some([x, y]) = source {
             let fits = |v: u32, side: usize| (radius..side.saturating_sub(radius)).contains(&(v as usize));
             if !fits(x, self.source_width) || !fits(y, self.source_height) {
-                return Err(Error::FieldOutside {
+                return Err(Error::Input(InputError::FieldOutside {
                     x: index % self.width.max(1),
                     y: index / self.width.max(1),
                     source_x: x,
@@ -128,7 +129,7 @@ impl NearestNeighbourField {
                     source_width: self.source_width,
                     source_height: self.source_height,
                     patch: self.patch_size,
-                });
+                }));
             }
         }
         self.matches.push(source);
@@ -143,13 +144,13 @@ impl NearestNeighbourField {
 /// stay transparent (zero).
 pub fn apply_field(field: &NearestNeighbourField, style: &impl ChannelImage) -> Result<FloatImage, Error> {
     if style.width() != field.source_width || style.height() != field.source_height {
-        return Err(Error::SizeMismatch {
+        return Err(Error::Input(InputError::SizeMismatch {
             what: "the style a field is applied to must have the field's source size".into(),
             first: "field source".into(),
             first_size: format!("{}×{}", field.source_width, field.source_height),
             second: "style".into(),
             second_size: format!("{}×{}", style.width(), style.height()),
-        });
+        }));
     }
     let (w, h, r) = (field.width as isize, field.height as isize, (field.patch_size / 2) as isize);
     let channels = style.channels();

@@ -105,7 +105,7 @@ mod tests_video;
 use motif_core::{ChannelImage, FloatImage, InvalidParameter, Progress};
 use serde::Serialize;
 
-pub use error::Error;
+pub use error::{Error, InputError, LimitError};
 pub use field::{NearestNeighbourField, apply_field};
 pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
@@ -262,17 +262,20 @@ fn size_of(image: &impl ChannelImage) -> String {
 
 fn check_image(image: &impl ChannelImage, what: &str) -> Result<(), Error> {
     if image.width() == 0 || image.height() == 0 {
-        return Err(Error::EmptyImage(what.to_string()));
+        return Err(Error::Input(InputError::EmptyImage(what.to_string())));
     }
     if ![1, 3, 4].contains(&image.channels()) {
-        return Err(Error::UnsupportedChannels { what: what.to_string(), channels: image.channels() });
+        return Err(Error::Input(InputError::UnsupportedChannels {
+            what: what.to_string(),
+            channels: image.channels(),
+        }));
     }
     Ok(())
 }
 
 /// Refuses work on more than `max_pixels` output pixels before anything is allocated for it.
 fn check_work(pixels: usize, max_pixels: usize) -> Result<(), Error> {
-    if pixels > max_pixels { Err(Error::TooMuchWork { pixels, max_pixels }) } else { Ok(()) }
+    if pixels > max_pixels { Err(Error::Limit(LimitError::TooMuchWork { pixels, max_pixels })) } else { Ok(()) }
 }
 
 /// The peak memory of one synthesis: the inputs with their coarser pyramid levels (4/3 of the
@@ -407,37 +410,37 @@ fn check_images<I: ChannelImage>(input: &Input<I>, patch: usize) -> Result<(), E
     let style = &input.style;
     check_image(style, "style")?;
     if style.width() < patch || style.height() < patch {
-        return Err(Error::StyleTooSmall { width: style.width(), height: style.height(), patch });
+        return Err(Error::Input(InputError::StyleTooSmall { width: style.width(), height: style.height(), patch }));
     }
     for (index, guide) in input.guides.iter().enumerate() {
         let number = index + 1;
         check_image(&guide.source, &format!("source guide {number}"))?;
         check_image(&guide.target, &format!("target guide {number}"))?;
         if guide.source.width() != style.width() || guide.source.height() != style.height() {
-            return Err(Error::SizeMismatch {
+            return Err(Error::Input(InputError::SizeMismatch {
                 what: "a source guide must have the style's size".into(),
                 first: "the style".into(),
                 first_size: size_of(style),
                 second: format!("source guide {number}"),
                 second_size: size_of(&guide.source),
-            });
+            }));
         }
         if guide.source.channels() != guide.target.channels() {
-            return Err(Error::ChannelMismatch {
+            return Err(Error::Input(InputError::ChannelMismatch {
                 index: number,
                 source_channels: guide.source.channels(),
                 target_channels: guide.target.channels(),
-            });
+            }));
         }
         let first = &input.guides[0].target;
         if guide.target.width() != first.width() || guide.target.height() != first.height() {
-            return Err(Error::SizeMismatch {
+            return Err(Error::Input(InputError::SizeMismatch {
                 what: "all target guides must have the same size".into(),
                 first: "target guide 1".into(),
                 first_size: size_of(first),
                 second: format!("target guide {number}"),
                 second_size: size_of(&guide.target),
-            });
+            }));
         }
         if let Some(weight) = guide.weight {
             motif_core::error::check_range(&format!("weight of guide {number}"), f64::from(weight), 0.0, 1000.0)?;
@@ -450,25 +453,25 @@ fn check_images<I: ChannelImage>(input: &Input<I>, patch: usize) -> Result<(), E
 fn target_size<I: ChannelImage>(input: &Input<I>) -> Result<(usize, usize), Error> {
     match (input.guides.first(), input.size) {
         (Some(guide), Some(size)) if size != (guide.target.width(), guide.target.height()) => {
-            Err(Error::SizeMismatch {
+            Err(Error::Input(InputError::SizeMismatch {
                 what: "the output size must equal the target guides' size".into(),
                 first: "the output".into(),
                 first_size: format!("{}×{}", size.0, size.1),
                 second: "target guide 1".into(),
                 second_size: size_of(&guide.target),
-            })
+            }))
         }
         (Some(guide), _) => Ok((guide.target.width(), guide.target.height())),
         (None, Some((w, h))) => {
             if w == 0 || h == 0 {
-                return Err(Error::EmptyImage("output".into()));
+                return Err(Error::Input(InputError::EmptyImage("output".into())));
             }
             if w > 1 << 15 || h > 1 << 15 {
                 return Err(InvalidParameter::new("size", format!("{w}×{h}"), "must be at most 32768 a side").into());
             }
             Ok((w, h))
         }
-        (None, None) => Err(Error::MissingTargetSize),
+        (None, None) => Err(Error::Input(InputError::MissingTargetSize)),
     }
 }
 
@@ -537,7 +540,7 @@ fn segment_labels<I: ChannelImage>(input: &Input<I>, params: &Params) -> Result<
     let guide_count = input.guides.len();
     let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
         if guide_count == 0 {
-            Error::SegmentsWithoutGuide
+            Error::Input(InputError::SegmentsWithoutGuide)
         } else {
             InvalidParameter::new(
                 "segment-guide",

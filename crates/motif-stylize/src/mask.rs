@@ -3,6 +3,7 @@
 
 use motif_core::{ChannelImage, FloatImage};
 
+use crate::InputError;
 use crate::error::Error;
 use crate::synthesis;
 
@@ -32,24 +33,30 @@ pub(crate) fn check<I: ChannelImage>(
     textures: bool,
 ) -> Result<(), Error> {
     if textures {
-        return Err(Error::MaskWithTextures);
+        return Err(Error::Input(InputError::MaskWithTextures));
     }
     let size = (mask.keep.width(), mask.keep.height());
     if size != (width, height) {
-        return Err(Error::MaskSize { kept: format!("{}×{}", size.0, size.1), target: format!("{width}×{height}") });
+        return Err(Error::Input(InputError::MaskSize {
+            kept: format!("{}×{}", size.0, size.1),
+            target: format!("{width}×{height}"),
+        }));
     }
     if mask.hole.len() != width * height {
-        return Err(Error::MaskPixels { pixels: mask.hole.len(), target: format!("{width}×{height}") });
+        return Err(Error::Input(InputError::MaskPixels {
+            pixels: mask.hole.len(),
+            target: format!("{width}×{height}"),
+        }));
     }
     if mask.keep.channels() != style.channels() {
-        return Err(Error::MaskChannels { kept: mask.keep.channels(), style: style.channels() });
+        return Err(Error::Input(InputError::MaskChannels { kept: mask.keep.channels(), style: style.channels() }));
     }
     let holes = mask.hole.iter().filter(|&&h| h).count();
     if holes == 0 {
-        return Err(Error::MaskCoverage("no pixel"));
+        return Err(Error::Input(InputError::MaskCoverage("no pixel")));
     }
     if holes == mask.hole.len() {
-        return Err(Error::MaskCoverage("every pixel"));
+        return Err(Error::Input(InputError::MaskCoverage("every pixel")));
     }
     if mask.exclude_hole_from_style {
         let touched = synthesis::dilate(&mask.hole, width, height, patch / 2);
@@ -57,7 +64,7 @@ pub(crate) fn check<I: ChannelImage>(
         let whole = (radius..height.saturating_sub(radius))
             .any(|y| (radius..width.saturating_sub(radius)).any(|x| !touched[y * width + x]));
         if !whole {
-            return Err(Error::NoSourceOutsideHole { patch });
+            return Err(Error::Input(InputError::NoSourceOutsideHole { patch }));
         }
     }
     Ok(())

@@ -3,6 +3,7 @@
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
 
+use crate::InputError;
 use crate::segments::{hex, label_image, segment_colours};
 use crate::{
     Error, MEMORY_ADVICE, Params, SegmentTexture, Segmentation, channel_weights, check_image, check_work,
@@ -46,17 +47,21 @@ pub fn presynthesize(
     check_image(&input.style, "style")?;
     check_image(&input.guide, "source guide")?;
     if input.guide.width() != input.style.width() || input.guide.height() != input.style.height() {
-        return Err(Error::SizeMismatch {
+        return Err(Error::Input(InputError::SizeMismatch {
             what: "the source guide must have the style's size".into(),
             first: "the style".into(),
             first_size: size_of(&input.style),
             second: "the source guide".into(),
             second_size: size_of(&input.guide),
-        });
+        }));
     }
     let patch = params.patch_size;
     if input.style.width() < patch || input.style.height() < patch {
-        return Err(Error::StyleTooSmall { width: input.style.width(), height: input.style.height(), patch });
+        return Err(Error::Input(InputError::StyleTooSmall {
+            width: input.style.width(),
+            height: input.style.height(),
+            patch,
+        }));
     }
     let (width, height) = input.size;
     if width < patch || height < patch || width > 1 << 14 || height > 1 << 14 {
@@ -83,7 +88,7 @@ pub fn presynthesize(
     for (label, colour) in colours.iter().enumerate() {
         let has_centre = (r..sh - r).any(|y| (r..sw - r).any(|x| usize::from(source_labels[y * sw + x]) == label));
         if !has_centre {
-            return Err(Error::SegmentTooThin { colour: hex(colour), patch });
+            return Err(Error::Input(InputError::SegmentTooThin { colour: hex(colour), patch }));
         }
         let problem = synthesis::Problem {
             style: &input.style,

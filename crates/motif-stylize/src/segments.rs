@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use motif_core::random::Rng;
 use motif_core::{FloatImage, SeedStreams};
 
+use crate::InputError;
 use crate::{Error, Segmentation};
 
 /// Most distinct colours the exact palette accepts; beyond it, k-means is the tool.
@@ -84,7 +85,7 @@ pub(crate) fn segment_colours(source: &FloatImage, mode: Segmentation, seed: u64
     match mode {
         Segmentation::Palette => {
             if unique.len() > MAX_PALETTE {
-                return Err(Error::TooManyColours { colours: unique.len(), max: MAX_PALETTE });
+                return Err(Error::Input(InputError::TooManyColours { colours: unique.len(), max: MAX_PALETTE }));
             }
             Ok(unique.iter().map(|(key, _)| unkey(key, channels)).collect())
         }
@@ -113,29 +114,29 @@ pub fn label_guides(
 /// the guides' channels): the segments of a pre-synthesized cache, whose colours were fixed when
 /// it was made, for guides whose anti-aliased or compressed edges hold colours of their own. A
 /// target segment far from every colour and their blends is refused, naming it
-/// ([`Error::MissingTexture`]); so are no colours and colours of another channel count.
+/// ([`InputError::MissingTexture`]); so are no colours and colours of another channel count.
 pub fn label_by_colours(
     source: &FloatImage,
     target: &FloatImage,
     colours: Vec<Vec<f32>>,
 ) -> Result<SegmentLabels, Error> {
     if colours.is_empty() {
-        return Err(Error::NoTextures);
+        return Err(Error::Input(InputError::NoTextures));
     }
     let guide_channels = source.channels();
     if let Some(index) = colours.iter().position(|c| c.len() != guide_channels) {
         let channels = colours[index].len();
-        return Err(Error::TextureColour { texture: index + 1, channels, guide_channels });
+        return Err(Error::Input(InputError::TextureColour { texture: index + 1, channels, guide_channels }));
     }
     if let Some(far) = far_segments(source, target, &colours).into_iter().next() {
         let textures: Vec<String> = colours.iter().map(|c| format!("#{}", hex(c))).collect();
-        return Err(Error::MissingTexture {
+        return Err(Error::Input(InputError::MissingTexture {
             colour: hex(&far.colour),
             pixels: far.pixels,
             textures: textures.join(", "),
             distance: levels(far.distance),
             tolerance: levels(far.tolerance),
-        });
+        }));
     }
     Ok(nearest_labels(source, target, colours))
 }
@@ -448,7 +449,7 @@ mod tests {
         let message = label_by_colours(&source, &target, colours).unwrap_err().to_string();
         assert!(message.contains("#1acc1a (36 pixels)") && message.contains("#1e4b96, #d8b86a"), "{message}");
         // No colours, or colours of another kind of guide (grey against RGB), are refused.
-        assert!(matches!(label_by_colours(&source, &target, Vec::new()), Err(Error::NoTextures)));
+        assert!(matches!(label_by_colours(&source, &target, Vec::new()), Err(Error::Input(InputError::NoTextures))));
         let grey = label_by_colours(&source, &target, vec![vec![0.5]]).unwrap_err().to_string();
         assert!(grey.contains("guide of 1 channel(s) but the segment guide has 3"), "{grey}");
         // A few stray pixels are not a segment: they take the nearest.

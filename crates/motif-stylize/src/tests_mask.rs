@@ -3,6 +3,7 @@
 
 use motif_core::{FloatImage, NoProgress};
 
+use crate::InputError;
 use crate::tests::texture;
 use crate::{Error, Input, Mask, Params, synthesize};
 
@@ -89,12 +90,12 @@ fn bad_masks_are_refused() {
     let params = Params::default();
     let refuse =
         |hole: Vec<bool>| synthesize(&Input::inpaint(image.clone(), hole), &params, &mut NoProgress).unwrap_err();
-    assert!(matches!(refuse(vec![false; 32 * 32]), Error::MaskCoverage("no pixel")));
-    assert!(matches!(refuse(vec![true; 32 * 32]), Error::MaskCoverage("every pixel")));
-    assert!(matches!(refuse(vec![true; 31 * 32]), Error::MaskPixels { pixels: 992, .. }));
+    assert!(matches!(refuse(vec![false; 32 * 32]), Error::Input(InputError::MaskCoverage("no pixel"))));
+    assert!(matches!(refuse(vec![true; 32 * 32]), Error::Input(InputError::MaskCoverage("every pixel"))));
+    assert!(matches!(refuse(vec![true; 31 * 32]), Error::Input(InputError::MaskPixels { pixels: 992, .. })));
     // A hole that leaves no whole patch outside it.
     let error = refuse(rectangle(32, 32, (3, 3, 29, 29)));
-    assert!(matches!(error, Error::NoSourceOutsideHole { .. }), "{error}");
+    assert!(matches!(error, Error::Input(InputError::NoSourceOutsideHole { .. })), "{error}");
     let grey = Input {
         mask: Some(Mask {
             keep: texture(32, 32, 1, 1),
@@ -104,6 +105,6 @@ fn bad_masks_are_refused() {
         ..Input::texture(image.clone(), 32, 32)
     };
     let error = synthesize(&grey, &params, &mut NoProgress).unwrap_err();
-    assert!(matches!(error, Error::MaskChannels { kept: 1, style: 3 }), "{error}");
+    assert!(matches!(error, Error::Input(InputError::MaskChannels { kept: 1, style: 3 })), "{error}");
     assert!(error.to_string().contains("1 channels but the style has 3"));
 }

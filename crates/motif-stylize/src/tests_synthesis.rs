@@ -8,6 +8,7 @@ use crate::occurrence::Occurrence;
 use crate::search::{Field, patchmatch_tiles};
 use crate::tests::{flat, psnr, small_level, texture};
 use crate::*;
+use crate::{InputError, LimitError};
 
 fn guided_input(size: usize) -> Input {
     let style = texture(size, size, 3, 21);
@@ -229,7 +230,7 @@ fn quantized_segments_with_a_cache_accept_anti_aliased_guides() {
     // A region of a colour far from both textures' and their blends is refused, naming it.
     input.guides[0].target = flat(50, 44, |x, y| if x < 8 && y < 8 { [0.0, 1.0, 0.0] } else { [1.0, 0.0, 0.0] });
     match synthesize(&input, &params, &mut NoProgress) {
-        Err(error @ Error::MissingTexture { .. }) => {
+        Err(error @ Error::Input(InputError::MissingTexture { .. })) => {
             let message = error.to_string();
             let named =
                 message.contains("#00ff00 (64 pixels)") && message.contains("#ff0000") && message.contains("#0000ff");
@@ -326,7 +327,9 @@ fn texture_fields_must_fit_their_texture_and_the_style() {
         assert!(
             matches!(
                 error,
-                Error::TextureFieldSize { .. } | Error::TextureFieldSource { .. } | Error::TextureFieldOutside { .. }
+                Error::Input(InputError::TextureFieldSize { .. })
+                    | Error::Input(InputError::TextureFieldSource { .. })
+                    | Error::Input(InputError::TextureFieldOutside { .. })
             ),
             "{error}"
         );
@@ -380,14 +383,20 @@ fn bad_input_gives_clear_errors() {
     }
     let mut empty = good.clone();
     empty.style = FloatImage::new(0, 0, 3);
-    assert_eq!(synthesize(&empty, &params, &mut NoProgress).unwrap_err(), Error::EmptyImage("style".into()));
+    assert_eq!(
+        synthesize(&empty, &params, &mut NoProgress).unwrap_err(),
+        Error::Input(InputError::EmptyImage("style".into()))
+    );
     let mut empty_target = good.clone();
     empty_target.guides[0].target = FloatImage::new(0, 5, 3);
     assert!(synthesize(&empty_target, &params, &mut NoProgress).unwrap_err().to_string().contains("empty"));
     let no_size = Input { size: None, ..Input::texture(texture(8, 8, 3, 1), 1, 1) };
-    assert_eq!(synthesize(&no_size, &params, &mut NoProgress).unwrap_err(), Error::MissingTargetSize);
+    assert_eq!(
+        synthesize(&no_size, &params, &mut NoProgress).unwrap_err(),
+        Error::Input(InputError::MissingTargetSize)
+    );
     let tiny = Input::texture(texture(4, 9, 3, 1), 10, 10);
-    assert!(matches!(synthesize(&tiny, &params, &mut NoProgress), Err(Error::StyleTooSmall { .. })));
+    assert!(matches!(synthesize(&tiny, &params, &mut NoProgress), Err(Error::Input(InputError::StyleTooSmall { .. }))));
     let two_channels = Input::texture(FloatImage::new(8, 8, 2), 10, 10);
     assert!(synthesize(&two_channels, &params, &mut NoProgress).unwrap_err().to_string().contains("1, 3 or 4"));
 }
@@ -403,7 +412,10 @@ fn the_memory_limit_refuses_at_the_reported_estimate() {
     // The guided input is small: a texture of 4096² passes a limit of 64 MiB.
     let texture = Input::texture(texture(32, 32, 3, 5), 4096, 4096);
     let error = synthesize(&texture, &Params::default().with_max_memory(64 << 20), &mut NoProgress).unwrap_err();
-    assert!(matches!(error, Error::TooMuchMemory(_)) && error.to_string().contains("max-memory"), "{error}");
+    assert!(
+        matches!(error, Error::Limit(LimitError::Memory(_))) && error.to_string().contains("max-memory"),
+        "{error}"
+    );
     let error = Params::default().with_max_memory(0).validate().unwrap_err();
     assert!(error.to_string().contains("max-memory"), "{error}");
 }

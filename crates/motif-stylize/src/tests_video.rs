@@ -1,5 +1,6 @@
 //! Tests of video stylization (`video`).
 
+use crate::InputError;
 use crate::tests::texture;
 use crate::video::*;
 use crate::{Error, Params};
@@ -44,17 +45,23 @@ fn bad_sequences_are_refused_with_the_frame_named() {
         stylize_video(&VideoInput { frames, keys, mask: None }, &params, &video, &mut NoProgress).unwrap_err()
     };
     let key = |frame: usize| Keyframe { frame, style: frame_like(&frame_of(24, 20)) };
-    assert_eq!(run(vec![], vec![key(0)]), Error::NoFrames);
-    assert_eq!(run(vec![frame.clone(); 3], vec![]), Error::NoKeyframes);
-    assert_eq!(run(vec![frame.clone(); 3], vec![key(3)]), Error::KeyframeOutOfRange { frame: 3, frames: 3 });
-    assert_eq!(run(vec![frame.clone(); 3], vec![key(2), key(1)]), Error::KeyframeOrder { frame: 1, previous: 2 });
+    assert_eq!(run(vec![], vec![key(0)]), Error::Input(InputError::NoFrames));
+    assert_eq!(run(vec![frame.clone(); 3], vec![]), Error::Input(InputError::NoKeyframes));
+    assert_eq!(
+        run(vec![frame.clone(); 3], vec![key(3)]),
+        Error::Input(InputError::KeyframeOutOfRange { frame: 3, frames: 3 })
+    );
+    assert_eq!(
+        run(vec![frame.clone(); 3], vec![key(2), key(1)]),
+        Error::Input(InputError::KeyframeOrder { frame: 1, previous: 2 })
+    );
     let message = run(vec![frame.clone(), texture(20, 20, 3, 1)], vec![key(0)]).to_string();
     assert!(message.contains("frame 1") && message.contains("20×20×3"), "{message}");
     let small = Keyframe { frame: 0, style: texture(12, 20, 3, 1) };
     let message = run(vec![frame.clone(); 2], vec![small]).to_string();
     assert!(message.contains("keyframe 0") && message.contains("12×20"), "{message}");
     let all = VideoInput { frames: vec![frame; 2], keys: vec![key(0)], mask: Some(vec![true; 24 * 20]) };
-    assert_eq!(all.validate(&params).unwrap_err(), Error::MaskCoverage("every pixel"));
+    assert_eq!(all.validate(&params).unwrap_err(), Error::Input(InputError::MaskCoverage("every pixel")));
 }
 
 fn frame_of(width: usize, height: usize) -> FloatImage {

@@ -20,6 +20,7 @@ use serde::Serialize;
 use crate::motion::{MotionField, estimate_motion, flicker};
 use crate::video_pass::{Pass, blend, kept_frame};
 use crate::{Error, Mask, Params};
+use crate::{InputError, LimitError};
 
 /// The guide weights of video stylization (β of the map paper's Eq. 4, per guide).
 #[derive(Debug, Clone, PartialEq)]
@@ -189,22 +190,25 @@ pub fn video_memory(frames: usize, size: (usize, usize), channels: usize) -> mot
 }
 
 fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
-    let first = input.frames.first().ok_or(Error::NoFrames)?;
+    let first = input.frames.first().ok_or(Error::Input(InputError::NoFrames))?;
     let (width, height) = (first.width(), first.height());
     if width == 0 || height == 0 {
-        return Err(Error::EmptyImage("frame 0".into()));
+        return Err(Error::Input(InputError::EmptyImage("frame 0".into())));
     }
     // Every frame is one synthesis: the pixel guard applies per frame, and the frames of an
     // interval are held together (frames, two passes' results and errors, two motion fields).
     let pixels = width.saturating_mul(height);
     if pixels > params.max_pixels {
-        return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
+        return Err(Error::Limit(LimitError::TooMuchWork { pixels, max_pixels: params.max_pixels }));
     }
     let channels = first.channels().max(input.keys.first().map_or(3, |k| k.style.channels()));
     video_memory(input.frames.len(), (width, height), channels).check(params.max_memory, VIDEO_MEMORY_ADVICE)?;
     for (index, frame) in input.frames.iter().enumerate() {
         if !matches!(frame.channels(), 1 | 3 | 4) {
-            return Err(Error::UnsupportedChannels { what: format!("frame {index}"), channels: frame.channels() });
+            return Err(Error::Input(InputError::UnsupportedChannels {
+                what: format!("frame {index}"),
+                channels: frame.channels(),
+            }));
         }
         if (frame.width(), frame.height(), frame.channels()) != (width, height, first.channels()) {
             return Err(size_mismatch(
@@ -217,29 +221,32 @@ fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
         }
     }
     if input.keys.is_empty() {
-        return Err(Error::NoKeyframes);
+        return Err(Error::Input(InputError::NoKeyframes));
     }
     for (position, key) in input.keys.iter().enumerate() {
         if key.frame >= input.frames.len() {
-            return Err(Error::KeyframeOutOfRange { frame: key.frame, frames: input.frames.len() });
+            return Err(Error::Input(InputError::KeyframeOutOfRange { frame: key.frame, frames: input.frames.len() }));
         }
         if position > 0 && key.frame <= input.keys[position - 1].frame {
-            return Err(Error::KeyframeOrder { frame: key.frame, previous: input.keys[position - 1].frame });
+            return Err(Error::Input(InputError::KeyframeOrder {
+                frame: key.frame,
+                previous: input.keys[position - 1].frame,
+            }));
         }
         if (key.style.width(), key.style.height()) != (width, height) {
-            return Err(Error::SizeMismatch {
+            return Err(Error::Input(InputError::SizeMismatch {
                 what: "a keyframe's style must have its frame's size".into(),
                 first: format!("keyframe {}", key.frame),
                 first_size: format!("{}×{}", key.style.width(), key.style.height()),
                 second: "the frames".into(),
                 second_size: format!("{width}×{height}"),
-            });
+            }));
         }
         if !matches!(key.style.channels(), 1 | 3 | 4) || key.style.channels() != input.keys[0].style.channels() {
-            return Err(Error::UnsupportedChannels {
+            return Err(Error::Input(InputError::UnsupportedChannels {
                 what: format!("keyframe {} (every keyframe needs the first one's channels)", key.frame),
                 channels: key.style.channels(),
-            });
+            }));
         }
     }
     if let Some(mask) = &input.mask {
@@ -256,13 +263,13 @@ fn validate(input: &VideoInput, params: &Params) -> Result<(), Error> {
 }
 
 fn size_mismatch(what: &str, a: usize, first: &FloatImage, b: usize, second: &FloatImage) -> Error {
-    Error::SizeMismatch {
+    Error::Input(InputError::SizeMismatch {
         what: what.into(),
         first: format!("frame {a}"),
         first_size: format!("{}×{}×{}", first.width(), first.height(), first.channels()),
         second: format!("frame {b}"),
         second_size: format!("{}×{}×{}", second.width(), second.height(), second.channels()),
-    }
+    })
 }
 
 /// Stylizes every frame of `input`: each interval in turn (see [`stylize_interval`]).
@@ -355,14 +362,14 @@ pub fn stylize_interval(
     video: &VideoParams,
     progress: &mut dyn Progress,
 ) -> Result<IntervalOutput, Error> {
-    let last = frames.len().checked_sub(1).ok_or(Error::NoFrames)?;
+    let last = frames.len().checked_sub(1).ok_or(Error::Input(InputError::NoFrames))?;
     let interval = Interval {
         first: first_frame,
         last: first_frame + last,
         starts_at_key: first_style.is_some(),
         ends_at_key: last_style.is_some(),
     };
-    let style_channels = first_style.or(last_style).ok_or(Error::NoKeyframes)?.channels();
+    let style_channels = first_style.or(last_style).ok_or(Error::Input(InputError::NoKeyframes))?.channels();
     let mut motion_ms = 0.0;
     let streams = SeedStreams::new(params.seed);
     // Motion between neighbours, both ways when both passes run: forward[i] carries frame i to
@@ -410,7 +417,7 @@ pub fn stylize_interval(
             .collect(),
         (Some(a), None) => a.into_iter().map(|r| r.image).collect(),
         (None, Some(b)) => b.into_iter().map(|r| r.image).collect(),
-        (None, None) => return Err(Error::NoKeyframes),
+        (None, None) => return Err(Error::Input(InputError::NoKeyframes)),
     };
     // Measured along whichever motion the passes estimated: backward fields carry frame i + 1 to
     // frame i, so the frames are walked in reverse with them.

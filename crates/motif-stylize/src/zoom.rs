@@ -10,6 +10,7 @@
 
 use motif_core::{FloatImage, InvalidParameter, Progress};
 
+use crate::LimitError;
 use crate::error::Error;
 use crate::{Guide, Input, Output, Params, synthesize};
 
@@ -87,7 +88,7 @@ pub fn zoom(
     if let Some((width, height)) = size {
         let pixels = width.saturating_mul(height).saturating_mul(levels);
         if pixels > params.max_pixels {
-            return Err(Error::TooMuchWork { pixels, max_pixels: params.max_pixels });
+            return Err(Error::Limit(LimitError::TooMuchWork { pixels, max_pixels: params.max_pixels }));
         }
     }
     // The whole run is checked before the first level (each level checks its own part again).

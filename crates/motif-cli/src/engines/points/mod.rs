@@ -15,7 +15,8 @@ use motif_core::{Polygon, Polyline};
 use motif_io::{ColumnKind, PointFormat, PointTable};
 use motif_jobs::Job;
 use motif_jobs::points::{
-    DomainSpec, FieldMaps, Output, PointSet, PointsInputs, PointsJob, PointsOptions, StrokeSpec, SurfaceSpec,
+    DOMAIN_SYNTAX, DomainArgument, DomainSpec, FieldMaps, Output, PointSet, PointsInputs, PointsJob, PointsOptions,
+    StrokeSpec, SurfaceSpec, parse_scale_along,
 };
 use serde_json::Value;
 
@@ -136,17 +137,6 @@ pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
     PointTable { columns, rows, values }
 }
 
-fn parse_box(spec: &str) -> anyhow::Result<Vec<f64>> {
-    let sizes: Vec<f64> = spec
-        .split(',')
-        .map(|s| s.trim().parse::<f64>().with_context(|| format!("--domain box:{spec}: {s:?} is not a number")))
-        .collect::<anyhow::Result<_>>()?;
-    if sizes.len() != 2 && sizes.len() != 3 {
-        bail!("--domain box:{spec}: give 2 sizes (W,H) or 3 (W,H,D)");
-    }
-    Ok(sizes)
-}
-
 fn read_polygon(path: &Path) -> anyhow::Result<Vec<[f64; 2]>> {
     let document = motif_io::read_svg(path)?;
     let first = &document.paths[0];
@@ -193,39 +183,22 @@ fn read_set(path: &Path, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> 
 fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
     let domain = if let Some(along) = &args.along {
         let Some(width) = args.brush_width else { bail!("--along needs --brush-width W") };
-        let scale_along = match &args.scale_along {
-            None => None,
-            Some(spec) => {
-                let values: Vec<f64> = spec
-                    .split(',')
-                    .map(|s| {
-                        s.trim().parse::<f64>().with_context(|| format!("--scale-along {spec}: {s:?} is not a number"))
-                    })
-                    .collect::<anyhow::Result<_>>()?;
-                match values[..] {
-                    [a, b] => Some([a, b]),
-                    [a] => Some([a, a]),
-                    _ => bail!("--scale-along {spec}: give A,B"),
-                }
-            }
-        };
+        let scale_along = args.scale_along.as_deref().map(parse_scale_along).transpose()?;
         DomainSpec::Stroke(StrokeSpec { points: read_stroke_points(along)?, width, scale_along })
     } else {
-        let on_surface = args.domain.as_deref().is_some_and(|d| d.starts_with("surface:"));
-        if args.surface_directions.is_some() && !on_surface {
+        let argument: Option<DomainArgument> = args.domain.as_deref().map(str::parse).transpose()?;
+        if args.surface_directions.is_some() && !argument.as_ref().is_some_and(DomainArgument::is_surface) {
             bail!("--surface-directions needs --domain surface:MESH.obj");
         }
-        match args.domain.as_deref() {
-            Some(spec) if spec.starts_with("box:") => DomainSpec::Box(parse_box(&spec[4..])?),
-            Some(spec) if spec.starts_with("volume:") => {
-                let file = Path::new(&spec["volume:".len()..]);
-                let domain = DomainSpec::Volume(motif_io::read_mesh(file)?);
+        match argument {
+            Some(DomainArgument::Box(sizes)) => DomainSpec::Box(sizes),
+            Some(DomainArgument::Volume(file)) => {
+                let domain = DomainSpec::Volume(motif_io::read_mesh(&file)?);
                 domain.check_mesh().with_context(|| format!("--domain volume:{}", file.display()))?;
                 domain
             }
-            Some(spec) if spec.starts_with("surface:") => {
-                let file = Path::new(&spec["surface:".len()..]);
-                let mesh = motif_io::read_mesh(file)?;
+            Some(DomainArgument::Surface(file)) => {
+                let mesh = motif_io::read_mesh(&file)?;
                 let directions = meshes::surface_directions(args.surface_directions.as_deref())?;
                 let domain = DomainSpec::Surface(SurfaceSpec { mesh, directions });
                 domain.check_mesh().with_context(|| {
@@ -234,12 +207,8 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
                 })?;
                 domain
             }
-            Some(spec) => DomainSpec::Region(read_polygon(Path::new(spec))?),
-            None => {
-                bail!(
-                    "give --domain box:W,H[,D] | REGION.svg | volume:MESH.obj | surface:MESH.obj, or --along PATH with --brush-width"
-                )
-            }
+            Some(DomainArgument::Region(file)) => DomainSpec::Region(read_polygon(&file)?),
+            None => bail!("give --domain {DOMAIN_SYNTAX}, or --along PATH with --brush-width"),
         }
     };
     Ok(PointsJob { seed, options: args.options.options.clone(), ..PointsJob::with_domain(domain) })
