@@ -16,7 +16,8 @@
 //!   the optimum is certified. Inside a pinned DP, a position whose cost so far plus its backward
 //!   cost `Q` reaches the best cycle found cannot lead to a better one and is dropped, which keeps
 //!   the pinned DPs small. A budget of starts bounds the work; when it runs out the result is the
-//!   best cycle found and is reported as not certified.
+//!   best cycle found and is reported as not certified, with the bound of the first start left
+//!   untried: no cycle costs less, so the gap to the optimum is at most the difference.
 
 use motif_core::timing::{Clock, elapsed_ms};
 
@@ -34,6 +35,9 @@ pub(crate) struct Cycle {
     pub cost: u64,
     /// For exact mode: whether the optimum was proven.
     pub certified: Option<bool>,
+    /// For exact mode: a lower bound of every cycle's `Ω` (the cost itself when certified; else
+    /// the smallest bound of the starts left untried), so that the gap to the optimum is known.
+    pub lower_bound: Option<u64>,
     /// Start positions evaluated with a pinned DP.
     pub starts_tried: usize,
     /// True when the single-DP approximation found a closing path directly.
@@ -118,7 +122,35 @@ fn pinned_cycle(
 }
 
 /// Solves a closed curve. `rows` ends with the terminal row (same positions as row 0).
+///
+/// A cycle may be cut at any piece, and the exact search pins one start per position of the row
+/// it is cut at: the exact mode cuts it at the row with the fewest positions (a piece left empty
+/// has one, and one pinned DP then certifies the optimum), solves the rotated rows and turns the
+/// path back. The approximate mode keeps the paper's cut at the first piece.
 pub(crate) fn solve_closed(
+    exemplar: &Exemplar,
+    model: &CostModel,
+    rows: &[RowSpec<'_>],
+    solver: Solver,
+    exact: bool,
+    max_starts: usize,
+    on_row: &mut dyn FnMut(usize),
+) -> Cycle {
+    let pieces = rows.len() - 1;
+    let cut = if exact { (0..pieces).min_by_key(|&r| (rows[r].positions.len(), r)).unwrap_or(0) } else { 0 };
+    if cut == 0 {
+        return solve_cut(exemplar, model, rows, solver, exact, max_starts, on_row);
+    }
+    let rotated: Vec<RowSpec<'_>> = (0..=pieces).map(|r| rows[(r + cut) % pieces]).collect();
+    let mut cycle = solve_cut(exemplar, model, &rotated, solver, exact, max_starts, on_row);
+    let mut path: Vec<usize> = (0..pieces).map(|r| cycle.path[(r + pieces - cut) % pieces]).collect();
+    path.push(path[0]);
+    cycle.path = path;
+    cycle
+}
+
+/// [`solve_closed`] with the cycle cut at row 0.
+fn solve_cut(
     exemplar: &Exemplar,
     model: &CostModel,
     rows: &[RowSpec<'_>],
@@ -143,6 +175,7 @@ pub(crate) fn solve_closed(
         }
     };
     let mut certified = None;
+    let mut lower_bound = None;
     if exact {
         // Q[0][s]: the cheapest path leaving s, also a lower bound of any cycle through s; and
         // the backward table prunes the pinned DPs. The reference solver keeps plain DPs.
@@ -154,12 +187,15 @@ pub(crate) fn solve_closed(
         let mut candidates: Vec<usize> = (0..table.last_costs.len()).collect();
         candidates.sort_unstable_by_key(|&s| (bound(s), s));
         let mut proven = true;
+        let mut untried_bound = best_cost;
         for &start in &candidates {
             if bound(start) >= best_cost {
                 break;
             }
             if starts_tried >= max_starts {
+                // Starts are sorted by bound: no untried one has a cycle cheaper than this one's.
                 proven = false;
+                untried_bound = bound(start);
                 break;
             }
             starts_tried += 1;
@@ -171,11 +207,13 @@ pub(crate) fn solve_closed(
             }
         }
         certified = Some(proven);
+        lower_bound = Some(untried_bound.min(best_cost));
     }
     Cycle {
         path: best_path,
         cost: best_cost,
         certified,
+        lower_bound,
         starts_tried,
         closed_directly: closing.is_some(),
         row_ms: work.row_ms,

@@ -118,6 +118,8 @@ fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> 
         stages_ms: Vec::new(),
         closed: layout.closed,
         closed_certified: None,
+        closed_lower_bound: None,
+        closed_gap: None,
         closed_starts_tried: 0,
         closed_directly: false,
         empty_pieces: 0,
@@ -447,6 +449,7 @@ fn dynamic_program(
     if closed {
         report.closed_certified =
             if params.pin_first.is_some() && setup.exact_closed { Some(true) } else { solution.closed_certified };
+        record_closed_bound(report, dp_cost, solution.closed_lower_bound, report.closed_certified);
         report.closed_starts_tried = solution.closed_starts_tried;
         report.closed_directly = solution.closed_directly;
     }
@@ -465,6 +468,16 @@ fn dynamic_program(
 
 /// The exact optimum beside the coarse-to-fine solver's `Ω`, and the gap between them, into the
 /// report (when the exact solver ran too).
+/// Exact closed mode: the bound no cycle goes below, and the gap to it as a fraction of the
+/// cycle's cost (0 when certified, also when a pinned first position leaves one start).
+fn record_closed_bound(report: &mut Report, cycle_cost: u64, bound: Option<u64>, certified: Option<bool>) {
+    let Some(bound) = bound else { return };
+    let bound = if certified == Some(true) { cycle_cost } else { bound.min(cycle_cost) };
+    report.closed_lower_bound = Some(bound as f64 / COST_SCALE);
+    let gap = cycle_cost - bound;
+    report.closed_gap = Some(if cycle_cost == 0 { 0.0 } else { gap as f64 / cycle_cost as f64 });
+}
+
 fn record_gap(report: &mut Report, dp_cost: u64, exact_optimum: Option<u64>) {
     if let Some(exact) = exact_optimum {
         report.exact_optimum = Some(exact as f64 / COST_SCALE);

@@ -93,6 +93,12 @@ pub struct Report {
     pub closed: bool,
     /// Exact closed mode: whether the optimum was proven.
     pub closed_certified: Option<bool>,
+    /// Exact closed mode: no cycle's `Ω` is below this (paper units, as `dp_optimum`); equal to
+    /// `dp_optimum` when certified.
+    pub closed_lower_bound: Option<f64>,
+    /// Exact closed mode: how far the dynamic program's cycle may be from the optimum of `Ω`, `(dp_optimum − bound) /
+    /// dp_optimum` (0 when certified).
+    pub closed_gap: Option<f64>,
     /// Closed curves: start positions evaluated by pinned DPs.
     pub closed_starts_tried: usize,
     /// Closed curves: whether the single DP found a cycle directly.

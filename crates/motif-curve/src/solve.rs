@@ -22,6 +22,7 @@ pub(crate) struct Solution {
     pub row_ms: Vec<f64>,
     pub counters: DpCounters,
     pub closed_certified: Option<bool>,
+    pub closed_lower_bound: Option<u64>,
     pub closed_starts_tried: usize,
     pub closed_directly: bool,
     /// The coarse-to-fine solver's figures (with [`Solver::CoarseToFine`]).
@@ -73,6 +74,7 @@ pub(crate) fn solve_once(
             row_ms: cycle.row_ms,
             counters: cycle.counters,
             closed_certified: cycle.certified,
+            closed_lower_bound: cycle.lower_bound,
             closed_starts_tried: cycle.starts_tried,
             closed_directly: cycle.closed_directly,
             coarse: None,
@@ -97,6 +99,7 @@ pub(crate) fn solve_once(
             row_ms: table.row_ms,
             counters: table.counters,
             closed_certified: None,
+            closed_lower_bound: None,
             closed_starts_tried: 0,
             closed_directly: false,
             coarse: None,

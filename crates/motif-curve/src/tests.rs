@@ -116,6 +116,14 @@ proptest! {
             prop_assert_eq!(exact_cycle.path[0], exact_cycle.path[last]);
             prop_assert_eq!(approx.path[0], approx.path[last]);
             prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &exact_cycle.path), exact_cycle.cost);
+            // The bound: the cost itself when certified; with one start allowed, a bound no cycle
+            // goes below, and the cycle found is a real cycle at or above the optimum.
+            prop_assert_eq!(exact_cycle.lower_bound, Some(exact_cycle.cost));
+            let hurried = solve_closed(&problem.exemplar, &problem.model, &rows, Solver::Exact, true, 1, &mut |_| {});
+            let bound = hurried.lower_bound.unwrap();
+            prop_assert!(bound <= brute_cycle && brute_cycle <= hurried.cost, "{bound} {brute_cycle} {}", hurried.cost);
+            prop_assert_eq!(hurried.path[0], hurried.path[last]);
+            prop_assert_eq!(path_cost(&problem.exemplar, &problem.model, &rows, &hurried.path), hurried.cost);
         }
     }
 }
@@ -542,4 +550,35 @@ fn min_coverage_out_of_range_is_rejected() {
         );
         assert!(matches!(result, Err(Error::Parameter(_))), "{bad}");
     }
+}
+
+/// Exact closed mode on a real chain (`data/real/curve/chain_round.png`) around a circle: with a
+/// budget of two starts the search stops uncertified but says how far it may be from the optimum
+/// (a bound no cycle goes below); with a forbidden area that leaves one piece empty, the cycle is
+/// cut at that piece, whose single position needs one pinned DP at most (none when the first DP
+/// already closes there), and the optimum is certified.
+#[test]
+fn exact_closed_mode_reports_its_gap_and_certifies_through_an_empty_piece() {
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/curve");
+    let chain = motif_io::read_image(&folder.join("chain_round.png")).unwrap();
+    let curve = circle(160.0, 160.0, 90.0, 180);
+    let mut p = params(108.0, 25.0);
+    p.closed = ClosedMode::Exact;
+    p.closed_max_starts = 2;
+    p.canvas = Canvas::Size { width: 320, height: 320 };
+    let hurried = synthesize(&Input::new(&chain, &curve), &p, &mut NoProgress).unwrap().report;
+    assert_eq!((hurried.closed_certified, hurried.closed_starts_tried), (Some(false), 2));
+    let (bound, gap) = (hurried.closed_lower_bound.unwrap(), hurried.closed_gap.unwrap());
+    assert!(bound < hurried.dp_optimum && gap > 0.0 && gap < 1.0, "{bound} {} {gap}", hurried.dp_optimum);
+    assert!((gap - (hurried.dp_optimum - bound) / hurried.dp_optimum).abs() < 1e-9);
+
+    // A block over the ribbon left of the centre, half way round from where the circle starts.
+    let map = RgbaImage::from_fn(320, 320, |x, y| {
+        if (55..85).contains(&x) && (140..180).contains(&y) { [255; 4] } else { [0; 4] }
+    });
+    let blocked = synthesize(&Input::new(&chain, &curve).with_avoidance(&map), &p, &mut NoProgress).unwrap().report;
+    assert!(blocked.empty_pieces >= 1, "{}", blocked.empty_pieces);
+    assert_eq!((blocked.closed_certified, blocked.closed_gap), (Some(true), Some(0.0)));
+    assert!(blocked.closed_starts_tried <= 1, "{}", blocked.closed_starts_tried);
+    assert_eq!(blocked.closed_lower_bound, Some(blocked.dp_optimum));
 }

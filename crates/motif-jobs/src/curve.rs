@@ -421,6 +421,8 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
     put("closed", json!(report.closed));
     if report.closed {
         put("closed_certified", json!(report.closed_certified));
+        put("closed_lower_bound", json!(report.closed_lower_bound));
+        put("closed_gap", json!(report.closed_gap));
         put("closed_starts_tried", json!(report.closed_starts_tried));
         put("closed_directly", json!(report.closed_directly));
     }
