@@ -573,9 +573,8 @@ fn exact_closed_mode_reports_its_gap_and_certifies_through_an_empty_piece() {
     assert!((gap - (hurried.dp_optimum - bound) / hurried.dp_optimum).abs() < 1e-9);
 
     // A block over the ribbon left of the centre, half way round from where the circle starts.
-    let map = RgbaImage::from_fn(320, 320, |x, y| {
-        if (55..85).contains(&x) && (140..180).contains(&y) { [255; 4] } else { [0; 4] }
-    });
+    let block = |x: usize, y: usize| (55..85).contains(&x) && (140..180).contains(&y);
+    let map = RgbaImage::from_fn(320, 320, |x, y| if block(x, y) { [255; 4] } else { [0; 4] });
     let blocked = synthesize(&Input::new(&chain, &curve).with_avoidance(&map), &p, &mut NoProgress).unwrap().report;
     assert!(blocked.empty_pieces >= 1, "{}", blocked.empty_pieces);
     assert_eq!((blocked.closed_certified, blocked.closed_gap), (Some(true), Some(0.0)));
