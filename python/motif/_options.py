@@ -103,6 +103,14 @@ class CurveOptions(TypedDict, total=False):
     #: An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending at the curve's
     #: end.
     end_tile: Tuple[int, int]
+    #: A corner tile: columns X0,X1 of the first exemplar, drawn whole and centred on every corner sharper than
+    #: --corner-angle (a frame's corner piece), on open and closed curves, joined to the pieces beside it by
+    #: the same seam cost. A corner too close to another or to an end to leave half a piece between them is
+    #: left to the pieces.
+    corner_tile: Tuple[int, int]
+    #: With --corner-tile: the turn, in degrees, that makes a corner (the angle between the curve's directions
+    #: half a tile before and half a tile after it). Allowed: 10–179. Default: 60.
+    corner_angle: float
 
 
 class PointsOptions(TypedDict, total=False):

@@ -77,6 +77,29 @@ fn tinted([r, g, b, a]: [u8; 4], colour: [u8; 3]) -> [u8; 4] {
     [channel(colour[0]), channel(colour[1]), channel(colour[2]), a]
 }
 
+/// A piece drawn whole from a tile's columns rather than chosen by the dynamic program's cost
+/// alone.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TileKind {
+    /// The first piece of an open curve.
+    Start,
+    /// The last piece of an open curve.
+    End,
+    /// A piece centred on a corner.
+    Corner,
+}
+
+impl TileKind {
+    /// The option that sets the tile.
+    pub fn option_name(self) -> &'static str {
+        match self {
+            Self::Start => "start-tile",
+            Self::End => "end-tile",
+            Self::Corner => "corner-tile",
+        }
+    }
+}
+
 /// Where the pieces lie along the ribbon, as fitted.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Slices {
@@ -88,52 +111,95 @@ pub(crate) struct Slices {
     pub stretch: f64,
     /// The gap after each piece (0 unless spaced).
     pub gap: f64,
-    /// Whether the first piece is a start tile and the last an end tile (drawn whole, unstretched).
-    pub tiles: [bool; 2],
+    /// Which pieces are tiles (drawn whole, unstretched).
+    pub tiles: Vec<Option<TileKind>>,
+    /// Each piece's stretch and the length of a whole piece of its stretch of the curve (the
+    /// stretches between corner tiles are fitted apart; a tile has 1 and its own length).
+    pub along: Vec<(f64, f64)>,
 }
 
 impl Slices {
-    /// Whether piece `i` of these slices is a start or end tile.
+    /// Whether piece `i` of these slices is a tile.
     pub fn is_tile(&self, i: usize) -> bool {
-        (i == 0 && self.tiles[0]) || (i + 1 == self.bounds.len() && self.tiles[1])
+        self.tiles[i].is_some()
     }
 }
 
-/// The pieces of a ribbon `length` long: a start tile `tiles[0]` long, pieces `delta` long fitted
-/// as `fit` asks, an end tile `tiles[1]` long (a tile 0 long is none). The tiles and one piece fit
-/// in `length` (checked by `validate`).
-pub(crate) fn slices(length: f64, delta: f64, fit: Fit, closed: bool, tiles: [f64; 2]) -> Slices {
-    let middle = length - tiles[0] - tiles[1];
-    let mut slices = fitted(middle, delta.min(middle), fit, closed);
-    for bound in &mut slices.bounds {
-        *bound = (bound.0 + tiles[0], bound.1 + tiles[0]);
+/// The pieces of a ribbon `length` long: a start tile `ends[0]` long, the corner tiles over
+/// `corners` (stretches `[start, end)`, ascending, after the start tile and before the end tile),
+/// an end tile `ends[1]` long (a tile 0 long is none), and between them pieces `delta` long
+/// fitted as `fit` asks. The tiles and one piece fit in `length` (checked by `validate`).
+pub(crate) fn slices(
+    length: f64,
+    delta: f64,
+    fit: Fit,
+    closed: bool,
+    ends: [f64; 2],
+    corners: &[(f64, f64)],
+) -> Slices {
+    let mut pieces = Slices {
+        bounds: Vec::new(),
+        piece_length: delta,
+        stretch: 1.0,
+        gap: 0.0,
+        tiles: Vec::new(),
+        along: Vec::new(),
+    };
+    if ends[0] > 0.0 {
+        pieces.push_tile((0.0, ends[0]), TileKind::Start);
     }
-    if tiles[0] > 0.0 {
-        slices.bounds.insert(0, (0.0, tiles[0]));
+    let mut cursor = ends[0];
+    // Between tiles, pieces as along an open stretch; a curve with no tile keeps its own ends.
+    let stretch_closed = closed && ends == [0.0; 2] && corners.is_empty();
+    for &(start, end) in corners {
+        pieces.push_fitted(cursor, start - cursor, delta, fit, stretch_closed);
+        pieces.push_tile((start, end), TileKind::Corner);
+        cursor = end;
     }
-    if tiles[1] > 0.0 {
-        slices.bounds.push((length - tiles[1], length));
+    let middle = if corners.is_empty() { length - ends[0] - ends[1] } else { length - cursor - ends[1] };
+    pieces.push_fitted(cursor, middle, delta, fit, stretch_closed);
+    if ends[1] > 0.0 {
+        pieces.push_tile((length - ends[1], length), TileKind::End);
     }
-    slices.tiles = tiles.map(|tile| tile > 0.0);
-    slices
+    pieces
+}
+
+impl Slices {
+    fn push_tile(&mut self, bounds: (f64, f64), kind: TileKind) {
+        self.bounds.push(bounds);
+        self.tiles.push(Some(kind));
+        self.along.push((1.0, bounds.1 - bounds.0));
+    }
+
+    /// Fitted pieces over `length` from `offset`; the fit's figures are the last stretch's.
+    fn push_fitted(&mut self, offset: f64, length: f64, delta: f64, fit: Fit, closed: bool) {
+        if length <= 0.0 {
+            return;
+        }
+        let part = fitted(length, delta.min(length), fit, closed);
+        self.bounds.extend(part.bounds.iter().map(|bound| (bound.0 + offset, bound.1 + offset)));
+        self.tiles.extend(part.bounds.iter().map(|_| None));
+        self.along.extend(part.bounds.iter().map(|_| (part.stretch, part.piece_length)));
+        (self.piece_length, self.stretch, self.gap) = (part.piece_length, part.stretch, part.gap);
+    }
 }
 
 /// The pieces of a ribbon `length` long for pieces `delta` long, fitted as `fit` asks; `delta` is
 /// at most `length`.
 fn fitted(length: f64, delta: f64, fit: Fit, closed: bool) -> Slices {
-    let tiles = [false; 2];
+    let (tiles, along) = (Vec::new(), Vec::new());
     match fit {
         Fit::None => {
             let positions = crate::ribbon::slice_positions(length, delta);
             let bounds = positions.windows(2).map(|pair| (pair[0], pair[1])).collect();
-            Slices { bounds, piece_length: delta, stretch: 1.0, gap: 0.0, tiles }
+            Slices { bounds, piece_length: delta, stretch: 1.0, gap: 0.0, tiles, along }
         }
         Fit::Stretch => {
             let count = (length / delta).round().max(1.0);
             let piece_length = length / count;
             let bounds =
                 (0..count as usize).map(|i| (i as f64 * piece_length, (i + 1) as f64 * piece_length)).collect();
-            Slices { bounds, piece_length, stretch: delta / piece_length, gap: 0.0, tiles }
+            Slices { bounds, piece_length, stretch: delta / piece_length, gap: 0.0, tiles, along }
         }
         Fit::Space => {
             let count = (length / delta).floor().max(1.0) as usize;
@@ -145,7 +211,7 @@ fn fitted(length: f64, delta: f64, fit: Fit, closed: bool) -> Slices {
                     (start, (start + delta).min(length))
                 })
                 .collect();
-            Slices { bounds, piece_length: delta, stretch: 1.0, gap, tiles }
+            Slices { bounds, piece_length: delta, stretch: 1.0, gap, tiles, along }
         }
     }
 }
@@ -156,7 +222,7 @@ mod tests {
 
     #[test]
     fn unfitted_slices_are_the_papers() {
-        let slices = slices(10.0, 3.0, Fit::None, false, [0.0; 2]);
+        let slices = slices(10.0, 3.0, Fit::None, false, [0.0; 2], &[]);
         assert_eq!(slices.bounds, vec![(0.0, 3.0), (3.0, 6.0), (6.0, 9.0), (9.0, 10.0)]);
         assert_eq!((slices.stretch, slices.gap), (1.0, 0.0));
     }
@@ -165,7 +231,7 @@ mod tests {
     fn fitted_pieces_end_exactly_at_the_curves_end() {
         for (length, delta) in [(10.0, 3.0), (100.0, 24.0), (7.5, 7.5), (61.0, 20.0), (59.0, 20.0)] {
             for closed in [false, true] {
-                let stretched = slices(length, delta, Fit::Stretch, closed, [0.0; 2]);
+                let stretched = slices(length, delta, Fit::Stretch, closed, [0.0; 2], &[]);
                 let last = stretched.bounds.last().unwrap().1;
                 assert!((last - length).abs() < 1e-9, "{length} {delta}");
                 let widths: Vec<f64> = stretched.bounds.iter().map(|(a, b)| b - a).collect();
@@ -174,7 +240,7 @@ mod tests {
                 assert!((length / delta - stretched.bounds.len() as f64).abs() <= 0.5 + 1e-9);
                 assert!((stretched.piece_length * stretched.stretch - delta).abs() < 1e-9);
 
-                let spaced = slices(length, delta, Fit::Space, closed, [0.0; 2]);
+                let spaced = slices(length, delta, Fit::Space, closed, [0.0; 2], &[]);
                 let count = spaced.bounds.len() as f64;
                 assert_eq!(count, (length / delta).floor());
                 assert!(spaced.bounds.iter().all(|(a, b)| ((b - a) - delta).abs() < 1e-9));
@@ -188,7 +254,7 @@ mod tests {
     #[test]
     fn end_tiles_take_the_ends_and_the_pieces_fit_between_them() {
         for fit in [Fit::None, Fit::Stretch, Fit::Space] {
-            let slices = slices(100.0, 20.0, fit, false, [15.0, 12.0]);
+            let slices = slices(100.0, 20.0, fit, false, [15.0, 12.0], &[]);
             assert_eq!(slices.bounds[0], (0.0, 15.0));
             assert_eq!(*slices.bounds.last().unwrap(), (88.0, 100.0));
             assert!(slices.is_tile(0) && slices.is_tile(slices.bounds.len() - 1) && !slices.is_tile(1));
@@ -200,7 +266,7 @@ mod tests {
                 );
             }
         }
-        let untiled = slices(100.0, 20.0, Fit::None, false, [0.0, 12.0]);
+        let untiled = slices(100.0, 20.0, Fit::None, false, [0.0, 12.0], &[]);
         assert!(!untiled.is_tile(0) && untiled.is_tile(untiled.bounds.len() - 1));
     }
 

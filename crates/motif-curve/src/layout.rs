@@ -5,17 +5,18 @@
 use std::sync::Arc;
 
 use motif_core::kurbo::Affine;
-use motif_core::{Point, RgbaImage, Vec2};
+use motif_core::{InvalidParameter, Point, Polyline, RgbaImage, Vec2};
 
 use crate::atlas::Atlas;
 use crate::avoidance::ForbiddenMask;
+use crate::brush::TileKind;
 use crate::canvas::{canvas_geometry, ribbon_borders, working_curve};
 use crate::cost::CostModel;
 use crate::exemplar::Exemplar;
 use crate::piece::PieceFrame;
 use crate::ribbon::{PieceQuad, Ribbon};
 use crate::{Error, Input, Output, Params, PieceShape, PlacedPiece, Report};
-use crate::{brush, incremental, ribbon, ribbon_pieces, tight_bends};
+use crate::{brush, corners, incremental, ribbon, ribbon_pieces, tight_bends};
 
 /// Advice of the memory errors of a synthesis.
 pub(crate) const MEMORY_ADVICE: &str = "use a smaller canvas, longer pieces or a narrower ribbon";
@@ -70,8 +71,10 @@ pub(crate) struct Layout {
     /// gap after each piece (0 unless spaced).
     pub fitted_piece_length: f64,
     pub fit_gap: f64,
-    /// The start and end tiles' exemplar columns, within the pattern's extent.
-    pub tile_columns: [Option<[u32; 2]>; 2],
+    /// The start, end and corner tiles' exemplar columns, within the pattern's extent.
+    pub tile_columns: [Option<[u32; 2]>; 3],
+    /// Which pieces are tiles.
+    pub piece_tiles: Vec<Option<TileKind>>,
     /// Whether pieces bend with the ribbon.
     pub bent: bool,
     /// The ribbon's offset curves, for the debug drawing.
@@ -97,18 +100,30 @@ impl Layout {
         let curve = working_curve(input.curve, closed)?;
         // Rounding moves the curve by at most half the ribbon's width.
         let rounded = tight_bends::round_bends(&curve, params.round_bends * params.width, 0.5 * params.width)?;
+        let drawn = curve;
         let curve = rounded.curve;
         let (canvas_width, canvas_height, shift) = canvas_geometry(&curve, params, input.avoidance)?;
         let canvas_pixels = (canvas_width * canvas_height) as f64;
         let canvas_memory = memory_estimate(canvas_pixels, 0.0, 0.0, 0).check(params.max_memory, MEMORY_ADVICE)?;
         let curve = curve.transformed(Affine::translate(shift))?;
-        let ribbon = Ribbon::new(&curve, params.width)?.with_profile(&params.width_profile);
-        let tile_columns =
-            [params.start_tile, params.end_tile].map(|tile| tile_in_pattern(input.exemplar, tile, params));
+        let tile_columns = [params.start_tile, params.end_tile, params.corner_tile]
+            .map(|tile| tile_in_pattern(input.exemplar, tile, params));
         // A window at position x covers exemplar x + 0.5 to x + 0.5 + length: columns X0..X1 are
         // drawn from the centre of the first to the centre of the last.
-        let tiles = tile_columns.map(|tile| tile.map_or(0.0, |[x0, x1]| f64::from(x1 - x0 - 1) / params.scale));
-        let slices = brush::slices(ribbon.length(), params.piece_length, params.fit, closed, tiles);
+        let [start_tile, end_tile, corner_tile] =
+            tile_columns.map(|tile| tile.map_or(0.0, |[x0, x1]| f64::from(x1 - x0 - 1) / params.scale));
+        // Corners are those of the curve as drawn; rounding turns each into an arc around it.
+        let corners = if corner_tile > 0.0 {
+            corners::corner_points(&drawn, 0.5 * corner_tile, params.corner_angle)
+                .into_iter()
+                .map(|p| p + shift)
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let (ribbon, corners) = corner_ribbon(&curve, params, closed, [start_tile, end_tile], corner_tile, &corners)?;
+        let slices =
+            brush::slices(ribbon.length(), params.piece_length, params.fit, closed, [start_tile, end_tile], &corners);
         let quads = ribbon::quads(&ribbon, &slices.bounds);
         let samples = ((params.width * params.scale).ceil() as usize).max(1);
         let bent = params.piece_shape == PieceShape::Bent;
@@ -134,6 +149,7 @@ impl Layout {
             fitted_piece_length: slices.piece_length,
             fit_gap: slices.gap,
             tile_columns,
+            piece_tiles: slices.tiles.clone(),
             bent,
             ribbon_top,
             ribbon_bottom,
@@ -143,13 +159,15 @@ impl Layout {
         })
     }
 
-    /// The exemplar columns of piece `i` when it is a start or end tile.
-    pub fn tile_columns(&self, i: usize) -> Option<[u32; 2]> {
-        match (i, self.tile_columns) {
-            (0, [Some(start), _]) => Some(start),
-            (i, [_, Some(end)]) if i + 1 == self.quads.len() => Some(end),
-            _ => None,
-        }
+    /// The kind of tile piece `i` is and its exemplar columns, when it is one.
+    pub fn tile(&self, i: usize) -> Option<(TileKind, [u32; 2])> {
+        let kind = self.piece_tiles[i]?;
+        let columns = self.tile_columns[match kind {
+            TileKind::Start => 0,
+            TileKind::End => 1,
+            TileKind::Corner => 2,
+        }]?;
+        Some((kind, columns))
     }
 
     /// Canvas pixels, for the memory estimate.
@@ -166,6 +184,39 @@ impl Layout {
         forbidden: ForbiddenMask,
     ) -> Output {
         Output { image, pieces, report, forbidden, ribbon_top: self.ribbon_top, ribbon_bottom: self.ribbon_bottom }
+    }
+}
+
+/// The ribbon around `curve` and the stretches of it that corner tiles `corner_tile` long take,
+/// centred on the points of the ribbon nearest to `corners` (none without a corner tile). A closed
+/// curve with corners is restarted where its first tile begins, so that that tile is the first
+/// piece.
+fn corner_ribbon(
+    curve: &Polyline,
+    params: &Params,
+    closed: bool,
+    ends: [f64; 2],
+    corner_tile: f64,
+    corners: &[Point],
+) -> Result<(Ribbon, Vec<(f64, f64)>), InvalidParameter> {
+    let ribbon_of = |curve: &Polyline| Ribbon::new(curve, params.width).map(|r| r.with_profile(&params.width_profile));
+    let ribbon = ribbon_of(curve)?;
+    if corner_tile <= 0.0 || corners.is_empty() {
+        return Ok((ribbon, Vec::new()));
+    }
+    let min_gap = 0.5 * params.piece_length;
+    let stretches = |ribbon: &Ribbon| {
+        let span = [ends[0], ribbon.length() - ends[1]];
+        corners::corner_stretches(ribbon, corners, corner_tile, closed, span, min_gap)
+    };
+    let found = stretches(&ribbon);
+    match found.first() {
+        Some(&(start, _)) if closed && start > 0.0 => {
+            let ribbon = ribbon_of(&corners::restarted(curve, start))?;
+            let found = stretches(&ribbon);
+            Ok((ribbon, found))
+        }
+        _ => Ok((ribbon, found)),
     }
 }
 
@@ -193,7 +244,7 @@ fn piece_frames(
     // The canvas geometry of the pieces (fold-overs, rotation) is always the rigid frame's; the
     // exemplar side is the rigid or the straightened frame.
     let rigid_frames: Vec<PieceFrame> = quads.iter().map(|quad| PieceFrame::new(quad, params.scale, samples)).collect();
-    let stretch = |i: usize| if slices.is_tile(i) { 1.0 } else { slices.stretch };
+    let stretch = |i: usize| slices.along[i].0;
     let along_scales: Vec<f64> =
         quads.iter().enumerate().map(|(i, quad)| params.scale * stretch(i) / ribbon.factor(quad.start)).collect();
     let frames: Vec<PieceFrame> = if params.piece_shape == PieceShape::Bent {
@@ -205,9 +256,10 @@ fn piece_frames(
                 // The shorter last piece of an open curve takes a full-length window and is drawn
                 // up to the curve's end: its right edge meets no seam, and every piece then has
                 // the same frame, so an edit that keeps the number of pieces changes no DP row.
-                // A tile keeps its own length.
-                let keep = closed || slices.is_tile(i);
-                let quad = if keep { *quad } else { PieceQuad { end: quad.start + slices.piece_length, ..*quad } };
+                // A tile keeps its own length, and so does a piece that a tile follows (its right
+                // edge meets the tile's seam).
+                let keep = closed || slices.is_tile(i) || (i + 1 < quads.len() && slices.is_tile(i + 1));
+                let quad = if keep { *quad } else { PieceQuad { end: quad.start + slices.along[i].1, ..*quad } };
                 ribbon_pieces::straight_frame(&quad, params.width * params.scale / along, along, samples)
             })
             .collect()

@@ -28,7 +28,9 @@
 //!   along the curve and compared with the exemplar patch by patch; [`samples`]: generated
 //!   exemplars for benchmarks.
 //! - `brush` (not in the paper; a pattern brush's options): the exemplar flipped along or across
-//!   the curve and tinted, and pieces fitted to the curve's length ([`Fit`], [`Flip`]).
+//!   the curve and tinted, pieces fitted to the curve's length ([`Fit`], [`Flip`]), and the start,
+//!   end and corner tiles drawn whole between them; `corners` finds the corners that get a corner
+//!   tile.
 //! - `atlas` (several exemplars, §4's "matches across exemplars") and `incremental`
 //!   ([`Incremental`], §4's re-synthesis while the curve is edited).
 //! - `pipeline`: a synthesis stage by stage, as the report times them (ribbon, avoidance, valid
@@ -69,6 +71,7 @@ mod brush;
 mod canvas;
 mod closed;
 mod coarse;
+mod corners;
 mod cost;
 mod dp;
 mod error;

@@ -166,6 +166,13 @@ pub struct Params {
     /// An end tile: columns `[x0, x1)` of the first exemplar drawn whole as the last piece, ending
     /// at the curve's end. Default none.
     pub end_tile: Option<[u32; 2]>,
+    /// A corner tile: columns `[x0, x1)` of the first exemplar drawn whole, centred on every
+    /// corner of the curve (open or closed) sharper than [`Params::corner_angle`], joined to the
+    /// pieces beside it by the same seam cost. Default none.
+    pub corner_tile: Option<[u32; 2]>,
+    /// The turn, in degrees, that makes a corner for [`Params::corner_tile`]: the angle between
+    /// the curve's directions half a tile before and half a tile after it. Default 60.
+    pub corner_angle: f64,
 }
 
 impl Params {
@@ -200,6 +207,8 @@ impl Params {
         tint: None,
         start_tile: None,
         end_tile: None,
+        corner_tile: None,
+        corner_angle: 60.0,
     };
 }
 
@@ -240,6 +249,8 @@ motif_core::builders! { Params {
     with_tint => tint: Option<[u8; 3]>,
     with_start_tile => start_tile: Option<[u32; 2]>,
     with_end_tile => end_tile: Option<[u32; 2]>,
+    with_corner_tile => corner_tile: Option<[u32; 2]>,
+    with_corner_angle => corner_angle: f64,
 }}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -285,6 +296,33 @@ fn check_width_profile(params: &Params) -> Result<(), InvalidParameter> {
         }
     }
     Ok(())
+}
+
+/// Checks a tile's columns `[x0, x1)`: inside the first exemplar and over its pattern. Returns the
+/// tile's length along the curve.
+fn check_tile_columns(
+    input: &Input<'_>,
+    params: &Params,
+    name: &str,
+    [x0, x1]: [u32; 2],
+) -> Result<f64, InvalidParameter> {
+    let width = input.exemplar.width();
+    if x0 + 2 > x1 || x1 as usize > width {
+        return Err(InvalidParameter::new(
+            name,
+            format!("{x0},{x1}"),
+            format!("must be columns X0,X1 of the first exemplar with X0 + 2 ≤ X1 ≤ {width}"),
+        ));
+    }
+    let (first, last) = crate::exemplar::pattern_extent(input.exemplar, 0, width, params.cut_alpha);
+    if x0.max(first as u32) + 2 > x1.min(last as u32 + 1) {
+        return Err(InvalidParameter::new(
+            name,
+            format!("{x0},{x1}"),
+            format!("must cover the pattern, which spans columns {first} to {last} of the first exemplar"),
+        ));
+    }
+    Ok(f64::from(x1 - x0 - 1) / params.scale)
 }
 
 /// Most exemplars besides the first that one synthesis mixes.
@@ -343,6 +381,7 @@ impl Params {
         check_range("min-coverage", params.min_coverage, 0.0, 1.0)?;
         check_range("variety", params.variety, 0.0, 1e6)?;
         check_range("round-bends", params.round_bends, 0.0, 8.0)?;
+        check_range("corner-angle", params.corner_angle, 10.0, 179.0)?;
         check_width_profile(params)?;
         if params.fit == Fit::Stretch && params.piece_shape != PieceShape::Bent {
             return Err(InvalidParameter::new(
@@ -464,29 +503,25 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
     Ok(closed)
 }
 
-/// Checks the start and end tiles: columns inside the first exemplar, and room left on the curve
-/// for them and at least one piece between them.
+/// Checks the start, end and corner tiles: columns inside the first exemplar, and room left on
+/// the curve for the end tiles and at least one piece between them (a corner tile that leaves no
+/// room is not placed).
 fn check_end_tiles(input: &Input<'_>, params: &Params, length: f64) -> Result<(), InvalidParameter> {
-    let width = input.exemplar.width();
     let mut used = 0.0;
     for (name, tile) in [("start-tile", params.start_tile), ("end-tile", params.end_tile)] {
-        let Some([x0, x1]) = tile else { continue };
-        if x0 + 2 > x1 || x1 as usize > width {
+        if let Some(columns) = tile {
+            used += check_tile_columns(input, params, name, columns)?;
+        }
+    }
+    if let Some(columns) = params.corner_tile {
+        let corner = check_tile_columns(input, params, "corner-tile", columns)?;
+        if corner + params.piece_length > length {
             return Err(InvalidParameter::new(
-                name,
-                format!("{x0},{x1}"),
-                format!("must be columns X0,X1 of the first exemplar with X0 + 2 ≤ X1 ≤ {width}"),
+                "corner-tile",
+                format!("{corner:.1} px"),
+                format!("a corner tile and one piece must fit on the curve ({length:.1} px)"),
             ));
         }
-        let (first, last) = crate::exemplar::pattern_extent(input.exemplar, 0, width, params.cut_alpha);
-        if x0.max(first as u32) + 2 > x1.min(last as u32 + 1) {
-            return Err(InvalidParameter::new(
-                name,
-                format!("{x0},{x1}"),
-                format!("must cover the pattern, which spans columns {first} to {last} of the first exemplar"),
-            ));
-        }
-        used += f64::from(x1 - x0 - 1) / params.scale;
     }
     if used > 0.0 && used + params.piece_length > length {
         return Err(InvalidParameter::new(

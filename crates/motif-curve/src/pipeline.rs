@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use crate::InputError;
 use crate::avoidance::{FROM_FOLDOVER, ForbiddenMask};
+use crate::brush::TileKind;
 use crate::cost::{COST_SCALE, edge_distance, left_edges, right_edges};
 use crate::dp::{DpCounters, RowSpec};
 use crate::exemplar::Exemplar;
@@ -141,6 +142,7 @@ fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> 
         fit: params.fit,
         fitted_piece_length: layout.fitted_piece_length,
         fit_gap: layout.fit_gap,
+        corner_tiles: layout.piece_tiles.iter().filter(|&&tile| tile == Some(TileKind::Corner)).count(),
     };
     if layout.unresolved_bend {
         report.warnings.push(format!(
@@ -220,10 +222,9 @@ impl Candidates {
             cache.valid = valid.iter().filter(|(_, empty, _)| !empty).map(|(p, _, s)| (*s, p.clone())).collect();
         }
         if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
-            if let Some([x0, x1]) = layout.tile_columns(piece) {
-                let name = if piece == 0 { "start-tile" } else { "end-tile" };
+            if let Some((kind, [x0, x1])) = layout.tile(piece) {
                 return Err(InvalidParameter::new(
-                    name,
+                    kind.option_name(),
                     format!("{x0},{x1}"),
                     "no vertical position of these columns is cut cleanly (the tile must lie inside the pattern's \
                      extent, with its top and bottom edges in transparent pixels): widen the ribbon (--width) or \
@@ -311,10 +312,11 @@ fn valid_positions(
         .into_par_iter()
         .map(|i| {
             let runs = avoidance::forbidden_runs(&forbidden_samples[i]);
-            // A start or end tile keeps other positions than a piece of the same frame.
-            let tile = match layout.tile_columns(i) {
-                Some(_) if i == 0 => 1,
-                Some(_) => 2,
+            // A tile keeps other positions than a piece of the same frame.
+            let tile = match layout.tile(i) {
+                Some((TileKind::Start, _)) => 1,
+                Some((TileKind::End, _)) => 2,
+                Some((TileKind::Corner, _)) => 3,
                 None => 0,
             };
             (incremental::piece_signature(&frames[i], &runs).wrapping_add(tile * 0x9e37_79b9_7f4a_7c15), runs)
@@ -328,8 +330,8 @@ fn valid_positions(
         };
         let positions =
             if params.fit == Fit::Space { whole_motifs(&frames[i], &layout.exemplar, positions) } else { positions };
-        let positions = match layout.tile_columns(i) {
-            Some([x0, _]) => positions.into_iter().filter(|u| i64::from(u[0]) == i64::from(x0)).collect(),
+        let positions = match layout.tile(i) {
+            Some((_, [x0, _])) => positions.into_iter().filter(|u| i64::from(u[0]) == i64::from(x0)).collect(),
             None => outside_tiles(&frames[i], layout, positions),
         };
         // A piece that a forbidden area (a fold-over, the avoidance map) leaves with no valid
@@ -373,7 +375,7 @@ fn whole_motifs(frame: &PieceFrame, exemplar: &Exemplar, positions: Vec<Position
 }
 
 /// The positions of a piece between the tiles whose window stays clear of the tiles' columns: a
-/// cap or clasp is drawn at the ends only.
+/// cap, clasp or corner piece is drawn where its tile goes only.
 fn outside_tiles(frame: &PieceFrame, layout: &Layout, positions: Vec<Position>) -> Vec<Position> {
     let tiles: Vec<[u32; 2]> = layout.tile_columns.into_iter().flatten().collect();
     if tiles.is_empty() {

@@ -140,6 +140,9 @@ pub struct Report {
     pub fitted_piece_length: f64,
     /// The gap after each piece, canvas pixels (0 unless the pieces are spaced out).
     pub fit_gap: f64,
+    /// Corner tiles placed (one per corner sharper than the corner angle that leaves room for
+    /// pieces beside it; 0 without a corner tile).
+    pub corner_tiles: usize,
     /// What looks wrong with the run and what to change (few valid positions, empty pieces, a
     /// ribbon no wider than the pattern).
     pub warnings: Vec<String>,

@@ -73,6 +73,28 @@ impl Ribbon {
         self.centre.point_at(x)
     }
 
+    /// The arc length of the centre's point nearest to `point`.
+    pub fn nearest(&self, point: Point) -> f64 {
+        let cumulative = self.centre.cumulative_lengths();
+        let points = self.centre.points();
+        let mut best = (f64::INFINITY, 0.0);
+        for segment in 0..self.centre.segment_count() {
+            let (a, b) = (points[segment], points[(segment + 1) % points.len()]);
+            let along = b - a;
+            let squared = along.x * along.x + along.y * along.y;
+            let t = if squared > 0.0 {
+                (((point - a).x * along.x + (point - a).y * along.y) / squared).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let distance = vector::distance(a + along * t, point);
+            if distance < best.0 {
+                best = (distance, cumulative[segment] + t * (cumulative[segment + 1] - cumulative[segment]));
+            }
+        }
+        best.1
+    }
+
     /// The unit normal towards the top of the pattern at `x`, interpolated between vertices.
     pub fn up(&self, x: f64) -> Vec2 {
         let (segment, t) = self.centre.locate(x);

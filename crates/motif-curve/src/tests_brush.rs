@@ -200,3 +200,115 @@ fn end_tiles_are_drawn_whole_at_the_curves_ends() {
     let message = synthesize(&input, &outside, &mut NoProgress).unwrap_err().to_string();
     assert!(message.contains("end-tile") && message.contains("200"), "{message}");
 }
+
+/// Bars of 10 px with a distinct corner piece: a red block at columns 170..200.
+fn bars_with_red_tile() -> RgbaImage {
+    RgbaImage::from_fn(200, 16, |x, y| match (x, y) {
+        (170..=199, 2..=13) => [200, 20, 20, 255],
+        (_, 2..=13) if x % 20 < 10 && x < 160 => [40, 40, 40, 255],
+        _ => [0; 4],
+    })
+}
+
+/// The canvas points where the render is opaque and red.
+fn red_pixels(image: &RgbaImage) -> Vec<(usize, usize)> {
+    let mut red = Vec::new();
+    for y in 0..image.height() {
+        for x in 0..image.width() {
+            let p = image.get(x, y);
+            if p[3] > 127 && p[0] > 150 && p[1] < 100 {
+                red.push((x, y));
+            }
+        }
+    }
+    red
+}
+
+#[test]
+fn corner_tiles_are_drawn_at_the_corners_of_a_closed_frame_and_nowhere_else() {
+    let exemplar = bars_with_red_tile();
+    // A 160 × 120 rectangle, closed: four 90° corners.
+    let frame = motif_core::Polyline::new(
+        [(20.0, 20.0), (180.0, 20.0), (180.0, 140.0), (20.0, 140.0)]
+            .map(|(x, y)| motif_core::Point::new(x, y))
+            .to_vec(),
+        true,
+    )
+    .unwrap();
+    let mut with_corners = params(16.0, 20.0).with_corner_tile(Some([170, 200]));
+    with_corners.canvas = crate::Canvas::Size { width: 200, height: 160 };
+    let output = synthesize(&Input::new(&exemplar, &frame), &with_corners, &mut NoProgress).unwrap();
+    assert_eq!(output.report.corner_tiles, 4);
+    let column = |piece: &crate::PlacedPiece| piece.position.map(|[x, _]| x);
+    let tiles: Vec<&crate::PlacedPiece> = output.pieces.iter().filter(|piece| column(piece) == Some(170)).collect();
+    assert_eq!(tiles.len(), 4, "{:?}", output.pieces);
+    // Each tile is 29 px of arc and holds a corner: the rectangle's corner is nearer to its
+    // middle than to its ends.
+    let corners = [(20.0, 20.0), (180.0, 20.0), (180.0, 140.0), (20.0, 140.0)];
+    for tile in &tiles {
+        assert!((tile.arc[1] - tile.arc[0] - 29.0).abs() < 1e-9, "{:?}", tile.arc);
+        let [a, b, c, d] = tile.quad;
+        let centre = ((a[0] + b[0] + c[0] + d[0]) / 4.0, (a[1] + b[1] + c[1] + d[1]) / 4.0);
+        let nearest = corners
+            .iter()
+            .map(|(x, y)| motif_core::math::hypot(x - centre.0, y - centre.1))
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest < 20.0, "tile centred at {centre:?}");
+    }
+    // Red shows at the four corners only (within 30 px of one), and no other piece draws it.
+    let red = red_pixels(&output.image);
+    assert!(red.len() > 4 * 150, "{}", red.len());
+    for (x, y) in &red {
+        let near = corners.iter().any(|(cx, cy)| (*x as f64 - cx).abs() < 30.0 && (*y as f64 - cy).abs() < 30.0);
+        assert!(near, "red at ({x}, {y})");
+    }
+    for corner in corners {
+        let here =
+            red.iter().filter(|(x, y)| (*x as f64 - corner.0).abs() < 30.0 && (*y as f64 - corner.1).abs() < 30.0);
+        assert!(here.count() > 100, "no tile at {corner:?}");
+    }
+    assert!(output.pieces.iter().filter(|piece| column(piece) != Some(170)).all(|piece| column(piece) < Some(160)));
+}
+
+#[test]
+fn a_curve_without_corners_is_drawn_as_without_a_corner_tile() {
+    let exemplar = bars_with_red_tile();
+    let circle = crate::tests::circle(100.0, 100.0, 60.0, 90);
+    let plain = params(16.0, 20.0);
+    let input = Input::new(&exemplar, &circle);
+    let without = synthesize(&input, &plain, &mut NoProgress).unwrap();
+    let with = synthesize(&input, &plain.clone().with_corner_tile(Some([170, 200])), &mut NoProgress).unwrap();
+    assert_eq!(with.report.corner_tiles, 0);
+    assert_eq!(with.image, without.image);
+}
+
+#[test]
+fn the_corner_angle_decides_which_turns_get_a_tile_on_an_open_path() {
+    let exemplar = bars_with_red_tile();
+    // A 70° turn and then a 120° turn (the second back down), 100 px apart, with straight ends.
+    let turn = |degrees: f64| degrees.to_radians();
+    let a = motif_core::Point::new(20.0, 100.0);
+    let b = motif_core::Point::new(120.0, 100.0);
+    let c = b + motif_core::Vec2::new(
+        100.0 * motif_core::math::cos(turn(-70.0)),
+        100.0 * motif_core::math::sin(turn(-70.0)),
+    );
+    let d =
+        c + motif_core::Vec2::new(100.0 * motif_core::math::cos(turn(50.0)), 100.0 * motif_core::math::sin(turn(50.0)));
+    let path = motif_core::Polyline::new(vec![a, b, c, d], false).unwrap();
+    let input = Input::new(&exemplar, &path);
+    let tiles_at = |angle: f64| {
+        let tiled = params(16.0, 20.0).with_corner_tile(Some([170, 200])).with_corner_angle(angle);
+        synthesize(&input, &tiled, &mut NoProgress).unwrap().report.corner_tiles
+    };
+    assert_eq!(tiles_at(60.0), 2);
+    assert_eq!(tiles_at(90.0), 1);
+    assert_eq!(tiles_at(150.0), 0);
+    // With a start tile too: the ends and the corners each get theirs.
+    let both = params(16.0, 20.0).with_corner_tile(Some([170, 200])).with_start_tile(Some([170, 200]));
+    let output = synthesize(&input, &both, &mut NoProgress).unwrap();
+    assert_eq!(output.report.corner_tiles, 2);
+    assert_eq!(output.pieces[0].position.map(|[x, _]| x), Some(170));
+    let bad = params(16.0, 20.0).with_corner_tile(Some([170, 200])).with_corner_angle(5.0);
+    assert!(synthesize(&input, &bad, &mut NoProgress).unwrap_err().to_string().contains("corner-angle"));
+}

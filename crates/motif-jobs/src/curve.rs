@@ -160,6 +160,16 @@ crate::declare_options! {
         /// at the curve's end.
         [value_name: "X0,X1"]
         end_tile: Option<[i32; 2]> = None,
+        /// A corner tile: columns X0,X1 of the first exemplar, drawn whole and centred on every
+        /// corner sharper than --corner-angle (a frame's corner piece), on open and closed curves,
+        /// joined to the pieces beside it by the same seam cost. A corner too close to another or
+        /// to an end to leave half a piece between them is left to the pieces.
+        [value_name: "X0,X1"]
+        corner_tile: Option<[i32; 2]> = None,
+        /// With --corner-tile: the turn, in degrees, that makes a corner (the angle between the
+        /// curve's directions half a tile before and half a tile after it).
+        [value_name: "DEG", range: (10.0, 179.0)]
+        corner_angle: f64 = DEFAULTS.corner_angle,
     }
 }
 
@@ -308,6 +318,8 @@ impl CurveJob {
             .with_tint(options.tint.map(|Colour(rgb)| rgb))
             .with_start_tile(tile_columns("start-tile", options.start_tile)?)
             .with_end_tile(tile_columns("end-tile", options.end_tile)?)
+            .with_corner_tile(tile_columns("corner-tile", options.corner_tile)?)
+            .with_corner_angle(options.corner_angle)
             .with_max_memory(self.max_memory.unwrap_or(DEFAULTS.max_memory));
         params.validate()?;
         Ok(params)
@@ -442,6 +454,9 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
         put("variety", json!(report.variety));
         put("rounded_bends", json!(report.rounded_bends));
         put("bend_shift_max", json!(report.bend_shift_max));
+    }
+    if report.corner_tiles > 0 {
+        put("corner_tiles", json!(report.corner_tiles));
     }
     if report.fit != motif_curve::Fit::None {
         put("fit", json!(report.fit));

@@ -141,6 +141,11 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_jobs::curve::Fit::Stretch => format!(" (stretched to {:.1})", report.fitted_piece_length),
         _ => format!(" (spaced by {:.1})", report.fit_gap),
     };
+    let corners = if args.options.corner_tile.is_some() {
+        format!(", {} corner tile{}", report.corner_tiles, if report.corner_tiles == 1 { "" } else { "s" })
+    } else {
+        String::new()
+    };
     let closed = match (report.closed_certified, report.closed_gap) {
         (Some(true), _) => ", closed cycle certified optimal".to_string(),
         (Some(false), Some(gap)) => format!(
@@ -151,7 +156,7 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         _ => String::new(),
     };
     context.summary(&format!(
-        "curve: width {}, piece length {}{fit}, {} pieces, total seam cost {:.1} (mean {:.1}){closed}, {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
+        "curve: width {}, piece length {}{fit}, {} pieces{corners}, total seam cost {:.1} (mean {:.1}){closed}, {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
         dimension(run.dimensions.width),
         dimension(run.dimensions.piece_length),
         output.report.pieces,
