@@ -346,6 +346,9 @@ def curve(
     *,
     more_exemplars: Iterable[ArrayLike] = (),
     avoid: Optional[ArrayLike] = None,
+    start_tile_image: Optional[ArrayLike] = None,
+    end_tile_image: Optional[ArrayLike] = None,
+    corner_tile_image: Optional[ArrayLike] = None,
     seed: int = 1,
     threads: Optional[int] = None,
     report: bool = False,
@@ -358,8 +361,11 @@ def curve(
 
     Options: ``scale``, ``closed``, ``method``, ``solver``, ``alpha``, ``gamma``, ``stitch``,
     ``canvas`` ((W, H)), ``margin``, ``samples``, ``variety``, ``pieces_shape``, ``width_profile``,
-    ``round_bends``, ``fidelity``, ``max_memory``, ... Returns (image, pieces): an H×W×4 uint8 array
-    and a list of dicts, one per piece (the CLI's ``--pieces`` entries).
+    ``round_bends``, ``fidelity``, ``max_memory``, ... ``start_tile_image``, ``end_tile_image`` and
+    ``corner_tile_image`` are tiles from images of their own (H×W×4 uint8, their whole pattern),
+    in place of the ``start_tile``, ``end_tile`` and ``corner_tile`` columns. Returns (image,
+    pieces): an H×W×4 uint8 array and a list of dicts, one per piece (the CLI's ``--pieces``
+    entries).
     """
     del seed  # The curve engine is deterministic; accepted for a uniform signature.
     points = np.ascontiguousarray(np.asarray(path, dtype=np.float64))
@@ -369,7 +375,17 @@ def curve(
     job = _job("curve", {k: float(v) for k, v in fixed.items() if v is not None}, options)
     more = [_image(m, f"exemplar {i + 2}") for i, m in enumerate(more_exemplars)]
     avoid_image = None if avoid is None else _image(avoid, "avoid")
-    image, pieces, report_text = _motif.curve(_image(exemplar, "exemplar"), points, job, more, avoid_image, threads)
+    tiles = [
+        None if image is None else _image(image, name)
+        for image, name in (
+            (start_tile_image, "start_tile_image"),
+            (end_tile_image, "end_tile_image"),
+            (corner_tile_image, "corner_tile_image"),
+        )
+    ]
+    image, pieces, report_text = _motif.curve(
+        _image(exemplar, "exemplar"), points, job, more, avoid_image, threads, tiles
+    )
     return _finish((image, json.loads(pieces)), report_text, report)
 
 

@@ -79,13 +79,17 @@ def presynth(
 @overload
 def curve(
     exemplar: npt.ArrayLike, path: npt.ArrayLike, width: float, piece_length: float, *,
-    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ..., seed: int = ...,
+    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ...,
+    start_tile_image: Optional[npt.ArrayLike] = ..., end_tile_image: Optional[npt.ArrayLike] = ...,
+    corner_tile_image: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[False] = ..., **options: Any
 ) -> Tuple[ImageArray, List[Dict[str, Any]]]: ...
 @overload
 def curve(
     exemplar: npt.ArrayLike, path: npt.ArrayLike, width: float, piece_length: float, *,
-    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ..., seed: int = ...,
+    more_exemplars: Iterable[npt.ArrayLike] = ..., avoid: Optional[npt.ArrayLike] = ...,
+    start_tile_image: Optional[npt.ArrayLike] = ..., end_tile_image: Optional[npt.ArrayLike] = ...,
+    corner_tile_image: Optional[npt.ArrayLike] = ..., seed: int = ...,
     threads: Optional[int] = ..., report: Literal[True], **options: Any
 ) -> Tuple[Tuple[ImageArray, List[Dict[str, Any]]], Dict[str, Any]]: ...
 @overload

@@ -408,7 +408,8 @@ fn stylize<'py>(
 /// `motif curve` along a polyline of (N, 2) points (closed when the last repeats the first):
 /// (image, pieces JSON, report JSON).
 #[pyfunction]
-#[pyo3(signature = (exemplar, points, job, more_exemplars=Vec::new(), avoid=None, threads=None))]
+#[pyo3(signature = (exemplar, points, job, more_exemplars=Vec::new(), avoid=None, threads=None, tile_images=Vec::new()))]
+#[allow(clippy::too_many_arguments, reason = "a Python function's keyword arguments")]
 fn curve<'py>(
     py: Python<'py>,
     exemplar: PyReadonlyArrayDyn<'py, u8>,
@@ -417,6 +418,7 @@ fn curve<'py>(
     more_exemplars: Vec<PyReadonlyArrayDyn<'py, u8>>,
     avoid: Option<PyReadonlyArrayDyn<'py, u8>>,
     threads: Option<usize>,
+    tile_images: Vec<Option<PyReadonlyArrayDyn<'py, u8>>>,
 ) -> PyResult<(Image<'py>, String, String)> {
     let job: motif_jobs::curve::CurveJob = description(job)?;
     let exemplar = image_of(&exemplar, "exemplar")?;
@@ -426,6 +428,16 @@ fn curve<'py>(
         .map(|(index, image)| image_of(image, &format!("exemplar {}", index + 2)))
         .collect::<PyResult<_>>()?;
     let avoidance = avoid.as_ref().map(|image| image_of(image, "avoid")).transpose()?;
+    if tile_images.len() > 3 {
+        return Err(value_error("tile images: at most three (start, end, corner)".to_string()));
+    }
+    let names = ["start_tile_image", "end_tile_image", "corner_tile_image"];
+    let tiles: Vec<Option<RgbaImage>> = tile_images
+        .iter()
+        .zip(names)
+        .map(|(image, name)| image.as_ref().map(|image| image_of(image, name)).transpose())
+        .collect::<PyResult<_>>()?;
+    let tile = |k: usize| tiles.get(k).and_then(Option::as_ref);
     let shape = points.shape();
     if shape[1] != 2 || shape[0] < 2 {
         return Err(value_error(format!("path: the curve must be an (N, 2) array of N ≥ 2 points, not {shape:?}")));
@@ -442,6 +454,7 @@ fn curve<'py>(
         more_exemplars: &more,
         curve: &curve,
         avoidance: avoidance.as_ref(),
+        tile_images: [tile(0), tile(1), tile(2)],
     };
     let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
     let pieces = serde_json::to_string(&run.output.pieces).map_err(value_error)?;

@@ -93,6 +93,24 @@ def test_curve_equals_the_cli(cli, tmp_path):
     assert len(pieces) > 10
 
 
+def test_curve_tile_images_equal_the_cli(cli, tmp_path):
+    """A cap from an image of its own (the chain's first link cut out), as --start-tile-image and
+    --end-tile-image: the same bytes as the CLI, and the caps drawn from it."""
+    exemplar = motif.read_image(str(CURVE / "chain_small.png"))
+    link = np.ascontiguousarray(exemplar[:, :40])
+    motif.write_png(str(tmp_path / "link.png"), link)
+    t = np.linspace(0.0, 1.0, 40)
+    path = np.stack([30 + 340 * t, 120 + 60 * np.sin(2.5 * np.pi * t)], axis=1)
+    (tmp_path / "path.csv").write_text("x,y\n" + "".join(f"{float(x)!r},{float(y)!r}\n" for x, y in path))
+    arguments = ["curve", "--exemplar", str(CURVE / "chain_small.png"), "--path", "path.csv", "--width", "82"]
+    tiles = ["--start-tile-image", "link.png", "--end-tile-image", "link.png"]
+    cli(arguments + ["--piece-length", "24", "--out", "out.png"] + tiles, tmp_path)
+    image, pieces = motif.curve(exemplar, path, 82, 24, start_tile_image=link, end_tile_image=link)
+    assert np.array_equal(image, motif.read_image(str(tmp_path / "out.png")))
+    assert (pieces[0]["exemplar"], pieces[-1]["exemplar"]) == (1, 2)
+    assert all(piece["exemplar"] == 0 for piece in pieces[1:-1])
+
+
 def test_points_equal_the_cli(cli, tmp_path):
     arguments = ["points", "--exemplar", str(POINTS / "swedishpines.csv"), "--neighbourhood", "32"]
     cli(["--seed", "4"] + arguments + ["--exemplar-window", "96,100", "--domain", "box:140,120", "--out", "out.csv"], tmp_path)

@@ -151,3 +151,47 @@ fn bad_values_of_the_new_flags_are_refused() {
         assert!(!dir.path().join("out.png").exists());
     }
 }
+
+/// Tiles from PNGs of their own (a pattern brush's caps and corner pieces): the round-link
+/// chain's first link, cut out and saved as a PNG, caps a sweep at both ends and sits on the
+/// heart's cusp and tip; the pieces between never copy it.
+#[test]
+fn tiles_from_their_own_pngs_cap_the_ends_and_turn_the_corners() {
+    let dir = tempfile::tempdir().unwrap();
+    let chain = motif_io::read_image(&corpus("chain_round.png")).unwrap();
+    let link = motif_core::RgbaImage::from_fn(95, chain.height(), |x, y| chain.get(x, y));
+    motif_io::write_png(&dir.path().join("link.png"), &link).unwrap();
+    let exemplar = corpus("chain_round.png");
+    let sweep = corpus("flourish_sweep.svg");
+    let mut args = curve_args(&exemplar, &sweep, "108", "25");
+    args.extend_from_slice(&[
+        "--start-tile-image",
+        "link.png",
+        "--end-tile-image",
+        "link.png",
+        "--pieces",
+        "pieces.json",
+    ]);
+    let output = motif(dir.path(), &args);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let pieces: Value = motif_io::read_json(&dir.path().join("pieces.json")).unwrap();
+    let pieces = pieces["pieces"].as_array().unwrap();
+    let source = |piece: &Value| piece["exemplar"].as_u64().unwrap();
+    // The start and end tile images are exemplars 1 and 2 (after the one given).
+    assert_eq!((source(&pieces[0]), source(&pieces[pieces.len() - 1])), (1, 2));
+    assert!(pieces[1..pieces.len() - 1].iter().all(|piece| source(piece) == 0));
+
+    let heart = corpus("heart.svg");
+    let mut args = curve_args(&exemplar, &heart, "108", "25");
+    args.extend_from_slice(&["--corner-tile-image", "link.png", "--pieces", "pieces.json", "--report", "report.json"]);
+    let output = motif(dir.path(), &args);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let report: Value = motif_io::read_json(&dir.path().join("report.json")).unwrap();
+    let corners = report["corner_tiles"].as_u64().unwrap();
+    assert_eq!(corners, 2, "the heart's cusp and tip");
+    assert!(stderr.contains(&format!("{corners} corner tiles")), "{stderr}");
+    let pieces: Value = motif_io::read_json(&dir.path().join("pieces.json")).unwrap();
+    let tiles = pieces["pieces"].as_array().unwrap().iter().filter(|piece| source(piece) == 1).count();
+    assert_eq!(tiles as u64, corners);
+}

@@ -106,8 +106,8 @@ impl Layout {
         let canvas_pixels = (canvas_width * canvas_height) as f64;
         let canvas_memory = memory_estimate(canvas_pixels, 0.0, 0.0, 0).check(params.max_memory, MEMORY_ADVICE)?;
         let curve = curve.transformed(Affine::translate(shift))?;
-        let tile_columns = [params.start_tile, params.end_tile, params.corner_tile]
-            .map(|tile| tile_in_pattern(input.exemplar, tile, params));
+        let atlas = Atlas::new(input.exemplar, input.more_exemplars);
+        let tile_columns = tile_columns(&atlas, input.exemplar, params);
         // A window at position x covers exemplar x + 0.5 to x + 0.5 + length: columns X0..X1 are
         // drawn from the centre of the first to the centre of the last.
         let [start_tile, end_tile, corner_tile] =
@@ -130,7 +130,6 @@ impl Layout {
         let (rigid_frames, frames, along_scales) = piece_frames(&ribbon, &quads, params, &slices, closed, samples);
         let (ribbon_top, ribbon_bottom) = ribbon_borders(&ribbon);
         let margin = frames.iter().map(PieceFrame::required_margin).max().unwrap_or(8);
-        let atlas = Atlas::new(input.exemplar, input.more_exemplars);
         let exemplar = prepared_exemplar(&atlas, margin, params, cache);
         Ok(Self {
             closed,
@@ -218,6 +217,24 @@ fn corner_ribbon(
         }
         _ => Ok((ribbon, found)),
     }
+}
+
+/// The start, end and corner tiles' atlas columns: a tile exemplar's whole pattern, or columns of
+/// the first exemplar narrowed to the pattern's extent.
+fn tile_columns(atlas: &Atlas, first: &RgbaImage, params: &Params) -> [Option<[u32; 2]>; 3] {
+    let columns = [params.start_tile, params.end_tile, params.corner_tile];
+    let mut tiles = [None; 3];
+    for (k, tile) in tiles.iter_mut().enumerate() {
+        *tile = match params.tile_exemplars[k] {
+            Some(source) => {
+                let (x0, x1) = atlas.sources[source];
+                let (start, end) = crate::exemplar::pattern_extent(&atlas.image, x0, x1, params.cut_alpha);
+                (start + 2 <= end + 1).then_some([start as u32, end as u32 + 1])
+            }
+            None => tile_in_pattern(first, columns[k], params),
+        };
+    }
+    tiles
 }
 
 /// A tile's columns narrowed to the pattern's extent in the first exemplar (the transparent

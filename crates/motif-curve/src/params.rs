@@ -173,6 +173,12 @@ pub struct Params {
     /// The turn, in degrees, that makes a corner for [`Params::corner_tile`]: the angle between
     /// the curve's directions half a tile before and half a tile after it. Default 60.
     pub corner_angle: f64,
+    /// Tiles drawn from an image of their own: the start, end and corner tiles are the whole
+    /// pattern of these exemplars (indices into the first exemplar and
+    /// [`Input::more_exemplars`](crate::Input::more_exemplars), 1 for the first of those), in
+    /// place of the columns of [`Params::start_tile`], [`Params::end_tile`] and
+    /// [`Params::corner_tile`]. The pieces between never copy a tile's exemplar. Default none.
+    pub tile_exemplars: [Option<usize>; 3],
 }
 
 impl Params {
@@ -209,6 +215,7 @@ impl Params {
         end_tile: None,
         corner_tile: None,
         corner_angle: 60.0,
+        tile_exemplars: [None; 3],
     };
 }
 
@@ -251,6 +258,7 @@ motif_core::builders! { Params {
     with_end_tile => end_tile: Option<[u32; 2]>,
     with_corner_tile => corner_tile: Option<[u32; 2]>,
     with_corner_angle => corner_angle: f64,
+    with_tile_exemplars => tile_exemplars: [Option<usize>; 3],
 }}
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
@@ -296,6 +304,31 @@ fn check_width_profile(params: &Params) -> Result<(), InvalidParameter> {
         }
     }
     Ok(())
+}
+
+/// Checks a tile drawn from exemplar `source` (one of the more exemplars, with a pattern). Returns
+/// the tile's length along the curve.
+fn check_tile_exemplar(input: &Input<'_>, params: &Params, name: &str, source: usize) -> Result<f64, InvalidParameter> {
+    let Some(image) = source.checked_sub(1).and_then(|k| input.more_exemplars.get(k)) else {
+        return Err(InvalidParameter::new(
+            format!("{name}-image"),
+            format!("exemplar {source}"),
+            format!(
+                "must be one of the {} more exemplars (1 to {})",
+                input.more_exemplars.len(),
+                input.more_exemplars.len()
+            ),
+        ));
+    };
+    let (first, last) = crate::exemplar::pattern_extent(image, 0, image.width(), params.cut_alpha);
+    if last < first + 1 {
+        return Err(InvalidParameter::new(
+            format!("{name}-image"),
+            format!("{}×{}", image.width(), image.height()),
+            "must hold a pattern at least 2 columns wide",
+        ));
+    }
+    Ok(f64::from(last - first) / params.scale)
 }
 
 /// Checks a tile's columns `[x0, x1)`: inside the first exemplar and over its pattern. Returns the
@@ -494,8 +527,9 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
             .into());
         }
     };
-    if closed && (params.start_tile.is_some() || params.end_tile.is_some()) {
-        let name = if params.start_tile.is_some() { "start-tile" } else { "end-tile" };
+    let start = params.start_tile.is_some() || params.tile_exemplars[0].is_some();
+    if closed && (start || params.end_tile.is_some() || params.tile_exemplars[1].is_some()) {
+        let name = if start { "start-tile" } else { "end-tile" };
         return Err(
             InvalidParameter::new(name, "on a closed curve", "a closed curve has no ends; use --closed no").into()
         );
@@ -508,24 +542,28 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
 /// room is not placed).
 fn check_end_tiles(input: &Input<'_>, params: &Params, length: f64) -> Result<(), InvalidParameter> {
     let mut used = 0.0;
-    for (name, tile) in [("start-tile", params.start_tile), ("end-tile", params.end_tile)] {
-        if let Some(columns) = tile {
-            used += check_tile_columns(input, params, name, columns)?;
-        }
+    let tiles = [("start-tile", params.start_tile), ("end-tile", params.end_tile), ("corner-tile", params.corner_tile)];
+    let mut lengths = [None; 3];
+    for (k, ((name, columns), source)) in tiles.into_iter().zip(params.tile_exemplars).enumerate() {
+        lengths[k] = match (source, columns) {
+            (Some(source), _) => Some(check_tile_exemplar(input, params, name, source)?),
+            (None, Some(columns)) => Some(check_tile_columns(input, params, name, columns)?),
+            (None, None) => None,
+        };
     }
-    if let Some(columns) = params.corner_tile {
-        let corner = check_tile_columns(input, params, "corner-tile", columns)?;
-        if corner + params.piece_length > length {
-            return Err(InvalidParameter::new(
-                "corner-tile",
-                format!("{corner:.1} px"),
-                format!("a corner tile and one piece must fit on the curve ({length:.1} px)"),
-            ));
-        }
+    used += lengths[0].unwrap_or(0.0) + lengths[1].unwrap_or(0.0);
+    if let Some(corner) = lengths[2]
+        && corner + params.piece_length > length
+    {
+        return Err(InvalidParameter::new(
+            "corner-tile",
+            format!("{corner:.1} px"),
+            format!("a corner tile and one piece must fit on the curve ({length:.1} px)"),
+        ));
     }
     if used > 0.0 && used + params.piece_length > length {
         return Err(InvalidParameter::new(
-            if params.start_tile.is_some() { "start-tile" } else { "end-tile" },
+            if lengths[0].is_some() { "start-tile" } else { "end-tile" },
             format!("{used:.1} px of tiles"),
             format!("the tiles and one piece must fit on the curve ({length:.1} px)"),
         ));

@@ -312,3 +312,49 @@ fn the_corner_angle_decides_which_turns_get_a_tile_on_an_open_path() {
     let bad = params(16.0, 20.0).with_corner_tile(Some([170, 200])).with_corner_angle(5.0);
     assert!(synthesize(&input, &bad, &mut NoProgress).unwrap_err().to_string().contains("corner-angle"));
 }
+
+#[test]
+fn tiles_from_images_of_their_own_are_drawn_whole_and_only_as_tiles() {
+    // Grey bars as the exemplar; a red cap 30 px wide and a blue corner piece as images of their own.
+    let exemplar = bars(2..14);
+    let block = |colour: [u8; 4]| {
+        RgbaImage::from_fn(
+            34,
+            16,
+            move |x, y| if (2..32).contains(&x) && (2..14).contains(&y) { colour } else { [0; 4] },
+        )
+    };
+    let images = [block([200, 20, 20, 255]), block([20, 20, 200, 255])];
+    let curve = line(10.0, 40.0, 140.0, 40.0);
+    let input = Input::new(&exemplar, &curve).with_more_exemplars(&images[..1]);
+    let capped = params(16.0, 20.0).with_tile_exemplars([Some(1), Some(1), None]);
+    let output = synthesize(&input, &capped, &mut NoProgress).unwrap();
+    let pieces = &output.pieces;
+    // The caps are the images' whole pattern: 29 px of arc, from exemplar 1; the pieces between
+    // never copy an image tile.
+    assert_eq!((pieces[0].exemplar, pieces[pieces.len() - 1].exemplar), (1, 1));
+    assert_eq!((pieces[0].arc, pieces[pieces.len() - 1].arc), ([0.0, 29.0], [101.0, 130.0]));
+    assert!(pieces[1..pieces.len() - 1].iter().all(|piece| piece.exemplar == 0), "{pieces:?}");
+    // Red in two 29 px runs at the line's two ends (the canvas is fitted: the line is 130 px).
+    let red = red_pixels(&output.image);
+    let (low, high) = (red.iter().map(|p| p.0).min().unwrap(), red.iter().map(|p| p.0).max().unwrap());
+    assert!(high - low > 125 && red.iter().all(|&(x, _)| x < low + 30 || x + 30 > high), "{low} {high}");
+    assert!(red.len() > 2 * 250, "{}", red.len());
+    // An image corner tile on a closed frame: blue at the four corners.
+    let frame = motif_core::Polyline::new(
+        [(20.0, 20.0), (180.0, 20.0), (180.0, 140.0), (20.0, 140.0)]
+            .map(|(x, y)| motif_core::Point::new(x, y))
+            .to_vec(),
+        true,
+    )
+    .unwrap();
+    let input = Input::new(&exemplar, &frame).with_more_exemplars(&images[1..]);
+    let cornered = params(16.0, 20.0).with_tile_exemplars([None, None, Some(1)]);
+    let output = synthesize(&input, &cornered, &mut NoProgress).unwrap();
+    assert_eq!(output.report.corner_tiles, 4);
+    assert_eq!(output.pieces.iter().filter(|piece| piece.exemplar == 1).count(), 4);
+    // An index that names no image is refused by name.
+    let missing = params(16.0, 20.0).with_tile_exemplars([Some(3), None, None]);
+    let message = synthesize(&Input::new(&exemplar, &curve), &missing, &mut NoProgress).unwrap_err().to_string();
+    assert!(message.contains("start-tile-image"), "{message}");
+}

@@ -246,6 +246,9 @@ pub struct CurveInputs<'a> {
     pub curve: &'a Polyline,
     /// Forbidden areas of the canvas (white), if any.
     pub avoidance: Option<&'a RgbaImage>,
+    /// Start, end and corner tiles drawn from images of their own (their whole pattern), in place
+    /// of the columns of `start-tile`, `end-tile` and `corner-tile`.
+    pub tile_images: [Option<&'a RgbaImage>; 3],
 }
 
 impl CurveJob {
@@ -344,8 +347,18 @@ impl CurveJob {
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
         let (params, dimensions) = self.params(&inputs)?;
+        // Tile images join the exemplars after the others; the engine draws the tiles from them.
+        let mut exemplars = std::borrow::Cow::Borrowed(inputs.more_exemplars);
+        let mut sources = [None; 3];
+        for (source, image) in sources.iter_mut().zip(inputs.tile_images) {
+            if let Some(image) = image {
+                exemplars.to_mut().push(image.clone());
+                *source = Some(exemplars.len());
+            }
+        }
+        let params = params.with_tile_exemplars(sources);
         let input = Input { avoidance: inputs.avoidance, ..Input::new(inputs.exemplar, inputs.curve) }
-            .with_more_exemplars(inputs.more_exemplars);
+            .with_more_exemplars(&exemplars);
         let output = match session {
             Some(session) => session.synthesize(&input, &params, progress)?,
             None => motif_curve::synthesize(&input, &params, progress)?,
@@ -500,7 +513,13 @@ mod tests {
         }))
         .unwrap();
         let (exemplar, curve) = (rings(), line());
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let inputs = CurveInputs {
+            exemplar: &exemplar,
+            more_exemplars: &[],
+            curve: &curve,
+            avoidance: None,
+            tile_images: [None; 3],
+        };
         let (params, dimensions) = job.params(&inputs).unwrap();
         assert_eq!((params.width, params.piece_length), (24.0, 12.0));
         assert!(!dimensions.width.inferred && !dimensions.piece_length.inferred);
@@ -520,7 +539,13 @@ mod tests {
     #[test]
     fn a_job_without_width_and_piece_length_infers_them() {
         let (exemplar, curve) = (rings(), line());
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let inputs = CurveInputs {
+            exemplar: &exemplar,
+            more_exemplars: &[],
+            curve: &curve,
+            avoidance: None,
+            tile_images: [None; 3],
+        };
         let job: CurveJob = serde_json::from_value(json!({ "closed": "no" })).unwrap();
         let run = job.run(inputs, &mut NoProgress).unwrap();
         // Rings 16 px apart, 14 rows tall: the inferred width holds 16 rows with a margin.
@@ -542,7 +567,13 @@ mod tests {
         let error = serde_json::from_value::<CurveJob>(json!({ "width": 24, "piece-length": 12, "closed": "maybe" }));
         assert!(error.unwrap_err().to_string().contains("maybe"));
         let (exemplar, curve) = (rings(), line());
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let inputs = CurveInputs {
+            exemplar: &exemplar,
+            more_exemplars: &[],
+            curve: &curve,
+            avoidance: None,
+            tile_images: [None; 3],
+        };
         for mut job in [CurveJob::new(24.0, 12.0), CurveJob::default()] {
             job.options.scale = 0.0;
             assert!(job.params(&inputs).unwrap_err().to_string().contains("invalid scale = 0"));
@@ -575,7 +606,13 @@ mod tests {
         let written = serde_json::to_value(CurveJob::new(24.0, 12.0)).unwrap();
         assert!(written.get("max-memory").is_some_and(Value::is_null), "{written}");
         let (exemplar, curve) = (rings(), line());
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let inputs = CurveInputs {
+            exemplar: &exemplar,
+            more_exemplars: &[],
+            curve: &curve,
+            avoidance: None,
+            tile_images: [None; 3],
+        };
         let (params, _) = CurveJob::new(24.0, 12.0).params(&inputs).unwrap();
         assert_eq!(params, Params::DEFAULT.with_width(24.0).with_piece_length(12.0));
         let names: Vec<String> = CurveOptions::options().into_iter().map(|spec| spec.name).collect();

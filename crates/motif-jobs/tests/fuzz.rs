@@ -122,6 +122,7 @@ proptest! {
                 more_exemplars: &[],
                 curve: &curve,
                 avoidance: None,
+                tile_images: [None; 3],
             }) {
                 Ok((params, _)) => prop_assert!(params.validate().is_ok()),
                 Err(error) => check_message(&error.to_string()),
@@ -212,7 +213,7 @@ proptest! {
         description["max-memory"] = json!("64M");
         let Ok(job) = serde_json::from_value::<CurveJob>(description) else { return Ok(()) };
         let (exemplar, curve) = curve_exemplar_and_line();
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None };
+        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None, tile_images: [None; 3] };
         if let Err(error) = job.run(inputs, &mut NoProgress) {
             check_message(&error.to_string());
         }

@@ -34,6 +34,17 @@ pub struct CurveArgs {
     /// sets the canvas size (canvas origin = document origin).
     #[arg(long, value_name = "MASK.png")]
     pub avoid: Option<PathBuf>,
+    /// A start tile from an image of its own (PNG with alpha; its whole pattern), in place of
+    /// --start-tile's columns of the exemplar: an end cap or a clasp drawn as the first piece.
+    #[arg(long, value_name = "TILE.png")]
+    pub start_tile_image: Option<PathBuf>,
+    /// An end tile from an image of its own, drawn whole as the last piece.
+    #[arg(long, value_name = "TILE.png")]
+    pub end_tile_image: Option<PathBuf>,
+    /// A corner tile from an image of its own, drawn whole at every corner sharper than
+    /// --corner-angle.
+    #[arg(long, value_name = "TILE.png")]
+    pub corner_tile_image: Option<PathBuf>,
     /// Every option of the job.
     #[command(flatten)]
     pub options: JobArgs<CurveOptions>,
@@ -84,6 +95,8 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs: Vec<&Path> = args.exemplar.iter().map(PathBuf::as_path).collect();
     inputs.push(&args.path);
     inputs.extend(args.avoid.as_deref());
+    let tile_paths = [&args.start_tile_image, &args.end_tile_image, &args.corner_tile_image];
+    inputs.extend(tile_paths.iter().filter_map(|path| path.as_deref()));
     for output in std::iter::once(&args.out).chain(&args.pieces).chain(&args.debug_overlay) {
         context.check_output(output, &inputs)?;
     }
@@ -96,11 +109,16 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     args.svg.options.check_ranges()?;
     let curve = read_curve(&args.path, args.svg.options.tolerance)?;
     let avoidance = args.avoid.as_deref().map(|path| motif_io::read_image_within(path, budget)).transpose()?;
+    let tiles: Vec<Option<_>> = tile_paths
+        .iter()
+        .map(|path| path.as_deref().map(|path| motif_io::read_image_within(path, budget)).transpose())
+        .collect::<Result<_, _>>()?;
     let inputs = CurveInputs {
         exemplar: &exemplar,
         more_exemplars: &more_exemplars,
         curve: &curve,
         avoidance: avoidance.as_ref(),
+        tile_images: [tiles[0].as_ref(), tiles[1].as_ref(), tiles[2].as_ref()],
     };
     // `motif_jobs::curve` turns the job into engine parameters, as it does for every front end.
     let job = CurveJob { max_memory: Some(context.max_memory), options: args.options.options.clone() };
@@ -141,7 +159,7 @@ pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
         motif_jobs::curve::Fit::Stretch => format!(" (stretched to {:.1})", report.fitted_piece_length),
         _ => format!(" (spaced by {:.1})", report.fit_gap),
     };
-    let corners = if args.options.corner_tile.is_some() {
+    let corners = if args.options.corner_tile.is_some() || args.corner_tile_image.is_some() {
         format!(", {} corner tile{}", report.corner_tiles, if report.corner_tiles == 1 { "" } else { "s" })
     } else {
         String::new()
