@@ -93,6 +93,7 @@ mod ribbon_pieces;
 pub mod samples;
 mod solve;
 mod stitch;
+mod thin;
 mod tight_bends;
 mod variety;
 mod warnings;
@@ -111,6 +112,7 @@ pub use crate::overlay::debug_overlay;
 pub use crate::params::{Canvas, ClosedMode, MAX_CANVAS_SIDE, Method, Params, PieceShape};
 pub use crate::report::{Output, PlacedPiece, Report};
 pub use crate::solve::VarietyReport;
+pub use crate::thin::ThinStrip;
 
 /// What the engine works on.
 #[derive(Debug, Clone, Copy)]

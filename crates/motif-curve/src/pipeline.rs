@@ -20,7 +20,7 @@ use crate::render::{Shape, rigid_shape};
 use crate::repeat::Triangle;
 use crate::stitch::Stitch;
 use crate::{ClosedMode, Error, Fit, Input, Method, Output, Params, PlacedPiece, Report};
-use crate::{avoidance, incremental, render, repeat, ribbon_pieces, solve, stitch, variety, warnings};
+use crate::{avoidance, incremental, render, repeat, ribbon_pieces, solve, stitch, thin, variety, warnings};
 
 /// [`synthesize`](crate::synthesize), reusing and updating a session's cache when one is given
 /// (see [`Incremental`](crate::Incremental)).
@@ -65,7 +65,8 @@ pub(crate) fn synthesize_with(
     check_pin(params, &candidates)?;
 
     timer.start("dynamic program");
-    let (positions, optimum) = dynamic_program(params, &layout, &candidates, &mut report, cache, progress);
+    let solved = dynamic_program(params, &layout, &candidates, &mut report, cache, progress);
+    let (candidates, positions, optimum) = avoid_thin_strip(params, &layout, candidates, solved, &mut report, progress);
 
     timer.start("stitching");
     let stitches = stitch_seams(params, &layout, &candidates, &positions, optimum, &mut report);
@@ -142,6 +143,7 @@ fn first_report(params: &Params, layout: &Layout, forbidden: &ForbiddenMask) -> 
         fit: params.fit,
         fitted_piece_length: layout.fitted_piece_length,
         fit_gap: layout.fit_gap,
+        thin_strip: None,
         corner_tiles: layout.piece_tiles.iter().filter(|&&tile| tile == Some(TileKind::Corner)).count(),
     };
     if layout.unresolved_bend {
@@ -391,6 +393,43 @@ fn outside_tiles(frame: &PieceFrame, layout: &Layout, positions: Vec<Position>) 
             tiles.iter().all(|&[x0, x1]| right <= f64::from(x0) || left >= f64::from(x1))
         })
         .collect()
+}
+
+/// Degenerate optima (module `thin`): when the optimum's pieces hold on average less than half of
+/// their motif (a thin strip repeated at no seam cost), the windows that thin are taken out and
+/// the dynamic program runs again; otherwise the optimum stands as it is.
+fn avoid_thin_strip(
+    params: &Params,
+    layout: &Layout,
+    mut candidates: Candidates,
+    (positions, optimum): (Vec<Position>, u64),
+    report: &mut Report,
+    progress: &mut dyn Progress,
+) -> (Candidates, Vec<Position>, u64) {
+    let (frames, exemplar) = (&layout.frames, &*layout.exemplar);
+    let free: Vec<bool> = (0..frames.len())
+        .map(|i| !candidates.empty[i] && layout.tile(i).is_none() && !(i == 0 && params.pin_first.is_some()))
+        .collect();
+    let motifs = thin::motif_coverages(frames, exemplar, &candidates.valid, &free);
+    let before = thin::mean_share(frames, exemplar, &motifs, &positions);
+    if before >= thin::THIN_SHARE {
+        return (candidates, positions, optimum);
+    }
+    let (valid, dropped) = thin::without_thin(frames, exemplar, &candidates.valid, &motifs);
+    if dropped == 0 {
+        return (candidates, positions, optimum);
+    }
+    candidates.valid = valid;
+    let (positions, optimum) = dynamic_program(params, layout, &candidates, report, None, progress);
+    let after = thin::mean_share(frames, exemplar, &motifs, &positions);
+    report.warnings.push(format!(
+        "the optimum repeated a thin strip of the exemplar (its pieces held {:.0}% of their motif on average): \
+         {dropped} windows holding less than half of it were taken out, and the pieces now hold {:.0}%",
+        100.0 * before,
+        100.0 * after
+    ));
+    report.thin_strip = Some(thin::ThinStrip { share_before: before, share_after: after, positions_dropped: dropped });
+    (candidates, positions, optimum)
 }
 
 /// Refuses a pinned first position that is not one of the first piece's valid positions.

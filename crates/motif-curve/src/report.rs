@@ -143,6 +143,9 @@ pub struct Report {
     /// Corner tiles placed (one per corner sharper than the corner angle that leaves room for
     /// pieces beside it; 0 without a corner tile).
     pub corner_tiles: usize,
+    /// A degenerate optimum found and avoided: a thin strip of the exemplar repeated at no seam
+    /// cost (see [`ThinStrip`](crate::ThinStrip)); none when the pieces held their motifs.
+    pub thin_strip: Option<crate::ThinStrip>,
     /// What looks wrong with the run and what to change (few valid positions, empty pieces, a
     /// ribbon no wider than the pattern).
     pub warnings: Vec<String>,

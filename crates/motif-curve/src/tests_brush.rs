@@ -358,3 +358,44 @@ fn tiles_from_images_of_their_own_are_drawn_whole_and_only_as_tiles() {
     let message = synthesize(&Input::new(&exemplar, &curve), &missing, &mut NoProgress).unwrap_err().to_string();
     assert!(message.contains("start-tile-image"), "{message}");
 }
+
+/// A frieze of rings on a thin line that runs on past them at both ends (a "thin-ended frieze").
+fn thin_ended_frieze() -> RgbaImage {
+    RgbaImage::from_fn(240, 24, |x, y| {
+        let line = (11..13).contains(&y);
+        let ring = (72..170).step_by(24).any(|cx: usize| {
+            let (dx, dy) = (x as f64 - cx as f64, y as f64 - 11.5);
+            let r = motif_core::math::hypot(dx, dy);
+            r > 6.0 && r < 9.5
+        });
+        if line || ring { [30, 30, 30, 255] } else { [0; 4] }
+    })
+}
+
+#[test]
+fn a_thin_strip_repeated_at_no_cost_is_found_and_the_motif_drawn_instead() {
+    let exemplar = thin_ended_frieze();
+    let curve = line(10.0, 40.0, 410.0, 40.0);
+    let input = Input::new(&exemplar, &curve);
+    let output = synthesize(&input, &params(30.0, 20.0), &mut NoProgress).unwrap();
+    // The line alone seams at no cost; the rings cost something at some seams. The first optimum
+    // repeats the line; the check takes the thin windows out and the rings are drawn.
+    let thin = output.report.thin_strip.clone().expect("the thin strip is found");
+    assert!(thin.share_before < 0.5 && thin.share_after > 0.9, "{thin:?}");
+    assert!(thin.positions_dropped > 0);
+    assert!(output.report.warnings.iter().any(|w| w.contains("thin strip")), "{:?}", output.report.warnings);
+    // Rings put about four times the line's ink into every piece.
+    let ink = output.image.count_alpha_at_least(128);
+    assert!(ink > 3 * 400 * 2, "{ink}");
+    // Variety now has motifs to vary: more distinct windows than without it.
+    let varied = synthesize(&input, &params(30.0, 20.0).with_variety(300.0), &mut NoProgress).unwrap();
+    assert!(
+        varied.report.distinct_windows > output.report.distinct_windows,
+        "{} {}",
+        varied.report.distinct_windows,
+        output.report.distinct_windows
+    );
+    // A pattern whose pieces hold their motifs is left as it is.
+    let bars = run(&bars(2..14), &params(16.0, 20.0));
+    assert!(bars.report.thin_strip.is_none());
+}

@@ -468,6 +468,9 @@ pub fn figures(report: &motif_curve::Report) -> Map<String, Value> {
         put("rounded_bends", json!(report.rounded_bends));
         put("bend_shift_max", json!(report.bend_shift_max));
     }
+    if let Some(thin) = &report.thin_strip {
+        put("thin_strip", json!(thin));
+    }
     if report.corner_tiles > 0 {
         put("corner_tiles", json!(report.corner_tiles));
     }
