@@ -35,7 +35,9 @@
 //!   ([`Incremental`], §4's re-synthesis while the curve is edited).
 //! - `pipeline`: a synthesis stage by stage, as the report times them (ribbon, avoidance, valid
 //!   positions, dynamic program, stitching, render), the paper's §1–§3 in order; `layout`, its
-//!   first stage, lays the pieces out along the ribbon, on the canvas and in the exemplar.
+//!   first stage, lays the pieces out along the ribbon, on the canvas and in the exemplar;
+//!   `candidates`, the valid-positions stage (§1.3, §3.1); `thin`, the check for a degenerate
+//!   optimum (a thin strip repeated at no cost) after the dynamic program.
 //!
 //! The entry point is [`synthesize`]. The crate does no I/O and builds for `wasm32`.
 //!
@@ -68,6 +70,7 @@ mod atlas;
 mod avoidance;
 mod bounds;
 mod brush;
+mod candidates;
 mod canvas;
 mod closed;
 mod coarse;
