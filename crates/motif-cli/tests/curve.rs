@@ -1,5 +1,10 @@
 //! `motif curve` end to end: files in, files out, report figures, and clear errors.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "a test input drawn with the platform's math library: the command line never runs in WebAssembly"
+)]
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

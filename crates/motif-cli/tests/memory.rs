@@ -4,6 +4,12 @@
 //! start and what the CLI holds beside the job) must lie within 1.5× of `peak_resident_bytes`
 //! either way. `zoom` and `video` check their whole run before the first level or frame.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "the command line never runs in WebAssembly: its own arithmetic (demo inputs, previews, bench shapes) \
+              may use the platform's math library, which the workspace's clippy.toml forbids in the engines"
+)]
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::time::Instant;

@@ -1,6 +1,11 @@
 //! `motif points` with meshes end to end: volume and surface domains, surface reconstruction and
 //! element meshes.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "a test input drawn with the platform's math library: the command line never runs in WebAssembly"
+)]
+
 use std::fmt::Write as _;
 
 mod common;
