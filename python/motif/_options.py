@@ -62,7 +62,8 @@ class CurveOptions(TypedDict, total=False):
     cut_alpha: int
     #: Minimum coverage: a piece position is valid only if it holds at least this share of the pattern pixels a
     #: typical piece holds (the median over exemplar windows spanning the pattern's height). Keeps the optimum
-    #: from repeating a thin sliver; 0 = the paper's rule. Allowed: 0–1. Default: 0.5.
+    #: from repeating a thin sliver; 0 = the paper's rule (and no check for an optimum that repeats a thin
+    #: strip either). Allowed: 0–1. Default: 0.5.
     min_coverage: float
     #: Repetition penalty W (not in the paper), in seam-cost units: each pair of pieces at most
     #: --variety-radius pieces apart that copy the same exemplar window costs W. 0 = the paper's energy, which

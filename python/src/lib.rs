@@ -9,6 +9,8 @@
 //! and a `MemoryError`; a file that cannot be read or written is an `OSError`; nothing reaches the
 //! interpreter as a crash.
 
+#![allow(unreachable_pub, reason = "a cdylib: its pub items are what it exports, reachable from outside Rust")]
+
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_jobs::columns::Column;
 use motif_jobs::{Job, JobError};

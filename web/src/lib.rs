@@ -3,6 +3,8 @@
 //! as JSON named as the CLI's flags. The page's Web Worker owns the sessions; results come back
 //! as flat arrays (RGBA bytes, coordinates) and the report as JSON text.
 
+#![allow(unreachable_pub, reason = "a cdylib: its pub items are what it exports, reachable from outside Rust")]
+
 use motif_core::{NoProgress, Point, Polyline, RgbaImage};
 use motif_jobs::Job;
 use motif_jobs::curve::{CurveInputs, CurveJob, Incremental};
@@ -29,6 +31,7 @@ fn elapsed_ms(start: web_time::Instant) -> f64 {
 
 /// An image result: RGBA bytes, size, the report and the engine time.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct ImageResult {
     width: usize,
     height: usize,
@@ -109,6 +112,7 @@ fn polyline(points: &[f64], what: &str) -> Result<Polyline, JsError> {
 /// The curve panel: an exemplar strip and an editing session, so that dragging a control point
 /// re-solves only what changed.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct CurvePanel {
     exemplar: RgbaImage,
     session: Incremental,
@@ -149,6 +153,7 @@ impl CurvePanel {
 
 /// The points panel: a built-in exemplar and the structure brushed so far.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct PointsPanel {
     exemplar: PointSet,
     grown: Option<PointSet>,
@@ -216,6 +221,7 @@ impl PointsPanel {
 
 /// Points as x, y, attribute triples, the report and the time.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct PointsResult {
     flat: Vec<f64>,
     report: String,
@@ -243,6 +249,7 @@ impl PointsResult {
 
 /// The strokes panel: a built-in reference drawing, its analysis at any scale, and synthesis.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct StrokesPanel {
     reference: Vec<Stroke>,
 }
@@ -329,6 +336,7 @@ impl StrokesPanel {
 /// The stylize panel: a built-in map guide and its crayon style, the segment textures
 /// pre-synthesized once, and band-mode stylizations of painted target guides.
 #[wasm_bindgen]
+#[derive(Debug)]
 pub struct StylizePanel {
     style: motif_core::FloatImage,
     guide: RgbaImage,

@@ -35,7 +35,12 @@ pub struct BenchArgs {
 
 /// Runs `motif bench` over `engines` (those named with `--engine`, or all) and prints the figures
 /// on stdout.
-pub fn run(args: &BenchArgs, global: &GlobalArgs, threads: usize, engines: &[&dyn Engine]) -> anyhow::Result<()> {
+pub(crate) fn run(
+    args: &BenchArgs,
+    global: &GlobalArgs,
+    threads: usize,
+    engines: &[&dyn Engine],
+) -> anyhow::Result<()> {
     let known: Vec<&str> = engines.iter().map(|engine| engine.name()).collect();
     if let Some(unknown) = args.engines.iter().find(|name| !known.contains(&name.as_str())) {
         anyhow::bail!("--engine {unknown}: there is no such engine; one of {}", known.join(", "));

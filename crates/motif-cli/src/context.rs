@@ -22,9 +22,10 @@ use crate::progress::CliProgress;
 /// What a run holds beyond the resident size at its start and the job's estimate, whatever the
 /// job: files read and written, the report, the worker threads' allocator state (measured 2.0–2.6
 /// MiB for runs whose job estimate is under 0.3 MiB, at 1 to 16 threads).
-pub const WORKING_OVERHEAD: u64 = 2 << 20;
+pub(crate) const WORKING_OVERHEAD: u64 = 2 << 20;
 
 /// The environment of one engine run: seed, threads, progress and the figures for the report.
+#[derive(Debug)]
 pub struct Context {
     /// The run's seed (`--seed`).
     pub seed: u64,
@@ -51,7 +52,7 @@ pub struct Context {
 }
 
 /// The output plan of a run (see the module's documentation).
-#[derive(Default)]
+#[derive(Debug, Default)]
 struct Plan {
     /// Every input the engine named: files, or folders whose files it reads (a presynth cache).
     inputs: Vec<PathBuf>,
@@ -393,7 +394,7 @@ impl Context {
 }
 
 /// `(stage, milliseconds)` pairs as a JSON object, in order.
-pub fn stages_object(stages: &[(String, f64)]) -> Value {
+pub(crate) fn stages_object(stages: &[(String, f64)]) -> Value {
     Value::Object(stages.iter().map(|(name, ms)| (name.clone(), Value::from(*ms))).collect())
 }
 

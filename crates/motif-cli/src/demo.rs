@@ -21,7 +21,7 @@ pub struct DemoArgs {
 
 /// Runs `motif demo`: every engine's cases, each through `runner`.
 #[allow(clippy::print_stderr, reason = "the demo reports each case on the terminal")]
-pub fn run(
+pub(crate) fn run(
     args: &DemoArgs,
     global: &GlobalArgs,
     threads: usize,

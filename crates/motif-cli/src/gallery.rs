@@ -13,11 +13,11 @@ use serde_json::{Map, Value};
 use crate::context::Context;
 
 /// Runs one command line (the arguments after `motif`) in a context; given by `main`.
-pub type Runner<'a> = &'a dyn Fn(&[String], &mut Context) -> anyhow::Result<()>;
+pub(crate) type Runner<'a> = &'a dyn Fn(&[String], &mut Context) -> anyhow::Result<()>;
 
 /// One built-in example: the files it reads and writes and the arguments of its command.
 #[derive(Debug, Clone)]
-pub struct DemoCase {
+pub(crate) struct DemoCase {
     /// A short title for the gallery.
     pub title: String,
     /// One or two sentences: what the example shows.
@@ -39,7 +39,7 @@ struct CaseRecord {
 }
 
 /// The demo folder and the cases run so far.
-pub struct Demo<'a> {
+pub(crate) struct Demo<'a> {
     dir: PathBuf,
     seed: u64,
     threads: usize,
@@ -51,27 +51,27 @@ pub struct Demo<'a> {
 impl<'a> Demo<'a> {
     /// An empty gallery in `dir`, whose cases run through `runner`. `dir` should be absolute (see
     /// [`crate::demo::run`]): the cases' paths are joined to it once, whatever the working folder.
-    pub fn new(dir: PathBuf, seed: u64, threads: usize, quiet: bool, runner: Runner<'a>) -> Self {
+    pub(crate) fn new(dir: PathBuf, seed: u64, threads: usize, quiet: bool, runner: Runner<'a>) -> Self {
         Self { dir, seed, threads, quiet, runner, records: Vec::new() }
     }
 
     /// The titles of the cases that failed, in order.
-    pub fn failures(&self) -> Vec<&str> {
+    pub(crate) fn failures(&self) -> Vec<&str> {
         self.records.iter().filter(|record| record.failure.is_some()).map(|record| record.case.title.as_str()).collect()
     }
 
     /// The run's seed.
-    pub fn seed(&self) -> u64 {
+    pub(crate) fn seed(&self) -> u64 {
         self.seed
     }
 
     /// The number of cases run so far.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.records.len()
     }
 
     /// The gallery page, and each case's figures with its command and time, keyed by title.
-    pub fn finish(&self, total_ms: f64) -> (String, Map<String, Value>) {
+    pub(crate) fn finish(&self, total_ms: f64) -> (String, Map<String, Value>) {
         let html = gallery(&self.records, self.seed, total_ms);
         let figures = self
             .records
@@ -90,14 +90,14 @@ impl<'a> Demo<'a> {
     }
 
     /// The path of `name` inside the demo folder.
-    pub fn path(&self, name: &str) -> PathBuf {
+    pub(crate) fn path(&self, name: &str) -> PathBuf {
         self.dir.join(name)
     }
 
     /// Runs `case` in-process and adds it to the gallery. A case that fails is recorded with its
     /// error (the gallery marks it) and the demo goes on; [`Demo::failures`] lists them.
     #[allow(clippy::print_stderr, reason = "a failed demo case is reported on the terminal")]
-    pub fn case(&mut self, case: DemoCase) -> anyhow::Result<()> {
+    pub(crate) fn case(&mut self, case: DemoCase) -> anyhow::Result<()> {
         let resolved = self.resolve(&case);
         let start = std::time::Instant::now();
         let mut context = Context::new(self.seed, self.threads, true);
@@ -116,7 +116,7 @@ impl<'a> Demo<'a> {
     }
 
     /// Records that an engine's demo stopped before its cases ran (its inputs could not be made).
-    pub fn engine_failed(&mut self, engine: &str, error: &anyhow::Error) {
+    pub(crate) fn engine_failed(&mut self, engine: &str, error: &anyhow::Error) {
         let case = DemoCase {
             title: format!("{engine}: the demo's inputs"),
             description: format!("The {engine} demo stopped before its remaining cases ran."),
@@ -180,7 +180,7 @@ fn looks_like_file_name(arg: &str) -> bool {
 }
 
 /// The command as a person would type it, quoting arguments that need it.
-pub fn command_line(args: &[String]) -> String {
+pub(crate) fn command_line(args: &[String]) -> String {
     let quoted = args.iter().map(|arg| {
         if arg.is_empty() || arg.contains(|c: char| c.is_whitespace() || "'\"$;&|<>()*?".contains(c)) {
             format!("'{}'", arg.replace('\'', "'\\''"))

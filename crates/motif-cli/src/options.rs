@@ -33,7 +33,7 @@ fn parse_memory(text: &str) -> Result<u64, String> {
 }
 
 /// `--max-memory`, or half of this machine's memory (4 GiB where it cannot be read).
-pub fn max_memory(global: &GlobalArgs) -> u64 {
+pub(crate) fn max_memory(global: &GlobalArgs) -> u64 {
     global
         .max_memory
         .unwrap_or_else(|| motif_io::physical_memory().map_or(motif_core::DEFAULT_MAX_MEMORY, |total| total / 2))

@@ -6,7 +6,8 @@ use motif_core::timing::Clock;
 
 /// Shows one bar per stage (hidden when quiet or when stderr is not a terminal) and records how
 /// long each stage took.
-pub struct CliProgress {
+#[derive(Debug)]
+pub(crate) struct CliProgress {
     visible: bool,
     bar: Option<ProgressBar>,
     stage: Option<(String, Clock)>,
@@ -15,7 +16,7 @@ pub struct CliProgress {
 
 impl CliProgress {
     /// `visible` is false for `--quiet` and when stderr is not a terminal.
-    pub fn new(visible: bool) -> Self {
+    pub(crate) fn new(visible: bool) -> Self {
         Self { visible, bar: None, stage: None, stages_ms: Vec::new() }
     }
 
@@ -33,7 +34,7 @@ impl CliProgress {
     }
 
     /// Ends the current stage and returns `(stage, milliseconds)` in the order stages first ran.
-    pub fn finish(&mut self) -> Vec<(String, f64)> {
+    pub(crate) fn finish(&mut self) -> Vec<(String, f64)> {
         self.close_stage();
         std::mem::take(&mut self.stages_ms)
     }

@@ -6,11 +6,11 @@ use std::fmt::Write as _;
 use clap::{Arg, Command};
 
 /// Where the committed reference lives, relative to the workspace root.
-pub const PATH: &str = "docs/cli.md";
+pub(crate) const PATH: &str = "docs/cli.md";
 
 /// The whole reference of `motif` (built: `command.build()` has run, so global options reach
 /// every subcommand).
-pub fn markdown(motif: &Command) -> String {
+pub(crate) fn markdown(motif: &Command) -> String {
     let mut text = String::new();
     text.push_str(
         "# Command-line reference\n\n\

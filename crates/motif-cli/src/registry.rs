@@ -10,7 +10,7 @@ use crate::gallery::Demo;
 use crate::suite::Bench;
 
 /// One engine of the command line.
-pub trait Engine: Sync {
+pub(crate) trait Engine: Sync {
     /// The name `motif bench --engine` takes and the bench figures are keyed by.
     fn name(&self) -> &'static str;
     /// Adds the engine's built-in examples to the gallery.

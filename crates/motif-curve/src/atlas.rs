@@ -17,7 +17,7 @@ pub(crate) struct Atlas {
 const ATLAS_GAP: usize = 2;
 
 impl Atlas {
-    pub fn new(first: &RgbaImage, more: &[RgbaImage]) -> Self {
+    pub(crate) fn new(first: &RgbaImage, more: &[RgbaImage]) -> Self {
         if more.is_empty() {
             return Self { image: first.clone(), sources: vec![(0, first.width())] };
         }
@@ -41,7 +41,7 @@ impl Atlas {
     }
 
     /// The source of atlas position `u` and the position in that source's coordinates.
-    pub fn local(&self, u: Position) -> (usize, Position) {
+    pub(crate) fn local(&self, u: Position) -> (usize, Position) {
         let k = self.sources.iter().rposition(|&(x0, _)| u[0] >= x0 as i32).unwrap_or(0);
         (k, [u[0] - self.sources[k].0 as i32, u[1]])
     }

@@ -26,9 +26,9 @@ pub struct ForbiddenMask {
 }
 
 /// Flag of pixels forbidden by the user's avoidance map.
-pub const FROM_MAP: u8 = 1;
+pub(crate) const FROM_MAP: u8 = 1;
 /// Flag of pixels forbidden because the ribbon folds over or overlaps itself.
-pub const FROM_FOLDOVER: u8 = 2;
+pub(crate) const FROM_FOLDOVER: u8 = 2;
 
 impl ForbiddenMask {
     /// Nothing forbidden.
@@ -98,7 +98,7 @@ impl ForbiddenMask {
 }
 
 /// The `n × n` render sample points of canvas pixel `(x, y)`.
-pub fn sample_points(x: usize, y: usize, n: usize) -> impl Iterator<Item = Point> {
+pub(crate) fn sample_points(x: usize, y: usize, n: usize) -> impl Iterator<Item = Point> {
     (0..n * n).map(move |k| {
         let (i, j) = (k % n, k / n);
         Point::new(x as f64 + (i as f64 + 0.5) / n as f64, y as f64 + (j as f64 + 0.5) / n as f64)

@@ -91,7 +91,7 @@ pub(crate) enum TileKind {
 
 impl TileKind {
     /// The option that sets the tile.
-    pub fn option_name(self) -> &'static str {
+    pub(crate) fn option_name(self) -> &'static str {
         match self {
             Self::Start => "start-tile",
             Self::End => "end-tile",
@@ -120,7 +120,7 @@ pub(crate) struct Slices {
 
 impl Slices {
     /// Whether piece `i` of these slices is a tile.
-    pub fn is_tile(&self, i: usize) -> bool {
+    pub(crate) fn is_tile(&self, i: usize) -> bool {
         self.tiles[i].is_some()
     }
 }

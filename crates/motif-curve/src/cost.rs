@@ -27,7 +27,7 @@ use crate::exemplar::Exemplar;
 use crate::piece::{PieceFrame, Position};
 
 /// Fixed-point scale of costs: one unit of the paper's ξ is 8 internal units.
-pub const COST_SCALE: f64 = 8.0;
+pub(crate) const COST_SCALE: f64 = 8.0;
 
 /// How alpha enters the matching cost ξ.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
@@ -41,7 +41,7 @@ pub enum AlphaMode {
 
 /// The parameters of ξ, in the internal fixed-point unit.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CostModel {
+pub(crate) struct CostModel {
     /// Binary or continuous alpha.
     pub mode: AlphaMode,
     /// `γ` (paper unit).
@@ -53,7 +53,7 @@ pub struct CostModel {
 
 impl CostModel {
     /// ξ with mismatch penalty `gamma` (the paper uses 1024).
-    pub fn new(mode: AlphaMode, gamma: f64) -> Self {
+    pub(crate) fn new(mode: AlphaMode, gamma: f64) -> Self {
         Self {
             mode,
             gamma,
@@ -64,7 +64,7 @@ impl CostModel {
 
     /// The alpha used for matching: thresholded in binary mode.
     #[inline]
-    pub fn matching_alpha(&self, alpha: u8) -> u8 {
+    pub(crate) fn matching_alpha(&self, alpha: u8) -> u8 {
         match self.mode {
             AlphaMode::Binary => {
                 if alpha >= 128 {
@@ -80,7 +80,7 @@ impl CostModel {
     /// ξ of two pixels whose alphas already went through [`matching_alpha`](Self::matching_alpha),
     /// in eighths.
     #[inline(always)]
-    pub fn xi(&self, p: [u8; 4], q: [u8; 4]) -> u32 {
+    pub(crate) fn xi(&self, p: [u8; 4], q: [u8; 4]) -> u32 {
         self.xi_lane(p[0], p[1], p[2], p[3], q[0], q[1], q[2], q[3])
     }
 
@@ -102,7 +102,7 @@ impl CostModel {
     }
 
     /// `⌊8γ⌋`, in internal units.
-    pub fn gamma_floor(&self) -> u64 {
+    pub(crate) fn gamma_floor(&self) -> u64 {
         self.gamma_floor
     }
 
@@ -115,7 +115,7 @@ impl CostModel {
     /// A lower bound of ξ for a pixel where one edge is solid (alpha ≥ 224) and the other clear
     /// (alpha ≤ 31): their alpha difference is at least 193 (255 in binary mode). One unit is kept
     /// for float rounding.
-    pub fn mask_weight(&self) -> u32 {
+    pub(crate) fn mask_weight(&self) -> u32 {
         let least_difference = match self.mode {
             AlphaMode::Binary => 255.0,
             AlphaMode::Continuous => 193.0,
@@ -161,7 +161,7 @@ impl EdgeSet {
     }
 
     /// Number of edges.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         if self.stride == 0 { 0 } else { self.planes.len() / (4 * self.stride) }
     }
 
@@ -211,25 +211,25 @@ impl EdgeSet {
 
     /// The four planes of edge `index`.
     #[inline]
-    pub fn planes_of(&self, index: usize) -> &[u8] {
+    pub(crate) fn planes_of(&self, index: usize) -> &[u8] {
         &self.planes[index * 4 * self.stride..(index + 1) * 4 * self.stride]
     }
 
     /// Solid and clear masks of edge `index`.
     #[inline]
-    pub fn masks_of(&self, index: usize) -> (&[u64], &[u64]) {
+    pub(crate) fn masks_of(&self, index: usize) -> (&[u64], &[u64]) {
         let start = index * 2 * self.words;
         (&self.masks[start..start + self.words], &self.masks[start + self.words..start + 2 * self.words])
     }
 
     /// The block-sum profile of edge `index` (red, green, blue, alpha).
     #[inline]
-    pub fn profile_of(&self, index: usize) -> &[u16] {
+    pub(crate) fn profile_of(&self, index: usize) -> &[u16] {
         &self.profiles[index * 4 * self.profile_len..(index + 1) * 4 * self.profile_len]
     }
 
     /// Sample `k` of edge `index` as RGBA.
-    pub fn sample(&self, index: usize, k: usize) -> [u8; 4] {
+    pub(crate) fn sample(&self, index: usize, k: usize) -> [u8; 4] {
         let planes = self.planes_of(index);
         [planes[k], planes[self.stride + k], planes[2 * self.stride + k], planes[3 * self.stride + k]]
     }
@@ -258,7 +258,7 @@ impl EdgeSet {
     }
 
     /// The edges reordered by `order` (used to stream predecessors in cost order).
-    pub fn permuted(&self, order: &[u32]) -> EdgeSet {
+    pub(crate) fn permuted(&self, order: &[u32]) -> EdgeSet {
         let mut out = EdgeSet::with_capacity(self.samples, order.len());
         for &index in order {
             out.planes.extend_from_slice(self.planes_of(index as usize));

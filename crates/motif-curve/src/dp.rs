@@ -104,7 +104,7 @@ pub(crate) struct DpTable {
 
 impl DpTable {
     /// Position indices of every row on the optimal path ending at `last` in the last row.
-    pub fn backtrack(&self, last: usize) -> Vec<usize> {
+    pub(crate) fn backtrack(&self, last: usize) -> Vec<usize> {
         let mut path = vec![last];
         let mut index = last;
         for row in self.predecessors.iter().rev() {
@@ -116,7 +116,7 @@ impl DpTable {
     }
 
     /// Index of the first position in row 0 reached from `last` (the start of its path).
-    pub fn start_of(&self, last: usize) -> usize {
+    pub(crate) fn start_of(&self, last: usize) -> usize {
         self.predecessors.iter().rev().fold(last, |index, row| row[index] as usize)
     }
 }
@@ -355,7 +355,7 @@ impl Seeds {
     }
 
     /// Group (distinct-predecessor index) of position `p` of the previous row, if it is there.
-    pub fn previous_index(&self, p: Position) -> Option<u32> {
+    pub(crate) fn previous_index(&self, p: Position) -> Option<u32> {
         self.cell(p).map(|cell| self.index[cell]).filter(|&i| i != u32::MAX)
     }
 }

@@ -72,7 +72,7 @@ pub(crate) struct Exemplar {
 impl Exemplar {
     /// Prepares `image` with a margin of `pad` transparent pixels; pixels with alpha ≤ `cut_alpha`
     /// count as transparent for the slicing test (§1.3).
-    pub fn new(image: &RgbaImage, pad: usize, cut_alpha: u8) -> Self {
+    pub(crate) fn new(image: &RgbaImage, pad: usize, cut_alpha: u8) -> Self {
         let (w, h) = (image.width(), image.height());
         let stride = w + 2 * pad;
         let rows = h + 2 * pad;
@@ -128,20 +128,20 @@ impl Exemplar {
 
     /// The same exemplar seen as several sources side by side: `sources` are the column ranges
     /// `[x0, x1)` of each, whose pattern extents replace the whole image's.
-    pub fn with_sources(mut self, image: &RgbaImage, sources: &[(usize, usize)], cut_alpha: u8) -> Self {
+    pub(crate) fn with_sources(mut self, image: &RgbaImage, sources: &[(usize, usize)], cut_alpha: u8) -> Self {
         self.pattern_columns = sources.iter().map(|&(x0, x1)| pattern_extent(image, x0, x1, cut_alpha)).collect();
         self
     }
 
     /// Index into the padded arrays of exemplar pixel `(x, y)` (which may lie in the margin).
     #[inline]
-    pub fn index(&self, x: i32, y: i32) -> usize {
+    pub(crate) fn index(&self, x: i32, y: i32) -> usize {
         (y + self.pad) as usize * self.stride + (x + self.pad) as usize
     }
 
     /// True when `(x, y)` lies inside the padded storage.
     #[inline]
-    pub fn in_storage(&self, x: i32, y: i32) -> bool {
+    pub(crate) fn in_storage(&self, x: i32, y: i32) -> bool {
         x + self.pad >= 0
             && y + self.pad >= 0
             && ((x + self.pad) as usize) < self.stride
@@ -150,20 +150,20 @@ impl Exemplar {
 
     /// True when every pixel of run `run` placed at `(x, y)` has alpha ≤ `cut_alpha`.
     #[inline]
-    pub fn run_is_clear(&self, run: &Run, x: i32, y: i32) -> bool {
+    pub(crate) fn run_is_clear(&self, run: &Run, x: i32, y: i32) -> bool {
         self.run_count(&self.occupied_prefix, run, x, y) == 0
     }
 
     /// True when every pixel of run `run` placed at `(x, y)` has alpha 0.
     #[inline]
-    pub fn run_is_invisible(&self, run: &Run, x: i32, y: i32) -> bool {
+    pub(crate) fn run_is_invisible(&self, run: &Run, x: i32, y: i32) -> bool {
         self.run_count(&self.visible_prefix, run, x, y) == 0
     }
 
     /// Number of pixels of run `run` placed at `(x, y)` with alpha > `cut_alpha` (the pattern's
     /// pixels), from the row prefix counts: constant time per run.
     #[inline]
-    pub fn run_occupied(&self, run: &Run, x: i32, y: i32) -> u32 {
+    pub(crate) fn run_occupied(&self, run: &Run, x: i32, y: i32) -> u32 {
         self.run_count(&self.occupied_prefix, run, x, y)
     }
 
@@ -177,7 +177,7 @@ impl Exemplar {
 
     /// The premultiplied pixel `(x, y)`; transparent outside the exemplar.
     #[inline]
-    pub fn premultiplied_at(&self, x: i32, y: i32) -> [f32; 4] {
+    pub(crate) fn premultiplied_at(&self, x: i32, y: i32) -> [f32; 4] {
         if x < 0 || y < 0 || x >= self.width || y >= self.height {
             return [0.0; 4];
         }
@@ -186,7 +186,7 @@ impl Exemplar {
 
     /// Premultiplied bilinear sample at continuous exemplar coordinates (pixel centres at `+0.5`);
     /// transparent outside the storage.
-    pub fn sample_premultiplied(&self, x: f64, y: f64) -> [f32; 4] {
+    pub(crate) fn sample_premultiplied(&self, x: f64, y: f64) -> [f32; 4] {
         let fx = x - 0.5;
         let fy = y - 0.5;
         let (x0, y0) = (fx.floor(), fy.floor());

@@ -22,14 +22,14 @@ use serde::Serialize;
 
 /// Side of the compared patches, in cells of `CELL × CELL` exemplar pixels (averaged, so that
 /// the resampling of rotated pieces does not drown the structure in noise).
-pub const PATCH_SIZE: usize = 8;
+pub(crate) const PATCH_SIZE: usize = 8;
 /// Side of a cell, exemplar pixels.
-pub const CELL: usize = 2;
+pub(crate) const CELL: usize = 2;
 /// Side of a patch, exemplar pixels.
 const SPAN: usize = PATCH_SIZE * CELL;
 /// Distance beyond which an output patch counts as broken (found nowhere in the exemplar). The
 /// resampling of the rendering alone keeps 99 % of the patches of an undistorted copy below 0.03.
-pub const BROKEN: f64 = 0.05;
+pub(crate) const BROKEN: f64 = 0.05;
 /// Step between output patches along and across the ribbon, exemplar pixels.
 const STEP: usize = 4;
 /// Largest number of output patches compared (evenly spaced along the curve beyond that), so that

@@ -95,7 +95,7 @@ impl Cache {
     /// Runs the open-curve DP over rows with chain signatures `chain`, reusing the longest prefix
     /// of rows that the last run computed with the same signatures. `solve_from(start, costs)`
     /// computes rows `start..` given `P` of row `start − 1`, keeping `P` of every row.
-    pub fn solve_rows(
+    pub(crate) fn solve_rows(
         &mut self,
         chain: Vec<u64>,
         first_row: usize,

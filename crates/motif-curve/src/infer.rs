@@ -20,15 +20,15 @@ use crate::exemplar::Exemplar;
 use crate::warnings::samples_to_hold;
 
 /// Share of the smallest width that holds the pattern added to the inferred width.
-pub const WIDTH_MARGIN: f64 = 0.15;
+pub(crate) const WIDTH_MARGIN: f64 = 0.15;
 /// Inferred piece length as a share of the pattern's period.
-pub const PERIOD_FRACTION: f64 = 0.55;
+pub(crate) const PERIOD_FRACTION: f64 = 0.55;
 /// Inferred piece length as a share of the pattern's height when no period is found.
-pub const FALLBACK_FRACTION: f64 = 0.3;
+pub(crate) const FALLBACK_FRACTION: f64 = 0.3;
 /// Shortest inferred piece length from a period, as a share of the pattern's height.
-pub const MIN_HEIGHT_FRACTION: f64 = 0.25;
+pub(crate) const MIN_HEIGHT_FRACTION: f64 = 0.25;
 /// Longest inferred piece length from a period, as a share of the pattern's height.
-pub const MAX_HEIGHT_FRACTION: f64 = 0.6;
+pub(crate) const MAX_HEIGHT_FRACTION: f64 = 0.6;
 /// Least normalized autocorrelation of a peak that counts as the period.
 const PEAK_MIN: f64 = 0.4;
 /// How far the autocorrelation must have fallen below a peak, at a smaller lag, for the peak to

@@ -91,7 +91,7 @@ pub(crate) struct Layout {
 impl Layout {
     /// Lays out the pieces of `input`'s curve; a session's `cache` lends (and keeps) the padded
     /// exemplar.
-    pub fn new(
+    pub(crate) fn new(
         input: &Input<'_>,
         params: &Params,
         closed: bool,
@@ -159,7 +159,7 @@ impl Layout {
     }
 
     /// The kind of tile piece `i` is and its exemplar columns, when it is one.
-    pub fn tile(&self, i: usize) -> Option<(TileKind, [u32; 2])> {
+    pub(crate) fn tile(&self, i: usize) -> Option<(TileKind, [u32; 2])> {
         let kind = self.piece_tiles[i]?;
         let columns = self.tile_columns[match kind {
             TileKind::Start => 0,
@@ -170,12 +170,12 @@ impl Layout {
     }
 
     /// Canvas pixels, for the memory estimate.
-    pub fn canvas_pixels(&self) -> f64 {
+    pub(crate) fn canvas_pixels(&self) -> f64 {
         (self.canvas.0 * self.canvas.1) as f64
     }
 
     /// The run's result, the ribbon's borders moved into it.
-    pub fn into_output(
+    pub(crate) fn into_output(
         self,
         image: RgbaImage,
         pieces: Vec<PlacedPiece>,

@@ -7,7 +7,7 @@ use motif_core::{Point, RgbaImage};
 use crate::Output;
 
 /// Heat colour for `t ∈ [0, 1]`: green (cheap) → yellow → red (expensive).
-pub fn heat(t: f64) -> [u8; 3] {
+pub(crate) fn heat(t: f64) -> [u8; 3] {
     let t = t.clamp(0.0, 1.0);
     if t < 0.5 { [(510.0 * t) as u8, 200, 40] } else { [255, (200.0 * (2.0 - 2.0 * t)) as u8, 40] }
 }

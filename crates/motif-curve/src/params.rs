@@ -263,13 +263,13 @@ motif_core::builders! { Params {
 
 /// Largest canvas accepted, pixels (the image, the forbidden mask and the render's tiles take
 /// about 10 bytes a pixel).
-pub const MAX_CANVAS_PIXELS: usize = 100_000_000;
+pub(crate) const MAX_CANVAS_PIXELS: usize = 100_000_000;
 /// Farthest curve coordinate accepted, pixels from the origin.
-pub const MAX_COORDINATE: f64 = 1e6;
+pub(crate) const MAX_COORDINATE: f64 = 1e6;
 /// Longest curve accepted, pixels.
-pub const MAX_CURVE_LENGTH: f64 = 1e6;
+pub(crate) const MAX_CURVE_LENGTH: f64 = 1e6;
 /// Most pieces one synthesis takes (each is a row of the dynamic program).
-pub const MAX_PIECES: usize = 20_000;
+pub(crate) const MAX_PIECES: usize = 20_000;
 
 /// Largest canvas side accepted.
 pub const MAX_CANVAS_SIDE: usize = 16384;
@@ -359,7 +359,7 @@ fn check_tile_columns(
 }
 
 /// Most exemplars besides the first that one synthesis mixes.
-pub const MAX_MORE_EXEMPLARS: usize = 15;
+pub(crate) const MAX_MORE_EXEMPLARS: usize = 15;
 
 /// Checks one exemplar (`index` 0 is the first, named `exemplar`; the others `exemplar N`).
 fn check_exemplar(exemplar: &motif_core::RgbaImage, index: usize) -> Result<(), InvalidParameter> {

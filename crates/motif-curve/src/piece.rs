@@ -16,7 +16,7 @@ use crate::exemplar::{Exemplar, Run, runs_from_offsets};
 use crate::ribbon::PieceQuad;
 
 /// An integer exemplar position `u` of a piece's top-left corner (before the half-pixel shift).
-pub type Position = [i32; 2];
+pub(crate) type Position = [i32; 2];
 
 /// One bilinear tap of a right-edge sample: the top-left pixel offset and the four weights.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,7 +59,7 @@ pub(crate) struct PieceFrame {
 
 impl PieceFrame {
     /// The frame of `quad` at scale `scale`, with `samples` = C samples per edge.
-    pub fn new(quad: &PieceQuad, scale: f64, samples: usize) -> Self {
+    pub(crate) fn new(quad: &PieceQuad, scale: f64, samples: usize) -> Self {
         let [top_left, bottom_left, bottom_right, top_right] = quad.corners;
         let left = bottom_left - top_left;
         // Rotate so that the left edge points down the exemplar (+y).
@@ -107,31 +107,31 @@ impl PieceFrame {
     }
 
     /// The piece corners relative to the top-left corner: top-left, bottom-left, bottom-right, top-right.
-    pub fn local_corners(&self) -> [Vec2; 4] {
+    pub(crate) fn local_corners(&self) -> [Vec2; 4] {
         [Vec2::ZERO, Vec2::new(0.0, self.height), self.bottom_right, self.top_right]
     }
 
     /// Canvas point → exemplar offset from the top-left corner: `s·M (p − T(x_i))`.
-    pub fn to_local(&self, p: Point) -> Vec2 {
+    pub(crate) fn to_local(&self, p: Point) -> Vec2 {
         let v = p - self.origin;
         let (c, s) = self.rotation;
         Vec2::new(c * v.x - s * v.y, s * v.x + c * v.y) * self.scale
     }
 
     /// Exemplar offset from the top-left corner → canvas point.
-    pub fn to_canvas(&self, local: Vec2) -> Point {
+    pub(crate) fn to_canvas(&self, local: Vec2) -> Point {
         let v = local / self.scale;
         let (c, s) = self.rotation;
         self.origin + Vec2::new(c * v.x + s * v.y, -s * v.x + c * v.y)
     }
 
     /// The rotation canvas → exemplar, in radians.
-    pub fn angle(&self) -> f64 {
+    pub(crate) fn angle(&self) -> f64 {
         math::atan2(self.rotation.1, self.rotation.0)
     }
 
     /// Continuous exemplar coordinates of local point `local` for a piece at `u`.
-    pub fn exemplar_point(u: Position, local: Vec2) -> (f64, f64) {
+    pub(crate) fn exemplar_point(u: Position, local: Vec2) -> (f64, f64) {
         (f64::from(u[0]) + 0.5 + local.x, f64::from(u[1]) + local.y)
     }
 
@@ -174,7 +174,7 @@ impl PieceFrame {
     }
 
     /// True when `p` (local exemplar coordinates) lies inside the piece (even-odd rule).
-    pub fn contains_local(&self, p: Vec2) -> bool {
+    pub(crate) fn contains_local(&self, p: Vec2) -> bool {
         let corners = self.local_corners();
         let mut inside = false;
         for i in 0..4 {
@@ -188,13 +188,13 @@ impl PieceFrame {
 
     /// A position where the piece covers only the transparent margin above the exemplar: the one
     /// "empty" placement used when avoidance leaves a piece no valid position at all.
-    pub fn empty_position(&self) -> Position {
+    pub(crate) fn empty_position(&self) -> Position {
         [0, -(self.y_range.1.ceil() as i32 + 3)]
     }
 
     /// Margin (pixels) the exemplar storage needs around the exemplar for this piece's lookups,
     /// including the empty position.
-    pub fn required_margin(&self) -> i32 {
+    pub(crate) fn required_margin(&self) -> i32 {
         let extent = self.x_range.0.abs().max(self.x_range.1.abs()).max(self.y_range.0.abs()).max(self.y_range.1.abs());
         2 * (extent.ceil() as i32 + self.samples as i32) + 8
     }
@@ -218,7 +218,7 @@ impl PieceFrame {
     /// corner). A window whose sides are clear of the pattern holds whole motifs: none is cut at
     /// its ends, which a spaced piece ([`Fit::Space`](crate::Fit::Space)) needs, since no
     /// neighbour continues the motif across its gap.
-    pub fn side_runs(&self) -> Vec<Run> {
+    pub(crate) fn side_runs(&self) -> Vec<Run> {
         let mut offsets = Vec::with_capacity(2 * self.samples);
         for k in 0..self.samples {
             let right = self.top_right + self.right_direction * (k as f64 + 0.5);
@@ -231,7 +231,7 @@ impl PieceFrame {
     /// Coverage of the piece at `u`: how many exemplar pixels inside it belong to the pattern
     /// (alpha > `cut_alpha`). One prefix-count difference per interior row run, so the cost is
     /// the piece's height in rows, not its area.
-    pub fn coverage(&self, exemplar: &Exemplar, u: Position) -> u32 {
+    pub(crate) fn coverage(&self, exemplar: &Exemplar, u: Position) -> u32 {
         self.interior_runs.iter().map(|run| exemplar.run_occupied(run, u[0], u[1])).sum()
     }
 
@@ -241,7 +241,7 @@ impl PieceFrame {
     /// have alpha 0). The coverage rule of `valid_positions` comes on top of this. A plain
     /// reference for the tests.
     #[cfg(test)]
-    pub fn is_valid(&self, exemplar: &Exemplar, u: Position, forbidden: &[Run]) -> bool {
+    pub(crate) fn is_valid(&self, exemplar: &Exemplar, u: Position, forbidden: &[Run]) -> bool {
         self.is_cut(exemplar, u)
             && self.coverage(exemplar, u) > 0
             && forbidden.iter().all(|run| exemplar.run_is_invisible(run, u[0], u[1]))
@@ -276,7 +276,7 @@ impl PieceFrame {
     /// (the median over full-pattern windows, computed without forbidden areas). This keeps the
     /// optimum from copying one thin sliver of the pattern along the whole curve, which has a
     /// near-zero seam cost; `min_coverage` 0 is the paper's rule. Row-major order.
-    pub fn valid_positions(&self, exemplar: &Exemplar, forbidden: &[Run], min_coverage: f64) -> Vec<Position> {
+    pub(crate) fn valid_positions(&self, exemplar: &Exemplar, forbidden: &[Run], min_coverage: f64) -> Vec<Position> {
         let c = self.samples as i32;
         let mut cut: Vec<(Position, u32)> = Vec::new();
         for y in -c..exemplar.height {
@@ -302,7 +302,7 @@ impl PieceFrame {
 }
 
 /// `U = W × (H + C)`, the number of candidate positions of a piece (§1.4).
-pub fn candidate_count(width: usize, height: usize, samples: usize) -> usize {
+pub(crate) fn candidate_count(width: usize, height: usize, samples: usize) -> usize {
     width * (height + samples)
 }
 

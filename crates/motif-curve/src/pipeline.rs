@@ -174,7 +174,8 @@ fn render_repeat(params: &Params, layout: &Layout, report: &mut Report) -> RgbaI
 
 /// Degenerate optima (module `thin`): when the optimum's pieces hold on average less than half of
 /// their motif (a thin strip repeated at no seam cost), the windows that thin are taken out and
-/// the dynamic program runs again; otherwise the optimum stands as it is.
+/// the dynamic program runs again; otherwise (and with `min_coverage` 0, the paper's rule) the
+/// optimum stands as it is.
 fn avoid_thin_strip(
     params: &Params,
     layout: &Layout,
@@ -189,7 +190,8 @@ fn avoid_thin_strip(
         .collect();
     let motifs = thin::motif_coverages(frames, exemplar, &candidates.valid, &free);
     let before = thin::mean_share(frames, exemplar, &motifs, &positions);
-    if before >= thin::THIN_SHARE {
+    // `min_coverage` 0 asks for the paper's rule: no coverage rule at all.
+    if before >= thin::THIN_SHARE || params.min_coverage == 0.0 {
         return (candidates, positions, optimum);
     }
     let (valid, dropped) = thin::without_thin(frames, exemplar, &candidates.valid, &motifs);

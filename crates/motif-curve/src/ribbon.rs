@@ -13,7 +13,7 @@ use motif_core::{InvalidParameter, Point, Polyline, Vec2};
 /// The ribbon: a finely resampled centre curve with smooth normals, and a width, constant or
 /// varying along the curve by a profile of factors.
 #[derive(Debug, Clone)]
-pub struct Ribbon {
+pub(crate) struct Ribbon {
     centre: Polyline,
     up: Vec<Vec2>,
     width: f64,
@@ -24,7 +24,7 @@ pub struct Ribbon {
 
 impl Ribbon {
     /// Builds the ribbon of `width` around `curve`.
-    pub fn new(curve: &Polyline, width: f64) -> Result<Self, InvalidParameter> {
+    pub(crate) fn new(curve: &Polyline, width: f64) -> Result<Self, InvalidParameter> {
         let length = curve.length();
         let step = (length / 64.0).min(1.0);
         let centre = curve.resample(step)?;
@@ -34,14 +34,14 @@ impl Ribbon {
     }
 
     /// The same ribbon with the width varying by `profile` (see [`Ribbon::factor`]).
-    pub fn with_profile(mut self, profile: &[(f64, f64)]) -> Self {
+    pub(crate) fn with_profile(mut self, profile: &[(f64, f64)]) -> Self {
         self.profile = profile.to_vec();
         self
     }
 
     /// The width factor at arc length `x`: 1 without a profile; else the profile's factors
     /// interpolated linearly in the fraction of the arc length, held constant beyond its ends.
-    pub fn factor(&self, x: f64) -> f64 {
+    pub(crate) fn factor(&self, x: f64) -> f64 {
         let Some(&(first_t, first)) = self.profile.first() else {
             return 1.0;
         };
@@ -59,22 +59,22 @@ impl Ribbon {
     }
 
     /// Arc length of the curve.
-    pub fn length(&self) -> f64 {
+    pub(crate) fn length(&self) -> f64 {
         self.centre.length()
     }
 
     /// Ribbon width `b` (times [`Ribbon::factor`] along a profile).
-    pub fn width(&self) -> f64 {
+    pub(crate) fn width(&self) -> f64 {
         self.width
     }
 
     /// The point `C(x)` on the curve.
-    pub fn point(&self, x: f64) -> Point {
+    pub(crate) fn point(&self, x: f64) -> Point {
         self.centre.point_at(x)
     }
 
     /// The arc length of the centre's point nearest to `point`.
-    pub fn nearest(&self, point: Point) -> f64 {
+    pub(crate) fn nearest(&self, point: Point) -> f64 {
         let cumulative = self.centre.cumulative_lengths();
         let points = self.centre.points();
         let mut best = (f64::INFINITY, 0.0);
@@ -96,7 +96,7 @@ impl Ribbon {
     }
 
     /// The unit normal towards the top of the pattern at `x`, interpolated between vertices.
-    pub fn up(&self, x: f64) -> Vec2 {
+    pub(crate) fn up(&self, x: f64) -> Vec2 {
         let (segment, t) = self.centre.locate(x);
         let n = self.up.len();
         let a = self.up[segment % n];
@@ -106,19 +106,19 @@ impl Ribbon {
     }
 
     /// `T(x)`, the top offset curve.
-    pub fn top(&self, x: f64) -> Point {
+    pub(crate) fn top(&self, x: f64) -> Point {
         self.point(x) + self.up(x) * (0.5 * self.width * self.factor(x))
     }
 
     /// `B(x)`, the bottom offset curve.
-    pub fn bottom(&self, x: f64) -> Point {
+    pub(crate) fn bottom(&self, x: f64) -> Point {
         self.point(x) - self.up(x) * (0.5 * self.width * self.factor(x))
     }
 }
 
 /// One piece of the ribbon in the canvas: the quadrilateral `(T(x_i), B(x_i), B(x_{i+1}), T(x_{i+1}))`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PieceQuad {
+pub(crate) struct PieceQuad {
     /// Arc length where the piece starts, `x_i`.
     pub start: f64,
     /// Arc length where the piece ends, `x_{i+1}`.
@@ -130,7 +130,7 @@ pub struct PieceQuad {
 /// Slice positions `x_i = iδ`, `i ∈ [0..N]`, with a final shorter piece for the fractional part
 /// (§1.3). A remainder shorter than half a canvas unit is absorbed by the last full piece, which
 /// would otherwise be a sliver with no room for the pattern. Requires `δ ≤ L` (checked by the caller).
-pub fn slice_positions(length: f64, delta: f64) -> Vec<f64> {
+pub(crate) fn slice_positions(length: f64, delta: f64) -> Vec<f64> {
     let full = (length / delta).floor() as usize;
     let mut positions: Vec<f64> = (0..=full).map(|i| i as f64 * delta).collect();
     let remainder = length - full as f64 * delta;
@@ -145,14 +145,14 @@ pub fn slice_positions(length: f64, delta: f64) -> Vec<f64> {
 
 /// Slices the ribbon into pieces of length `delta` (§1.3).
 #[cfg(test)]
-pub fn slice(ribbon: &Ribbon, delta: f64) -> Vec<PieceQuad> {
+pub(crate) fn slice(ribbon: &Ribbon, delta: f64) -> Vec<PieceQuad> {
     let positions = slice_positions(ribbon.length(), delta);
     let bounds: Vec<(f64, f64)> = positions.windows(2).map(|pair| (pair[0], pair[1])).collect();
     quads(ribbon, &bounds)
 }
 
 /// The pieces of the ribbon between each pair of arc lengths.
-pub fn quads(ribbon: &Ribbon, bounds: &[(f64, f64)]) -> Vec<PieceQuad> {
+pub(crate) fn quads(ribbon: &Ribbon, bounds: &[(f64, f64)]) -> Vec<PieceQuad> {
     bounds
         .iter()
         .map(|&(start, end)| PieceQuad {

@@ -20,7 +20,7 @@ use crate::piece::PieceFrame;
 
 /// The stitch of one seam: the remapping `T` and the seam cost before and after.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Stitch {
+pub(crate) struct Stitch {
     /// `T[s]`: the right-edge sample shown in front of left-edge sample `s`.
     pub remap: Vec<usize>,
     /// Seam cost `D` without stitching (internal eighths).
@@ -31,12 +31,12 @@ pub struct Stitch {
 
 impl Stitch {
     /// True when `T[s] = s` everywhere.
-    pub fn is_identity(&self) -> bool {
+    pub(crate) fn is_identity(&self) -> bool {
         self.remap.iter().enumerate().all(|(s, &t)| s == t)
     }
 
     /// The identity stitch of a seam of `samples` samples and cost `cost`.
-    pub fn identity(samples: usize, cost: u64) -> Self {
+    pub(crate) fn identity(samples: usize, cost: u64) -> Self {
         Self { remap: (0..samples).collect(), before: cost, after: cost }
     }
 }

@@ -4,7 +4,8 @@
 //! positions. Detected after the DP: when the chosen pieces hold on average less than half of
 //! what the exemplar's motif windows hold, windows that thin are taken out of every piece's list
 //! (an infinite cost for covering less than half the motif) and the DP runs again; a piece none of
-//! whose windows is that full keeps its list. Runs whose pieces hold their motifs are untouched.
+//! whose windows is that full keeps its list. Runs whose pieces hold their motifs are untouched,
+//! and so are runs with `min_coverage` 0 (the paper's rule, without any coverage rule).
 
 use serde::Serialize;
 

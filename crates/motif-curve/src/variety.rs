@@ -29,7 +29,7 @@ pub(crate) struct Penalty {
 
 impl Penalty {
     /// The charge of position `u`.
-    pub fn cost(&self, u: Position) -> u64 {
+    pub(crate) fn cost(&self, u: Position) -> u64 {
         let repeats = self.centres.iter().filter(|&&c| same_window(c, u, self.reach)).count() as u64;
         self.weight * repeats
     }
@@ -64,12 +64,12 @@ impl Rule {
     /// The penalty of each piece given the current `positions` (`None` for empty pieces, which
     /// copy nothing and are never charged).
     #[cfg(test)]
-    pub fn penalties(&self, positions: &[Option<Position>]) -> Vec<Option<Penalty>> {
+    pub(crate) fn penalties(&self, positions: &[Option<Position>]) -> Vec<Option<Penalty>> {
         (0..positions.len()).map(|i| self.penalty(i, positions)).collect()
     }
 
     /// The penalty of piece `i` given the current `positions` (`None` for an empty piece).
-    pub fn penalty(&self, i: usize, positions: &[Option<Position>]) -> Option<Penalty> {
+    pub(crate) fn penalty(&self, i: usize, positions: &[Option<Position>]) -> Option<Penalty> {
         positions[i]?;
         let count = positions.len();
         let centres = (0..count)
@@ -80,7 +80,7 @@ impl Rule {
     }
 
     /// Pairs of pieces at most `R` apart that repeat a window.
-    pub fn repeated_pairs(&self, positions: &[Option<Position>]) -> usize {
+    pub(crate) fn repeated_pairs(&self, positions: &[Option<Position>]) -> usize {
         let count = positions.len();
         let mut pairs = 0;
         for i in 0..count {
@@ -100,7 +100,7 @@ impl Rule {
 impl Rule {
     /// Number of distinct exemplar windows among `positions`: taken in order, a position that
     /// repeats no window counted so far counts as a new one.
-    pub fn distinct_windows(&self, positions: &[Option<Position>]) -> usize {
+    pub(crate) fn distinct_windows(&self, positions: &[Option<Position>]) -> usize {
         let mut windows: Vec<Position> = Vec::new();
         for &u in positions.iter().flatten() {
             if !windows.iter().any(|&w| same_window(w, u, self.reach)) {

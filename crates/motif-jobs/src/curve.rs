@@ -102,7 +102,8 @@ crate::declare_options! {
         cut_alpha: u8 = DEFAULTS.cut_alpha,
         /// Minimum coverage: a piece position is valid only if it holds at least this share of the
         /// pattern pixels a typical piece holds (the median over exemplar windows spanning the
-        /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule.
+        /// pattern's height). Keeps the optimum from repeating a thin sliver; 0 = the paper's rule
+        /// (and no check for an optimum that repeats a thin strip either).
         [value_name: "F", range: (0.0, 1.0)]
         min_coverage: f64 = DEFAULTS.min_coverage,
         /// Repetition penalty W (not in the paper), in seam-cost units: each pair of pieces at most

@@ -10,7 +10,7 @@ enum Size {
 }
 
 /// Reads an optional memory size (see [`motif_core::memory::parse_bytes`]).
-pub fn optional<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<u64>, D::Error> {
+pub(crate) fn optional<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Option<u64>, D::Error> {
     match Option::<Size>::deserialize(deserializer)? {
         None => Ok(None),
         Some(Size::Bytes(bytes)) => Ok(Some(bytes)),

@@ -15,17 +15,17 @@ use motif_core::TriangleMesh;
 use crate::triangles::{Vec3, cross, dot, normalized, sub};
 
 /// A symmetric 3 × 3 tensor.
-pub type Tensor = [[f64; 3]; 3];
+pub(crate) type Tensor = [[f64; 3]; 3];
 
 /// Normals and curvature tensors at the vertices of a mesh.
 #[derive(Debug, Clone)]
-pub struct VertexGeometry {
+pub(crate) struct VertexGeometry {
     pub normals: Vec<Vec3>,
     pub tensors: Vec<Tensor>,
 }
 
 /// A unit vector perpendicular to the unit vector `n`.
-pub fn perpendicular(n: Vec3) -> Vec3 {
+pub(crate) fn perpendicular(n: Vec3) -> Vec3 {
     let axis = if n[0].abs() <= n[1].abs() && n[0].abs() <= n[2].abs() {
         [1.0, 0.0, 0.0]
     } else if n[1].abs() <= n[2].abs() {
@@ -37,7 +37,7 @@ pub fn perpendicular(n: Vec3) -> Vec3 {
 }
 
 /// Normals and curvature tensors of every vertex of a checked mesh.
-pub fn vertex_geometry(mesh: &TriangleMesh) -> VertexGeometry {
+pub(crate) fn vertex_geometry(mesh: &TriangleMesh) -> VertexGeometry {
     let count = mesh.vertices.len();
     let mut normals: Vec<Option<Vec3>> = vec![None; count];
     let mut sums = vec![[0.0; 3]; count];
@@ -157,7 +157,7 @@ fn solve(mut m: Vec<Vec<f64>>, mut right: Vec<f64>) -> Option<Vec<f64>> {
 
 /// The principal curvatures of `tensor` in the tangent plane spanned by the orthonormal `u`, `v`,
 /// and the direction (in that basis, unit) of the one with the smaller magnitude.
-pub fn principal(tensor: &Tensor, u: Vec3, v: Vec3) -> (f64, f64, [f64; 2]) {
+pub(crate) fn principal(tensor: &Tensor, u: Vec3, v: Vec3) -> (f64, f64, [f64; 2]) {
     let apply =
         |a: Vec3, b: Vec3| -> f64 { (0..3).map(|i| (0..3).map(|j| a[i] * tensor[i][j] * b[j]).sum::<f64>()).sum() };
     let (p, q, r) = (apply(u, u), apply(u, v), apply(v, v));

@@ -14,7 +14,7 @@ use crate::linear::Vector;
 
 /// A band between placed points (on the low side of `across`) and a new copy (on the high side).
 #[derive(Debug, Clone, Copy)]
-pub struct Overlap {
+pub(crate) struct Overlap {
     /// The axis the cut's position is measured on (0: a vertical band, 1: a horizontal one).
     pub across: usize,
     /// The band's extent along the cut.
@@ -29,14 +29,14 @@ pub struct Overlap {
 
 /// The cut: a position across the band for each cell along it.
 #[derive(Debug, Clone)]
-pub struct Cut {
+pub(crate) struct Cut {
     overlap: Overlap,
     positions: Vec<f64>,
 }
 
 impl Cut {
     /// Whether `p` (inside the band) lies on the new copy's side.
-    pub fn on_new_side(&self, p: &Vector<2>) -> bool {
+    pub(crate) fn on_new_side(&self, p: &Vector<2>) -> bool {
         let along = 1 - self.overlap.across;
         let cell = self.overlap.cell;
         let index = ((p[along] - self.overlap.along_range.0) / cell).floor().max(0.0) as usize;
@@ -44,14 +44,14 @@ impl Cut {
     }
 
     /// Whether `p` lies in the band.
-    pub fn contains(&self, p: &Vector<2>) -> bool {
+    pub(crate) fn contains(&self, p: &Vector<2>) -> bool {
         self.overlap.contains(p)
     }
 }
 
 impl Overlap {
     /// Whether `p` lies in the band.
-    pub fn contains(&self, p: &Vector<2>) -> bool {
+    pub(crate) fn contains(&self, p: &Vector<2>) -> bool {
         let along = 1 - self.across;
         p[along] >= self.along_range.0
             && p[along] < self.along_range.1
@@ -62,7 +62,12 @@ impl Overlap {
     /// The least-disagreement cut between `placed` and `copy` (both the points inside the band).
     /// `covered` tells where the copy has a source (inside the exemplar's window): the copy never
     /// replaces placed points where it has none, so the cut keeps to the right of such cells.
-    pub fn minimum_cut(&self, placed: &[Vector<2>], copy: &[Vector<2>], covered: &dyn Fn(&Vector<2>) -> bool) -> Cut {
+    pub(crate) fn minimum_cut(
+        &self,
+        placed: &[Vector<2>],
+        copy: &[Vector<2>],
+        covered: &dyn Fn(&Vector<2>) -> bool,
+    ) -> Cut {
         let along = 1 - self.across;
         let rows = (((self.along_range.1 - self.along_range.0) / self.cell).ceil() as usize).max(1);
         let columns = (((self.across_range.1 - self.across_range.0) / self.cell).ceil() as usize).max(1);

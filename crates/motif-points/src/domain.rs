@@ -10,11 +10,11 @@ use crate::mesh_surface::MeshSurface;
 use crate::params::{Domain, Field};
 use crate::volume::MeshVolume;
 
-pub use crate::quadrature::Quadrature;
+pub(crate) use crate::quadrature::Quadrature;
 
 /// A domain prepared for dimension `D`.
 #[derive(Debug, Clone)]
-pub enum Region<const D: usize> {
+pub(crate) enum Region<const D: usize> {
     /// Axis-aligned box.
     Box { min: Vector<D>, max: Vector<D> },
     /// 2D polygon.
@@ -35,7 +35,7 @@ pub const MAX_STROKE_SCALE: f64 = 1e6;
 
 /// Where along a stroke a position projects.
 #[derive(Debug, Clone, Copy)]
-pub struct StrokeProjection<const D: usize> {
+pub(crate) struct StrokeProjection<const D: usize> {
     pub distance: f64,
     pub arc: f64,
     pub tangent: Vector<D>,
@@ -43,7 +43,7 @@ pub struct StrokeProjection<const D: usize> {
 
 impl<const D: usize> Region<D> {
     /// Checks the domain against the dimension.
-    pub fn new(domain: &Domain) -> Result<Self, DomainProblem> {
+    pub(crate) fn new(domain: &Domain) -> Result<Self, DomainProblem> {
         match domain {
             Domain::Box { min, max } => {
                 if min.len() != D || max.len() != D {
@@ -124,7 +124,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// The bounding box.
-    pub fn bounds(&self) -> (Vector<D>, Vector<D>) {
+    pub(crate) fn bounds(&self) -> (Vector<D>, Vector<D>) {
         match self {
             Region::Box { min, max } => (*min, *max),
             Region::Polygon(polygon) => {
@@ -154,7 +154,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// Projection onto a stroke (nearest point of the polyline).
-    pub fn project(vertices: &[Vector<D>], cumulative: &[f64], p: &Vector<D>) -> StrokeProjection<D> {
+    pub(crate) fn project(vertices: &[Vector<D>], cumulative: &[f64], p: &Vector<D>) -> StrokeProjection<D> {
         let mut best = StrokeProjection { distance: f64::INFINITY, arc: 0.0, tangent: [0.0; D] };
         for s in 0..vertices.len() - 1 {
             let a = vertices[s];
@@ -177,7 +177,7 @@ impl<const D: usize> Region<D> {
 
     /// The exact volume (area in 2D) of a box, polygon or consistently oriented mesh; `None` for a
     /// stroke or an inconsistently oriented mesh, which the quadrature grid measures instead.
-    pub fn volume(&self) -> Option<f64> {
+    pub(crate) fn volume(&self) -> Option<f64> {
         match self {
             Region::Box { min, max } => Some((0..D).map(|a| (max[a] - min[a]).max(0.0)).product()),
             Region::Polygon(polygon) => Some(polygon.area()),
@@ -190,7 +190,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// Distance from `p` to the domain (0 inside).
-    pub fn distance(&self, p: &Vector<D>) -> f64 {
+    pub(crate) fn distance(&self, p: &Vector<D>) -> f64 {
         match self {
             Region::Box { min, max } => {
                 let mut d2 = 0.0;
@@ -216,7 +216,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// Distance from `p` to the domain's border when inside (0 outside).
-    pub fn depth(&self, p: &Vector<D>) -> f64 {
+    pub(crate) fn depth(&self, p: &Vector<D>) -> f64 {
         match self {
             Region::Box { min, max } => crate::fidelity::box_depth(p, min, max, D).max(0.0),
             Region::Polygon(polygon) => {
@@ -238,7 +238,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// Whether `p` lies inside the domain.
-    pub fn contains(&self, p: &Vector<D>) -> bool {
+    pub(crate) fn contains(&self, p: &Vector<D>) -> bool {
         match self {
             Region::Box { min, max } => (0..D).all(|a| p[a] >= min[a] && p[a] <= max[a]),
             Region::Polygon(polygon) => polygon.contains(Point::new(p[0], p[1])),
@@ -249,7 +249,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// Where a position is kept: its closest point on a surface domain, itself elsewhere.
-    pub fn keep_on(&self, p: &Vector<D>) -> Vector<D> {
+    pub(crate) fn keep_on(&self, p: &Vector<D>) -> Vector<D> {
         match self {
             Region::Surface { surface, .. } => {
                 let point = surface.closest(&Self::point3(p)).point;
@@ -261,7 +261,12 @@ impl<const D: usize> Region<D> {
 
     /// The rotation `R` and scale `s` at `p` of Eq. 8: the domain's own frame composed with the
     /// guidance fields' rotation (about the exemplar's z axis) and scale.
-    pub fn guided_frame(&self, p: &Vector<D>, rotation: &Field, scale: &Field) -> Result<(Matrix<D>, f64), Error> {
+    pub(crate) fn guided_frame(
+        &self,
+        p: &Vector<D>,
+        rotation: &Field,
+        scale: &Field,
+    ) -> Result<(Matrix<D>, f64), Error> {
         let (own_rotation, own_scale) = self.frame(p);
         let angle = rotation.value(p, 0.0).to_radians();
         let s = own_scale * scale.value(p, 1.0);
@@ -272,7 +277,7 @@ impl<const D: usize> Region<D> {
     }
 
     /// The rotation and scale the domain itself imposes at `p` (strokes: tangent and scale along).
-    pub fn frame(&self, p: &Vector<D>) -> (Matrix<D>, f64) {
+    pub(crate) fn frame(&self, p: &Vector<D>) -> (Matrix<D>, f64) {
         match self {
             Region::Stroke { vertices, cumulative, scale_start, scale_end, .. } => {
                 let projection = Self::project(vertices, cumulative, p);

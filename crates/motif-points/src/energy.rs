@@ -19,7 +19,7 @@ use crate::params::Window;
 use crate::quadratic::{AttributeQuadratic, RowQuadratic};
 
 /// The fixed parts of the problem at one window size δ.
-pub struct Problem<'a, const D: usize> {
+pub(crate) struct Problem<'a, const D: usize> {
     pub kernel: Kernel,
     pub exemplar: &'a Exemplar<D>,
     /// Exemplar grid with cells of the largest query radius (cut-off over the smallest scale).
@@ -37,7 +37,7 @@ pub struct Problem<'a, const D: usize> {
 
 /// One output pair `(i, j)` of a row with its quadrature-independent factors.
 #[derive(Debug, Clone, Copy)]
-pub struct PairCache<const D: usize> {
+pub(crate) struct PairCache<const D: usize> {
     other: u32,
     /// `exp(−|x_i − x_j|²/2σ²) − floor`.
     pair: f64,
@@ -53,7 +53,7 @@ pub struct PairCache<const D: usize> {
 
 /// Per-thread buffers of [`Problem::point_row`], reused from row to row (no allocation in the loop).
 #[derive(Debug, Clone, Default)]
-pub struct RowScratch<const D: usize> {
+pub(crate) struct RowScratch<const D: usize> {
     pairs: Vec<PairCache<D>>,
     /// Per pair and axis, the window factor `exp(−(mid_c − q_c)²/δ'²)` at every grid coordinate of
     /// the row's quadrature range: the Gaussian window is separable and the quadrature points lie
@@ -65,7 +65,7 @@ pub struct RowScratch<const D: usize> {
 
 /// T and its gradients.
 #[derive(Debug, Clone)]
-pub struct Evaluation<const D: usize> {
+pub(crate) struct Evaluation<const D: usize> {
     pub energy: f64,
     pub positions: Vec<Vector<D>>,
     /// T as a quadratic form in the attributes at these positions (when requested).
@@ -87,7 +87,7 @@ impl<const D: usize> Problem<'_, D> {
         clippy::too_many_arguments,
         reason = "the inner energy row kernel: scratch and outputs are borrowed apart to stay allocation-free"
     )]
-    pub fn point_row(
+    pub(crate) fn point_row(
         &self,
         state: &State<D>,
         matches: &[Vector<D>],
@@ -243,7 +243,7 @@ impl<const D: usize> Problem<'_, D> {
     }
 
     /// T (given `exemplar_self = Σ_k C_k`) with gradients, point-centric and parallel.
-    pub fn evaluate(
+    pub(crate) fn evaluate(
         &self,
         state: &State<D>,
         matches: &[Vector<D>],
@@ -258,14 +258,14 @@ impl<const D: usize> Problem<'_, D> {
     /// with an inactive point in both orders. T is this plus a constant, the rows of the inactive
     /// points among themselves; merging, where interiors of copied patches are frozen, evaluates
     /// this instead of every row (Gaussian window only: see [`Problem::restricts`]).
-    pub fn evaluate_active(&self, state: &State<D>, matches: &[Vector<D>], active: &[bool]) -> Evaluation<D> {
+    pub(crate) fn evaluate_active(&self, state: &State<D>, matches: &[Vector<D>], active: &[bool]) -> Evaluation<D> {
         debug_assert!(self.restricts());
         self.evaluate_rows(state, matches, 0.0, false, Some(active))
     }
 
     /// Whether [`Problem::evaluate_active`] applies: with the box window a row's pair test depends
     /// on both points, so rows keep their pairs and cannot be split.
-    pub fn restricts(&self) -> bool {
+    pub(crate) fn restricts(&self) -> bool {
         self.kernel.window == Window::Gaussian
     }
 
@@ -341,7 +341,7 @@ impl<const D: usize> Problem<'_, D> {
 
     /// `C_k(m) = Σ b_j·b_j' K(v_j, v_j')` over the exemplar window at `m` (the third term of Eq. 5),
     /// adding `∂C_k/∂m` to `gradient` when given.
-    pub fn exemplar_self(&self, k: usize, m: &Vector<D>, gradient: Option<&mut Vector<D>>) -> f64 {
+    pub(crate) fn exemplar_self(&self, k: usize, m: &Vector<D>, gradient: Option<&mut Vector<D>>) -> f64 {
         let q = self.quadrature.points[k];
         // Interior windows need no masking.
         let mask = if self.interior[k] { None } else { Some(&q) };
@@ -349,7 +349,7 @@ impl<const D: usize> Problem<'_, D> {
     }
 
     /// [`Problem::exemplar_self`] for an explicit frame `transform = sR`.
-    pub fn exemplar_self_with(
+    pub(crate) fn exemplar_self_with(
         &self,
         transform: &crate::linear::Matrix<D>,
         s: f64,
@@ -524,7 +524,7 @@ impl<const D: usize> Problem<'_, D> {
 
     /// `−2 B_k(m) = −2 Σ a_i·b_j K(u_i, v_j)` for the output window `window` (offsets `u_i` from
     /// `q_k` with their point ids), adding `∂/∂m` to `gradient` when given.
-    pub fn cross(
+    pub(crate) fn cross(
         &self,
         k: usize,
         m: &Vector<D>,
@@ -559,7 +559,7 @@ impl<const D: usize> Problem<'_, D> {
     }
 
     /// The output points within reach of quadrature point `k`, as offsets from it.
-    pub fn output_window(&self, k: usize, grid: &StaticGrid<D>) -> Vec<(Vector<D>, u32)> {
+    pub(crate) fn output_window(&self, k: usize, grid: &StaticGrid<D>) -> Vec<(Vector<D>, u32)> {
         let q = self.quadrature.points[k];
         let mut window = Vec::new();
         grid.for_each_within(&q, self.kernel.gather, |i, p, _| window.push((linear::sub(p, &q), i as u32)));
@@ -569,7 +569,7 @@ impl<const D: usize> Problem<'_, D> {
 
     /// The part of `S_k(m)` that depends on `m`: `C_k(m) − 2 B_k(m)`, and its gradient.
     #[cfg(test)]
-    pub fn match_objective(
+    pub(crate) fn match_objective(
         &self,
         k: usize,
         m: &Vector<D>,
@@ -582,7 +582,7 @@ impl<const D: usize> Problem<'_, D> {
     }
 
     /// `(C_k(m), −2 B_k(m))`, with the gradient of their sum.
-    pub fn match_parts(
+    pub(crate) fn match_parts(
         &self,
         k: usize,
         m: &Vector<D>,

@@ -15,7 +15,7 @@ use motif_core::math;
 /// The exemplar's pairs within the pair cut-off (each unordered pair once, and each point with
 /// itself), for the Gaussian-window `C_k`.
 #[derive(Debug, Clone)]
-pub struct ExemplarPairs<const D: usize> {
+pub(crate) struct ExemplarPairs<const D: usize> {
     /// Pair midpoints, queried by distance.
     mids: CellLists<D>,
     /// `|e_j − e_j'|²` per pair.
@@ -30,7 +30,7 @@ pub struct ExemplarPairs<const D: usize> {
 
 impl<const D: usize> ExemplarPairs<D> {
     /// The pairs of `exemplar` closer than `cutoff` (in exemplar units), for window reaches up to `reach`.
-    pub fn new(exemplar: &Exemplar<D>, neighbours: &crate::grid::Neighbours, cutoff: f64, reach: f64) -> Self {
+    pub(crate) fn new(exemplar: &Exemplar<D>, neighbours: &crate::grid::Neighbours, cutoff: f64, reach: f64) -> Self {
         let mut mids = Vec::new();
         let mut distance2 = Vec::new();
         let mut weight = Vec::new();
@@ -60,7 +60,7 @@ impl<const D: usize> ExemplarPairs<D> {
     /// `C(m)` at scale `s`, adding `∂C/∂m` to `gradient` when given. With `keep`, only pairs whose
     /// two points it accepts take part (masking: exemplar points whose place in the output falls
     /// outside Ω); each point is asked once.
-    pub fn exemplar_self(
+    pub(crate) fn exemplar_self(
         &self,
         kernel: &Kernel,
         s: f64,

@@ -84,7 +84,7 @@ pub struct Fidelity {
 }
 
 /// A point set with what its estimators need: where the border is and how dense it is.
-pub struct Sample<'a, const D: usize> {
+pub(crate) struct Sample<'a, const D: usize> {
     /// The points.
     pub points: &'a [Vector<D>],
     /// Distance from a point to the border of the set's domain (≤ 0 outside).
@@ -96,7 +96,7 @@ pub struct Sample<'a, const D: usize> {
 }
 
 /// Statistics of `sample`, distances in units of `spacing`.
-pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Statistics {
+pub(crate) fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Statistics {
     let points = sample.points;
     let bins = (RANGE / BIN).round() as usize;
     let reach = RANGE * spacing;
@@ -170,7 +170,7 @@ pub fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -> Stati
 }
 
 /// Distances of `other` to `reference`.
-pub fn distances(reference: &Statistics, other: &Statistics) -> Distances {
+pub(crate) fn distances(reference: &Statistics, other: &Statistics) -> Distances {
     let from = (RDF_FROM / BIN).round() as usize;
     let rings: Vec<usize> = (from..reference.radial_distribution.len())
         .filter(|&b| reference.ring_centres[b] > 0 && other.ring_centres[b] > 0)
@@ -217,7 +217,7 @@ fn wasserstein(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The domain of a comparison: membership, depth, bounds and volume.
-pub struct Domain<'a, const D: usize> {
+pub(crate) struct Domain<'a, const D: usize> {
     /// Whether a point is inside.
     pub contains: &'a dyn Fn(&Vector<D>) -> bool,
     /// Distance to the border from inside.
@@ -241,14 +241,14 @@ pub struct Domain<'a, const D: usize> {
 
 /// The exemplar's window: its bounding box padded by half a spacing on every side, so that each
 /// point owns a spacing-sized cell (a 14 × 14 grid of spacing 1 has density 1, not 196/169).
-pub fn exemplar_window<const D: usize>(points: &[Vector<D>], spacing: f64) -> (Vector<D>, Vector<D>) {
+pub(crate) fn exemplar_window<const D: usize>(points: &[Vector<D>], spacing: f64) -> (Vector<D>, Vector<D>) {
     let (low, high) = crate::grid::bounds(points);
     (std::array::from_fn(|a| low[a] - 0.5 * spacing), std::array::from_fn(|a| high[a] + 0.5 * spacing))
 }
 
 /// Compares `output` over `domain` with `exemplar` observed in `window` (lower and upper
 /// corners, see [`exemplar_window`] for a default), and computes both baselines (seeded).
-pub fn compare<const D: usize>(
+pub(crate) fn compare<const D: usize>(
     exemplar: &[Vector<D>],
     window: &(Vector<D>, Vector<D>),
     output: &[Vector<D>],
@@ -313,7 +313,7 @@ fn halves<const D: usize>(
 }
 
 /// `count` uniform points in the domain (rejection from its bounding box, bounded tries).
-pub fn random_set<const D: usize>(domain: &Domain<'_, D>, count: usize, seed: u64) -> Vec<Vector<D>> {
+pub(crate) fn random_set<const D: usize>(domain: &Domain<'_, D>, count: usize, seed: u64) -> Vec<Vector<D>> {
     let mut stream = SeedStreams::new(seed).stream("fidelity random baseline", 0);
     let mut points = Vec::with_capacity(count);
     let mut tries = 0usize;
@@ -333,7 +333,7 @@ pub fn random_set<const D: usize>(domain: &Domain<'_, D>, count: usize, seed: u6
 
 /// Copies of the exemplar window `[low, high]` laid edge to edge from the domain's lower corner,
 /// kept where they fall inside the domain.
-pub fn tiled_copy<const D: usize>(
+pub(crate) fn tiled_copy<const D: usize>(
     exemplar: &[Vector<D>],
     low: &Vector<D>,
     high: &Vector<D>,
@@ -362,7 +362,7 @@ pub fn tiled_copy<const D: usize>(
 }
 
 /// Depth of `p` inside the box `[low, high]`, over its first `dimension` axes.
-pub fn box_depth<const D: usize>(p: &Vector<D>, low: &Vector<D>, high: &Vector<D>, dimension: usize) -> f64 {
+pub(crate) fn box_depth<const D: usize>(p: &Vector<D>, low: &Vector<D>, high: &Vector<D>, dimension: usize) -> f64 {
     let mut depth = f64::INFINITY;
     for a in 0..dimension {
         depth = depth.min(p[a] - low[a]).min(high[a] - p[a]);
@@ -371,7 +371,7 @@ pub fn box_depth<const D: usize>(p: &Vector<D>, low: &Vector<D>, high: &Vector<D
 }
 
 /// Mean nearest-neighbour distance of a point set (σ of §7.1); 0 for fewer than two points.
-pub fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
+pub(crate) fn mean_spacing<const D: usize>(points: &[Vector<D>]) -> f64 {
     if points.len() < 2 {
         return 0.0;
     }

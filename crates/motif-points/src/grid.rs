@@ -11,7 +11,7 @@ use crate::linear::Vector;
 
 /// Maps positions to cells.
 #[derive(Debug, Clone)]
-pub struct CellIndex<const D: usize> {
+pub(crate) struct CellIndex<const D: usize> {
     origin: Vector<D>,
     inverse_cell: f64,
     dims: [usize; D],
@@ -22,7 +22,7 @@ const MAX_CELLS: usize = 1 << 22;
 
 impl<const D: usize> CellIndex<D> {
     /// Cells of side about `cell` covering `[low, high]`.
-    pub fn new(low: Vector<D>, high: Vector<D>, cell: f64) -> Self {
+    pub(crate) fn new(low: Vector<D>, high: Vector<D>, cell: f64) -> Self {
         let mut cell = cell.max(1e-12);
         loop {
             let dims: [usize; D] = std::array::from_fn(|i| (((high[i] - low[i]) / cell).floor() as usize + 1).max(1));
@@ -43,7 +43,7 @@ impl<const D: usize> CellIndex<D> {
 
     /// The linear index of the cell holding `p` (clamped into the grid).
     #[inline(always)]
-    pub fn cell_of(&self, p: &Vector<D>) -> usize {
+    pub(crate) fn cell_of(&self, p: &Vector<D>) -> usize {
         let mut index = 0;
         for axis in (0..D).rev() {
             index = index * self.dims[axis] + self.coordinate(p[axis], axis);
@@ -52,13 +52,13 @@ impl<const D: usize> CellIndex<D> {
     }
 
     /// Total number of cells.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.dims.iter().product()
     }
 
     /// Calls `visit(cell)` for every cell overlapping the cube of half-side `radius` around `center`.
     #[inline(always)]
-    pub fn for_each_cell(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
+    pub(crate) fn for_each_cell(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
         let low: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] - radius, a));
         let high: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] + radius, a));
         if D == 2 {
@@ -106,7 +106,7 @@ impl<const D: usize> CellIndex<D> {
     /// clipping each row to the chord of the ball through it (with cells finer than the radius, this
     /// scans about half the volume of the full cube of cells).
     #[inline(always)]
-    pub fn for_each_row(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, usize)) {
+    pub(crate) fn for_each_row(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, usize)) {
         let low: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] - radius, a));
         let high: [usize; D] = std::array::from_fn(|a| self.coordinate(center[a] + radius, a));
         let r2 = radius * radius;
@@ -152,7 +152,7 @@ impl<const D: usize> CellIndex<D> {
 /// An immutable grid over a point set, with the positions stored in cell order so that a query
 /// scans contiguous memory.
 #[derive(Debug, Clone)]
-pub struct StaticGrid<const D: usize> {
+pub(crate) struct StaticGrid<const D: usize> {
     index: CellIndex<D>,
     starts: Vec<u32>,
     positions: Vec<Vector<D>>,
@@ -161,7 +161,7 @@ pub struct StaticGrid<const D: usize> {
 
 impl<const D: usize> StaticGrid<D> {
     /// Builds the grid over `points` with cells of side about `cell`.
-    pub fn new(points: &[Vector<D>], cell: f64) -> Self {
+    pub(crate) fn new(points: &[Vector<D>], cell: f64) -> Self {
         let (low, high) = bounds(points);
         let index = CellIndex::new(low, high, cell);
         let mut counts = vec![0u32; index.len() + 1];
@@ -185,7 +185,7 @@ impl<const D: usize> StaticGrid<D> {
     }
 
     /// The point ids in cell order (neighbouring points close together in the sequence).
-    pub fn cell_order(&self) -> &[u32] {
+    pub(crate) fn cell_order(&self) -> &[u32] {
         &self.ids
     }
 
@@ -195,7 +195,12 @@ impl<const D: usize> StaticGrid<D> {
     /// each row of the query's cell range is one slice scan (same visiting order as cell by cell);
     /// rows whose cross-section lies farther than `radius` from `center` are skipped.
     #[inline(always)]
-    pub fn for_each_within(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize, &Vector<D>, f64)) {
+    pub(crate) fn for_each_within(
+        &self,
+        center: &Vector<D>,
+        radius: f64,
+        mut visit: impl FnMut(usize, &Vector<D>, f64),
+    ) {
         let r2 = radius * radius;
         self.index.for_each_row(center, radius, |first, last| {
             let (start, end) = (self.starts[first] as usize, self.starts[last + 1] as usize);
@@ -223,7 +228,7 @@ impl<const D: usize> StaticGrid<D> {
 /// volume (cells of half the radius) with no row bookkeeping. Lists of large sets would take too much
 /// memory, so cells grow until the lists fit [`CellLists::MAX_ENTRIES`].
 #[derive(Debug, Clone)]
-pub struct CellLists<const D: usize> {
+pub(crate) struct CellLists<const D: usize> {
     index: CellIndex<D>,
     starts: Vec<u32>,
     ids: Vec<u32>,
@@ -235,10 +240,10 @@ pub struct CellLists<const D: usize> {
 
 impl<const D: usize> CellLists<D> {
     /// The most list entries kept (4 bytes each).
-    pub const MAX_ENTRIES: usize = 1 << 23;
+    pub(crate) const MAX_ENTRIES: usize = 1 << 23;
 
     /// Lists for queries of radius up to `radius` over `points`.
-    pub fn new(points: &[Vector<D>], radius: f64) -> Self {
+    pub(crate) fn new(points: &[Vector<D>], radius: f64) -> Self {
         let grid = StaticGrid::new(points, radius);
         let (low, high) = bounds(points);
         let mut cell = 0.5 * radius;
@@ -282,7 +287,7 @@ impl<const D: usize> CellLists<D> {
 impl<const D: usize> CellLists<D> {
     /// The position of point `id`.
     #[inline(always)]
-    pub fn position(&self, id: usize) -> &Vector<D> {
+    pub(crate) fn position(&self, id: usize) -> &Vector<D> {
         &self.positions[id]
     }
 
@@ -294,7 +299,7 @@ impl<const D: usize> CellLists<D> {
     /// `found` is grown to the longest list once and then only overwritten: the result is
     /// `found[..count]` with the returned `count`.
     #[inline(always)]
-    pub fn collect_within(&self, center: &Vector<D>, radius: f64, found: &mut Vec<(u32, f64)>) -> usize {
+    pub(crate) fn collect_within(&self, center: &Vector<D>, radius: f64, found: &mut Vec<(u32, f64)>) -> usize {
         debug_assert!(radius <= self.radius * (1.0 + 1e-12));
         // A center outside the grid is clamped into a border cell: its projection onto the grid's box
         // lies in that cell and is no farther from any point of the set, so the list still holds
@@ -328,27 +333,27 @@ impl<const D: usize> CellLists<D> {
 
 /// A grid whose points can be inserted and removed (the output during sampling control).
 #[derive(Debug, Clone)]
-pub struct DynamicGrid<const D: usize> {
+pub(crate) struct DynamicGrid<const D: usize> {
     index: CellIndex<D>,
     cells: Vec<Vec<u32>>,
 }
 
 impl<const D: usize> DynamicGrid<D> {
     /// An empty grid covering `[low, high]` with cells of side about `cell`.
-    pub fn new(low: Vector<D>, high: Vector<D>, cell: f64) -> Self {
+    pub(crate) fn new(low: Vector<D>, high: Vector<D>, cell: f64) -> Self {
         let index = CellIndex::new(low, high, cell);
         let cells = vec![Vec::new(); index.len()];
         Self { index, cells }
     }
 
     /// Adds point `id` at `p`.
-    pub fn insert(&mut self, id: usize, p: &Vector<D>) {
+    pub(crate) fn insert(&mut self, id: usize, p: &Vector<D>) {
         let cell = self.index.cell_of(p);
         self.cells[cell].push(id as u32);
     }
 
     /// Removes point `id`, which was inserted at `p`.
-    pub fn remove(&mut self, id: usize, p: &Vector<D>) {
+    pub(crate) fn remove(&mut self, id: usize, p: &Vector<D>) {
         let cell = self.index.cell_of(p);
         if let Some(slot) = self.cells[cell].iter().position(|&other| other as usize == id) {
             self.cells[cell].swap_remove(slot);
@@ -358,7 +363,7 @@ impl<const D: usize> DynamicGrid<D> {
     /// Calls `visit(id)` for every point in the cells near `center` (a superset of the points within
     /// `radius`; the caller checks the distance against its own positions).
     #[inline(always)]
-    pub fn for_each_candidate(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
+    pub(crate) fn for_each_candidate(&self, center: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
         self.index.for_each_cell(center, radius, |cell| {
             for &id in &self.cells[cell] {
                 visit(id as usize);
@@ -368,7 +373,7 @@ impl<const D: usize> DynamicGrid<D> {
 }
 
 /// The bounding box of `points` (a unit box at the origin when empty).
-pub fn bounds<const D: usize>(points: &[Vector<D>]) -> (Vector<D>, Vector<D>) {
+pub(crate) fn bounds<const D: usize>(points: &[Vector<D>]) -> (Vector<D>, Vector<D>) {
     if points.is_empty() {
         return ([0.0; D], [1.0; D]);
     }
@@ -385,7 +390,7 @@ pub fn bounds<const D: usize>(points: &[Vector<D>]) -> (Vector<D>, Vector<D>) {
 
 /// Compressed neighbour lists (each point's neighbours within a radius, itself excluded).
 #[derive(Debug, Clone, Default)]
-pub struct Neighbours {
+pub(crate) struct Neighbours {
     starts: Vec<u32>,
     items: Vec<u32>,
     /// The points in the grid's cell order.
@@ -394,7 +399,7 @@ pub struct Neighbours {
 
 impl Neighbours {
     /// Neighbours within `radius` of every point, through a uniform grid.
-    pub fn build<const D: usize>(positions: &[Vector<D>], radius: f64) -> Self {
+    pub(crate) fn build<const D: usize>(positions: &[Vector<D>], radius: f64) -> Self {
         let grid = StaticGrid::new(positions, radius);
         let lists: Vec<Vec<u32>> = positions
             .par_iter()
@@ -422,13 +427,13 @@ impl Neighbours {
     }
 
     /// The points in the grid's cell order (neighbours close together in the sequence).
-    pub fn order(&self) -> &[u32] {
+    pub(crate) fn order(&self) -> &[u32] {
         &self.order
     }
 
     /// The neighbours of point `i`.
     #[inline(always)]
-    pub fn of(&self, i: usize) -> &[u32] {
+    pub(crate) fn of(&self, i: usize) -> &[u32] {
         &self.items[self.starts[i] as usize..self.starts[i + 1] as usize]
     }
 }

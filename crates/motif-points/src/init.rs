@@ -15,7 +15,7 @@ use crate::quilting::{Band, Tile};
 
 /// How patch initialization cuts and chooses its patches.
 #[derive(Debug, Clone, Copy)]
-pub struct PatchLayout {
+pub(crate) struct PatchLayout {
     /// Side of a patch (output units).
     pub side: f64,
     /// Width of the band around a patch where its candidates are judged.
@@ -40,7 +40,7 @@ pub struct PatchLayout {
 }
 
 /// What a patch initialization made.
-pub struct Copies<const D: usize> {
+pub(crate) struct Copies<const D: usize> {
     /// For every quadrature point in a tile, the exemplar location its tile was copied from.
     pub sources: Vec<Option<Vector<D>>>,
     /// Points frozen as copied.
@@ -55,7 +55,7 @@ pub struct Copies<const D: usize> {
 /// quadrature point in a tile, the exemplar location its tile was copied from: the exact match of
 /// the copy, which the first matching step starts from (without it, the first merging step follows
 /// random matches and undoes the copies before any match has been found).
-pub fn patches<const D: usize>(
+pub(crate) fn patches<const D: usize>(
     exemplar: &Exemplar<D>,
     quadrature: &Quadrature<D>,
     fill: &[usize],

@@ -5,27 +5,27 @@
 use motif_core::math;
 
 /// A point or vector in `D` dimensions.
-pub type Vector<const D: usize> = [f64; D];
+pub(crate) type Vector<const D: usize> = [f64; D];
 /// A `D`×`D` matrix, row-major (`m[row][column]`).
-pub type Matrix<const D: usize> = [[f64; D]; D];
+pub(crate) type Matrix<const D: usize> = [[f64; D]; D];
 
 #[inline(always)]
-pub fn sub<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+pub(crate) fn sub<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
     std::array::from_fn(|i| a[i] - b[i])
 }
 
 #[inline(always)]
-pub fn add<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
+pub(crate) fn add<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> Vector<D> {
     std::array::from_fn(|i| a[i] + b[i])
 }
 
 #[inline(always)]
-pub fn scale<const D: usize>(a: &Vector<D>, s: f64) -> Vector<D> {
+pub(crate) fn scale<const D: usize>(a: &Vector<D>, s: f64) -> Vector<D> {
     std::array::from_fn(|i| a[i] * s)
 }
 
 #[inline(always)]
-pub fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
+pub(crate) fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
     let mut sum = 0.0;
     for i in 0..D {
         sum += a[i] * b[i];
@@ -34,26 +34,26 @@ pub fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
 }
 
 #[inline(always)]
-pub fn norm2<const D: usize>(a: &Vector<D>) -> f64 {
+pub(crate) fn norm2<const D: usize>(a: &Vector<D>) -> f64 {
     dot(a, a)
 }
 
 /// `a += s * b`.
 #[inline(always)]
-pub fn axpy<const D: usize>(a: &mut Vector<D>, s: f64, b: &Vector<D>) {
+pub(crate) fn axpy<const D: usize>(a: &mut Vector<D>, s: f64, b: &Vector<D>) {
     for i in 0..D {
         a[i] += s * b[i];
     }
 }
 
 #[inline(always)]
-pub fn mat_vec<const D: usize>(m: &Matrix<D>, v: &Vector<D>) -> Vector<D> {
+pub(crate) fn mat_vec<const D: usize>(m: &Matrix<D>, v: &Vector<D>) -> Vector<D> {
     std::array::from_fn(|r| dot(&m[r], v))
 }
 
 /// `mᵀ v`.
 #[inline(always)]
-pub fn mat_t_vec<const D: usize>(m: &Matrix<D>, v: &Vector<D>) -> Vector<D> {
+pub(crate) fn mat_t_vec<const D: usize>(m: &Matrix<D>, v: &Vector<D>) -> Vector<D> {
     std::array::from_fn(|c| {
         let mut sum = 0.0;
         for r in 0..D {
@@ -63,7 +63,7 @@ pub fn mat_t_vec<const D: usize>(m: &Matrix<D>, v: &Vector<D>) -> Vector<D> {
     })
 }
 
-pub fn mat_mul<const D: usize>(a: &Matrix<D>, b: &Matrix<D>) -> Matrix<D> {
+pub(crate) fn mat_mul<const D: usize>(a: &Matrix<D>, b: &Matrix<D>) -> Matrix<D> {
     std::array::from_fn(|r| {
         std::array::from_fn(|c| {
             let mut sum = 0.0;
@@ -76,16 +76,16 @@ pub fn mat_mul<const D: usize>(a: &Matrix<D>, b: &Matrix<D>) -> Matrix<D> {
 }
 
 #[cfg(test)]
-pub fn transpose<const D: usize>(m: &Matrix<D>) -> Matrix<D> {
+pub(crate) fn transpose<const D: usize>(m: &Matrix<D>) -> Matrix<D> {
     std::array::from_fn(|r| std::array::from_fn(|c| m[c][r]))
 }
 
-pub fn identity<const D: usize>() -> Matrix<D> {
+pub(crate) fn identity<const D: usize>() -> Matrix<D> {
     std::array::from_fn(|r| std::array::from_fn(|c| if r == c { 1.0 } else { 0.0 }))
 }
 
 /// Rotation by `angle` radians in the xy-plane (about z in 3D), counter-clockwise for y up.
-pub fn rotation_xy<const D: usize>(angle: f64) -> Matrix<D> {
+pub(crate) fn rotation_xy<const D: usize>(angle: f64) -> Matrix<D> {
     let mut m = identity::<D>();
     let (sin, cos) = math::sin_cos(angle);
     m[0][0] = cos;
@@ -97,7 +97,7 @@ pub fn rotation_xy<const D: usize>(angle: f64) -> Matrix<D> {
 
 /// Rotation about the unit `axis` by `angle` radians (Rodrigues); `D` must be 3. In 2D the axis is
 /// ignored and the rotation is in the plane.
-pub fn rotation_axis_angle<const D: usize>(axis: [f64; 3], angle: f64) -> Matrix<D> {
+pub(crate) fn rotation_axis_angle<const D: usize>(axis: [f64; 3], angle: f64) -> Matrix<D> {
     if D == 2 {
         return rotation_xy::<D>(angle);
     }
@@ -113,7 +113,7 @@ pub fn rotation_axis_angle<const D: usize>(axis: [f64; 3], angle: f64) -> Matrix
 }
 
 /// The smallest rotation taking the x axis onto the unit vector `direction`.
-pub fn rotation_from_x<const D: usize>(direction: &Vector<D>) -> Matrix<D> {
+pub(crate) fn rotation_from_x<const D: usize>(direction: &Vector<D>) -> Matrix<D> {
     if D == 2 {
         return rotation_xy::<D>(math::atan2(direction[1], direction[0]));
     }
@@ -133,7 +133,7 @@ pub fn rotation_from_x<const D: usize>(direction: &Vector<D>) -> Matrix<D> {
 
 /// Re-orthonormalizes a rotation matrix (Gram–Schmidt on the columns) so that many small updates do
 /// not let it drift away from a rigid motion.
-pub fn orthonormalize<const D: usize>(m: &mut Matrix<D>) {
+pub(crate) fn orthonormalize<const D: usize>(m: &mut Matrix<D>) {
     let mut columns: [Vector<D>; D] = std::array::from_fn(|c| std::array::from_fn(|r| m[r][c]));
     for c in 0..D {
         for p in 0..c {
@@ -162,7 +162,7 @@ pub fn orthonormalize<const D: usize>(m: &mut Matrix<D>) {
 
 /// The "torque" of a force `force` applied at lever `lever`: a scalar (z component) in 2D, the
 /// cross product in 3D (returned as three components; the unused ones are zero in 2D).
-pub fn torque<const D: usize>(lever: &Vector<D>, force: &Vector<D>) -> [f64; 3] {
+pub(crate) fn torque<const D: usize>(lever: &Vector<D>, force: &Vector<D>) -> [f64; 3] {
     if D == 2 {
         [0.0, 0.0, lever[0] * force[1] - lever[1] * force[0]]
     } else {
@@ -175,7 +175,7 @@ pub fn torque<const D: usize>(lever: &Vector<D>, force: &Vector<D>) -> [f64; 3] 
 }
 
 /// The rotation by the small axis-angle vector `omega` (|omega| = angle), for rigid updates.
-pub fn rotation_from_vector<const D: usize>(omega: [f64; 3]) -> Matrix<D> {
+pub(crate) fn rotation_from_vector<const D: usize>(omega: [f64; 3]) -> Matrix<D> {
     if D == 2 {
         return rotation_xy::<D>(omega[2]);
     }

@@ -24,14 +24,14 @@ use crate::raster::Raster;
 
 /// Matching settings.
 #[derive(Debug, Clone, Copy)]
-pub struct MatchSettings {
+pub(crate) struct MatchSettings {
     pub starts: usize,
     pub iterations: usize,
     pub polish: usize,
 }
 
 /// Rasters of the exemplar used by the candidate search at one window size.
-pub struct SearchFields<const D: usize> {
+pub(crate) struct SearchFields<const D: usize> {
     /// `ẽ(y) = Σ_j b_j exp(−|y − e_j|²/2σ²)`, `channels` components.
     smoothed: Raster<D>,
     /// `C(m)` for the identity frame.
@@ -40,7 +40,7 @@ pub struct SearchFields<const D: usize> {
 }
 
 impl<const D: usize> SearchFields<D> {
-    pub fn new(problem: &Problem<'_, D>) -> Self {
+    pub(crate) fn new(problem: &Problem<'_, D>) -> Self {
         let exemplar = problem.exemplar;
         let sigma = problem.kernel.sigma;
         let channels = exemplar.channels;
@@ -63,7 +63,7 @@ impl<const D: usize> SearchFields<D> {
     }
 
     /// Rebuilds the part that depends on the window size (the smoothed exemplar does not).
-    pub fn set_window(&mut self, problem: &Problem<'_, D>) {
+    pub(crate) fn set_window(&mut self, problem: &Problem<'_, D>) {
         self.exemplar_self = Self::exemplar_self_raster(problem);
     }
 
@@ -106,13 +106,13 @@ fn clamp<const D: usize>(m: &Vector<D>, low: &Vector<D>, high: &Vector<D>) -> Ve
 
 /// The result of matching: `m_k` and the exact `C_k(m_k)`.
 #[derive(Debug, Clone, Copy)]
-pub struct Match<const D: usize> {
+pub(crate) struct Match<const D: usize> {
     pub location: Vector<D>,
     pub exemplar_self: f64,
 }
 
 /// Matches every quadrature point. `previous` holds the last matches (empty on the first call).
-pub fn match_all<const D: usize>(
+pub(crate) fn match_all<const D: usize>(
     problem: &Problem<'_, D>,
     fields: &SearchFields<D>,
     state: &State<D>,

@@ -16,7 +16,7 @@ use crate::model::State;
 
 /// Merging settings.
 #[derive(Debug, Clone, Copy)]
-pub struct MergeSettings {
+pub(crate) struct MergeSettings {
     pub iterations: usize,
     pub attribute_iterations: usize,
     pub step: f64,
@@ -29,7 +29,7 @@ pub struct MergeSettings {
 /// elements move). Returns T after every accepted step (the first entry is T
 /// before merging) and the evaluation of the final state. With `attributes`, every evaluation also
 /// collects the attribute form, so that the attribute step that follows needs no pass of its own.
-pub fn merge_positions<const D: usize>(
+pub(crate) fn merge_positions<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     attributes: bool,
@@ -310,7 +310,7 @@ fn trial_step<const D: usize>(
 /// gives the form (`evaluation` of the current state when it carries it, else a new pass), and
 /// `attribute_iterations` conjugate-gradient steps with exact line searches then cost a sparse
 /// product each instead of a pass over the quadrature per trial step.
-pub fn merge_attributes<const D: usize>(
+pub(crate) fn merge_attributes<const D: usize>(
     state: &mut State<D>,
     settings: MergeSettings,
     discrete: &[Vec<f64>],
@@ -354,7 +354,7 @@ pub fn merge_attributes<const D: usize>(
 }
 
 /// Snaps discrete channels of the given points to the nearest allowed value.
-pub fn snap<const D: usize>(state: &mut State<D>, discrete: &[Vec<f64>], points: &[usize]) {
+pub(crate) fn snap<const D: usize>(state: &mut State<D>, discrete: &[Vec<f64>], points: &[usize]) {
     let channels = state.channels;
     for (c, values) in discrete.iter().enumerate() {
         if values.is_empty() {

@@ -19,7 +19,7 @@ use crate::triangles::{self, Triangle, Vec3, cross, dot, normalized, sub};
 
 /// A triangle mesh prepared for projection, frames and sampling.
 #[derive(Debug, Clone)]
-pub struct MeshSurface {
+pub(crate) struct MeshSurface {
     tree: RTree<Triangle>,
     triangles: Vec<[u32; 3]>,
     corners: Vec<[Vec3; 3]>,
@@ -43,7 +43,7 @@ pub struct MeshSurface {
 
 /// The closest point of the surface to a position.
 #[derive(Debug, Clone, Copy)]
-pub struct Closest {
+pub(crate) struct Closest {
     pub point: Vec3,
     pub triangle: usize,
     pub weights: Vec3,
@@ -52,7 +52,7 @@ pub struct Closest {
 
 impl MeshSurface {
     /// Checks the mesh and the direction field, and prepares the surface.
-    pub fn new(mesh: &TriangleMesh, directions: &SurfaceDirections) -> Result<MeshSurface, DomainProblem> {
+    pub(crate) fn new(mesh: &TriangleMesh, directions: &SurfaceDirections) -> Result<MeshSurface, DomainProblem> {
         let (low, high) = triangles::check_mesh(mesh)?;
         match directions {
             SurfaceDirections::Constant(v) => {
@@ -108,7 +108,7 @@ impl MeshSurface {
 
     /// Marks the cells within `band` of a triangle's box (cells of side 2·band, capped at a
     /// million cells per triangle's box; beyond that every position is tested exactly).
-    pub fn mark_band(&mut self, band: f64) {
+    pub(crate) fn mark_band(&mut self, band: f64) {
         self.occupancy.clear();
         self.occupancy_cell = 0.0;
         let cell = 2.0 * band;
@@ -138,7 +138,7 @@ impl MeshSurface {
     }
 
     /// Whether `p` lies within `band` (the one given to [`MeshSurface::mark_band`]) of the surface.
-    pub fn within(&self, p: &Vec3, band: f64) -> bool {
+    pub(crate) fn within(&self, p: &Vec3, band: f64) -> bool {
         if self.occupancy_cell > 0.0 && !self.occupancy.contains(&p.map(|v| (v / self.occupancy_cell).floor() as i64)) {
             return false;
         }
@@ -147,16 +147,16 @@ impl MeshSurface {
         self.tree.locate_within_distance(*p, band * band).next().is_some()
     }
 
-    pub fn bounds(&self) -> (Vec3, Vec3) {
+    pub(crate) fn bounds(&self) -> (Vec3, Vec3) {
         (self.low, self.high)
     }
 
-    pub fn area(&self) -> f64 {
+    pub(crate) fn area(&self) -> f64 {
         self.cumulative_area.last().copied().unwrap_or(0.0)
     }
 
     /// The closest point of the surface to `p`.
-    pub fn closest(&self, p: &Vec3) -> Closest {
+    pub(crate) fn closest(&self, p: &Vec3) -> Closest {
         let triangle = self.tree.nearest_neighbor(p).expect("a checked mesh has triangles");
         let point = triangles::closest_point(*p, triangle.corners);
         Closest {
@@ -169,7 +169,7 @@ impl MeshSurface {
 
     /// Distance from `p` to the surface's border along it (to within the surface's curvature);
     /// infinite for a closed surface.
-    pub fn border_distance(&self, p: &Vec3) -> f64 {
+    pub(crate) fn border_distance(&self, p: &Vec3) -> f64 {
         self.boundary
             .as_ref()
             .and_then(|tree| tree.nearest_neighbor(p).map(|edge| edge.distance_2(p).sqrt()))
@@ -182,7 +182,7 @@ impl MeshSurface {
     }
 
     /// The unit normal at the closest point of `p`.
-    pub fn normal(&self, closest: &Closest) -> Vec3 {
+    pub(crate) fn normal(&self, closest: &Closest) -> Vec3 {
         let n = self.interpolate(closest, &self.geometry.normals, |c, w| {
             std::array::from_fn(|i| w[0] * c[0][i] + w[1] * c[1][i] + w[2] * c[2][i])
         });
@@ -193,7 +193,7 @@ impl MeshSurface {
     }
 
     /// The frame at the closest point of `p`: columns x (the orientation field), y = n × x, n.
-    pub fn frame(&self, p: &Vec3) -> [[f64; 3]; 3] {
+    pub(crate) fn frame(&self, p: &Vec3) -> [[f64; 3]; 3] {
         let closest = self.closest(p);
         let n = self.normal(&closest);
         // Fallback: the world axis least aligned with the normal, projected (x for a plane z = c).
@@ -242,7 +242,7 @@ impl MeshSurface {
 
     /// The larger principal curvature magnitude at the vertices, at the 95th percentile (0 for a
     /// plane): the largest but for sharp tips and creases, where a quadric fit means little.
-    pub fn typical_largest_curvature(&self) -> f64 {
+    pub(crate) fn typical_largest_curvature(&self) -> f64 {
         let mut values: Vec<f64> = self
             .geometry
             .tensors
@@ -259,7 +259,7 @@ impl MeshSurface {
     }
 
     /// A uniform point of the surface from three uniform numbers in [0, 1).
-    pub fn sample(&self, choice: f64, s: f64, t: f64) -> Vec3 {
+    pub(crate) fn sample(&self, choice: f64, s: f64, t: f64) -> Vec3 {
         let target = choice * self.area();
         let index = self.cumulative_area.partition_point(|&c| c <= target).min(self.cumulative_area.len() - 1);
         let [a, b, c] = self.corners[index];

@@ -23,7 +23,7 @@ use motif_core::math;
 
 /// The kernel `K(u, v)` with its truncation (pairs beyond the cut-off, midpoints beyond the window radius).
 #[derive(Debug, Clone, Copy)]
-pub struct Kernel {
+pub(crate) struct Kernel {
     pub window: Window,
     pub sigma: f64,
     pub delta: f64,
@@ -44,7 +44,7 @@ pub struct Kernel {
 
 impl Kernel {
     /// `window_deltas`: the Gaussian window's truncation radius in units of δ.
-    pub fn new(window: Window, sigma: f64, delta: f64, cutoff_sigmas: f64, window_deltas: f64) -> Self {
+    pub(crate) fn new(window: Window, sigma: f64, delta: f64, cutoff_sigmas: f64, window_deltas: f64) -> Self {
         let cutoff = cutoff_sigmas * sigma;
         let (window_radius, gather) = match window {
             Window::Gaussian => (window_deltas * delta, window_deltas * delta + 0.5 * cutoff),
@@ -77,7 +77,7 @@ impl Kernel {
     /// not make T jump — with plain truncation the jumps (about 1 % of a pair's weight at a 3σ
     /// cut-off) are larger than the decrease of a small gradient step and stall the descent.
     #[inline(always)]
-    pub fn eval<const D: usize>(&self, u: &Vector<D>, v: &Vector<D>) -> Option<(f64, Vector<D>, Vector<D>)> {
+    pub(crate) fn eval<const D: usize>(&self, u: &Vector<D>, v: &Vector<D>) -> Option<(f64, Vector<D>, Vector<D>)> {
         let d = linear::sub(u, v);
         let d2 = linear::norm2(&d);
         if d2 >= self.cutoff2 {
@@ -114,7 +114,7 @@ impl Kernel {
 
     /// The width `σ_P` of the sampling density of Eq. 7 with this window: `∫ g(s - u, σ) w(s) ds ∝
     /// exp(-|u|²/σ_P²)`, `σ_P² = σ² + δ²`. For the box window, `None` (counts inside δ are used).
-    pub fn density_width(&self) -> Option<f64> {
+    pub(crate) fn density_width(&self) -> Option<f64> {
         match self.window {
             Window::Gaussian => Some((self.sigma * self.sigma + self.delta * self.delta).sqrt()),
             Window::Box => None,
@@ -124,7 +124,7 @@ impl Kernel {
 
 /// Dot product of two feature vectors.
 #[inline(always)]
-pub fn feature_dot(a: &[f64], b: &[f64]) -> f64 {
+pub(crate) fn feature_dot(a: &[f64], b: &[f64]) -> f64 {
     let mut sum = 0.0;
     for (x, y) in a.iter().zip(b) {
         sum += x * y;
@@ -134,14 +134,14 @@ pub fn feature_dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// A discrete element of the exemplar: its points and centre.
 #[derive(Debug, Clone)]
-pub struct ExemplarElement<const D: usize> {
+pub(crate) struct ExemplarElement<const D: usize> {
     pub centre: Vector<D>,
     pub members: Vec<usize>,
 }
 
 /// The exemplar prepared for synthesis.
 #[derive(Debug, Clone)]
-pub struct Exemplar<const D: usize> {
+pub(crate) struct Exemplar<const D: usize> {
     pub positions: Vec<Vector<D>>,
     /// `n × channels` features.
     pub features: Vec<f64>,
@@ -162,7 +162,7 @@ pub struct Exemplar<const D: usize> {
 }
 
 /// Per channel of `channels`-wide feature vectors, the smallest and the largest value.
-pub fn feature_ranges(features: &[f64], channels: usize) -> Vec<(f64, f64)> {
+pub(crate) fn feature_ranges(features: &[f64], channels: usize) -> Vec<(f64, f64)> {
     (0..channels)
         .map(|c| {
             let values = features.iter().skip(c).step_by(channels.max(1));
@@ -172,12 +172,12 @@ pub fn feature_ranges(features: &[f64], channels: usize) -> Vec<(f64, f64)> {
 }
 
 impl<const D: usize> Exemplar<D> {
-    pub fn feature(&self, i: usize) -> &[f64] {
+    pub(crate) fn feature(&self, i: usize) -> &[f64] {
         &self.features[i * self.channels..(i + 1) * self.channels]
     }
 
     /// Points per unit volume of the observation window.
-    pub fn density(&self) -> f64 {
+    pub(crate) fn density(&self) -> f64 {
         let volume: f64 = (0..D).map(|a| self.window_high[a] - self.window_low[a]).product();
         self.positions.len() as f64 / volume
     }
@@ -185,7 +185,7 @@ impl<const D: usize> Exemplar<D> {
 
 /// A rigid body: a discrete element of the output (§6.1).
 #[derive(Debug, Clone)]
-pub struct Rigid<const D: usize> {
+pub(crate) struct Rigid<const D: usize> {
     pub centre: Vector<D>,
     pub rotation: Matrix<D>,
     /// Offsets of the element's points from its centre, in body coordinates.
@@ -194,7 +194,7 @@ pub struct Rigid<const D: usize> {
 
 /// A unit that moves as one: a free point or a discrete element.
 #[derive(Debug, Clone)]
-pub struct Unit<const D: usize> {
+pub(crate) struct Unit<const D: usize> {
     pub points: Vec<u32>,
     pub frozen: bool,
     pub alive: bool,
@@ -203,7 +203,7 @@ pub struct Unit<const D: usize> {
 
 /// The output being synthesized.
 #[derive(Debug, Clone, Default)]
-pub struct State<const D: usize> {
+pub(crate) struct State<const D: usize> {
     pub positions: Vec<Vector<D>>,
     pub features: Vec<f64>,
     pub channels: usize,
@@ -215,16 +215,16 @@ pub struct State<const D: usize> {
 }
 
 impl<const D: usize> State<D> {
-    pub fn new(channels: usize) -> Self {
+    pub(crate) fn new(channels: usize) -> Self {
         Self { channels, ..Self::default() }
     }
 
-    pub fn feature(&self, i: usize) -> &[f64] {
+    pub(crate) fn feature(&self, i: usize) -> &[f64] {
         &self.features[i * self.channels..(i + 1) * self.channels]
     }
 
     /// Adds a free point; returns its unit.
-    pub fn add_free(&mut self, position: Vector<D>, feature: &[f64], frozen: bool) -> usize {
+    pub(crate) fn add_free(&mut self, position: Vector<D>, feature: &[f64], frozen: bool) -> usize {
         let unit = self.units.len();
         let point = self.positions.len() as u32;
         self.push_point(position, feature, unit, -1);
@@ -233,7 +233,7 @@ impl<const D: usize> State<D> {
     }
 
     /// Adds a rigid element whose points are `centre + rotation · body[p]`; returns its unit.
-    pub fn add_rigid(&mut self, rigid: Rigid<D>, features: &[f64], id: i64, frozen: bool) -> usize {
+    pub(crate) fn add_rigid(&mut self, rigid: Rigid<D>, features: &[f64], id: i64, frozen: bool) -> usize {
         let unit = self.units.len();
         let mut points = Vec::with_capacity(rigid.body.len());
         for (p, offset) in rigid.body.iter().enumerate() {
@@ -254,7 +254,7 @@ impl<const D: usize> State<D> {
     }
 
     /// Recomputes the positions of a rigid unit's points from its pose.
-    pub fn place_rigid(&mut self, unit: usize) {
+    pub(crate) fn place_rigid(&mut self, unit: usize) {
         if let Some(rigid) = &self.units[unit].rigid {
             for (p, &point) in self.units[unit].points.iter().enumerate() {
                 self.positions[point as usize] =
@@ -265,7 +265,7 @@ impl<const D: usize> State<D> {
 
     /// Moves every free point and element centre to `settle(position)` (a surface domain keeps
     /// its points on the surface this way).
-    pub fn settle(&mut self, settle: impl Fn(&Vector<D>) -> Vector<D>) {
+    pub(crate) fn settle(&mut self, settle: impl Fn(&Vector<D>) -> Vector<D>) {
         for unit in 0..self.units.len() {
             if !self.units[unit].alive {
                 continue;
@@ -284,12 +284,12 @@ impl<const D: usize> State<D> {
     }
 
     /// Per point: whether merging may move it (its unit is alive and not frozen).
-    pub fn movable(&self) -> Vec<bool> {
+    pub(crate) fn movable(&self) -> Vec<bool> {
         self.unit_of.iter().map(|&u| self.units[u as usize].alive && !self.units[u as usize].frozen).collect()
     }
 
     /// Marks a unit and its points dead (compacted later).
-    pub fn kill(&mut self, unit: usize) {
+    pub(crate) fn kill(&mut self, unit: usize) {
         self.units[unit].alive = false;
         for &p in &self.units[unit].points {
             self.alive[p as usize] = false;
@@ -297,7 +297,7 @@ impl<const D: usize> State<D> {
     }
 
     /// Drops dead units and points, renumbering the rest in order.
-    pub fn compact(&mut self) {
+    pub(crate) fn compact(&mut self) {
         let mut next = State::new(self.channels);
         for unit in &self.units {
             if !unit.alive {

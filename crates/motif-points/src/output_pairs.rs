@@ -36,7 +36,7 @@ impl<const D: usize> Default for PairTerm<D> {
 
 /// Every pair's term: the point itself (`K(u_i, u_i)`) and each neighbour-list entry `i → j` with
 /// `j > i` (entries with `j < i` are read from `j`'s list).
-pub struct PairTerms<const D: usize> {
+pub(crate) struct PairTerms<const D: usize> {
     own: Vec<PairTerm<D>>,
     entries: Vec<Vec<PairTerm<D>>>,
 }
@@ -84,7 +84,7 @@ impl<const D: usize> Problem<'_, D> {
     }
 
     /// The term of the pair `(i, j)` (`j = i` for a point with itself).
-    pub fn pair_of(&self, state: &State<D>, i: usize, j: usize, tables: &mut Vec<f64>) -> (f64, Vector<D>) {
+    pub(crate) fn pair_of(&self, state: &State<D>, i: usize, j: usize, tables: &mut Vec<f64>) -> (f64, Vector<D>) {
         let kernel = &self.kernel;
         let x = state.positions[i];
         if i == j {
@@ -104,7 +104,7 @@ impl<const D: usize> Problem<'_, D> {
     /// `neighbours` (all within the cut-off), adding its derivative by `x_i` to `gradient`: the
     /// one-point form of [`PairTerms::row`] for local changes (sampling control). Also returns the
     /// point's own term `Σ_k K(u_i, u_i)`.
-    pub fn pair_row(
+    pub(crate) fn pair_row(
         &self,
         state: &State<D>,
         i: usize,
@@ -129,7 +129,12 @@ impl<const D: usize> Problem<'_, D> {
     /// The terms of every pair of output points within the cut-off, in parallel. With `active`,
     /// only the pairs with at least one active point (the others do not change while only the
     /// active points move; their entries stay zero).
-    pub fn pair_terms(&self, state: &State<D>, neighbours: &Neighbours, active: Option<&[bool]>) -> PairTerms<D> {
+    pub(crate) fn pair_terms(
+        &self,
+        state: &State<D>,
+        neighbours: &Neighbours,
+        active: Option<&[bool]>,
+    ) -> PairTerms<D> {
         let kernel = &self.kernel;
         let is_active = |i: usize| active.is_none_or(|a| a[i]);
         // In the grid's cell order for cache locality (see `Problem::evaluate`), then placed back.
@@ -180,7 +185,7 @@ impl<const D: usize> PairTerms<D> {
     /// With `active` (an evaluation of the active rows alone, `i` active), a pair with an inactive
     /// point counts twice in the share: the inactive point's row, which held the other order, is
     /// not computed.
-    pub fn row(
+    pub(crate) fn row(
         &self,
         i: usize,
         state: &State<D>,

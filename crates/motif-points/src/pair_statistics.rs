@@ -90,7 +90,7 @@ fn touched(d: f64) -> std::ops::Range<usize> {
 /// What the output is matched to: the exemplar's pairs per centre per ring and its sorted
 /// nearest-neighbour distances, in spacings.
 #[derive(Debug, Clone)]
-pub struct Target {
+pub(crate) struct Target {
     per_centre: Vec<f64>,
     nearest: Vec<f64>,
     /// Points per unit volume, in spacings.
@@ -99,7 +99,7 @@ pub struct Target {
 
 impl Target {
     /// The exemplar's statistics: `points` and `depth` in spacings, `volume` its window's.
-    pub fn new<const D: usize>(points: &[Vector<D>], depth: &dyn Fn(&Vector<D>) -> f64, volume: f64) -> Self {
+    pub(crate) fn new<const D: usize>(points: &[Vector<D>], depth: &dyn Fn(&Vector<D>) -> f64, volume: f64) -> Self {
         let grid = StaticGrid::new(points, REACH + RAMP);
         let mut sums = vec![0.0; rings()];
         let mut centres = vec![0usize; rings()];
@@ -141,7 +141,7 @@ impl Target {
 }
 
 /// The output as the refinement sees it, in spacings.
-pub struct Output<'a, const D: usize> {
+pub(crate) struct Output<'a, const D: usize> {
     pub positions: &'a mut [Vector<D>],
     /// Which points may move.
     pub movable: &'a [bool],
@@ -330,7 +330,7 @@ impl<const D: usize> Pairs<'_, D> {
 /// Moves the movable points to lower the energy: at most `iterations` steps along the gradient,
 /// each point moving at most `step` spacings, the step growing after a kept step and shrinking
 /// after a refused one.
-pub fn refine<const D: usize>(
+pub(crate) fn refine<const D: usize>(
     target: &Target,
     output: Output<'_, D>,
     iterations: usize,
@@ -380,7 +380,7 @@ pub fn refine<const D: usize>(
 /// Chooses up to `surplus` movable points to remove, each for how much its removal alone changes
 /// the pair term, least first; the first `required` go in any case, the others only in batches that
 /// lower the whole energy. Returns the removed indices, ascending.
-pub fn thin<const D: usize>(
+pub(crate) fn thin<const D: usize>(
     target: &Target,
     positions: &[Vector<D>],
     movable: &[bool],

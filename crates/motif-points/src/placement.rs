@@ -23,7 +23,7 @@ fn random_rotation<const D: usize>(stream: &mut impl Rng) -> Matrix<D> {
 
 /// Where a placement puts exemplar points: `x = anchor + frame (e − origin)`, the frame's scale
 /// `scale`; elements get `extra` applied to their orientation.
-pub struct Placement<'a, const D: usize> {
+pub(crate) struct Placement<'a, const D: usize> {
     pub anchor: &'a Vector<D>,
     pub origin: &'a Vector<D>,
     pub frame: &'a Matrix<D>,
@@ -33,7 +33,7 @@ pub struct Placement<'a, const D: usize> {
 
 /// Adds exemplar point `j` (or its whole element) mapped by `placement` where `allowed`. Returns
 /// the number of points added.
-pub fn place<const D: usize>(
+pub(crate) fn place<const D: usize>(
     exemplar: &Exemplar<D>,
     state: &mut State<D>,
     j: usize,
@@ -79,7 +79,7 @@ pub fn place<const D: usize>(
 
 /// Random initialization: as many points as the exemplar's density asks for over the quadrature
 /// points `fill` (each stands for `spacing^D` of volume), at uniformly random positions.
-pub fn random<const D: usize>(
+pub(crate) fn random<const D: usize>(
     exemplar: &Exemplar<D>,
     quadrature: &Quadrature<D>,
     fill: &[usize],

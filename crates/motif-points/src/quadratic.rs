@@ -19,14 +19,14 @@ const BOUND_ROUNDS: usize = 3;
 /// The coefficients of one output point's row: `(j, A_ij)` for every pair (itself included) and
 /// `B_i` (one value per channel).
 #[derive(Debug, Clone, Default)]
-pub struct RowQuadratic {
+pub(crate) struct RowQuadratic {
     pub coefficients: Vec<(u32, f64)>,
     pub linear: Vec<f64>,
 }
 
 /// The quadratic form `T(a)` (see the module documentation), rows in compressed form.
 #[derive(Debug, Clone, Default)]
-pub struct AttributeQuadratic {
+pub(crate) struct AttributeQuadratic {
     starts: Vec<u32>,
     others: Vec<u32>,
     coefficients: Vec<f64>,
@@ -38,7 +38,7 @@ pub struct AttributeQuadratic {
 
 impl AttributeQuadratic {
     /// Assembles the form from per-point rows and the constant `C`.
-    pub fn from_rows(rows: Vec<RowQuadratic>, channels: usize, constant: f64) -> Self {
+    pub(crate) fn from_rows(rows: Vec<RowQuadratic>, channels: usize, constant: f64) -> Self {
         let mut starts = Vec::with_capacity(rows.len() + 1);
         let total = rows.iter().map(|r| r.coefficients.len()).sum();
         let mut others = Vec::with_capacity(total);
@@ -77,7 +77,7 @@ impl AttributeQuadratic {
     }
 
     /// `T(a)` for the features `a` (`n × channels`).
-    pub fn energy(&self, features: &[f64]) -> f64 {
+    pub(crate) fn energy(&self, features: &[f64]) -> f64 {
         let channels = self.channels;
         let mut total = self.constant;
         for i in 0..self.len() {
@@ -94,7 +94,7 @@ impl AttributeQuadratic {
 
     /// `∂T/∂a_i = 2(Σ_j A_ij a_j − B_i)` for every point (`n × channels`).
     #[cfg(test)]
-    pub fn gradient(&self, features: &[f64]) -> Vec<f64> {
+    pub(crate) fn gradient(&self, features: &[f64]) -> Vec<f64> {
         let channels = self.channels;
         let mut gradient = vec![0.0; features.len()];
         for i in 0..self.len() {
@@ -117,7 +117,7 @@ impl AttributeQuadratic {
     /// range are projected onto its nearest end and held there while the others are minimized
     /// again (an active-set method), at most [`BOUND_ROUNDS`] times. The caller keeps the result
     /// only where `T` fell, since a projection can raise it.
-    pub fn minimize_channel_within(
+    pub(crate) fn minimize_channel_within(
         &self,
         features: &mut [f64],
         channel: usize,
@@ -144,7 +144,7 @@ impl AttributeQuadratic {
 
     /// Lowers `T` over channel `channel` of the points in `free` (the others stay) by at most
     /// `iterations` conjugate-gradient steps; each step is an exact line search, so `T` never rises.
-    pub fn minimize_channel(&self, features: &mut [f64], channel: usize, free: &[usize], iterations: usize) {
+    pub(crate) fn minimize_channel(&self, features: &mut [f64], channel: usize, free: &[usize], iterations: usize) {
         let channels = self.channels;
         let n = self.len();
         let mut x: Vec<f64> = (0..n).map(|i| features[i * channels + channel]).collect();

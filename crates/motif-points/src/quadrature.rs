@@ -9,7 +9,7 @@ use crate::params::Field;
 
 /// The quadrature points `q_k` on a regular grid, with the frame `s_k R_k` of Eq. 8 at each.
 #[derive(Debug, Clone)]
-pub struct Quadrature<const D: usize> {
+pub(crate) struct Quadrature<const D: usize> {
     origin: Vector<D>,
     inverse_spacing: f64,
     dims: [usize; D],
@@ -37,7 +37,7 @@ const NONE: u32 = u32::MAX;
 impl<const D: usize> Quadrature<D> {
     /// Grid nodes of spacing `spacing` over `[low, high]` accepted by `keep`, with frames from the
     /// region and the guidance fields. Errors when the grid would be absurdly large.
-    pub fn new(
+    pub(crate) fn new(
         low: Vector<D>,
         high: Vector<D>,
         spacing: f64,
@@ -98,7 +98,7 @@ impl<const D: usize> Quadrature<D> {
     /// On a surface domain, moves the quadrature points onto the surface and measures their
     /// depth along it (to its border; a closed surface has none), since the grid's own depth only
     /// sees the thin band.
-    pub fn settle_on(&mut self, region: &Region<D>) {
+    pub(crate) fn settle_on(&mut self, region: &Region<D>) {
         if let Region::Surface { .. } = region {
             for k in 0..self.points.len() {
                 let q = region.keep_on(&self.points[k]);
@@ -109,12 +109,12 @@ impl<const D: usize> Quadrature<D> {
     }
 
     /// The number of quadrature points.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.points.len()
     }
 
     /// Grid spacing.
-    pub fn spacing(&self) -> f64 {
+    pub(crate) fn spacing(&self) -> f64 {
         1.0 / self.inverse_spacing
     }
 
@@ -122,7 +122,7 @@ impl<const D: usize> Quadrature<D> {
     /// integration domain Ω (at the grid's resolution). The exemplar function is compared with the
     /// output only there: outside Ω the output has no points by construction.
     #[inline(always)]
-    pub fn inside(&self, p: &Vector<D>) -> bool {
+    pub(crate) fn inside(&self, p: &Vector<D>) -> bool {
         let mut index = 0;
         for a in (0..D).rev() {
             let t = (p[a] - self.origin[a]) * self.inverse_spacing;
@@ -143,7 +143,7 @@ impl<const D: usize> Quadrature<D> {
 
     /// Calls `visit(k)` for every quadrature point within `radius` of `x`.
     #[inline(always)]
-    pub fn for_each_within(&self, x: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
+    pub(crate) fn for_each_within(&self, x: &Vector<D>, radius: f64, mut visit: impl FnMut(usize)) {
         if let Some(range) = self.node_range(x, radius) {
             self.for_each_in_range(x, radius, &range, |k, _| visit(k));
         }
@@ -152,7 +152,7 @@ impl<const D: usize> Quadrature<D> {
     /// The grid nodes `(low, high)` (inclusive, per axis) of the cube of half-side `radius` around
     /// `x`; `None` when it misses the grid.
     #[inline(always)]
-    pub fn node_range(&self, x: &Vector<D>, radius: f64) -> Option<([usize; D], [usize; D])> {
+    pub(crate) fn node_range(&self, x: &Vector<D>, radius: f64) -> Option<([usize; D], [usize; D])> {
         let mut low = [0usize; D];
         let mut high = [0usize; D];
         for a in 0..D {
@@ -169,14 +169,14 @@ impl<const D: usize> Quadrature<D> {
 
     /// The coordinate along `axis` of the grid nodes with index `node` on that axis.
     #[inline(always)]
-    pub fn node_coordinate(&self, axis: usize, node: usize) -> f64 {
+    pub(crate) fn node_coordinate(&self, axis: usize, node: usize) -> f64 {
         self.origin[axis] + node as f64 * self.spacing()
     }
 
     /// Calls `visit(k, node − low)` for every quadrature point within `radius` of `x` inside the
     /// node range `(low, high)` of [`Quadrature::node_range`] (in the order of `for_each_within`).
     #[inline(always)]
-    pub fn for_each_in_range(
+    pub(crate) fn for_each_in_range(
         &self,
         x: &Vector<D>,
         radius: f64,

@@ -13,7 +13,7 @@ use crate::grid::StaticGrid;
 use crate::linear::{self, Matrix, Vector};
 
 /// The placed points near one tile, and how to read them in the exemplar's coordinates.
-pub struct Band<const D: usize> {
+pub(crate) struct Band<const D: usize> {
     /// Placed points in the band, in output coordinates.
     placed: Vec<Vector<D>>,
     /// `placed` indexed for fixed-radius queries (None when the band is empty).
@@ -21,7 +21,7 @@ pub struct Band<const D: usize> {
 }
 
 /// Where a tile sits in the output and which of its surroundings are already filled.
-pub struct Tile<'a, const D: usize> {
+pub(crate) struct Tile<'a, const D: usize> {
     /// The tile's centre (output coordinates).
     pub centre: Vector<D>,
     /// Half the tile's side along each axis (output units).
@@ -46,7 +46,7 @@ impl<const D: usize> Tile<'_, D> {
 
 impl<const D: usize> Band<D> {
     /// The points of `positions` in the band around `tile`.
-    pub fn gather(positions: &[Vector<D>], tile: &Tile<'_, D>, cell: f64) -> Self {
+    pub(crate) fn gather(positions: &[Vector<D>], tile: &Tile<'_, D>, cell: f64) -> Self {
         let placed: Vec<Vector<D>> =
             positions.iter().filter(|x| tile.in_band(&linear::sub(x, &tile.centre))).copied().collect();
         let grid = (!placed.is_empty()).then(|| StaticGrid::new(&placed, cell));
@@ -54,7 +54,7 @@ impl<const D: usize> Band<D> {
     }
 
     /// True when nothing is placed around the tile yet (any source is as good as another).
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.placed.is_empty()
     }
 
@@ -64,7 +64,7 @@ impl<const D: usize> Band<D> {
     /// both sides can see count: placed points that fall outside the exemplar, and exemplar points
     /// whose copy would land where nothing is placed yet (`filled` is false) or outside the domain.
     #[allow(clippy::too_many_arguments, reason = "the seam measure reads both sides of a tile boundary and its bounds")]
-    pub fn disagreement(
+    pub(crate) fn disagreement(
         &self,
         tile: &Tile<'_, D>,
         origin: &Vector<D>,

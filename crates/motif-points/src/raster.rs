@@ -8,7 +8,7 @@ const MAX_NODES: usize = 1 << 22;
 /// Values with `channels` components on a regular grid, sampled multilinearly (clamped at the
 /// border).
 #[derive(Debug, Clone)]
-pub struct Raster<const D: usize> {
+pub(crate) struct Raster<const D: usize> {
     origin: Vector<D>,
     inverse_spacing: f64,
     dims: [usize; D],
@@ -18,7 +18,7 @@ pub struct Raster<const D: usize> {
 
 impl<const D: usize> Raster<D> {
     /// Fills the raster over `[low, high]` with spacing about `spacing` from `value(node, out)`.
-    pub fn new(
+    pub(crate) fn new(
         low: Vector<D>,
         high: Vector<D>,
         spacing: f64,
@@ -51,7 +51,7 @@ impl<const D: usize> Raster<D> {
     /// Multilinear sample at `p` into `out` (`channels` values) and its spatial gradient into
     /// `gradient` (`channels` vectors).
     #[inline]
-    pub fn sample(&self, p: &Vector<D>, out: &mut [f64], gradient: &mut [Vector<D>]) {
+    pub(crate) fn sample(&self, p: &Vector<D>, out: &mut [f64], gradient: &mut [Vector<D>]) {
         let mut base = [0usize; D];
         let mut frac = [0.0; D];
         for a in 0..D {

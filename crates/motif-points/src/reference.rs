@@ -11,7 +11,7 @@ use crate::model::{State, feature_dot};
 use crate::quadratic::{AttributeQuadratic, RowQuadratic};
 
 /// T and its gradients, summed quadrature point by quadrature point.
-pub fn evaluate<const D: usize>(
+pub(crate) fn evaluate<const D: usize>(
     problem: &Problem<'_, D>,
     state: &State<D>,
     matches: &[Vector<D>],

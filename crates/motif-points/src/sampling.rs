@@ -21,7 +21,7 @@ use crate::model::{Exemplar, Rigid, State, feature_dot};
 
 /// What one sampling-control pass did.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct SamplingOutcome {
+pub(crate) struct SamplingOutcome {
     pub added: usize,
     pub removed: usize,
     pub rejected: usize,
@@ -33,7 +33,7 @@ pub struct SamplingOutcome {
 /// output: an empty window matches an empty part of a clustered exemplar at no cost, and every
 /// removal then makes the next matching choose emptier parts).
 #[derive(Debug, Clone, Copy)]
-pub struct CountBounds {
+pub(crate) struct CountBounds {
     pub least: usize,
     pub most: usize,
 }
@@ -51,7 +51,11 @@ struct Pass<'a, 'p, const D: usize> {
 }
 
 /// The sampling error density `P_k` of every quadrature point.
-pub fn sampling_density<const D: usize>(problem: &Problem<'_, D>, state: &State<D>, matches: &[Vector<D>]) -> Vec<f64> {
+pub(crate) fn sampling_density<const D: usize>(
+    problem: &Problem<'_, D>,
+    state: &State<D>,
+    matches: &[Vector<D>],
+) -> Vec<f64> {
     let width = problem.kernel.density_width();
     let reach = width.map_or(problem.kernel.delta, |w| 3.0 * w);
     let grid = StaticGrid::new(&state.positions, reach);
@@ -129,7 +133,7 @@ fn thresholds<const D: usize>(problem: &Problem<'_, D>, exemplar: &Exemplar<D>, 
 }
 
 /// One sampling-control pass over all quadrature points. Compacts `state` at the end.
-pub fn control<const D: usize>(
+pub(crate) fn control<const D: usize>(
     problem: &Problem<'_, D>,
     exemplar: &Exemplar<D>,
     state: &mut State<D>,

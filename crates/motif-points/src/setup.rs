@@ -61,14 +61,14 @@ pub(crate) struct Setup<const D: usize> {
 }
 
 impl<const D: usize> Setup<D> {
-    pub fn allowed(&self, p: &Vector<D>) -> bool {
+    pub(crate) fn allowed(&self, p: &Vector<D>) -> bool {
         // Existing points near the new region may move within the band of Ω around it.
         self.region.contains(p) || self.margin.is_some_and(|m| self.region.distance(p) < m && self.quadrature.inside(p))
     }
 
     /// Creates the initial output; returns the matches the initialization knows (the source of
     /// each copied patch; empty for random points).
-    pub fn initialize(&mut self, params: &Params, streams: &SeedStreams) -> Vec<Vector<D>> {
+    pub(crate) fn initialize(&mut self, params: &Params, streams: &SeedStreams) -> Vec<Vector<D>> {
         let mut state = std::mem::take(&mut self.state);
         let allowed = |p: &Vector<D>| self.allowed(p);
         let on_surface = matches!(self.region, Region::Surface { .. });
@@ -116,7 +116,7 @@ impl<const D: usize> Setup<D> {
         matches
     }
 
-    pub fn problem(&self, delta: f64, params: &Params) -> Problem<'_, D> {
+    pub(crate) fn problem(&self, delta: f64, params: &Params) -> Problem<'_, D> {
         let kernel = Kernel::new(params.window, self.sigma, delta, params.kernel_cutoff, params.window_cutoff);
         // A window is interior when everything it reaches (and the grid node each place rounds to)
         // is inside Ω; then the exemplar needs no masking there.

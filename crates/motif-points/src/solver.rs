@@ -429,6 +429,17 @@ pub struct EnergyCase {
     prepared: PreparedAny,
 }
 
+impl std::fmt::Debug for EnergyCase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        // The prepared case holds the whole solver state; its dimension says which it is.
+        let dimension = match self.prepared {
+            PreparedAny::Two(_) => 2,
+            PreparedAny::Three(_) => 3,
+        };
+        f.debug_struct("EnergyCase").field("dimension", &dimension).finish_non_exhaustive()
+    }
+}
+
 impl EnergyCase {
     /// Validates, prepares and initializes as [`synthesize`] does, then matches once.
     pub fn new(input: &Input, params: &Params) -> Result<Self, Error> {

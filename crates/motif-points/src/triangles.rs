@@ -6,23 +6,23 @@ use rstar::{AABB, PointDistance, RTreeObject};
 
 use crate::error::DomainProblem;
 
-pub type Vec3 = [f64; 3];
+pub(crate) type Vec3 = [f64; 3];
 
-pub fn sub(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-pub fn dot(a: Vec3, b: Vec3) -> f64 {
+pub(crate) fn dot(a: Vec3, b: Vec3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub fn cross(a: Vec3, b: Vec3) -> Vec3 {
+pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// One triangle in the tree.
 #[derive(Debug, Clone)]
-pub struct Triangle {
+pub(crate) struct Triangle {
     pub corners: [Vec3; 3],
     /// The triangle's index in its mesh.
     pub index: u32,
@@ -48,7 +48,7 @@ impl PointDistance for Triangle {
 }
 
 /// The point of triangle `[a, b, c]` closest to `p` (Ericson, Real-Time Collision Detection §5.1.5).
-pub fn closest_point(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
+pub(crate) fn closest_point(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
     let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
     let along =
         |origin: Vec3, direction: Vec3, t: f64| -> Vec3 { std::array::from_fn(|i| origin[i] + t * direction[i]) };
@@ -84,7 +84,7 @@ pub fn closest_point(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
 }
 
 /// Barycentric weights of `p` (a point of the triangle's plane) in triangle `[a, b, c]`.
-pub fn barycentric(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
+pub(crate) fn barycentric(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
     let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
     let (d00, d01, d11) = (dot(ab, ab), dot(ab, ac), dot(ac, ac));
     let (d20, d21) = (dot(ap, ab), dot(ap, ac));
@@ -98,14 +98,14 @@ pub fn barycentric(p: Vec3, [a, b, c]: [Vec3; 3]) -> Vec3 {
 }
 
 /// `a / |a|`, or `None` for a (nearly) zero vector.
-pub fn normalized(a: Vec3) -> Option<Vec3> {
+pub(crate) fn normalized(a: Vec3) -> Option<Vec3> {
     let length = dot(a, a).sqrt();
     (length > 1e-300 && length.is_finite()).then(|| a.map(|c| c / length))
 }
 
 /// Checks a mesh (triangles, finite vertices, valid indices, no degenerate triangle) and returns
 /// its bounding box.
-pub fn check_mesh(mesh: &TriangleMesh) -> Result<(Vec3, Vec3), DomainProblem> {
+pub(crate) fn check_mesh(mesh: &TriangleMesh) -> Result<(Vec3, Vec3), DomainProblem> {
     if mesh.triangles.is_empty() {
         return Err(DomainProblem::EmptyMesh);
     }

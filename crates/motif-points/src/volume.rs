@@ -53,7 +53,7 @@ fn ray_crossing(p: Vec3, corners: [Vec3; 3]) -> Option<f64> {
 
 /// The inside of a closed triangle mesh, ready for membership and distance queries.
 #[derive(Debug, Clone)]
-pub struct MeshVolume {
+pub(crate) struct MeshVolume {
     tree: RTree<Triangle>,
     low: Vec3,
     high: Vec3,
@@ -62,7 +62,7 @@ pub struct MeshVolume {
 
 impl MeshVolume {
     /// Checks the mesh (triangles, finite vertices, no degenerate triangle, closed) and indexes it.
-    pub fn new(mesh: &TriangleMesh) -> Result<MeshVolume, DomainProblem> {
+    pub(crate) fn new(mesh: &TriangleMesh) -> Result<MeshVolume, DomainProblem> {
         let (low, high) = crate::triangles::check_mesh(mesh)?;
         let open = mesh.edge_uses().iter().filter(|(_, uses)| uses % 2 == 1).count();
         if open > 0 {
@@ -90,19 +90,19 @@ impl MeshVolume {
     }
 
     /// The bounding box.
-    pub fn bounds(&self) -> (Vec3, Vec3) {
+    pub(crate) fn bounds(&self) -> (Vec3, Vec3) {
         (self.low, self.high)
     }
 
     /// The enclosed volume from signed tetrahedra, `None` when the faces are not consistently
     /// oriented (then the quadrature grid measures it).
-    pub fn volume(&self) -> Option<f64> {
+    pub(crate) fn volume(&self) -> Option<f64> {
         self.volume
     }
 
     /// Whether `p` lies inside the surface: the number of crossings of the ray from `p` along +x
     /// is odd (points on the surface may fall either way).
-    pub fn contains(&self, p: &Vec3) -> bool {
+    pub(crate) fn contains(&self, p: &Vec3) -> bool {
         if (0..3).any(|a| p[a] < self.low[a] || p[a] > self.high[a]) {
             return false;
         }
@@ -119,7 +119,7 @@ impl MeshVolume {
     }
 
     /// Distance from `p` to the surface.
-    pub fn distance_to_surface(&self, p: &Vec3) -> f64 {
+    pub(crate) fn distance_to_surface(&self, p: &Vec3) -> f64 {
         self.tree.nearest_neighbor(p).map_or(f64::INFINITY, |t| t.distance_2(p).sqrt())
     }
 }
@@ -129,7 +129,7 @@ mod tests {
     use super::*;
 
     /// An axis-aligned cube `[low, low + side]³` as 12 triangles (outward, counter-clockwise).
-    pub fn cube(low: Vec3, side: f64) -> TriangleMesh {
+    pub(super) fn cube(low: Vec3, side: f64) -> TriangleMesh {
         let vertices = (0..8).map(|i| std::array::from_fn(|a| low[a] + side * f64::from((i >> a) & 1))).collect();
         let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
         let triangles = quads.iter().flat_map(|q: &[u32; 4]| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();

@@ -82,7 +82,7 @@ impl Analysis {
 }
 
 /// Fit sets of every stroke (§2.1).
-pub fn fit_sets(strokes: &[Stroke], params: &Params) -> Vec<FitSet> {
+pub(crate) fn fit_sets(strokes: &[Stroke], params: &Params) -> Vec<FitSet> {
     strokes.iter().map(|stroke| FitSet::of_stroke(stroke, params.fit)).collect()
 }
 
@@ -98,7 +98,7 @@ pub fn analyse(strokes: &[Stroke], params: &Params, along_path: bool) -> Result<
 }
 
 /// The distribution step (§2.3) on elements clustered from `strokes`, and the border flags.
-pub fn relate(elements: Vec<Element>, strokes: &[Stroke], params: &Params, along_path: bool) -> Analysis {
+pub(crate) fn relate(elements: Vec<Element>, strokes: &[Stroke], params: &Params, along_path: bool) -> Analysis {
     let mut analysis = distribute(elements, params.scale, along_path);
     let flags = flag_border(&analysis, strokes);
     analysis.border = flags.border;

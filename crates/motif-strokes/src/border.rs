@@ -24,7 +24,7 @@ const INTERIOR_SHARE: f64 = 0.25;
 
 /// Border and fragment flags of the analysed elements.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct BorderFlags {
+pub(crate) struct BorderFlags {
     /// Elements whose ink touches the reference's bounding box.
     pub border: Vec<bool>,
     /// Border elements left out of copying because enough elements lie inside.
@@ -33,7 +33,7 @@ pub struct BorderFlags {
 
 /// Flags the elements of `analysis` (clustered from `strokes`) that touch the reference's frame
 /// and those that are not copied.
-pub fn flag_border(analysis: &Analysis, strokes: &[Stroke]) -> BorderFlags {
+pub(crate) fn flag_border(analysis: &Analysis, strokes: &[Stroke]) -> BorderFlags {
     let count = analysis.elements.len();
     // In the pattern frame, where a 1D pattern runs along x: its frame cuts it at its two ends
     // only (the tallest elements of a row touch its top and bottom without being cut).

@@ -41,10 +41,10 @@ impl Element {
 /// How far beyond E*'s bounds a merge partner can lie, in units of ε. Proximity needs a box
 /// distance < ε; continuation needs a point of the other box within ε/2 of an axis line and a gap
 /// < ε along it, so a distance below √(1 + 1/4) ε ≈ 1.118 ε.
-pub const SEARCH_MARGIN: f64 = 1.25;
+pub(crate) const SEARCH_MARGIN: f64 = 1.25;
 
 /// Proximity (§2.2.1): `min(d_H(E1, E2), d_H(E2, E1)) < ε`, boxes as solid rectangles.
-pub fn proximity(first: &OrientedBox, second: &OrientedBox) -> f64 {
+pub(crate) fn proximity(first: &OrientedBox, second: &OrientedBox) -> f64 {
     first.directed_hausdorff(second).min(second.directed_hausdorff(first))
 }
 
@@ -79,7 +79,7 @@ fn axis_configurations(first: &OrientedBox, second: &OrientedBox) -> [(f64, f64)
 /// element is near-collinear when all its corners lie within ε/2 of the axis line through the
 /// element's centre; the continuation error is then the gap between the two boxes' projections on
 /// the axis. Returns the smallest error over the near-collinear configurations (infinity if none).
-pub fn continuation(first: &OrientedBox, second: &OrientedBox, scale: f64) -> f64 {
+pub(crate) fn continuation(first: &OrientedBox, second: &OrientedBox, scale: f64) -> f64 {
     axis_configurations(first, second)
         .into_iter()
         .filter(|&(offset, _)| offset < 0.5 * scale)
@@ -89,7 +89,7 @@ pub fn continuation(first: &OrientedBox, second: &OrientedBox, scale: f64) -> f6
 /// The smallest ε at which the continuation test of [`continuation`] passes: over the four axis
 /// configurations, the larger of twice the other element's offset from the axis line (it must be
 /// within ε/2) and the gap between the projections (it must be below ε).
-pub fn continuation_height(first: &OrientedBox, second: &OrientedBox) -> f64 {
+pub(crate) fn continuation_height(first: &OrientedBox, second: &OrientedBox) -> f64 {
     axis_configurations(first, second)
         .into_iter()
         .fold(f64::INFINITY, |best, (offset, gap)| best.min((2.0 * offset).max(gap)))
@@ -102,7 +102,7 @@ pub fn merge_height(first: &OrientedBox, second: &OrientedBox) -> f64 {
 }
 
 /// The element pair test of §2.2: proximity or continuation below ε.
-pub fn should_merge(first: &OrientedBox, second: &OrientedBox, scale: f64) -> bool {
+pub(crate) fn should_merge(first: &OrientedBox, second: &OrientedBox, scale: f64) -> bool {
     proximity(first, second) < scale || continuation(first, second, scale) < scale
 }
 
@@ -200,7 +200,7 @@ fn entry(frame: &OrientedBox, id: usize) -> Entry {
 
 /// Clusters strokes into elements with the greedy queue of §2.2, using an R-tree to find the
 /// queue elements within reach of E*. Elements come out in the order the queue releases them.
-pub fn cluster(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Element> {
+pub(crate) fn cluster(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Element> {
     let mut clusters = initial_clusters(sets);
     let count = clusters.len();
     let mut ticket: Vec<u64> = (0..count as u64).collect();
@@ -256,7 +256,7 @@ pub fn cluster(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Element> 
 
 /// The paper's algorithm as written: E* is tested against every element of the queue, in order.
 /// Quadratic; kept as the reference [`cluster`] is checked against.
-pub fn cluster_plain(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Element> {
+pub(crate) fn cluster_plain(strokes: &[Stroke], sets: &[FitSet], scale: f64) -> Vec<Element> {
     let mut clusters = initial_clusters(sets);
     let mut queue: VecDeque<usize> = (0..clusters.len()).collect();
     let mut output = Vec::new();

@@ -8,7 +8,7 @@ use motif_core::{math, vector};
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};
 
 /// The largest angle a triangle may have and still count as unskewed: 2π/3 (§2.3).
-pub const MAX_UNSKEWED_ANGLE: f64 = 2.0 * std::f64::consts::FRAC_PI_3;
+pub(crate) const MAX_UNSKEWED_ANGLE: f64 = 2.0 * std::f64::consts::FRAC_PI_3;
 
 /// An undirected neighbour graph in compressed rows: `neighbours(i)` is sorted.
 #[derive(Debug, Clone, PartialEq, Eq, Default)]
@@ -133,7 +133,7 @@ impl HasPosition for Site {
 }
 
 /// The largest interior angle of triangle `abc` (π for a degenerate one).
-pub fn max_angle(a: Point, b: Point, c: Point) -> f64 {
+pub(crate) fn max_angle(a: Point, b: Point, c: Point) -> f64 {
     let angle = |p: Point, q: Point, r: Point| {
         let (u, v) = (q - p, r - p);
         let norms = vector::length(u) * vector::length(v);
@@ -144,7 +144,7 @@ pub fn max_angle(a: Point, b: Point, c: Point) -> f64 {
 
 /// A Delaunay triangulation reduced to the edges of its unskewed triangles.
 #[derive(Debug, Clone, PartialEq)]
-pub struct UnskewedDelaunay {
+pub(crate) struct UnskewedDelaunay {
     /// Edges that belong to at least one triangle without an angle above 2π/3.
     pub graph: Graph,
     /// Number of unskewed triangles.
@@ -157,7 +157,7 @@ pub struct UnskewedDelaunay {
 
 /// Triangulates `points` (with `spade`) and keeps only the edges of unskewed triangles (§2.3).
 /// Points closer than spade's duplicate tolerance share one vertex; the later ones get no edges.
-pub fn unskewed_delaunay(points: &[Point]) -> UnskewedDelaunay {
+pub(crate) fn unskewed_delaunay(points: &[Point]) -> UnskewedDelaunay {
     let sites: Vec<Site> =
         points.iter().enumerate().map(|(index, p)| Site { position: Point2::new(p.x, p.y), index }).collect();
     let mut edges = Vec::new();
@@ -184,7 +184,7 @@ pub fn unskewed_delaunay(points: &[Point]) -> UnskewedDelaunay {
 
 /// The shift vector S of an element (§2.3): its position minus the barycentre of its neighbours,
 /// from the neighbours' offsets relative to it (zero without neighbours).
-pub fn shift_from_offsets(offsets: &[Vec2]) -> Vec2 {
+pub(crate) fn shift_from_offsets(offsets: &[Vec2]) -> Vec2 {
     if offsets.is_empty() {
         return Vec2::ZERO;
     }
@@ -194,7 +194,7 @@ pub fn shift_from_offsets(offsets: &[Vec2]) -> Vec2 {
 /// The size A_E of a neighbourhood (§3.3) from the neighbours' offsets: along a path, the length
 /// it spans along the pattern direction (x); in a region, the area of the polygon through the
 /// neighbours taken in angular order (0 with fewer than three).
-pub fn neighbourhood_size(offsets: &[Vec2], along_path: bool) -> f64 {
+pub(crate) fn neighbourhood_size(offsets: &[Vec2], along_path: bool) -> f64 {
     if along_path {
         let (low, high) =
             offsets.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), o| (low.min(o.x), high.max(o.x)));

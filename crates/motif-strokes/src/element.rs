@@ -80,7 +80,7 @@ impl OrientedBox {
 /// Length-weighted first and second moments of a set of segments: what a box fit needs, and
 /// additive, so that merged clusters are refitted without revisiting their strokes' segments.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Moments {
+pub(crate) struct Moments {
     weight: f64,
     sum: Vec2,
     xx: f64,
@@ -90,7 +90,7 @@ pub struct Moments {
 
 impl Moments {
     /// Adds segment `p0 → p1` as a uniform density along it.
-    pub fn add_segment(&mut self, p0: Point, p1: Point) {
+    pub(crate) fn add_segment(&mut self, p0: Point, p1: Point) {
         let length = vector::distance(p0, p1);
         if length <= 0.0 {
             return;
@@ -105,7 +105,7 @@ impl Moments {
     }
 
     /// Adds every segment of a polyline (with its closing segment when closed).
-    pub fn add_polyline(&mut self, polyline: &Polyline) {
+    pub(crate) fn add_polyline(&mut self, polyline: &Polyline) {
         let points = polyline.points();
         for pair in points.windows(2) {
             self.add_segment(pair[0], pair[1]);
@@ -116,7 +116,7 @@ impl Moments {
     }
 
     /// The sum of two moment sets.
-    pub fn merged(&self, other: &Moments) -> Moments {
+    pub(crate) fn merged(&self, other: &Moments) -> Moments {
         Moments {
             weight: self.weight + other.weight,
             sum: self.sum + other.sum,
@@ -127,13 +127,13 @@ impl Moments {
     }
 
     /// Mean point (origin for an empty set).
-    pub fn mean(&self) -> Point {
+    pub(crate) fn mean(&self) -> Point {
         if self.weight > 0.0 { (self.sum / self.weight).to_point() } else { Point::ORIGIN }
     }
 
     /// Unit principal direction: the eigenvector of the covariance with the larger eigenvalue.
     /// An isotropic set gives the x axis.
-    pub fn principal_axis(&self) -> Vec2 {
+    pub(crate) fn principal_axis(&self) -> Vec2 {
         if self.weight <= 0.0 {
             return Vec2::new(1.0, 0.0);
         }
@@ -151,13 +151,13 @@ impl Moments {
 }
 
 /// The undirected axis `axis` written with a deterministic sign: angle in `[0, π)`.
-pub fn canonical_axis(axis: Vec2) -> Vec2 {
+pub(crate) fn canonical_axis(axis: Vec2) -> Vec2 {
     if axis.y < 0.0 || (axis.y == 0.0 && axis.x < 0.0) { -axis } else { axis }
 }
 
 /// The points one stroke contributes to a fit, with their moments.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FitSet {
+pub(crate) struct FitSet {
     /// The points whose projections give the box extents.
     pub points: Vec<Point>,
     /// Length-weighted moments of the curves through `points`.
@@ -166,7 +166,7 @@ pub struct FitSet {
 
 impl FitSet {
     /// The skeleton or contour points of `stroke` (§2.1).
-    pub fn of_stroke(stroke: &Stroke, fit: FitPoints) -> FitSet {
+    pub(crate) fn of_stroke(stroke: &Stroke, fit: FitPoints) -> FitSet {
         let skeleton = &stroke.polyline;
         let half_width = 0.5 * stroke.width;
         if fit == FitPoints::Skeleton || half_width <= 0.0 {
@@ -213,7 +213,7 @@ impl FitSet {
 
 /// Fits the oriented box of a union of fit sets: axes from the summed moments, extents and centre
 /// from the projections of every point.
-pub fn fit_box<'a>(moments: &Moments, sets: impl Iterator<Item = &'a FitSet>) -> OrientedBox {
+pub(crate) fn fit_box<'a>(moments: &Moments, sets: impl Iterator<Item = &'a FitSet>) -> OrientedBox {
     let axis = moments.principal_axis();
     let secondary = perpendicular(axis);
     let mean = moments.mean();

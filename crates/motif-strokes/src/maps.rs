@@ -20,7 +20,7 @@ use motif_core::{Point, ToneMap};
 
 /// The density and scale maps of a synthesis, placed over the target's bounding box.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Maps<'a> {
+pub(crate) struct Maps<'a> {
     /// Relative element density (darkness), if any.
     pub density: Option<&'a ToneMap>,
     /// Element scale, if any.
@@ -31,19 +31,19 @@ pub struct Maps<'a> {
 
 impl Maps<'_> {
     /// True when neither map is given (the uniform pattern of the paper).
-    pub fn is_uniform(&self) -> bool {
+    pub(crate) fn is_uniform(&self) -> bool {
         self.density.is_none() && self.scale.is_none()
     }
 
     /// Element density at `point` relative to the reference's, in [0, 1] without a scale map.
-    pub fn density_at(&self, point: Point) -> f64 {
+    pub(crate) fn density_at(&self, point: Point) -> f64 {
         let darkness = self.density.map_or(1.0, |map| 1.0 - map.grey_at(&self.bounds, point));
         let scale = self.scale_at(point);
         darkness.max(0.0) / (scale * scale)
     }
 
     /// Element scale at `point`: `2^(2·grey − 1)`, 1 without a scale map.
-    pub fn scale_at(&self, point: Point) -> f64 {
+    pub(crate) fn scale_at(&self, point: Point) -> f64 {
         self.scale.map_or(1.0, |map| {
             let grey = map.grey_at(&self.bounds, point);
             // 2^(2g − 1) through exact operations: the same bits natively and in WebAssembly.

@@ -33,7 +33,7 @@ fn orientation_weight(frame: &OrientedBox) -> f64 {
 /// The measures of one element pair or, averaged, of two neighbourhoods: the paper's five (§3.1)
 /// and the attribute measure.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Measures {
+pub(crate) struct Measures {
     /// Symmetric Hausdorff distance between the boxes with their centres aligned.
     pub shape: f64,
     /// Angle between the principal axes, in `[0, π/2]`, scaled down for nearly square boxes
@@ -51,7 +51,7 @@ pub struct Measures {
 
 impl Measures {
     /// The measures of a reference element and a target element, both in the pattern frame.
-    pub fn of_pair(
+    pub(crate) fn of_pair(
         reference: &OrientedBox,
         target: &OrientedBox,
         reference_appearance: &Appearance,
@@ -83,7 +83,7 @@ impl Measures {
     /// The measures divided by their thresholds, overlap as `(ov - 1) / (σ_ov - 1)`: each is below
     /// 1 exactly when its measure is below its threshold, and each is linear in its measure, so
     /// averaging normalized values equals normalizing averages.
-    pub fn normalized(&self, limits: &Limits) -> Normalized {
+    pub(crate) fn normalized(&self, limits: &Limits) -> Normalized {
         [
             self.shape / limits.shape,
             self.parallelism / limits.parallelism,
@@ -97,7 +97,7 @@ impl Measures {
 
 /// The thresholds in drawing units (shape and superimposition multiplied by L).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Limits {
+pub(crate) struct Limits {
     /// σ_shape in drawing units.
     pub shape: f64,
     /// σ_par in radians.
@@ -114,7 +114,7 @@ pub struct Limits {
 
 impl Limits {
     /// Thresholds for a reference whose elements have mean principal-axis length `mean_length`.
-    pub fn new(thresholds: &Thresholds, mean_length: f64) -> Limits {
+    pub(crate) fn new(thresholds: &Thresholds, mean_length: f64) -> Limits {
         let length = mean_length.max(1e-9);
         Limits {
             shape: thresholds.shape * length,
@@ -129,13 +129,13 @@ impl Limits {
 
 /// The six measures divided by their thresholds, in the order shape, parallelism, overlap,
 /// superimposition, colour, attributes.
-pub type Normalized = [f64; 6];
+pub(crate) type Normalized = [f64; 6];
 
 /// How far averaged normalized measures are from passing the paper's test, with the attribute
 /// measure beside colour: `col and attr and (shape or (par and ov and sup))`, that is
 /// `max(col, attr, min(shape, max(par, ov, sup)))`. The test passes exactly when this is below 1;
 /// the fallback takes the smallest.
-pub fn violation(normalized: &Normalized) -> f64 {
+pub(crate) fn violation(normalized: &Normalized) -> f64 {
     let [shape, parallelism, overlap, superimposition, colour, attributes] = *normalized;
     colour.max(attributes).max(shape.min(parallelism.max(overlap).max(superimposition)))
 }
@@ -143,7 +143,7 @@ pub fn violation(normalized: &Normalized) -> f64 {
 /// A neighbour in a neighbourhood: which reference element it is (or is a copy of) and its offset
 /// from the neighbourhood's centre in the pattern frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Member {
+pub(crate) struct Member {
     /// Reference element index.
     pub element: u32,
     /// Offset from the centre element's position.
@@ -152,12 +152,12 @@ pub struct Member {
 
 /// References with more elements than this do not get a full pair table (it grows with the
 /// square of the count: 2 048 elements take 160 MiB); their measures are computed on demand.
-pub const MAX_TABLE_ELEMENTS: usize = 2048;
+pub(crate) const MAX_TABLE_ELEMENTS: usize = 2048;
 
 /// Normalized measures for every ordered pair of reference elements: a precomputed table, or for
 /// very large references, the boxes to compute them from on demand.
 #[derive(Debug, Clone, PartialEq)]
-pub struct MeasureTable {
+pub(crate) struct MeasureTable {
     count: usize,
     values: Vec<Normalized>,
     frames: Vec<OrientedBox>,
@@ -167,7 +167,7 @@ pub struct MeasureTable {
 
 impl MeasureTable {
     /// The table for reference elements with boxes `frames` (pattern frame) and `appearances`.
-    pub fn new(frames: &[OrientedBox], appearances: &[Appearance], limits: &Limits) -> MeasureTable {
+    pub(crate) fn new(frames: &[OrientedBox], appearances: &[Appearance], limits: &Limits) -> MeasureTable {
         let count = frames.len();
         let mut values = Vec::new();
         if count <= MAX_TABLE_ELEMENTS {
@@ -184,7 +184,7 @@ impl MeasureTable {
     }
 
     /// Normalized measures of reference element `reference` against (a copy of) `target`.
-    pub fn get(&self, reference: u32, target: u32) -> Normalized {
+    pub(crate) fn get(&self, reference: u32, target: u32) -> Normalized {
         let (i, j) = (reference as usize, target as usize);
         if self.values.is_empty() {
             Measures::of_pair(&self.frames[i], &self.frames[j], &self.appearances[i], &self.appearances[j])
@@ -197,7 +197,7 @@ impl MeasureTable {
 
 /// Reusable buffers for [`compare`].
 #[derive(Debug, Clone, Default)]
-pub struct CompareScratch {
+pub(crate) struct CompareScratch {
     /// For each target member: index of its nearest reference member.
     nearest_reference: Vec<u32>,
 }
@@ -243,7 +243,7 @@ fn mutual_nearest(
 /// neighbourhood: relevant pairs by mutual nearest centres, measures from the table, averaged over
 /// the pairs, which normalizes by the number of known target neighbours that found a partner
 /// (§3.2). `None` when no pair exists.
-pub fn compare(
+pub(crate) fn compare(
     reference: &[Member],
     target: &[Member],
     table: &MeasureTable,
@@ -264,7 +264,7 @@ pub fn compare(
 /// [`compare`] computing every measure from the boxes: the plain reference implementation, which
 /// the tests hold the table look-ups to.
 #[cfg(test)]
-pub fn compare_plain(
+pub(crate) fn compare_plain(
     reference: &[Member],
     target: &[Member],
     frames: &[OrientedBox],

@@ -15,7 +15,7 @@ use crate::stroke::Stroke;
 
 /// One element's ink in document coordinates.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Footprint {
+pub(crate) struct Footprint {
     lines: Vec<(LineString<f64>, f64)>,
     areas: Vec<GeoPolygon<f64>>,
     /// Bounds of the ink, half widths included: `[min x, min y, max x, max y]`.
@@ -24,7 +24,7 @@ pub struct Footprint {
 
 impl Footprint {
     /// The footprint of `strokes` (an element's strokes, already placed).
-    pub fn of_strokes<'a>(strokes: impl IntoIterator<Item = &'a Stroke>) -> Footprint {
+    pub(crate) fn of_strokes<'a>(strokes: impl IntoIterator<Item = &'a Stroke>) -> Footprint {
         let mut footprint = Footprint {
             lines: Vec::new(),
             areas: Vec::new(),
@@ -50,7 +50,7 @@ impl Footprint {
     }
 
     /// True when the footprint holds no ink.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.lines.is_empty()
     }
 
@@ -59,7 +59,7 @@ impl Footprint {
     }
 
     /// True when the two footprints' ink meets.
-    pub fn overlaps(&self, other: &Footprint) -> bool {
+    pub(crate) fn overlaps(&self, other: &Footprint) -> bool {
         if self.is_empty()
             || other.is_empty()
             || self.bounds[0] > other.bounds[2]
@@ -139,13 +139,13 @@ impl RTreeObject for Indexed {
 }
 
 /// Footprints by bounds, for finding the ones an element may overlap.
-pub struct FootprintIndex {
+pub(crate) struct FootprintIndex {
     tree: RTree<Indexed>,
 }
 
 impl FootprintIndex {
     /// An index over `footprints`.
-    pub fn new(footprints: &[Footprint]) -> FootprintIndex {
+    pub(crate) fn new(footprints: &[Footprint]) -> FootprintIndex {
         let items = footprints
             .iter()
             .enumerate()
@@ -156,19 +156,19 @@ impl FootprintIndex {
     }
 
     /// An empty index.
-    pub fn empty() -> FootprintIndex {
+    pub(crate) fn empty() -> FootprintIndex {
         FootprintIndex { tree: RTree::new() }
     }
 
     /// Adds footprint `index`.
-    pub fn insert(&mut self, index: usize, footprint: &Footprint) {
+    pub(crate) fn insert(&mut self, index: usize, footprint: &Footprint) {
         if !footprint.is_empty() {
             self.tree.insert(Indexed { envelope: footprint.envelope(), index });
         }
     }
 
     /// Indices of the indexed footprints whose bounds meet `footprint`'s, in increasing order.
-    pub fn near(&self, footprint: &Footprint) -> Vec<usize> {
+    pub(crate) fn near(&self, footprint: &Footprint) -> Vec<usize> {
         if footprint.is_empty() {
             return Vec::new();
         }
@@ -180,7 +180,7 @@ impl FootprintIndex {
 }
 
 /// Number of footprints that overlap at least one other.
-pub fn overlapping_count(footprints: &[Footprint]) -> usize {
+pub(crate) fn overlapping_count(footprints: &[Footprint]) -> usize {
     let index = FootprintIndex::new(footprints);
     footprints
         .iter()
@@ -192,12 +192,12 @@ pub fn overlapping_count(footprints: &[Footprint]) -> usize {
 }
 
 /// The share of elements overlapping another (0 without elements).
-pub fn overlap_rate(footprints: &[Footprint]) -> f64 {
+pub(crate) fn overlap_rate(footprints: &[Footprint]) -> f64 {
     if footprints.is_empty() { 0.0 } else { overlapping_count(footprints) as f64 / footprints.len() as f64 }
 }
 
 /// The centre of a footprint's bounds.
-pub fn bounds_centre(footprint: &Footprint) -> Point {
+pub(crate) fn bounds_centre(footprint: &Footprint) -> Point {
     Point::new(0.5 * (footprint.bounds[0] + footprint.bounds[2]), 0.5 * (footprint.bounds[1] + footprint.bounds[3]))
 }
 

@@ -27,7 +27,7 @@ use crate::variation::Exchange;
 
 /// Where and how one reference element is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Placement {
+pub(crate) struct Placement {
     /// The reference element copied.
     pub reference: u32,
     /// Where its centre goes.
@@ -66,7 +66,7 @@ pub struct OverlapFigures {
 
 /// The map taking a reference element's strokes to a seed: scale in the element's own frame
 /// (exchanged length and thickness), rotate about its centre, move the centre to `position`.
-pub fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, exchange: &Exchange) -> Affine {
+pub(crate) fn placement_transform(frame: &OrientedBox, position: Point, rotation: f64, exchange: &Exchange) -> Affine {
     let to_origin = Affine::translate(-frame.centre.to_vec2());
     let axis_angle = math::atan2(frame.axis.y, frame.axis.x);
     let scale = if exchange.length_scale != 1.0 || exchange.thickness_scale != 1.0 {
@@ -97,7 +97,7 @@ fn shift_colour(colour: [u8; 4], shift: [f64; 3]) -> [u8; 4] {
 }
 
 /// The strokes of reference element `placement.reference` drawn at `placement`.
-pub fn placed_strokes(analysis: &Analysis, strokes: &[Stroke], placement: &Placement) -> Vec<Stroke> {
+pub(crate) fn placed_strokes(analysis: &Analysis, strokes: &[Stroke], placement: &Placement) -> Vec<Stroke> {
     let element = &analysis.elements[placement.reference as usize];
     let exchange = &placement.exchange;
     let transform = placement_transform(&element.frame, placement.position, placement.rotation, exchange)
@@ -123,7 +123,7 @@ pub fn placed_strokes(analysis: &Analysis, strokes: &[Stroke], placement: &Place
 }
 
 /// The share of the reference's usable elements whose ink meets another element's.
-pub fn reference_overlap_rate(analysis: &Analysis, strokes: &[Stroke]) -> f64 {
+pub(crate) fn reference_overlap_rate(analysis: &Analysis, strokes: &[Stroke]) -> f64 {
     let footprints: Vec<Footprint> = analysis
         .elements
         .iter()
@@ -139,7 +139,7 @@ pub fn reference_overlap_rate(analysis: &Analysis, strokes: &[Stroke]) -> f64 {
 }
 
 /// Everything overlap resolution reads.
-pub struct Scene<'a> {
+pub(crate) struct Scene<'a> {
     /// The analysed reference.
     pub analysis: &'a Analysis,
     /// The reference strokes.
@@ -167,7 +167,7 @@ const MOVES: [f64; 3] = [0.1, 0.2, 0.3];
 /// Settles `placements` (one per seed, `assigned` their reference elements) in growth `order`
 /// so that no element's ink meets an already settled one, beyond the reference's own rate. Returns
 /// which seeds are kept and the figures.
-pub fn resolve_overlaps(
+pub(crate) fn resolve_overlaps(
     scene: &Scene<'_>,
     placements: &mut [Placement],
     assigned: &mut [u32],

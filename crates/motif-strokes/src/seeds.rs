@@ -22,7 +22,7 @@ use crate::maps::Maps;
 /// Lloyd's method, where each seed's Voronoi cell is the arc between the midpoints to its
 /// neighbours (clipped to `[0, length]` on an open path, wrapping on a closed one). Returns the
 /// sorted arc-length positions and the iterations run.
-pub fn lloyd_path(
+pub(crate) fn lloyd_path(
     length: f64,
     closed: bool,
     count: usize,
@@ -160,7 +160,7 @@ fn stratified_points(region: &Polygon, count: usize, density: &Density<'_>, stre
 /// With a density map the tessellation is weighted: each cell's centroid is weighted by the
 /// squared density (see [`crate::maps`]), integrated over the cell with 9 sub-triangles per
 /// triangle of a fan.
-pub fn lloyd_region(
+pub(crate) fn lloyd_region(
     region: &Polygon,
     count: usize,
     iterations: usize,
@@ -269,7 +269,7 @@ fn cell_centroid(
 
 /// Sutherland–Hodgman: `subject` clipped by the convex counter-clockwise polygon `window`, into
 /// `out`.
-pub fn clip_to_convex(subject: &[Point], window: &[Point], out: &mut Vec<Point>, swap: &mut Vec<Point>) {
+pub(crate) fn clip_to_convex(subject: &[Point], window: &[Point], out: &mut Vec<Point>, swap: &mut Vec<Point>) {
     out.clear();
     out.extend_from_slice(subject);
     for i in 0..window.len() {
@@ -354,7 +354,7 @@ fn weighted_centroid(points: &[Point], weight: impl Fn(Point) -> f64) -> Option<
 }
 
 /// The density a region's seeds follow, with its mean and largest value over the region.
-pub struct Density<'a> {
+pub(crate) struct Density<'a> {
     /// The maps (uniform without any).
     pub maps: &'a Maps<'a>,
     /// Mean relative density over the region.
@@ -375,12 +375,12 @@ impl<'a> Density<'a> {
     const SAMPLES: (usize, usize) = (256, 512);
 
     /// The uniform density of a path target (maps need a region).
-    pub fn over_path(maps: &'a Maps<'a>) -> Density<'a> {
+    pub(crate) fn over_path(maps: &'a Maps<'a>) -> Density<'a> {
         Density { maps, mean: 1.0, largest: 1.0, samples: Vec::new(), cumulative: Vec::new(), cell: (0.0, 0.0) }
     }
 
     /// The density of `maps` over `region`, its mean and largest value sampled on a grid.
-    pub fn over(region: &Polygon, maps: &'a Maps<'a>) -> Density<'a> {
+    pub(crate) fn over(region: &Polygon, maps: &'a Maps<'a>) -> Density<'a> {
         if maps.is_uniform() {
             return Self::over_path(maps);
         }
@@ -428,7 +428,7 @@ impl<'a> Density<'a> {
 
 /// A point inside a simple polygon: the midpoint of the widest inside stretch of the horizontal
 /// line through the middle of its bounds.
-pub fn interior_point(region: &Polygon) -> Point {
+pub(crate) fn interior_point(region: &Polygon) -> Point {
     let bounds = region.bounds();
     let y = bounds.center().y;
     let vertices = region.vertices();

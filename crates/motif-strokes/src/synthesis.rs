@@ -15,7 +15,7 @@ use crate::seeds::{Density, lloyd_path, lloyd_region};
 
 /// Seed positions on the target and their neighbour graph.
 #[derive(Debug, Clone)]
-pub struct Layout {
+pub(crate) struct Layout {
     /// Seed positions in document coordinates.
     pub positions: Vec<Point>,
     /// Angle by which a reference element is turned at each seed: the path tangent's angle minus
@@ -34,7 +34,7 @@ pub struct Layout {
 
 impl Layout {
     /// Offset of seed `to` from seed `from` in the pattern frame.
-    pub fn offset(&self, from: usize, to: usize) -> Vec2 {
+    pub(crate) fn offset(&self, from: usize, to: usize) -> Vec2 {
         let mut d = self.coords[to] - self.coords[from];
         if let Some(period) = self.period {
             d.x -= period * (d.x / period).round();
@@ -43,19 +43,19 @@ impl Layout {
     }
 
     /// Number of seeds.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.positions.len()
     }
 
     /// True without seeds.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.positions.is_empty()
     }
 }
 
 /// Seeds along `path` (1D): Lloyd along the arc length, a chain graph, rotations from the path
 /// tangent averaged over one spacing (so that a finely flattened curve does not jitter them).
-pub fn layout_path(
+pub(crate) fn layout_path(
     path: &Polyline,
     count: usize,
     frame_angle: f64,
@@ -85,7 +85,7 @@ pub fn layout_path(
 }
 
 /// Seeds inside `region` (2D): clipped centroidal Voronoi by Lloyd, unskewed Delaunay graph.
-pub fn layout_region(
+pub(crate) fn layout_region(
     region: &Polygon,
     count: usize,
     iterations: usize,
@@ -106,14 +106,14 @@ pub fn layout_region(
 
 /// Each reference element's k-ring neighbourhood with offsets in the pattern frame.
 #[derive(Debug, Clone)]
-pub struct ReferenceRings {
+pub(crate) struct ReferenceRings {
     starts: Vec<usize>,
     members: Vec<Member>,
 }
 
 impl ReferenceRings {
     /// The k-rings of every reference element.
-    pub fn new(analysis: &Analysis, rings: usize) -> ReferenceRings {
+    pub(crate) fn new(analysis: &Analysis, rings: usize) -> ReferenceRings {
         let mut scratch = RingScratch::default();
         let mut ring = Vec::new();
         let mut starts = vec![0];
@@ -130,17 +130,17 @@ impl ReferenceRings {
     }
 
     /// The neighbourhood of reference element `i`.
-    pub fn get(&self, i: usize) -> &[Member] {
+    pub(crate) fn get(&self, i: usize) -> &[Member] {
         &self.members[self.starts[i]..self.starts[i + 1]]
     }
 
     /// Total number of members over all neighbourhoods.
-    pub fn member_count(&self) -> usize {
+    pub(crate) fn member_count(&self) -> usize {
         self.members.len()
     }
 
     /// Number of reference elements.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.starts.len() - 1
     }
 }
@@ -151,7 +151,7 @@ const PARALLEL_WORK: usize = 200_000;
 
 /// The result of growing a pattern over a layout.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Growth {
+pub(crate) struct Growth {
     /// Reference element copied to each seed.
     pub assigned: Vec<u32>,
     /// Whether each seed found at least one candidate within the thresholds (false: fell back to
@@ -181,7 +181,7 @@ fn centre_seed(layout: &Layout) -> usize {
 
 /// Reusable buffers for scoring one seed against every reference neighbourhood.
 #[derive(Default)]
-pub struct SeedScratch {
+pub(crate) struct SeedScratch {
     ring: RingScratch,
     members: Vec<u32>,
     known: Vec<Member>,
@@ -192,7 +192,7 @@ pub struct SeedScratch {
 
 /// Scores every reference neighbourhood against the elements already assigned around `seed`
 /// (those not `u32::MAX`), into `scratch.violations`. Returns false when no neighbour is known yet.
-pub fn score_seed(
+pub(crate) fn score_seed(
     layout: &Layout,
     seed: usize,
     rings: usize,
@@ -236,7 +236,7 @@ pub fn score_seed(
 /// for each seed a random reference element among those whose k-ring matches the seed's known
 /// neighbours, or the best match when none does (§3.1, §3.2). Only `usable` reference elements
 /// are copied (fragments cut by the reference's frame are not).
-pub fn grow(
+pub(crate) fn grow(
     layout: &Layout,
     rings: usize,
     reference: &ReferenceRings,

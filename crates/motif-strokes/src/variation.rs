@@ -48,7 +48,7 @@ fn axis_difference(to: f64, from: f64) -> f64 {
 /// parameter's matching threshold of the element's own value form a set; one is picked at random
 /// and replaces it. `amount = 0` leaves every element unchanged; at 1 the exchanged values stay
 /// within the perceptual thresholds, so elements never become too different from the reference.
-pub fn exchange(
+pub(crate) fn exchange(
     assigned: &[u32],
     analysis: &Analysis,
     limits: &Limits,
@@ -106,7 +106,7 @@ pub fn exchange(
 /// path, `√(A_tar / A_ref)` in a region), so that a target neighbourhood shaped like the
 /// reference one reproduces the reference displacement, and the result is a length in 2D too.
 /// Returns the new positions in pattern-frame coordinates (see [`Layout::coords`]).
-pub fn shifted_coords(layout: &Layout, assigned: &[u32], analysis: &Analysis) -> Vec<Option<Point>> {
+pub(crate) fn shifted_coords(layout: &Layout, assigned: &[u32], analysis: &Analysis) -> Vec<Option<Point>> {
     let minimum = Analysis::shift_neighbours(analysis.along_path);
     let mut offsets: Vec<Vec2> = Vec::new();
     (0..layout.len())

@@ -33,7 +33,7 @@ pub struct NearestNeighbourField {
 }
 
 /// Largest source side the PNG encoding holds (12 bits per coordinate).
-pub const MAX_ENCODED_SIDE: usize = 4096;
+pub(crate) const MAX_ENCODED_SIDE: usize = 4096;
 
 impl NearestNeighbourField {
     /// Encodes the field as an image: red = x mod 256, green = y mod 256, blue = (x / 256) +

@@ -90,7 +90,7 @@ pub(crate) struct LevelSpec<'s, 'a, I> {
 
 impl<'a> Level<'a> {
     /// Stacks and weights the images of one level.
-    pub fn new<I: ChannelImage>(spec: LevelSpec<'_, 'a, I>) -> Level<'a> {
+    pub(crate) fn new<I: ChannelImage>(spec: LevelSpec<'_, 'a, I>) -> Level<'a> {
         let patch = spec.patch;
         let radius = patch / 2;
         let style_channels = spec.style.channels();
@@ -184,25 +184,25 @@ impl<'a> Level<'a> {
     }
 
     /// Number of target pixels.
-    pub fn target_len(&self) -> usize {
+    pub(crate) fn target_len(&self) -> usize {
         self.target_width * self.target_height
     }
 
     /// Whether target patch centre `index` is searched.
     #[inline]
-    pub fn is_active(&self, index: usize) -> bool {
+    pub(crate) fn is_active(&self, index: usize) -> bool {
         self.active.as_ref().is_none_or(|active| active[index])
     }
 
     /// Whether target pixel `index` is written by voting.
     #[inline]
-    pub fn in_domain(&self, index: usize) -> bool {
+    pub(crate) fn in_domain(&self, index: usize) -> bool {
         self.domain.as_ref().is_none_or(|domain| domain[index])
     }
 
     /// Whether source centre `s` may serve target pixel `t` (segment restriction, §3.6).
     #[inline]
-    pub fn allowed(&self, t: usize, s: u32) -> bool {
+    pub(crate) fn allowed(&self, t: usize, s: u32) -> bool {
         match (&self.target_restrict, &self.source_labels) {
             (Some(restrict), Some(labels)) => {
                 let wanted = restrict[t];
@@ -214,13 +214,13 @@ impl<'a> Level<'a> {
 
     /// The first and one-past-last valid source centre coordinate on each axis.
     #[inline]
-    pub fn valid_x(&self) -> (usize, usize) {
+    pub(crate) fn valid_x(&self) -> (usize, usize) {
         (self.radius, self.source_width - self.radius)
     }
 
     /// See [`valid_x`](Self::valid_x).
     #[inline]
-    pub fn valid_y(&self) -> (usize, usize) {
+    pub(crate) fn valid_y(&self) -> (usize, usize) {
         (self.radius, self.source_height - self.radius)
     }
 
@@ -229,7 +229,7 @@ impl<'a> Level<'a> {
     /// reaches `limit`. `ROW` is the patch row length (`patch × channels` bytes) when fixed at
     /// compile time, else 0 (see [`row_distance_n`]).
     #[inline(always)]
-    pub fn distance<const ROW: usize>(&self, s: u32, x: usize, y: usize, limit: f32) -> f32 {
+    pub(crate) fn distance<const ROW: usize>(&self, s: u32, x: usize, y: usize, limit: f32) -> f32 {
         self.distance_from::<ROW>(s, x, y, 0, 0.0, limit)
     }
 
@@ -238,7 +238,7 @@ impl<'a> Level<'a> {
     /// misses (random source patches rarely sit in L2). `ROW` is the patch row length in bytes
     /// (`patch × channels`) when known at compile time, else 0 (see [`row_distance_n`]).
     #[inline(always)]
-    pub fn first_row<const ROW: usize>(&self, s: u32, x: usize, y: usize) -> f32 {
+    pub(crate) fn first_row<const ROW: usize>(&self, s: u32, x: usize, y: usize) -> f32 {
         let channels = self.channels;
         let row_len = self.patch * channels;
         let source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
@@ -254,7 +254,7 @@ impl<'a> Level<'a> {
     /// before their distances, these independent loads overlap their cache misses (a software
     /// prefetch without `unsafe`).
     #[inline(always)]
-    pub fn touch(&self, s: u32) -> u32 {
+    pub(crate) fn touch(&self, s: u32) -> u32 {
         let stride = self.source_width * self.channels;
         let start = (s as usize - self.radius * (self.source_width + 1)) * self.channels;
         (0..self.patch).map(|row| u32::from(self.source[start + row * stride])).sum()
@@ -277,7 +277,7 @@ impl<'a> Level<'a> {
     /// [`distance`](Self::distance) continued from patch row `first_row`, with `partial` the sum
     /// of the rows before it; `ROW` as in [`first_row`](Self::first_row).
     #[inline(always)]
-    pub fn distance_from<const ROW: usize>(
+    pub(crate) fn distance_from<const ROW: usize>(
         &self,
         s: u32,
         x: usize,
@@ -311,7 +311,7 @@ impl<'a> Level<'a> {
     /// stopped early is ≥ `limit` as the full one is, so the decisions are the same; a full sum
     /// adds the same terms in the same order, so it is the same value.
     #[inline(always)]
-    pub fn distance_small<const ROW: usize>(
+    pub(crate) fn distance_small<const ROW: usize>(
         &self,
         s: u32,
         x: usize,
@@ -337,7 +337,7 @@ impl<'a> Level<'a> {
 
     /// Like [`distance`](Self::distance) without early exit, split into the style part and the
     /// guide part (for the report; not a hot path).
-    pub fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32) {
+    pub(crate) fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32) {
         let (channels, style_channels) = (self.channels, self.style_channels);
         let row_len = self.patch * channels;
         let mut source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
@@ -359,7 +359,7 @@ impl<'a> Level<'a> {
     /// Replaces the target's style channels by `image` (target size, values in `[0, 1]`) and
     /// refreshes the padding. With `only_domain`, only pixels of the voting domain are rewritten
     /// (after a vote, the only ones that can have changed; the band in §3.7 mode).
-    pub fn set_target_style(&mut self, image: &FloatImage, only_domain: bool) {
+    pub(crate) fn set_target_style(&mut self, image: &FloatImage, only_domain: bool) {
         let domain = if only_domain { self.domain.as_deref() } else { None };
         let (channels, style_channels, radius) = (self.channels, self.style_channels, self.radius);
         let (width, height, padded_width) = (self.target_width, self.target_height, self.padded_width);

@@ -31,7 +31,7 @@ pub(crate) struct Occurrence {
 impl Occurrence {
     /// Penalty factors from ω_best, global or per segment (Eq. 6), counting the searched target
     /// patches of each label.
-    pub fn new(level: &Level, lambda: f32) -> Occurrence {
+    pub(crate) fn new(level: &Level, lambda: f32) -> Occurrence {
         let source_len = level.source_width * level.source_height;
         if lambda <= 0.0 {
             return Occurrence {
@@ -91,7 +91,7 @@ impl Occurrence {
 
     /// The penalty of source centre `s` with the snapshot Ω plus a tile's own changes.
     #[inline]
-    pub fn cost(&self, s: u32, delta: &OmegaDelta) -> f32 {
+    pub(crate) fn cost(&self, s: u32, delta: &OmegaDelta) -> f32 {
         if !self.enabled {
             return 0.0;
         }
@@ -102,12 +102,12 @@ impl Occurrence {
 
     /// The penalty of source centre `s` with the snapshot Ω only.
     #[inline]
-    pub fn snapshot_cost(&self, s: u32) -> f32 {
+    pub(crate) fn snapshot_cost(&self, s: u32) -> f32 {
         if !self.enabled { 0.0 } else { self.penalty[s as usize] }
     }
 
     /// Recomputes Ω exactly from the matches of the searched target patches.
-    pub fn refresh(&mut self, level: &Level, matches: &[u32]) {
+    pub(crate) fn refresh(&mut self, level: &Level, matches: &[u32]) {
         if !self.enabled {
             return;
         }
@@ -129,7 +129,7 @@ impl Occurrence {
     }
 
     /// Fraction of valid source patch centres used by at least one searched target patch.
-    pub fn coverage(level: &Level, matches: &[u32]) -> f64 {
+    pub(crate) fn coverage(level: &Level, matches: &[u32]) -> f64 {
         let mut used = vec![false; level.source_width * level.source_height];
         for (t, &s) in matches.iter().enumerate() {
             if level.is_active(t) {
@@ -232,7 +232,7 @@ pub(crate) struct OmegaDelta<'a> {
 impl<'a> OmegaDelta<'a> {
     /// A zeroed delta for the level's source with the penalty factors of `occurrence`, or an
     /// inert one when `occurrence` is `None` or off.
-    pub fn new(level: &Level, occurrence: Option<&'a Occurrence>) -> OmegaDelta<'a> {
+    pub(crate) fn new(level: &Level, occurrence: Option<&'a Occurrence>) -> OmegaDelta<'a> {
         let enabled = occurrence.filter(|o| o.enabled);
         let factors: &'a [f32] = enabled.map_or(&[], |o| &o.factors);
         let snapshot: &'a [f32] = enabled.map_or(&[], |o| &o.penalty);
@@ -264,7 +264,7 @@ impl<'a> OmegaDelta<'a> {
 
     /// Records that one target patch moved from centre `old` to centre `new`: every source patch
     /// overlapping either changes its Ω by the overlap area.
-    pub fn moved(&mut self, old: u32, new: u32) {
+    pub(crate) fn moved(&mut self, old: u32, new: u32) {
         if self.values.is_empty() {
             return;
         }
@@ -317,7 +317,7 @@ impl<'a> OmegaDelta<'a> {
     }
 
     /// Restores everything this tile changed to the snapshot, ready for the next tile.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         if self.values.is_empty() {
             return;
         }

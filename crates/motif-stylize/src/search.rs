@@ -52,7 +52,7 @@ pub(crate) struct Field {
 
 impl Field {
     /// Uniformly random valid centres (within the target pixel's segment when restricted).
-    pub fn random(level: &Level, streams: &SeedStreams) -> Field {
+    pub(crate) fn random(level: &Level, streams: &SeedStreams) -> Field {
         let (x0, x1) = level.valid_x();
         let (y0, y1) = level.valid_y();
         let width = level.target_width;
@@ -69,7 +69,7 @@ impl Field {
 
     /// The given starting centres (source index, e.g. composed from the pre-synthesized textures'
     /// fields), each kept where it is a valid centre the pixel may use, else a random one.
-    pub fn seeded(level: &Level, seeds: &[u32], streams: &SeedStreams) -> Field {
+    pub(crate) fn seeded(level: &Level, seeds: &[u32], streams: &SeedStreams) -> Field {
         let (x0, x1) = level.valid_x();
         let (y0, y1) = level.valid_y();
         let width = level.target_width;
@@ -95,7 +95,7 @@ impl Field {
     /// The coarser level's field doubled: target pixel `(x, y)` takes the coarse match of
     /// `(x/2, y/2)` scaled by two plus the same sub-pixel offset, clamped to valid centres
     /// (Algorithm 1's upsampling of B' through the field).
-    pub fn upsample(coarse: &Field, coarse_level: &Level, level: &Level, streams: &SeedStreams) -> Field {
+    pub(crate) fn upsample(coarse: &Field, coarse_level: &Level, level: &Level, streams: &SeedStreams) -> Field {
         let (x0, x1) = level.valid_x();
         let (y0, y1) = level.valid_y();
         let width = level.target_width;
@@ -123,7 +123,7 @@ impl Field {
     }
 
     /// Recomputes every searched pixel's distance D (after the target changed by voting).
-    pub fn recompute_costs(&mut self, level: &Level) {
+    pub(crate) fn recompute_costs(&mut self, level: &Level) {
         specialize!(level, recompute_costs_n)(self, level);
     }
 }
@@ -142,7 +142,7 @@ fn recompute_costs_n<const ROW: usize>(field: &mut Field, level: &Level) {
 
 impl Field {
     /// Mean over searched pixels of D + penalty (with the occurrence snapshot).
-    pub fn mean_energy(&self, level: &Level, occurrence: &Occurrence) -> f64 {
+    pub(crate) fn mean_energy(&self, level: &Level, occurrence: &Occurrence) -> f64 {
         let width = level.target_width;
         let rows: Vec<(f64, usize)> = (0..level.target_height)
             .into_par_iter()

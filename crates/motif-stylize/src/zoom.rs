@@ -15,7 +15,7 @@ use crate::error::Error;
 use crate::{Guide, Input, Output, Params, synthesize};
 
 /// The centre `1 / factor` of `image`, scaled back up to its size (bilinear).
-pub fn zoom_into(image: &FloatImage, factor: f64) -> FloatImage {
+pub(crate) fn zoom_into(image: &FloatImage, factor: f64) -> FloatImage {
     let (width, height) = (image.width(), image.height());
     let mut out = FloatImage::new(width, height, image.channels());
     let (crop_width, crop_height) = (width as f64 / factor, height as f64 / factor);
@@ -31,7 +31,7 @@ pub fn zoom_into(image: &FloatImage, factor: f64) -> FloatImage {
 
 /// `image` as seen `factor` times farther away, at its own size: reduced (a Gaussian pyramid,
 /// then bilinear for the rest of the factor) and scaled back up.
-pub fn blurred_by(image: &FloatImage, factor: f64) -> FloatImage {
+pub(crate) fn blurred_by(image: &FloatImage, factor: f64) -> FloatImage {
     let (width, height) = (image.width(), image.height());
     let mut reduced = image.clone();
     let mut remaining = factor;

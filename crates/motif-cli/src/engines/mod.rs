@@ -16,10 +16,10 @@ use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, Video
 use crate::context::Context;
 use crate::registry::Engine;
 
-pub mod curve;
-pub mod points;
-pub mod strokes;
-pub mod stylize;
+pub(crate) mod curve;
+pub(crate) mod points;
+pub(crate) mod strokes;
+pub(crate) mod stylize;
 
 /// A job's long help: its summary, then its details.
 fn long_about<J: Job>() -> String {
@@ -83,7 +83,7 @@ impl EngineCommand {
 }
 
 /// Every engine, in the order `demo` and `bench` run them.
-pub const ENGINES: &[&dyn Engine] = &[&curve::Curve, &points::Points, &strokes::Strokes, &stylize::Stylize];
+pub(crate) const ENGINES: &[&dyn Engine] = &[&curve::Curve, &points::Points, &strokes::Strokes, &stylize::Stylize];
 
 #[cfg(test)]
 mod tests {

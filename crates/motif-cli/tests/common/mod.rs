@@ -6,21 +6,21 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::process::{Command, Output};
 
-pub fn motif(dir: &Path, args: &[&str]) -> Output {
+pub(crate) fn motif(dir: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_motif")).current_dir(dir).args(args).output().unwrap()
 }
 
-pub fn ok(output: &Output) {
+pub(crate) fn ok(output: &Output) {
     assert!(output.status.success(), "stderr: {}", String::from_utf8_lossy(&output.stderr));
 }
 
-pub fn error_of(output: &Output) -> String {
+pub(crate) fn error_of(output: &Output) -> String {
     assert!(!output.status.success(), "expected a failure");
     String::from_utf8_lossy(&output.stderr).into_owned()
 }
 
 /// A jittered 12 × 12 grid (spacing 1) with a `shade` attribute striped along y, as CSV.
-pub fn grid_csv() -> String {
+pub(crate) fn grid_csv() -> String {
     let mut text = String::from("x,y,shade\n");
     for y in 0..12 {
         for x in 0..12 {

@@ -2,7 +2,7 @@
 
 /// The built-in hex exemplar, the attributes it snaps (`shade`), its mean spacing and the page's
 /// scale: 14 canvas pixels per exemplar spacing (from the bounding box).
-pub fn hex_panel() -> (motif_points::PointSet, Vec<String>, f64, f64) {
+pub(crate) fn hex_panel() -> (motif_points::PointSet, Vec<String>, f64, f64) {
     let exemplar = motif_points::samples::hex_exemplar(9, 8, 0.08, 1);
     let (mut low, mut high) = ([f64::MAX; 2], [f64::MIN; 2]);
     for i in 0..exemplar.len() {

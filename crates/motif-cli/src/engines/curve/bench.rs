@@ -19,7 +19,7 @@ use serde_json::{Value, json};
 
 /// One case of `cases.json`.
 #[derive(Debug, Deserialize)]
-pub struct CorpusCase {
+pub(super) struct CorpusCase {
     pub name: String,
     pub exemplar: String,
     pub path: String,
@@ -42,7 +42,7 @@ fn one() -> f64 {
 }
 
 /// The parameters of a case (the exact solver).
-pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
+pub(super) fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
     let mut params = CurveParams::default();
     params.width = case.width;
     params.piece_length = case.piece_length;
@@ -53,7 +53,11 @@ pub fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
 }
 
 /// One run of a case: the output, its wall time and its patch fidelity.
-pub fn run(folder: &Path, case: &CorpusCase, method: Method) -> anyhow::Result<(CurveOutput, f64, PatchFidelity)> {
+pub(super) fn run(
+    folder: &Path,
+    case: &CorpusCase,
+    method: Method,
+) -> anyhow::Result<(CurveOutput, f64, PatchFidelity)> {
     run_with(folder, case, params_of(case, method))
 }
 
@@ -106,7 +110,7 @@ fn coarse_figures(folder: &Path, case: &CorpusCase, exact: f64) -> anyhow::Resul
 
 /// The figures of one case: synthesis (the exact solver, then the coarse-to-fine one) and the
 /// repeat baseline.
-pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
+pub(super) fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
     let (output, seconds, fidelity) = run(folder, case, Method::Synthesis)?;
     let coarse = coarse_figures(folder, case, output.report.dp_optimum)?;
     let (_, repeat_seconds, repeat) = run(folder, case, Method::Repeat)?;
@@ -137,7 +141,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
 /// from scratch: a real exemplar along the hand-drawn flourish in 50 pieces, one bump of the curve
 /// (as a dragged control point makes) moved ten times; `samples_per_axis` 1 is an interactive
 /// preview's anti-aliasing, 3 the default.
-pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
+pub(super) fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
     let folder = corpus_folder("curve");
     let exemplar = motif_io::read_image(&folder.join("chain_round.png"))?;
     let base = super::read_curve(&folder.join("flourish.svg"), 0.1)?;
@@ -197,7 +201,7 @@ pub fn incremental_edit(samples_per_axis: usize) -> anyhow::Result<Value> {
 }
 
 /// The corpus figures: every case `selected` accepts (only the test cases when `quick`).
-pub fn corpus_figures(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
+pub(super) fn corpus_figures(selected: &dyn Fn(&str) -> bool, quick: bool) -> anyhow::Result<Value> {
     let folder = corpus_folder("curve");
     let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();
@@ -282,7 +286,7 @@ fn bench_case(width: usize, height: usize, rows: usize) -> anyhow::Result<Value>
 
 /// Figures for `motif bench`: DP milliseconds per row of both solvers on generated exemplars of
 /// the paper's two sizes (199×82 and 325×64), with C equal to the exemplar height.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let corpus_selected = |name: &str| bench.selects(name, "corpus");
     if bench.quick {
         return Ok(json!({

@@ -6,7 +6,7 @@ use super::heart_svg;
 use crate::gallery::{Demo, DemoCase};
 
 /// Built-in examples for `motif demo`.
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+pub(super) fn demo(demo: &mut Demo) -> anyhow::Result<()> {
     let chain = gold_chain(160, 44, 32.0, 28.0);
     motif_io::write_png(&demo.path("curve-chain.png"), &chain)?;
     motif_io::write_text(&demo.path("curve-heart.svg"), &heart_svg(200.0, 190.0, 330.0))?;

@@ -65,7 +65,7 @@ pub struct CurveArgs {
 }
 
 /// Reads the curve: an SVG path or a point list.
-pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
+pub(crate) fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     if extension == "svg" {
         let document = motif_io::read_svg(path)?;
@@ -91,7 +91,7 @@ pub fn read_curve(path: &Path, tolerance: f64) -> anyhow::Result<Polyline> {
 }
 
 /// Runs `motif curve`.
-pub fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs: Vec<&Path> = args.exemplar.iter().map(PathBuf::as_path).collect();
     inputs.push(&args.path);
     inputs.extend(args.avoid.as_deref());
@@ -233,7 +233,7 @@ fn heart_svg(cx: f64, cy: f64, size: f64) -> String {
 }
 
 /// The curve engine in the registry.
-pub struct Curve;
+pub(crate) struct Curve;
 
 impl crate::registry::Engine for Curve {
     fn name(&self) -> &'static str {

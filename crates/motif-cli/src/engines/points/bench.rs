@@ -127,7 +127,7 @@ fn surface(seed: u64) -> anyhow::Result<Value> {
 
 /// Figures for `motif bench`: the paper's three sizes (Table 1) on generated exemplars, and every
 /// case of the real-data corpus with its fidelity against the random and tiled baselines.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if bench.quick {
         let exemplar = hex_exemplar(8, 8, 0.1, bench.seed);
         let box2 = Domain::Box { min: vec![0.0; 2], max: vec![4.0, 4.0] };

@@ -14,7 +14,7 @@ use crate::suite::{corpus_folder, read_cases};
 
 /// One case of `cases.json` (written by `data/real/points/make_manifest.py`).
 #[derive(Debug, Deserialize)]
-pub struct CorpusCase {
+pub(super) struct CorpusCase {
     pub name: String,
     pub file: String,
     pub kind: String,
@@ -27,7 +27,7 @@ pub struct CorpusCase {
 }
 
 /// Runs one corpus case and returns its figures, with the targets checked.
-pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
+pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
     let table = motif_io::read_points(&folder.join(&case.file))?;
     let (exemplar, discrete) = table_to_points(&table, &format!("corpus case {}", case.name))?;
     if case.domain.len() != exemplar.dimension {
@@ -79,7 +79,7 @@ const SLOW_CASES: [&str; 1] = ["chain_contours"];
 
 /// The corpus figures: every case of the manifest that `selected` accepts (slow cases only when
 /// `named` accepts them), and a summary of how many meet each target.
-pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+pub(super) fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
     let folder = corpus_folder("points");
     let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut figures = serde_json::Map::new();

@@ -16,7 +16,7 @@ fn write_set(path: &Path, set: &PointSet) -> anyhow::Result<()> {
 }
 
 /// Built-in examples for `motif demo`.
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+pub(super) fn demo(demo: &mut Demo) -> anyhow::Result<()> {
     hex_cases(demo)?;
     element_and_lattice_cases(demo)?;
     let bull = atoms_in_bull(demo)?;

@@ -11,7 +11,7 @@ use super::table_to_points;
 /// The element mesh placed on every output element (each free point, each `element` id at its
 /// points' centroid), scaled so that its largest side is `size` exemplar units (default: the
 /// exemplar's mean spacing), then by the frame there.
-pub fn place_elements(
+pub(super) fn place_elements(
     output: &motif_jobs::points::Output,
     mesh: &motif_core::TriangleMesh,
     side: f64,
@@ -53,7 +53,7 @@ pub fn place_elements(
 }
 
 /// `--surface-directions`: `curvature`, `X,Y,Z` or a file of one vector per vertex.
-pub fn surface_directions(spec: Option<&str>) -> anyhow::Result<DirectionsSpec> {
+pub(super) fn surface_directions(spec: Option<&str>) -> anyhow::Result<DirectionsSpec> {
     let Some(spec) = spec else { return Ok(DirectionsSpec::Curvature) };
     if spec == "curvature" {
         return Ok(DirectionsSpec::Curvature);

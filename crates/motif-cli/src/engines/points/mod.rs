@@ -108,7 +108,7 @@ pub struct PointsArgs {
 
 /// Converts a point table into a point set (see `motif_jobs::columns`); integer columns other
 /// than `element` are attributes that are always discrete (returned second).
-pub fn table_to_points(table: &PointTable, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
+pub(crate) fn table_to_points(table: &PointTable, what: &str) -> anyhow::Result<(PointSet, Vec<String>)> {
     let columns: Vec<motif_jobs::columns::Column> = table
         .columns
         .iter()
@@ -123,7 +123,7 @@ pub fn table_to_points(table: &PointTable, what: &str) -> anyhow::Result<(PointS
 }
 
 /// Converts a point set into a point table (attributes listed in `integer` are written as ints).
-pub fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
+pub(crate) fn points_to_table(set: &PointSet, integer: &[String]) -> PointTable {
     let columns = motif_jobs::columns::columns(set, integer);
     let rows = set.len();
     let values = (0..rows).flat_map(|row| columns.iter().map(move |column| column.values[row])).collect();
@@ -215,7 +215,7 @@ fn job_of(args: &PointsArgs, seed: u64) -> anyhow::Result<PointsJob> {
 }
 
 /// Runs `motif points`.
-pub fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()> {
     let inputs = input_paths(args);
     context.check_output(&args.out, &inputs)?;
     for extra in args.preview.iter().chain(&args.surface_out) {
@@ -400,7 +400,7 @@ fn summary(output: &Output) -> String {
 }
 
 /// The points engine in the registry.
-pub struct Points;
+pub(crate) struct Points;
 
 impl crate::registry::Engine for Points {
     fn name(&self) -> &'static str {

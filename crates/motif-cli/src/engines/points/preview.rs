@@ -232,7 +232,7 @@ fn draw_statistics(svg: &mut SvgWriter, fidelity: &Fidelity, left: f64, size: f6
 
 /// The preview image's SVG (rendered at scale 1): exemplar and output side by side, then their
 /// statistics.
-pub fn preview_svg(
+pub(super) fn preview_svg(
     exemplar: &PointSet,
     output: &PointSet,
     fidelity: &Fidelity,

@@ -47,7 +47,7 @@ fn case_figures(output: &Output, total_ms: f64, target_ms: f64) -> Value {
 /// reference along a path 10× its length, a 120-element 2D reference of three-stroke figures in a
 /// region 10× its area (all stages, median of several runs), and the clustering speed-up of the
 /// R-tree queue over the paper's full scan.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     let mut all = serde_json::Map::new();
     if !bench.quick {
         let corpus = super::corpus::bench(bench.seed, &|name| bench.selects(name, "corpus"))?;

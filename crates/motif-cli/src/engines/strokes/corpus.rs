@@ -18,7 +18,7 @@ use crate::suite::{corpus_folder, read_cases};
 
 /// One case of `cases.json`.
 #[derive(Debug, Deserialize)]
-pub struct CorpusCase {
+pub(super) struct CorpusCase {
     pub name: String,
     pub file: String,
     pub kind: String,
@@ -41,7 +41,7 @@ fn figures(f: &Fidelity) -> Value {
 }
 
 /// Runs one corpus case.
-pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
+pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
     let document = motif_io::read_svg(&folder.join(&case.file))?;
     let strokes = reference_from_svg(&document, 0.1)?;
     let [width, height] = case.rect;
@@ -97,7 +97,7 @@ pub fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<V
 }
 
 /// The corpus figures of every case `selected` accepts.
-pub fn bench(seed: u64, selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+pub(super) fn bench(seed: u64, selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
     let folder = corpus_folder("strokes");
     let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut all = serde_json::Map::new();
@@ -116,7 +116,7 @@ fn elements_at(strokes: &[motif_strokes::Stroke], scale: f64) -> anyhow::Result<
 
 /// The inferred ε of one case against its hand-picked one (`scale` in `cases.json`), with the
 /// element counts of both and the count a person makes.
-pub fn scale_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
+pub(super) fn scale_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
     let document = motif_io::read_svg(&folder.join(&case.file))?;
     let strokes = reference_from_svg(&document, 0.1)?;
     let params = Params::default();
@@ -133,7 +133,7 @@ pub fn scale_case(folder: &Path, case: &CorpusCase) -> anyhow::Result<Value> {
 }
 
 /// [`scale_case`] for every case `selected` accepts.
-pub fn scale_bench(selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
+pub(super) fn scale_bench(selected: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
     let folder = corpus_folder("strokes");
     let cases: Vec<CorpusCase> = read_cases(&folder)?;
     let mut all = serde_json::Map::new();

@@ -23,7 +23,7 @@ fn strs(items: &[&str]) -> Vec<String> {
 }
 
 /// The built-in examples: sketchy hatching along a wave (1D) and small figures in a blob (2D).
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+pub(super) fn demo(demo: &mut Demo) -> anyhow::Result<()> {
     hatching_along_wave(demo)?;
     brushes_along_arc(demo)?;
     figures_in_blob(demo)?;

@@ -170,7 +170,7 @@ fn cluster_colour(index: usize) -> [u8; 4] {
 
 /// The analysed reference as SVG: strokes in cluster colours, element boxes, neighbour graph.
 /// `scale` is ε as the label shows it.
-pub fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height: f64, scale: &str) -> String {
+pub(crate) fn analysis_svg(analysis: &Analysis, strokes: &[Stroke], width: f64, height: f64, scale: &str) -> String {
     let mut writer = SvgWriter::new(width, height);
     let thin = (0.01 * width.max(height)).clamp(0.3, 1.0);
     writer.begin_group("graph");
@@ -239,7 +239,7 @@ fn summary(run: &StrokesRun, out: &Path) -> String {
 }
 
 /// Runs `motif strokes`.
-pub fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run(args: &StrokesArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs: Vec<&Path> = vec![&args.reference];
     inputs.extend(args.along.as_deref());
     inputs.extend(args.region.as_deref());
@@ -316,7 +316,7 @@ fn blob(cx: f64, cy: f64, radius: f64) -> BezPath {
 }
 
 /// The strokes engine in the registry.
-pub struct Strokes;
+pub(crate) struct Strokes;
 
 impl crate::registry::Engine for Strokes {
     fn name(&self) -> &'static str {

@@ -55,7 +55,7 @@ pub(super) fn timed<I: motif_core::ChannelImage>(
 
 /// Figures for `motif bench`: CPU-seconds per megapixel on the two ebsynth-like workloads,
 /// Table 1 (band 0/2/4/8/full on a 360×360 5-segment map, one thread), PatchMatch/exact energy.
-pub fn bench(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     // `--case 0.15mp`, `1mp`, `table1`, `exact` or `memory` runs only those parts (default: all).
     let selected = |key: &str| bench.selects(key, "generated");
     let mut figures = Map::new();

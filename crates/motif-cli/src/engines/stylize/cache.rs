@@ -15,7 +15,7 @@ use motif_jobs::stylize::{NearestNeighbourField, SegmentTexture};
 use serde::{Deserialize, Serialize};
 
 /// The manifest's file name.
-pub const MANIFEST: &str = "presynth.json";
+pub(super) const MANIFEST: &str = "presynth.json";
 
 /// The manifest of a presynth folder.
 #[derive(Serialize, Deserialize, Debug)]
@@ -87,7 +87,7 @@ fn parse_hex(text: &str) -> anyhow::Result<Vec<f32>> {
 
 /// Writes the textures, their fields and, last, the manifest into `dir` (which must exist).
 /// Returns the generation id.
-pub fn write(dir: &Path, patch_size: usize, textures: &[SegmentTexture]) -> anyhow::Result<String> {
+pub(super) fn write(dir: &Path, patch_size: usize, textures: &[SegmentTexture]) -> anyhow::Result<String> {
     let mut segments = Vec::with_capacity(textures.len());
     for (index, texture) in textures.iter().enumerate() {
         let file = format!("segment-{}.png", index + 1);
@@ -131,7 +131,7 @@ fn read_checked(dir: &Path, file: &str, expected: Option<&String>) -> anyhow::Re
 
 /// The textures of the cache in `dir` for a style of `style`'s size and channels, made with
 /// `patch_size`, and the cache's generation id (`None` for caches of older versions).
-pub fn read(
+pub(super) fn read(
     dir: &Path,
     style: &impl motif_core::ChannelImage,
     patch_size: usize,

@@ -12,7 +12,7 @@ fn to_png(image: &FloatImage) -> RgbaImage {
 
 /// Built-in examples: a map stylized with segments, the pre-synthesized speed-up, a tileable
 /// texture.
-pub fn demo(demo: &mut Demo) -> anyhow::Result<()> {
+pub(super) fn demo(demo: &mut Demo) -> anyhow::Result<()> {
     map_cases(demo)?;
     tile_case(demo)?;
     stone_hole_case(demo)?;

@@ -91,7 +91,7 @@ pub struct InpaintArgs {
 }
 
 /// Runs `motif inpaint`.
-pub fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::Result<()> {
     context.check_output(&args.out, &[&args.image, &args.mask])?;
     super::check_debug(args.debug_dir.as_deref(), &[&args.image, &args.mask], context)?;
     let (image, mask) = (load(&args.image, context.max_memory)?, load(&args.mask, context.max_memory)?);
@@ -139,7 +139,7 @@ pub struct ZoomArgs {
 }
 
 /// Runs `motif zoom`.
-pub fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_zoom(args: &ZoomArgs, context: &mut Context) -> anyhow::Result<()> {
     let names: Vec<PathBuf> =
         (1..=args.options.own.levels.min(64)).map(|level| args.out_dir.join(format!("zoom-{level:02}.png"))).collect();
     // The folder is made after the run, if missing.

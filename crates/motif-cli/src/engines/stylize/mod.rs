@@ -10,8 +10,8 @@ mod native_bench;
 mod video;
 mod video_bench;
 
-pub use masks::{InpaintArgs, ZoomArgs, run_inpaint, run_zoom};
-pub use video::{VideoArgs, run_video};
+pub(crate) use masks::{InpaintArgs, ZoomArgs, run_inpaint, run_zoom};
+pub(crate) use video::{VideoArgs, run_video};
 
 use std::path::{Path, PathBuf};
 
@@ -160,7 +160,7 @@ fn write_debug(dir: &Path, output: &Output) -> anyhow::Result<()> {
 }
 
 /// Runs `motif stylize`.
-pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<()> {
     let (style_path, out) = (&args.style, &args.out);
     let pairs: Vec<(&PathBuf, &PathBuf)> = args.guide.chunks_exact(2).map(|pair| (&pair[0], &pair[1])).collect();
     let mut inputs: Vec<&Path> = vec![style_path.as_path()];
@@ -245,7 +245,7 @@ pub fn run_stylize(args: &StylizeArgs, context: &mut Context) -> anyhow::Result<
 }
 
 /// Runs `motif presynth`.
-pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Result<()> {
     // The folder's files are replaced: no input may live there, and it must be a folder.
     context.check_output_folder("--out-dir", &args.out_dir, &[&args.style, &args.guide])?;
     let style_image = load(&args.style, context.max_memory)?;
@@ -276,7 +276,7 @@ pub fn run_presynth(args: &PresynthArgs, context: &mut Context) -> anyhow::Resul
 }
 
 /// Runs `motif texture`.
-pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<()> {
     let mut inputs = vec![args.exemplar.as_path()];
     inputs.extend(args.masking.inputs());
     context.check_output(&args.out, &inputs)?;
@@ -317,7 +317,7 @@ pub fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::Result<
 }
 
 /// The stylize engine in the registry.
-pub struct Stylize;
+pub(crate) struct Stylize;
 
 impl crate::registry::Engine for Stylize {
     fn name(&self) -> &'static str {

@@ -27,7 +27,7 @@ fn tiled(exemplar: &ByteImage, side: usize) -> anyhow::Result<ByteImage> {
 /// the pattern's (below 1: washed out) of the first round. The middle exemplar also runs with
 /// every level searching the whole exemplar (`local_search_above` = max), the reference for the
 /// fidelity of the local refinement.
-pub fn texture_native(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn texture_native(bench: &Bench) -> anyhow::Result<Value> {
     let folder = crate::suite::corpus_folder("stylize");
     let image = motif_io::read_image(&folder.join("stone33.png"))?;
     let pattern = motif_jobs::stylize::style_image_channels(&image);

@@ -56,7 +56,7 @@ fn read_frame(path: &Path, size: Option<(usize, usize)>, max_memory: u64) -> any
 }
 
 /// Runs `motif video`.
-pub fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> {
+pub(crate) fn run_video(args: &VideoArgs, context: &mut Context) -> anyhow::Result<()> {
     let pattern = FramePattern::parse(&args.frames).context("--frames")?;
     let out = FramePattern::parse(&args.out).context("--out")?;
     let frames = pattern.find_consecutive().context("--frames")?;

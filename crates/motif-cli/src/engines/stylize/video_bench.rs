@@ -57,7 +57,7 @@ fn ideal_error(footage: &Footage, style: &FloatImage, frames: &[FloatImage]) -> 
     total / count.max(1) as f64
 }
 
-pub fn video(bench: &Bench) -> anyhow::Result<Value> {
+pub(super) fn video(bench: &Bench) -> anyhow::Result<Value> {
     let (frame_count, width, height) = if bench.quick { (4, 96, 64) } else { (16, 192, 128) };
     let (photo, canvas) = photo_and_canvas()?;
     let (footage, style) = footage(&photo, &canvas, frame_count, width, height);
@@ -117,7 +117,7 @@ fn per_frame(footage: &Footage, style: &FloatImage, params: &Params) -> anyhow::
 /// `motif demo`'s video case: 16 frames over the photo, a keyframe painted over the first, the
 /// command on them, and a strip (frames 0, 5, 10, 15: the footage, per-frame stylization, the
 /// video) for the gallery.
-pub fn demo_case(demo: &mut Demo) -> anyhow::Result<()> {
+pub(super) fn demo_case(demo: &mut Demo) -> anyhow::Result<()> {
     let (photo, canvas) = photo_and_canvas()?;
     let (footage, style) = footage(&photo, &canvas, 16, 192, 128);
     let (input_dir, output_dir) = (demo.path("video-in"), demo.path("video-out"));
