@@ -139,13 +139,7 @@ impl CurvePanel {
         let start = web_time::Instant::now();
         let job: CurveJob = serde_json::from_str(job).map_err(|e| error(format!("curve options: {e}")))?;
         let curve = polyline(points, "curve")?;
-        let inputs = CurveInputs {
-            exemplar: &self.exemplar,
-            more_exemplars: &[],
-            curve: &curve,
-            avoidance: None,
-            tile_images: [None; 3],
-        };
+        let inputs = CurveInputs::new(&self.exemplar, &curve);
         let run = job.run_in_session(inputs, &mut self.session, &mut NoProgress).map_err(error)?;
         Ok(image_result(&run.output.image, &run.figures, start))
     }

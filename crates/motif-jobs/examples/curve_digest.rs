@@ -27,13 +27,7 @@ fn main() {
         .collect();
     let curve = Polyline::new(points.clone(), false).expect("a polyline");
     let job: CurveJob = serde_json::from_str(JOB).expect("job");
-    let inputs = CurveInputs {
-        exemplar: &exemplar,
-        more_exemplars: &[],
-        curve: &curve,
-        avoidance: None,
-        tile_images: [None; 3],
-    };
+    let inputs = CurveInputs::new(&exemplar, &curve);
     let run = job.run(inputs, &mut motif_core::NoProgress).expect("run");
     let image = &run.output.image;
     let mut digest = 0xcbf2_9ce4_8422_2325_u64;

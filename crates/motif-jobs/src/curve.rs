@@ -252,6 +252,13 @@ pub struct CurveInputs<'a> {
     pub tile_images: [Option<&'a RgbaImage>; 3],
 }
 
+impl<'a> CurveInputs<'a> {
+    /// One exemplar along `curve`: no more exemplars, no avoidance map, no tile images.
+    pub fn new(exemplar: &'a RgbaImage, curve: &'a Polyline) -> Self {
+        Self { exemplar, more_exemplars: &[], curve, avoidance: None, tile_images: [None; 3] }
+    }
+}
+
 impl CurveJob {
     /// A job with the given width and piece length and every other option at its default
     /// ([`default`](Default::default) leaves the width and piece length to be inferred).

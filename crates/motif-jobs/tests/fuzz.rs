@@ -117,13 +117,7 @@ proptest! {
     fn curve_descriptions(description in description(curve_base())) {
         let (exemplar, curve) = curve_exemplar_and_line();
         match serde_json::from_value::<CurveJob>(description) {
-            Ok(job) => match job.params(&CurveInputs {
-                exemplar: &exemplar,
-                more_exemplars: &[],
-                curve: &curve,
-                avoidance: None,
-                tile_images: [None; 3],
-            }) {
+            Ok(job) => match job.params(&CurveInputs::new(&exemplar, &curve)) {
                 Ok((params, _)) => prop_assert!(params.validate().is_ok()),
                 Err(error) => check_message(&error.to_string()),
             },
@@ -213,7 +207,7 @@ proptest! {
         description["max-memory"] = json!("64M");
         let Ok(job) = serde_json::from_value::<CurveJob>(description) else { return Ok(()) };
         let (exemplar, curve) = curve_exemplar_and_line();
-        let inputs = CurveInputs { exemplar: &exemplar, more_exemplars: &[], curve: &curve, avoidance: None, tile_images: [None; 3] };
+        let inputs = CurveInputs::new(&exemplar, &curve);
         if let Err(error) = job.run(inputs, &mut NoProgress) {
             check_message(&error.to_string());
         }

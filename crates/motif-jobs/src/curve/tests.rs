@@ -31,13 +31,7 @@ fn a_described_job_runs_with_the_flag_names() {
     }))
     .unwrap();
     let (exemplar, curve) = (rings(), line());
-    let inputs = CurveInputs {
-        exemplar: &exemplar,
-        more_exemplars: &[],
-        curve: &curve,
-        avoidance: None,
-        tile_images: [None; 3],
-    };
+    let inputs = CurveInputs::new(&exemplar, &curve);
     let (params, dimensions) = job.params(&inputs).unwrap();
     assert_eq!((params.width, params.piece_length), (24.0, 12.0));
     assert!(!dimensions.width.inferred && !dimensions.piece_length.inferred);
@@ -57,13 +51,7 @@ fn a_described_job_runs_with_the_flag_names() {
 #[test]
 fn a_job_without_width_and_piece_length_infers_them() {
     let (exemplar, curve) = (rings(), line());
-    let inputs = CurveInputs {
-        exemplar: &exemplar,
-        more_exemplars: &[],
-        curve: &curve,
-        avoidance: None,
-        tile_images: [None; 3],
-    };
+    let inputs = CurveInputs::new(&exemplar, &curve);
     let job: CurveJob = serde_json::from_value(json!({ "closed": "no" })).unwrap();
     let run = job.run(inputs, &mut NoProgress).unwrap();
     // Rings 16 px apart, 14 rows tall: the inferred width holds 16 rows with a margin.
@@ -85,13 +73,7 @@ fn bad_descriptions_name_what_is_wrong() {
     let error = serde_json::from_value::<CurveJob>(json!({ "width": 24, "piece-length": 12, "closed": "maybe" }));
     assert!(error.unwrap_err().to_string().contains("maybe"));
     let (exemplar, curve) = (rings(), line());
-    let inputs = CurveInputs {
-        exemplar: &exemplar,
-        more_exemplars: &[],
-        curve: &curve,
-        avoidance: None,
-        tile_images: [None; 3],
-    };
+    let inputs = CurveInputs::new(&exemplar, &curve);
     for mut job in [CurveJob::new(24.0, 12.0), CurveJob::default()] {
         job.options.scale = 0.0;
         assert!(job.params(&inputs).unwrap_err().to_string().contains("invalid scale = 0"));
@@ -123,13 +105,7 @@ fn options_are_named_as_the_flags_and_default_to_the_engine() {
     let written = serde_json::to_value(CurveJob::new(24.0, 12.0)).unwrap();
     assert!(written.get("max-memory").is_some_and(Value::is_null), "{written}");
     let (exemplar, curve) = (rings(), line());
-    let inputs = CurveInputs {
-        exemplar: &exemplar,
-        more_exemplars: &[],
-        curve: &curve,
-        avoidance: None,
-        tile_images: [None; 3],
-    };
+    let inputs = CurveInputs::new(&exemplar, &curve);
     let (params, _) = CurveJob::new(24.0, 12.0).params(&inputs).unwrap();
     assert_eq!(params, Params::DEFAULT.with_width(24.0).with_piece_length(12.0));
     let names: Vec<String> = CurveOptions::options().into_iter().map(|spec| spec.name).collect();
