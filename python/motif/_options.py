@@ -99,15 +99,16 @@ class CurveOptions(TypedDict, total=False):
     tint: str
     #: A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first piece of an open
     #: curve (an end cap, a clasp) and joined to the next piece by the same seam cost; the dynamic program
-    #: chooses its height. Its length along the curve is (X1 − X0) / scale.
+    #: chooses its height. Its length along the curve is (X1 − X0) / scale. The command line also takes a PNG
+    #: file of the tile here (as --start-tile-image).
     start_tile: Tuple[int, int]
     #: An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending at the curve's
-    #: end.
+    #: end (or, on the command line, a PNG file of the tile).
     end_tile: Tuple[int, int]
     #: A corner tile: columns X0,X1 of the first exemplar, drawn whole and centred on every corner sharper than
     #: --corner-angle (a frame's corner piece), on open and closed curves, joined to the pieces beside it by
     #: the same seam cost. A corner too close to another or to an end to leave half a piece between them is
-    #: left to the pieces.
+    #: left to the pieces. The command line also takes a PNG file of the tile here.
     corner_tile: Tuple[int, int]
     #: With --corner-tile: the turn, in degrees, that makes a corner (the angle between the curve's directions
     #: half a tile before and half a tile after it). Allowed: 10–179. Default: 60.

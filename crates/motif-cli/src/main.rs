@@ -90,7 +90,7 @@ fn main() -> ExitCode {
         print_error(&anyhow::anyhow!("cannot install the interrupt handler: {error}"));
         return ExitCode::FAILURE;
     }
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(engines::curve::tile_files_as_image_flags(std::env::args_os())) {
         Ok(cli) => cli,
         Err(error) => {
             // clap prints help/version to stdout with exit 0, usage errors to stderr with exit 2.

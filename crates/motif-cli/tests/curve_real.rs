@@ -183,7 +183,8 @@ fn tiles_from_their_own_pngs_cap_the_ends_and_turn_the_corners() {
 
     let heart = corpus("heart.svg");
     let mut args = curve_args(&exemplar, &heart, "108", "25");
-    args.extend_from_slice(&["--corner-tile-image", "link.png", "--pieces", "pieces.json", "--report", "report.json"]);
+    // A PNG given to --corner-tile is the tile image.
+    args.extend_from_slice(&["--corner-tile", "link.png", "--pieces", "pieces.json", "--report", "report.json"]);
     let output = motif(dir.path(), &args);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(output.status.success(), "{stderr}");

@@ -154,17 +154,19 @@ crate::declare_options! {
         /// A start tile: columns X0,X1 (X0 < X1) of the first exemplar, drawn whole as the first
         /// piece of an open curve (an end cap, a clasp) and joined to the next piece by the same
         /// seam cost; the dynamic program chooses its height. Its length along the curve is
-        /// (X1 − X0) / scale.
+        /// (X1 − X0) / scale. The command line also takes a PNG file of the tile here (as
+        /// --start-tile-image).
         [value_name: "X0,X1"]
         start_tile: Option<[i32; 2]> = None,
         /// An end tile: columns X0,X1 of the first exemplar, drawn whole as the last piece, ending
-        /// at the curve's end.
+        /// at the curve's end (or, on the command line, a PNG file of the tile).
         [value_name: "X0,X1"]
         end_tile: Option<[i32; 2]> = None,
         /// A corner tile: columns X0,X1 of the first exemplar, drawn whole and centred on every
         /// corner sharper than --corner-angle (a frame's corner piece), on open and closed curves,
         /// joined to the pieces beside it by the same seam cost. A corner too close to another or
-        /// to an end to leave half a piece between them is left to the pieces.
+        /// to an end to leave half a piece between them is left to the pieces. The command line
+        /// also takes a PNG file of the tile here.
         [value_name: "X0,X1"]
         corner_tile: Option<[i32; 2]> = None,
         /// With --corner-tile: the turn, in degrees, that makes a corner (the angle between the

@@ -4,6 +4,7 @@
 mod bench;
 mod demo;
 
+use std::ffi::{OsStr, OsString};
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context as _, bail};
@@ -62,6 +63,36 @@ pub struct CurveArgs {
     /// stitch remapping T.
     #[arg(long, value_name = "OUT.json")]
     pub pieces: Option<PathBuf>,
+}
+
+/// The tile flags: `--start-tile`, `--end-tile` and `--corner-tile` take columns X0,X1 of the
+/// exemplar (the declared option) or, on the command line, a PNG file of the tile, which is the
+/// matching `--…-tile-image` flag's.
+const TILE_FLAGS: [&str; 3] = ["--start-tile", "--end-tile", "--corner-tile"];
+
+/// The command line with every tile flag whose value is a PNG file turned into the tile image
+/// flag (`--corner-tile link.png` is `--corner-tile-image link.png`); everything else as given.
+pub(crate) fn tile_files_as_image_flags(args: impl IntoIterator<Item = OsString>) -> Vec<OsString> {
+    let is_png = |value: &OsStr| Path::new(value).extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let mut out = Vec::new();
+    let mut args = args.into_iter().peekable();
+    while let Some(arg) = args.next() {
+        let text = arg.to_string_lossy().into_owned();
+        let image_flag = |flag: &str| format!("{flag}-image");
+        if TILE_FLAGS.contains(&text.as_str()) && args.peek().is_some_and(|value| is_png(value)) {
+            out.push(image_flag(&text).into());
+            continue;
+        }
+        if let Some((flag, value)) = text.split_once('=')
+            && TILE_FLAGS.contains(&flag)
+            && is_png(OsStr::new(value))
+        {
+            out.push(format!("{}={value}", image_flag(flag)).into());
+            continue;
+        }
+        out.push(arg);
+    }
+    out
 }
 
 /// Reads the curve: an SVG path or a point list.
@@ -246,5 +277,28 @@ impl crate::registry::Engine for Curve {
 
     fn bench(&self, bench: &crate::suite::Bench) -> anyhow::Result<serde_json::Value> {
         bench::bench(bench)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::ffi::OsString;
+
+    use super::tile_files_as_image_flags;
+
+    fn rewritten(args: &[&str]) -> Vec<String> {
+        let args = args.iter().map(OsString::from);
+        tile_files_as_image_flags(args).into_iter().map(|a| a.into_string().unwrap()).collect()
+    }
+
+    #[test]
+    fn a_png_given_to_a_tile_flag_is_the_tile_image() {
+        assert_eq!(
+            rewritten(&["motif", "curve", "--corner-tile", "link.PNG", "--start-tile", "0,64", "--end-tile=cap.png"]),
+            ["motif", "curve", "--corner-tile-image", "link.PNG", "--start-tile", "0,64", "--end-tile-image=cap.png"]
+        );
+        // Columns, other flags and a PNG given to another flag stay as they are.
+        let kept = ["motif", "curve", "--exemplar", "e.png", "--end-tile", "3,9", "--out", "out.png"];
+        assert_eq!(rewritten(&kept), kept);
     }
 }
