@@ -160,6 +160,12 @@ CASES = [
     # Panics and giant allocations.
     ("curve piece length 1e-300", CURVE[:-1] + ["1e-300", "--out", "out.png"], "clean-error"),
     ("curve tolerance 1e-300", CURVE + ["--tolerance", "1e-300", "--out", "out.png"], "clean-error"),
+    # Tiles: an image given as a tile is checked like an exemplar and named by its flag.
+    ("curve corner tile from an opaque image", CURVE + ["--corner-tile", "texture-exemplar.png", "--out", "out.png"], "clean-error"),
+    ("curve corner tile from a truncated PNG", CURVE + ["--corner-tile", "truncated.png", "--out", "out.png"], "clean-error"),
+    ("curve start tile from a missing PNG", CURVE + ["--closed", "no", "--start-tile", "missing-tile.png", "--out", "out.png"], "clean-error"),
+    ("curve corner tile as columns and image", CURVE + ["--corner-tile", "0,10", "--corner-tile-image", "curve-chain.png", "--out", "out.png"], "clean-error"),
+    ("curve corner angle 5", CURVE + ["--corner-tile", "0,10", "--corner-angle", "5", "--out", "out.png"], "clean-error"),
     ("points neighbourhood 1e-300", ["points", "--exemplar", "points-hex.ply", "--neighbourhood", "1e-300", "--domain", "box:8,8", "--out", "out.ply"], "clean-error"),
     ("curve coordinate 1e9", ["curve", "--exemplar", "curve-chain.png", "--path", "far.csv", "--width", "40", "--piece-length", "16", "--out", "out.png"], "clean-error"),
     ("texture from a 16384^2 header", ["texture", "--exemplar", "huge-header.png", "--size", "64x64", "--out", "out.png"], "clean-error"),
@@ -238,6 +244,7 @@ CASES = [
 # index of the input's value in the arguments, and the kind prefix it carries (`volume:`).
 SWEPT = [
     ("curve", CURVE + ["--avoid", "stylize-A.png", "--out", "out.png"], ["--exemplar", "--path", "--avoid"]),
+    ("curve tile image", CURVE + ["--corner-tile-image", "curve-chain.png", "--out", "out.png"], ["--corner-tile-image"]),
     ("points", POINTS + ["--domain", "box:8,8", "--rotation-map", "strokes-photo.png", "--scale-map", "strokes-photo.png", "--out", "out.ply"], ["--exemplar", "--rotation-map", "--scale-map"]),
     ("points region", POINTS + ["--domain", "strokes-blob.svg", "--scale", "40", "--out", "out.ply"], ["--domain"]),
     ("points volume", ["points", "--exemplar", "points-protein-atoms.csv", "--neighbourhood", "4", "--domain", "volume:points-bull-78.obj", "--out", "out.ply"], ["--domain"]),

@@ -65,14 +65,7 @@ impl Candidates {
         }
         if let Some(piece) = valid.iter().position(|(positions, _, _)| positions.is_empty()) {
             if let Some((kind, [x0, x1])) = layout.tile(piece) {
-                return Err(InvalidParameter::new(
-                    kind.option_name(),
-                    format!("{x0},{x1}"),
-                    "no vertical position of these columns is cut cleanly (the tile must lie inside the pattern's \
-                     extent, with its top and bottom edges in transparent pixels): widen the ribbon (--width) or \
-                     choose other columns",
-                )
-                .into());
+                return Err(uncut_tile(params, kind, [x0, x1]).into());
             }
             let samples = layout.samples;
             return Err(Error::Input(InputError::NoValidPosition {
@@ -246,4 +239,33 @@ pub(crate) fn check_pin(params: &Params, candidates: &Candidates) -> Result<(), 
         })),
         _ => Ok(()),
     }
+}
+
+/// The error for a tile no vertical position of which is cut cleanly, naming the columns or the
+/// tile's image.
+fn uncut_tile(params: &Params, kind: TileKind, [x0, x1]: [u32; 2]) -> InvalidParameter {
+    let index = match kind {
+        TileKind::Start => 0,
+        TileKind::End => 1,
+        TileKind::Corner => 2,
+    };
+    let advice = "widen the ribbon (--width)";
+    if params.tile_exemplars[index].is_some() {
+        return InvalidParameter::new(
+            format!("{}-image", kind.option_name()),
+            format!("a tile {} px wide", x1 - x0),
+            format!(
+                "no vertical position of the image is cut cleanly (its pattern needs transparent rows above and \
+                 below it, within the ribbon): {advice}, or give an image with a transparent margin"
+            ),
+        );
+    }
+    InvalidParameter::new(
+        kind.option_name(),
+        format!("{x0},{x1}"),
+        format!(
+            "no vertical position of these columns is cut cleanly (the tile must lie inside the pattern's extent, \
+             with its top and bottom edges in transparent pixels): {advice} or choose other columns"
+        ),
+    )
 }

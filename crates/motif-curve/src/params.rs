@@ -362,8 +362,19 @@ fn check_tile_columns(
 pub(crate) const MAX_MORE_EXEMPLARS: usize = 15;
 
 /// Checks one exemplar (`index` 0 is the first, named `exemplar`; the others `exemplar N`).
-fn check_exemplar(exemplar: &motif_core::RgbaImage, index: usize) -> Result<(), InvalidParameter> {
-    let name = if index == 0 { "exemplar".to_string() } else { format!("exemplar {}", index + 1) };
+/// How errors name exemplar `index`: "exemplar", "exemplar 2", …, or the tile image it holds
+/// ("corner-tile-image").
+fn exemplar_name(params: &Params, index: usize) -> String {
+    let kinds = ["start-tile-image", "end-tile-image", "corner-tile-image"];
+    match params.tile_exemplars.iter().position(|&source| source == Some(index)) {
+        Some(kind) => kinds[kind].to_string(),
+        None if index == 0 => "exemplar".to_string(),
+        None => format!("exemplar {}", index + 1),
+    }
+}
+
+fn check_exemplar(exemplar: &motif_core::RgbaImage, name: &str) -> Result<(), InvalidParameter> {
+    let name = name.to_string();
     if exemplar.is_empty() {
         return Err(InvalidParameter::new(&name, "0×0", "must have pixels"));
     }
@@ -477,7 +488,7 @@ pub(crate) fn validate(input: &Input<'_>, params: &Params) -> Result<bool, Error
         .into());
     }
     for (index, exemplar) in std::iter::once(input.exemplar).chain(input.more_exemplars).enumerate() {
-        check_exemplar(exemplar, index)?;
+        check_exemplar(exemplar, &exemplar_name(params, index))?;
     }
     let length = input.curve.length();
     let far = input.curve.points().iter().map(|p| p.x.abs().max(p.y.abs())).fold(0.0, f64::max);

@@ -360,7 +360,15 @@ impl CurveJob {
         // Tile images join the exemplars after the others; the engine draws the tiles from them.
         let mut exemplars = std::borrow::Cow::Borrowed(inputs.more_exemplars);
         let mut sources = [None; 3];
-        for (source, image) in sources.iter_mut().zip(inputs.tile_images) {
+        let columns = [self.options.start_tile, self.options.end_tile, self.options.corner_tile];
+        let names = ["start-tile", "end-tile", "corner-tile"];
+        for (k, (source, image)) in sources.iter_mut().zip(inputs.tile_images).enumerate() {
+            if let (Some(_), Some([x0, x1])) = (image, columns[k]) {
+                let allowed = "give the tile as columns X0,X1 of the exemplar or as an image, not both";
+                return Err(
+                    motif_core::InvalidParameter::new(names[k], format!("{x0},{x1} and an image"), allowed).into()
+                );
+            }
             if let Some(image) = image {
                 exemplars.to_mut().push(image.clone());
                 *source = Some(exemplars.len());
