@@ -90,6 +90,16 @@ pub(crate) enum TileKind {
 }
 
 impl TileKind {
+    /// Its place in the per-kind arrays: [`Params::tile_exemplars`](crate::Params::tile_exemplars)
+    /// and the layout's tile columns (start, end, corner).
+    pub(crate) fn index(self) -> usize {
+        match self {
+            Self::Start => 0,
+            Self::End => 1,
+            Self::Corner => 2,
+        }
+    }
+
     /// The option that sets the tile.
     pub(crate) fn option_name(self) -> &'static str {
         match self {

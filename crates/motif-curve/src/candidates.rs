@@ -148,12 +148,7 @@ fn valid_positions(
         .map(|i| {
             let runs = avoidance::forbidden_runs(&forbidden_samples[i]);
             // A tile keeps other positions than a piece of the same frame.
-            let tile = match layout.tile(i) {
-                Some((TileKind::Start, _)) => 1,
-                Some((TileKind::End, _)) => 2,
-                Some((TileKind::Corner, _)) => 3,
-                None => 0,
-            };
+            let tile = layout.tile(i).map_or(0, |(kind, _)| kind.index() as u64 + 1);
             (incremental::piece_signature(&frames[i], &runs).wrapping_add(tile * 0x9e37_79b9_7f4a_7c15), runs)
         })
         .collect();
@@ -244,13 +239,8 @@ pub(crate) fn check_pin(params: &Params, candidates: &Candidates) -> Result<(), 
 /// The error for a tile no vertical position of which is cut cleanly, naming the columns or the
 /// tile's image.
 fn uncut_tile(params: &Params, kind: TileKind, [x0, x1]: [u32; 2]) -> InvalidParameter {
-    let index = match kind {
-        TileKind::Start => 0,
-        TileKind::End => 1,
-        TileKind::Corner => 2,
-    };
     let advice = "widen the ribbon (--width)";
-    if params.tile_exemplars[index].is_some() {
+    if params.tile_exemplars[kind.index()].is_some() {
         return InvalidParameter::new(
             format!("{}-image", kind.option_name()),
             format!("a tile {} px wide", x1 - x0),

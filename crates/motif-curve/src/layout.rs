@@ -161,11 +161,7 @@ impl Layout {
     /// The kind of tile piece `i` is and its exemplar columns, when it is one.
     pub(crate) fn tile(&self, i: usize) -> Option<(TileKind, [u32; 2])> {
         let kind = self.piece_tiles[i]?;
-        let columns = self.tile_columns[match kind {
-            TileKind::Start => 0,
-            TileKind::End => 1,
-            TileKind::Corner => 2,
-        }]?;
+        let columns = self.tile_columns[kind.index()]?;
         Some((kind, columns))
     }
 
