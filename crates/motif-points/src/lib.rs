@@ -8,8 +8,8 @@
 //! - `points` (§4.1, Eq. 1): [`PointSet`], points with float attributes and element ids.
 //! - `model` (§4.3, Eq. 4–5): features, the kernel of the discrete error density for the box and
 //!   Gaussian windows truncated at `window_cutoff` δ (2δ by default), exemplar/output state, rigid elements (§6.1).
-//! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, ∂S/∂m_k, point-centric and
-//!   parallel; `pairs`: its output–output term summed once per pair over the nodes around the
+//! - `energy` (Eq. 6): T and the analytic gradients ∂T/∂x_i, ∂T/∂a_i, point-centric and
+//!   parallel; `match_objective`: `S_k` as a function of `m_k` and ∂S/∂m_k (the local step's); `pairs`: its output–output term summed once per pair over the nodes around the
 //!   pair's midpoint; `exemplar_pairs`: the exemplar's own term `C_k` over listed exemplar pairs;
 //!   `reference`: the plain per-quadrature-point version used by tests and the speed-up figure.
 //! - `quadratic` (§4.4, Eq. 5): T as the quadratic form in the attributes that it is at fixed
@@ -88,6 +88,7 @@ mod grid;
 mod init;
 mod linear;
 mod local_global;
+mod match_objective;
 mod matching;
 mod merging;
 mod mesh_surface;
