@@ -136,13 +136,14 @@ pub(crate) fn solve_closed(
     max_starts: usize,
     on_row: &mut dyn FnMut(usize),
 ) -> Cycle {
+    let context = ClosedSolver { exemplar, model, solver };
     let pieces = rows.len() - 1;
     let cut = if exact { (0..pieces).min_by_key(|&r| (rows[r].positions.len(), r)).unwrap_or(0) } else { 0 };
     if cut == 0 {
-        return solve_cut(exemplar, model, rows, solver, exact, max_starts, on_row);
+        return solve_cut(&context, rows, exact, max_starts, on_row);
     }
     let rotated: Vec<RowSpec<'_>> = (0..=pieces).map(|r| rows[(r + cut) % pieces]).collect();
-    let mut cycle = solve_cut(exemplar, model, &rotated, solver, exact, max_starts, on_row);
+    let mut cycle = solve_cut(&context, &rotated, exact, max_starts, on_row);
     let mut path: Vec<usize> = (0..pieces).map(|r| cycle.path[(r + pieces - cut) % pieces]).collect();
     path.push(path[0]);
     cycle.path = path;
@@ -151,16 +152,14 @@ pub(crate) fn solve_closed(
 
 /// [`solve_closed`] with the cycle cut at row 0.
 fn solve_cut(
-    exemplar: &Exemplar,
-    model: &CostModel,
+    context: &ClosedSolver<'_>,
     rows: &[RowSpec<'_>],
-    solver: Solver,
     exact: bool,
     max_starts: usize,
     on_row: &mut dyn FnMut(usize),
 ) -> Cycle {
+    let &ClosedSolver { exemplar, model, solver } = context;
     let table = solve(exemplar, model, rows, solver, on_row);
-    let context = ClosedSolver { exemplar, model, solver };
     let mut work = Work { row_ms: table.row_ms.clone(), counters: table.counters };
     let mut starts_tried = 0;
     let closing = cheapest_closing(&table);
@@ -170,7 +169,7 @@ fn solve_cut(
             let terminal =
                 (0..table.last_costs.len()).min_by_key(|&t| (table.last_costs[t], t)).expect("non-empty row");
             starts_tried += 1;
-            pinned_cycle(&context, rows, table.start_of(terminal), None, u64::MAX, &mut work)
+            pinned_cycle(context, rows, table.start_of(terminal), None, u64::MAX, &mut work)
                 .expect("an unbounded pinned DP always closes")
         }
     };
@@ -199,7 +198,7 @@ fn solve_cut(
                 break;
             }
             starts_tried += 1;
-            if let Some((cost, path)) = pinned_cycle(&context, rows, start, backward.as_deref(), best_cost, &mut work)
+            if let Some((cost, path)) = pinned_cycle(context, rows, start, backward.as_deref(), best_cost, &mut work)
                 && cost < best_cost
             {
                 best_cost = cost;
