@@ -36,6 +36,8 @@ pub(crate) struct Candidates {
     /// Bent pieces: the ribbon's triangles and their stretch (empty for rigid pieces).
     pub triangles: Vec<Triangle>,
     pub stretch: Vec<f64>,
+    /// Each piece's signature: pieces with one signature have the same frame and list.
+    pub signatures: Vec<u64>,
 }
 
 impl Candidates {
@@ -74,8 +76,9 @@ impl Candidates {
                 pattern_height: pattern_height(input.exemplar),
             }));
         }
+        let signatures: Vec<u64> = valid.iter().map(|(_, _, signature)| *signature).collect();
         let (valid, empty): (Vec<Vec<Position>>, Vec<bool>) = valid.into_iter().map(|(p, e, _)| (p, e)).unzip();
-        let candidates = Self { valid, empty, forbidden_samples, triangles, stretch };
+        let candidates = Self { valid, empty, signatures, forbidden_samples, triangles, stretch };
         candidates.record(params, layout, report);
         Ok(candidates)
     }

@@ -63,6 +63,7 @@ pub(crate) fn synthesize_with(
 
     timer.start("dynamic program");
     let solved = dynamic_program(params, &layout, &candidates, &mut report, cache, progress);
+    timer.start("thin strip check");
     let (candidates, positions, optimum) = avoid_thin_strip(params, &layout, candidates, solved, &mut report, progress);
 
     timer.start("stitching");
@@ -188,7 +189,7 @@ fn avoid_thin_strip(
     let free: Vec<bool> = (0..frames.len())
         .map(|i| !candidates.empty[i] && layout.tile(i).is_none() && !(i == 0 && params.pin_first.is_some()))
         .collect();
-    let motifs = thin::motif_coverages(frames, exemplar, &candidates.valid, &free);
+    let motifs = thin::motif_coverages(frames, exemplar, &candidates.valid, &free, &candidates.signatures);
     let before = thin::mean_share(frames, exemplar, &motifs, &positions);
     // `min_coverage` 0 asks for the paper's rule: no coverage rule at all.
     if before >= thin::THIN_SHARE || params.min_coverage == 0.0 {

@@ -7,6 +7,9 @@
 //! whose windows is that full keeps its list. Runs whose pieces hold their motifs are untouched,
 //! and so are runs with `min_coverage` 0 (the paper's rule, without any coverage rule).
 
+use std::collections::HashMap;
+
+use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::exemplar::Exemplar;
@@ -27,9 +30,14 @@ pub struct ThinStrip {
     pub positions_dropped: usize,
 }
 
-/// A piece's motif coverage: the 90th percentile of its valid windows' coverage.
+/// Windows a piece's motif coverage is measured on, at most (evenly spaced over its list).
+const MOTIF_SAMPLE: usize = 1024;
+
+/// A piece's motif coverage: the 90th percentile of its valid windows' coverage (over at most
+/// [`MOTIF_SAMPLE`] of them, evenly spaced).
 fn motif_coverage(frame: &PieceFrame, exemplar: &Exemplar, positions: &[Position]) -> u32 {
-    let mut coverages: Vec<u32> = positions.iter().map(|&u| frame.coverage(exemplar, u)).collect();
+    let stride = positions.len().div_ceil(MOTIF_SAMPLE).max(1);
+    let mut coverages: Vec<u32> = positions.iter().step_by(stride).map(|&u| frame.coverage(exemplar, u)).collect();
     if coverages.is_empty() {
         return 0;
     }
@@ -37,16 +45,26 @@ fn motif_coverage(frame: &PieceFrame, exemplar: &Exemplar, positions: &[Position
     *coverages.select_nth_unstable(rank).1
 }
 
-/// Per piece that the dynamic program chooses freely (`free[i]`), its motif coverage.
+/// Per piece that the dynamic program chooses freely (`free[i]`), its motif coverage; measured
+/// once per piece signature (every bent piece of an open curve shares one), in parallel.
 pub(crate) fn motif_coverages(
     frames: &[PieceFrame],
     exemplar: &Exemplar,
     valid: &[Vec<Position>],
     free: &[bool],
+    signatures: &[u64],
 ) -> Vec<Option<u32>> {
-    (0..frames.len())
-        .map(|i| (free[i]).then(|| motif_coverage(&frames[i], exemplar, &valid[i])).filter(|&c| c > 0))
-        .collect()
+    let mut first_of: HashMap<u64, usize> = HashMap::new();
+    for i in (0..frames.len()).filter(|&i| free[i]) {
+        first_of.entry(signatures[i]).or_insert(i);
+    }
+    let mut representatives: Vec<usize> = first_of.values().copied().collect();
+    representatives.sort_unstable();
+    let measured: HashMap<u64, u32> = representatives
+        .into_par_iter()
+        .map(|i| (signatures[i], motif_coverage(&frames[i], exemplar, &valid[i])))
+        .collect();
+    (0..frames.len()).map(|i| free[i].then(|| measured[&signatures[i]]).filter(|&c| c > 0)).collect()
 }
 
 /// The chosen pieces' mean share of their motif (1 when no piece is measured).
