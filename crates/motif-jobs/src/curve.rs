@@ -2,7 +2,8 @@
 //!
 //! Option names are the flags of `motif curve` ([`CurveOptions`], declared once); none is
 //! required: a missing width or piece length is inferred from the first exemplar
-//! (`motif_curve::Dimensions::resolve`), every other option takes the engine's default
+//! (`motif_curve::Dimensions::resolve`) and settled by a short search over whole runs
+//! (module `search`), every other option takes the engine's default
 //! ([`motif_curve::Params::DEFAULT`]). The exemplars, the curve and the avoidance map come
 //! decoded (the CLI reads PNG and SVG).
 
@@ -19,6 +20,10 @@ pub use motif_curve::{Dimension, Fit, Flip, Incremental, debug_overlay};
 use crate::JobError;
 use crate::options::{Colour, Declared, Described};
 
+mod search;
+
+pub use search::Trial;
+
 crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
 crate::choice_option!(Method: "synth", "repeat");
 crate::choice_option!(Solver: "exact", "reference", "coarse");
@@ -34,14 +39,18 @@ crate::declare_options! {
         /// Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece
         /// edge (C) and should exceed the pattern's height in the exemplar. Default: inferred from
         /// the first exemplar, the pattern's height (rows with alpha above --cut-alpha) plus the
-        /// clear row above and below, 15% wider, divided by the scale.
+        /// clear row above and below, 15% wider, divided by the scale; then 5% and 10% wider ribbons
+        /// are tried at the settled piece length and the best-scoring output kept (report
+        /// `size_search`).
         [value_name: "B"]
         width: Option<f64> = None,
         /// Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length.
         /// Default: inferred from the first exemplar, 0.55 of the pattern's period along x (the
         /// first strong peak of the autocorrelation of its columns), kept between a quarter and
         /// 0.6 of the pattern's height, divided by the scale; 0.3 of the pattern's height when it
-        /// has no period.
+        /// has no period. That guess and 0.8, 1.25, 1.6 and 2 times it are each run, and the output
+        /// whose patches are closest to the exemplar's (fewest motifs cut) is kept; giving the
+        /// value skips this search.
         [value_name: "D"]
         piece_length: Option<f64> = None,
         /// Scale s: exemplar pixels per canvas pixel (2 draws the pattern at half size).
@@ -234,6 +243,9 @@ pub struct CurveRun {
     pub dimensions: Dimensions,
     /// Patch fidelity, when the job asked for it.
     pub fidelity: Option<PatchFidelity>,
+    /// The widths and piece lengths the size search tried (empty when both were given); the
+    /// output is the one of the lowest score.
+    pub size_trials: Vec<Trial>,
     /// The report's figures as one JSON object, the keys every front end writes.
     pub figures: Map<String, Value>,
 }
@@ -356,8 +368,53 @@ impl CurveJob {
         session: Option<&mut Incremental>,
         progress: &mut dyn Progress,
     ) -> Result<CurveRun, JobError> {
-        let (params, dimensions) = self.params(&inputs)?;
-        // Tile images join the exemplars after the others; the engine draws the tiles from them.
+        self.options.check_ranges()?;
+        let mut dimensions = self.dimensions(&inputs)?;
+        let (exemplars, sources) = self.tile_exemplars(&inputs)?;
+        let input = Input { avoidance: inputs.avoidance, ..Input::new(inputs.exemplar, inputs.curve) }
+            .with_more_exemplars(&exemplars);
+        let measure = |params: &Params, output: &Output| {
+            let exemplar = params.styled_exemplar(inputs.exemplar);
+            patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
+        };
+        let (output, fidelity, trials) = if dimensions.width.inferred || dimensions.piece_length.inferred {
+            let (best, trials) =
+                search::search(&mut dimensions, inputs.curve.length(), progress, |width, piece_length, progress| {
+                    let params = self.params_with(width, piece_length)?.with_tile_exemplars(sources);
+                    let output = motif_curve::synthesize(&input, &params, progress)?;
+                    let fidelity = measure(&params, &output);
+                    Ok((output, fidelity))
+                })?;
+            (best.output, self.options.fidelity.then_some(best.fidelity), Some(trials))
+        } else {
+            let params = self
+                .params_with(dimensions.width.value, dimensions.piece_length.value)?
+                .with_tile_exemplars(sources);
+            let output = match session {
+                Some(session) => session.synthesize(&input, &params, progress)?,
+                None => motif_curve::synthesize(&input, &params, progress)?,
+            };
+            let fidelity = self.options.fidelity.then(|| measure(&params, &output));
+            (output, fidelity, None)
+        };
+        let mut figures = figures(&output.report);
+        figures.extend(dimension_figures(&dimensions));
+        if let Some(trials) = &trials {
+            figures.insert("size_search".into(), json!(trials));
+        }
+        if let Some(fidelity) = fidelity {
+            figures.insert("fidelity".into(), json!(fidelity));
+        }
+        Ok(CurveRun { output, dimensions, fidelity, size_trials: trials.unwrap_or_default(), figures })
+    }
+
+    /// The exemplars after the first with the tile images appended, and for each of the start,
+    /// end and corner tiles the index of its image among all exemplars (the engine draws those
+    /// tiles from them). A tile given both as columns and as an image is refused.
+    fn tile_exemplars<'a>(
+        &self,
+        inputs: &CurveInputs<'a>,
+    ) -> Result<(std::borrow::Cow<'a, [RgbaImage]>, [Option<usize>; 3]), JobError> {
         let mut exemplars = std::borrow::Cow::Borrowed(inputs.more_exemplars);
         let mut sources = [None; 3];
         let columns = [self.options.start_tile, self.options.end_tile, self.options.corner_tile];
@@ -374,23 +431,7 @@ impl CurveJob {
                 *source = Some(exemplars.len());
             }
         }
-        let params = params.with_tile_exemplars(sources);
-        let input = Input { avoidance: inputs.avoidance, ..Input::new(inputs.exemplar, inputs.curve) }
-            .with_more_exemplars(&exemplars);
-        let output = match session {
-            Some(session) => session.synthesize(&input, &params, progress)?,
-            None => motif_curve::synthesize(&input, &params, progress)?,
-        };
-        let fidelity = self.options.fidelity.then(|| {
-            let exemplar = params.styled_exemplar(inputs.exemplar);
-            patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
-        });
-        let mut figures = figures(&output.report);
-        figures.extend(dimension_figures(&dimensions));
-        if let Some(fidelity) = fidelity {
-            figures.insert("fidelity".into(), json!(fidelity));
-        }
-        Ok(CurveRun { output, dimensions, fidelity, figures })
+        Ok((exemplars, sources))
     }
 }
 

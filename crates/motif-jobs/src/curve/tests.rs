@@ -57,10 +57,23 @@ fn a_job_without_width_and_piece_length_infers_them() {
     // Rings 16 px apart, 14 rows tall: the inferred width holds 16 rows with a margin.
     assert_eq!(run.dimensions.period, Some(16));
     assert_eq!(run.dimensions.pattern_height, Some(14));
-    assert_eq!(run.figures["width"], 19.0);
     assert_eq!(run.figures["width_inferred"], true);
-    assert_eq!(run.figures["piece_length"], 8.0);
     assert_eq!(run.figures["piece_length_inferred"], true);
+    // The size search starts from the guess read off the exemplar, tries piece lengths around it
+    // and then wider ribbons, and keeps the trial of lowest score.
+    let trials: Vec<Trial> = serde_json::from_value(run.figures["size_search"].clone()).unwrap();
+    assert_eq!((trials[0].width, trials[0].piece_length), (19.0, 8.0));
+    let lengths: Vec<f64> = trials.iter().map(|t| t.piece_length).collect();
+    assert_eq!(&lengths[..5], &[8.0, 6.0, 10.0, 13.0, 16.0]);
+    let best = trials.iter().min_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
+    assert_eq!((run.figures["width"].as_f64(), run.figures["piece_length"].as_f64()), (Some(best.width), Some(best.piece_length)));
+    assert!(trials.iter().all(|t| t.score >= t.patch_distance && t.patch_distance > 0.0), "{trials:?}");
+    // The kept output is the one a run given that width and piece length draws.
+    let mut settled = job.clone();
+    (settled.options.width, settled.options.piece_length) = (Some(best.width), Some(best.piece_length));
+    let again = settled.run(inputs, &mut NoProgress).unwrap();
+    assert_eq!(again.output.image, run.output.image);
+    assert!(!again.figures.contains_key("size_search"));
     let mut given = job;
     given.options.width = Some(30.0);
     let (params, dimensions) = given.params(&inputs).unwrap();

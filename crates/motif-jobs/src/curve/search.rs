@@ -1,0 +1,174 @@
+//! The short search that settles an inferred width and piece length (issue 34).
+//!
+//! `Dimensions::resolve` reads a first guess off the exemplar (the pattern's height and period).
+//! How well a piece length keeps the motifs whole also depends on the curve, and the patch
+//! fidelity of the result moves by several percent between neighbouring values, so a run whose
+//! piece length (or width) was inferred tries a few values around the guess and keeps the one whose
+//! output scores best:
+//!
+//! 1. piece lengths of [`PIECE_LENGTH_FACTORS`] × the guess, at the guessed width;
+//! 2. widths of [`WIDTH_FACTORS`] × the guess, at the best piece length (wider ribbons only: the
+//!    guess is the narrowest that holds the pattern with its margin).
+//!
+//! The score is the output's mean patch distance to the exemplar, raised by its share of broken
+//! patches ([`score`]). Each trial is a whole run with the job's own solver and seed, so the kept
+//! output is byte-identical to a run given that width and piece length. A value the job gives is
+//! never searched.
+
+use motif_core::Progress;
+use motif_curve::{Dimensions, Output, PatchFidelity};
+use serde::{Deserialize, Serialize};
+
+use crate::JobError;
+
+/// Piece lengths tried, as multiples of the inferred one (the inferred one first).
+pub(crate) const PIECE_LENGTH_FACTORS: [f64; 5] = [1.0, 0.8, 1.25, 1.6, 2.0];
+/// Widths tried after the piece length is settled, as multiples of the inferred one.
+pub(crate) const WIDTH_FACTORS: [f64; 2] = [1.05, 1.1];
+/// Weight of the broken-patch share in [`score`]: a point of broken patches costs as much as 4 %
+/// of patch distance.
+pub(crate) const BROKEN_WEIGHT: f64 = 4.0;
+
+/// One width and piece length tried, and how its output scored.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Trial {
+    /// Ribbon width, canvas pixels.
+    pub width: f64,
+    /// Piece length, canvas pixels.
+    pub piece_length: f64,
+    /// Mean patch distance of the output to the exemplar.
+    pub patch_distance: f64,
+    /// Share of the output's patches far from every exemplar patch.
+    pub broken_fraction: f64,
+    /// [`score`]: lower is better.
+    pub score: f64,
+    /// Seconds the trial took.
+    pub seconds: f64,
+}
+
+/// The figure the search minimizes: patch distance × (1 + [`BROKEN_WEIGHT`] × broken share).
+pub(crate) fn score(fidelity: &PatchFidelity) -> f64 {
+    fidelity.mean_distance * (1.0 + BROKEN_WEIGHT * fidelity.broken_fraction)
+}
+
+/// A finished trial: its figures, output and fidelity.
+pub(crate) struct Tried {
+    pub(crate) trial: Trial,
+    pub(crate) output: Output,
+    pub(crate) fidelity: PatchFidelity,
+}
+
+/// Runs `run` (one whole run at a width and piece length) over the search's candidates for what
+/// `dimensions` inferred, and returns the best trial (its width and piece length written into
+/// `dimensions`) with every trial's figures. `max_piece_length` caps the candidates (the curve's
+/// length). Errors of the first trial, the guess itself, are the run's errors; a later candidate
+/// that fails is skipped.
+pub(crate) fn search(
+    dimensions: &mut Dimensions,
+    max_piece_length: f64,
+    progress: &mut dyn Progress,
+    mut run: impl FnMut(f64, f64, &mut dyn Progress) -> Result<(Output, PatchFidelity), JobError>,
+) -> Result<(Tried, Vec<Trial>), JobError> {
+    let (width, piece_length) = (dimensions.width, dimensions.piece_length);
+    let lengths: Vec<f64> = if piece_length.inferred {
+        candidates(piece_length.value, &PIECE_LENGTH_FACTORS, f64::round, max_piece_length)
+    } else {
+        vec![piece_length.value]
+    };
+    let widths: Vec<f64> =
+        if width.inferred { candidates(width.value, &WIDTH_FACTORS, f64::ceil, f64::INFINITY) } else { Vec::new() };
+    let total = lengths.len() + widths.len();
+    let mut trials = Vec::with_capacity(total);
+    let mut best: Option<Tried> = None;
+    let mut attempt = |w: f64, l: f64, trials: &mut Vec<Trial>, best: &mut Option<Tried>| {
+        let mut labelled = Labelled { inner: &mut *progress, trial: trials.len() + 1, total };
+        let started = std::time::Instant::now();
+        let result = run(w, l, &mut labelled);
+        let (output, fidelity) = match result {
+            Ok(done) => done,
+            Err(error) if best.is_none() => return Err(error),
+            Err(_) => return Ok(()),
+        };
+        let trial = Trial {
+            width: w,
+            piece_length: l,
+            patch_distance: fidelity.mean_distance,
+            broken_fraction: fidelity.broken_fraction,
+            score: score(&fidelity),
+            seconds: started.elapsed().as_secs_f64(),
+        };
+        trials.push(trial);
+        if best.as_ref().is_none_or(|b| trial.score < b.trial.score) {
+            *best = Some(Tried { trial, output, fidelity });
+        }
+        Ok(())
+    };
+    for &l in &lengths {
+        attempt(width.value, l, &mut trials, &mut best)?;
+    }
+    let best_length = best.as_ref().map_or(piece_length.value, |b| b.trial.piece_length);
+    for &w in &widths {
+        attempt(w, best_length, &mut trials, &mut best)?;
+    }
+    let best = best.expect("the first trial either succeeded or returned its error");
+    dimensions.width.value = best.trial.width;
+    dimensions.piece_length.value = best.trial.piece_length;
+    Ok((best, trials))
+}
+
+/// `value × factor` for each factor, rounded with `round`, at least 1 and at most `max`, without
+/// repeats, in the order of `factors`.
+fn candidates(value: f64, factors: &[f64], round: fn(f64) -> f64, max: f64) -> Vec<f64> {
+    let mut values: Vec<f64> = Vec::with_capacity(factors.len());
+    for factor in factors {
+        let candidate = round(value * factor).max(1.0).min(max);
+        if !values.contains(&candidate) {
+            values.push(candidate);
+        }
+    }
+    values
+}
+
+/// Progress of one trial, its stages named with the trial's number.
+struct Labelled<'a> {
+    inner: &'a mut dyn Progress,
+    trial: usize,
+    total: usize,
+}
+
+impl Progress for Labelled<'_> {
+    fn report(&mut self, stage: &str, fraction: f64) {
+        if self.total > 1 {
+            self.inner.report(&format!("{stage} (size trial {}/{})", self.trial, self.total), fraction);
+        } else {
+            self.inner.report(stage, fraction);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn candidates_are_rounded_capped_and_unique() {
+        assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0]);
+        assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 30.0), vec![20.0, 16.0, 25.0, 30.0]);
+        assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0]);
+        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![80.0, 84.0]);
+    }
+
+    #[test]
+    fn broken_patches_raise_the_score() {
+        let fidelity = |mean_distance, broken_fraction| PatchFidelity {
+            mean_distance,
+            p90_distance: 0.0,
+            broken_fraction,
+            patches: 10,
+            exemplar_coverage: 1.0,
+        };
+        assert_eq!(score(&fidelity(0.02, 0.0)), 0.02);
+        assert!(score(&fidelity(0.019, 0.05)) > score(&fidelity(0.02, 0.0)));
+        assert!(score(&fidelity(0.019, 0.001)) < score(&fidelity(0.02, 0.0)));
+    }
+}
