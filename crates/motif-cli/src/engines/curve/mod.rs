@@ -206,7 +206,7 @@ pub(crate) fn run(args: &CurveArgs, context: &mut Context) -> anyhow::Result<()>
     };
     let trials = match run.size_trials.len() {
         0 | 1 => String::new(),
-        n => format!(" (best of {n} size trials)"),
+        n => format!(", best of {n} size trials"),
     };
     context.summary(&format!(
         "curve: width {}, piece length {}{fit}{trials}, {} pieces{corners}, total seam cost {:.1} (mean {:.1}){closed}, {:.1}% valid positions, {} distinct windows, DP {:.1} ms/row (median){} -> {}",
