@@ -150,6 +150,9 @@ pub(crate) fn match_all<const D: usize>(
         .collect()
 }
 
+/// How many window offsets ahead the search's loop asks for the raster's nodes.
+const PREFETCH_AHEAD: usize = 4;
+
 /// What matching every quadrature point reads (shared by the parallel workers).
 struct Matcher<'a, 'p, const D: usize> {
     problem: &'a Problem<'p, D>,
@@ -220,6 +223,9 @@ impl<const D: usize> Matcher<'_, '_, D> {
             let mut value = one[0];
             *gradient = one_gradient[0];
             for (o, offset) in offsets.iter().enumerate() {
+                if let Some(ahead) = offsets.get(o + PREFETCH_AHEAD) {
+                    fields.smoothed.prefetch(&linear::add(m, ahead));
+                }
                 let y = linear::add(m, offset);
                 fields.smoothed.sample(&y, &mut sample, &mut sample_gradient);
                 let w = &weights[o * channels..(o + 1) * channels];
