@@ -260,7 +260,7 @@ impl<const D: usize> Quilt<'_, D> {
             let t = self.tiling.tile_of(&quadrature.points[k]);
             representative[t].get_or_insert(k);
             expected[t] +=
-                (cell / quadrature.scale[k]).powi(D as i32) * self.exemplar.density() * self.layout.node_share;
+                cell.powi(D as i32) / quadrature.density_scale(k) * self.exemplar.density() * self.layout.node_share;
         }
         (representative, expected)
     }

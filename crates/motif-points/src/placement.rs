@@ -93,7 +93,7 @@ pub(crate) fn random<const D: usize>(
     }
     let h = quadrature.spacing();
     let density = exemplar.density() * node_share;
-    let target: f64 = fill.iter().map(|&k| h.powi(D as i32) * density / quadrature.scale[k].powi(D as i32)).sum();
+    let target: f64 = fill.iter().map(|&k| h.powi(D as i32) * density / quadrature.density_scale(k)).sum();
     let target = target.round() as usize;
     let mut placed = 0;
     let mut attempt = 0u64;

@@ -383,7 +383,8 @@ fn expected_points<const D: usize>(
     // The grid measures Ω with a boundary layer of half a cell on every side; where the region's
     // volume is known exactly (a fresh box or polygon) the expected count follows it instead (a
     // 9 × 9 box of a unit-density exemplar holds 81 points, not the grid's 91).
-    let mut expected: f64 = quadrature.scale.iter().map(|s| (h / s).powi(D as i32) * exemplar.density()).sum();
+    let mut expected: f64 =
+        (0..quadrature.len()).map(|k| h.powi(D as i32) / quadrature.density_scale(k) * exemplar.density()).sum();
     let grid_volume = quadrature.len() as f64 * h.powi(D as i32);
     let mut node_share = 1.0;
     if let (Some(volume), None) = (region.volume(), margin) {

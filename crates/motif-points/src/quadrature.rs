@@ -27,6 +27,10 @@ pub(crate) struct Quadrature<const D: usize> {
     pub inverse: Vec<Matrix<D>>,
     /// `s_k`.
     pub scale: Vec<f64>,
+    /// Dimension of the pattern in the output: `D`, or 2 on a surface (whose exemplar is planar,
+    /// lifted into a band as thick as the grid's), so that scaling by `s` divides its density by
+    /// `s²` there, not `s³` ([`Quadrature::density_scale`]).
+    pub pattern_dimension: i32,
     /// Per quadrature point: the L∞ distance, in grid steps, to the nearest grid node that is not
     /// a quadrature point (or to the outside of the grid).
     pub depth: Vec<u32>,
@@ -91,8 +95,15 @@ impl<const D: usize> Quadrature<D> {
             transform,
             inverse,
             scale: scales,
+            pattern_dimension: D as i32,
             depth,
         })
+    }
+
+    /// How much the scale at quadrature point `k` divides the exemplar's density by:
+    /// `s_k` to the pattern's dimension.
+    pub(crate) fn density_scale(&self, k: usize) -> f64 {
+        self.scale[k].powi(self.pattern_dimension)
     }
 
     /// On a surface domain, moves the quadrature points onto the surface and measures their
@@ -100,6 +111,7 @@ impl<const D: usize> Quadrature<D> {
     /// sees the thin band.
     pub(crate) fn settle_on(&mut self, region: &Region<D>) {
         if let Region::Surface { .. } = region {
+            self.pattern_dimension = 2;
             for k in 0..self.points.len() {
                 let q = region.keep_on(&self.points[k]);
                 self.points[k] = q;

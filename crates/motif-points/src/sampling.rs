@@ -126,7 +126,7 @@ fn thresholds<const D: usize>(problem: &Problem<'_, D>, exemplar: &Exemplar<D>, 
     };
     (0..quadrature.len())
         .map(|k| {
-            let output_density = density / quadrature.scale[k].powi(D as i32);
+            let output_density = density / quadrature.density_scale(k);
             threshold * (output_density * spread).sqrt().max(1.0)
         })
         .collect()

@@ -5,7 +5,7 @@ use motif_core::{NoProgress, TriangleMesh};
 
 use crate::mesh_surface::MeshSurface;
 use crate::samples::hex_exemplar;
-use crate::{Domain, DomainProblem, Error, Initialization, Input, InputError, Params, SurfaceDirections, synthesize};
+use crate::{Domain, DomainProblem, Error, Field, Initialization, Input, InputError, Params, SurfaceDirections, synthesize};
 
 /// The square `[0, side]²` in the plane z = `height`, as `cells × cells` pairs of triangles.
 pub(crate) fn flat_mesh(side: f64, cells: u32, height: f64) -> TriangleMesh {
@@ -97,6 +97,28 @@ fn a_flat_mesh_gives_the_statistics_of_a_box() {
             "{name}: box {box_figure:.3}, flat mesh {mesh_figure:.3}"
         );
         assert!(mesh_figure < random, "{name}: flat mesh {mesh_figure:.3}, random {random:.3}");
+    }
+}
+
+/// A scale `s` on a surface divides the pattern's density by `s²` (it is planar there): the
+/// count once divided by `s³`, the lifted exemplar's own dimension (41 % of the density on a torus
+/// at `--scale 2.5`).
+#[test]
+fn a_scaled_pattern_keeps_its_density_on_a_surface() {
+    let exemplar = swedish_pines();
+    let side = 300.0;
+    let run = |scale: f64| {
+        let params = Params::default().with_neighbourhood(Some(32.0)).with_seed(3).with_scale(Field::Uniform(scale));
+        let surface = Domain::Surface { mesh: flat_mesh(side, 9, 2.5), directions: SurfaceDirections::Curvature };
+        synthesize(&Input::new(exemplar.clone(), surface), &params, &mut NoProgress).unwrap()
+    };
+    let unscaled = run(1.0).report.expected_points;
+    for scale in [1.5, 2.0] {
+        let output = run(scale);
+        let expected = unscaled / (scale * scale);
+        let n = output.points.len() as f64;
+        assert!((output.report.expected_points / expected - 1.0).abs() < 0.02, "{scale}: {}", output.report.expected_points);
+        assert!((n / expected - 1.0).abs() < 0.05, "scale {scale}: {n} points for {expected:.0}");
     }
 }
 
