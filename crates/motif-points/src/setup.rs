@@ -103,8 +103,11 @@ impl<const D: usize> Setup<D> {
                     node_share: self.node_share,
                     count_tolerance: params.count_tolerance,
                 };
-                let copies =
-                    init::patches(&self.exemplar, &self.quadrature, &self.fill, layout, &mut state, streams, &allowed);
+                let settle = |p: &Vector<D>| self.region.keep_on(p);
+                let settle: Option<&dyn Fn(&Vector<D>) -> Vector<D>> = on_surface.then_some(&settle);
+                let (exemplar, quadrature, fill) = (&self.exemplar, &self.quadrature, &self.fill);
+                let domain = init::DomainTests { allowed: &allowed, settle };
+                let copies = init::patches(exemplar, quadrature, fill, layout, &mut state, streams, domain);
                 self.patch_interiors = copies.interiors;
                 self.patch_usage_variation = Some(copies.usage_variation);
                 let centre = std::array::from_fn(|a| 0.5 * (self.exemplar.low[a] + self.exemplar.high[a]));
