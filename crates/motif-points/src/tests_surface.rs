@@ -1,7 +1,7 @@
 //! Surface domains: points on the mesh, the same statistics on a flat mesh as in a box, frames
 //! along a cylinder's principal directions, bad meshes refused.
 
-use motif_core::{NoProgress, TriangleMesh};
+use motif_core::{NoProgress, TriangleMesh, math};
 
 use crate::mesh_surface::MeshSurface;
 use crate::samples::hex_exemplar;
@@ -130,8 +130,10 @@ fn torus(big_r: f64, r: f64, around: usize, tube: usize) -> TriangleMesh {
         let u = std::f64::consts::TAU * i as f64 / around as f64;
         for j in 0..tube {
             let v = std::f64::consts::TAU * j as f64 / tube as f64;
-            let radial = big_r + r * v.cos();
-            vertices.push([radial * u.cos(), radial * u.sin(), r * v.sin()]);
+            let (sin_v, cos_v) = math::sin_cos(v);
+            let (sin_u, cos_u) = math::sin_cos(u);
+            let radial = big_r + r * cos_v;
+            vertices.push([radial * cos_u, radial * sin_u, r * sin_v]);
         }
     }
     let index = |i: usize, j: usize| ((i % around) * tube + j % tube) as u32;
