@@ -24,6 +24,10 @@ mod search;
 
 pub use search::Trial;
 
+/// The exemplars after the first with the tile images appended, and for each of the start, end
+/// and corner tiles the index of its image among all exemplars.
+type TileExemplars<'a> = (std::borrow::Cow<'a, [RgbaImage]>, [Option<usize>; 3]);
+
 crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
 crate::choice_option!(Method: "synth", "repeat");
 crate::choice_option!(Solver: "exact", "reference", "coarse");
@@ -414,7 +418,7 @@ impl CurveJob {
     fn tile_exemplars<'a>(
         &self,
         inputs: &CurveInputs<'a>,
-    ) -> Result<(std::borrow::Cow<'a, [RgbaImage]>, [Option<usize>; 3]), JobError> {
+    ) -> Result<TileExemplars<'a>, JobError> {
         let mut exemplars = std::borrow::Cow::Borrowed(inputs.more_exemplars);
         let mut sources = [None; 3];
         let columns = [self.options.start_tile, self.options.end_tile, self.options.corner_tile];

@@ -251,10 +251,11 @@ pub(crate) fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()
     let surface = write_surface(args, &output, element.as_ref())?;
     if let (Some(preview), Some(exemplar)) = (&args.preview, &shown_exemplar) {
         // Elements are drawn on the surface they were placed on.
-        let backdrop = match (&element, &job.domain) {
-            (Some(_), DomainSpec::Surface(spec)) => Some(&spec.mesh),
+        let domain_mesh = match &job.domain {
+            DomainSpec::Surface(spec) => Some(&spec.mesh),
             _ => None,
         };
+        let backdrop = element.as_ref().and(domain_mesh);
         let svg = preview::preview_svg(
             exemplar,
             &output.points,
@@ -262,6 +263,7 @@ pub(crate) fn run(args: &PointsArgs, context: &mut Context) -> anyhow::Result<()
             args.colour_by.as_deref(),
             surface.as_ref(),
             backdrop,
+            domain_mesh,
         )?;
         context.check_render(output.report.estimated_memory_bytes, &svg, 1.0)?;
         let image = motif_io::render_svg(&svg, 1.0, Path::new("preview"))?;

@@ -146,6 +146,61 @@ fn draw_mesh_panel(
     svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
 }
 
+/// Points on the surface domain they were synthesized on: the mesh flat-shaded in grey and every
+/// point a disc in its colour, drawn together far to near (painter's order), so that the near
+/// side of the mesh hides the points on its far side and the surface's shape reads. A point is
+/// drawn half a mean edge nearer than it is, in front of the triangles around it.
+fn draw_points_on_mesh(
+    svg: &mut SvgWriter,
+    (set, colours): (&PointSet, &[[u8; 4]]),
+    mesh: &TriangleMesh,
+    left: f64,
+    size: f64,
+    title: &str,
+) {
+    let screen: Vec<(f64, f64, f64)> = mesh.vertices.iter().map(|&v| view(v)).collect();
+    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for &(x, y, _) in &screen {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+    let margin = 16.0;
+    let scale = (size - 2.0 * margin) / extent;
+    let corner = |p: (f64, f64, f64)| Point::new(left + margin + (p.0 - x0) * scale, margin + (p.1 - y0) * scale);
+    let edge = |a: u32, b: u32| {
+        let (p, q) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
+        ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+    };
+    let edges: f64 = mesh.triangles.iter().map(|t| edge(t[0], t[1]) + edge(t[1], t[2]) + edge(t[2], t[0])).sum();
+    let lift = 0.5 * edges / (3 * mesh.triangles.len()).max(1) as f64;
+    let points = project(set);
+    // Far to near: (depth, triangle or point index, is a point).
+    let mut items: Vec<(f64, usize, bool)> = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .map(|(t, triangle)| (triangle.iter().map(|&v| screen[v as usize].2).sum::<f64>() / 3.0, t, false))
+        .chain(points.iter().enumerate().map(|(i, p)| (p.2 - lift, i, true)))
+        .collect();
+    items.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.2.cmp(&b.2)).then(a.1.cmp(&b.1)));
+    let area = (x1 - x0) * (y1 - y0);
+    let radius = (0.3 * (area / set.len().max(1) as f64).sqrt() * scale).clamp(1.0, 6.0);
+    svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
+    for (_, index, is_point) in items {
+        if is_point {
+            svg.circle(corner(points[index]), radius, None, Some(colours[index]));
+            continue;
+        }
+        let [a, b, c] = mesh.triangles[index].map(|v| screen[v as usize]);
+        let (u, w) = ((b.0 - a.0, b.1 - a.1, b.2 - a.2), (c.0 - a.0, c.1 - a.1, c.2 - a.2));
+        let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
+        let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
+        let grey = (110.0 + 130.0 * (0.25 + 0.75 * (normal.2 / length).abs())) as u8;
+        svg.polyline(&[corner(a), corner(b), corner(c)], true, None, Some([grey, grey, grey, 255]));
+    }
+    svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
+}
+
 fn draw_panel(svg: &mut SvgWriter, set: &PointSet, colours: &[[u8; 4]], left: f64, size: f64, title: &str) {
     let projected = project(set);
     let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -231,7 +286,8 @@ fn draw_statistics(svg: &mut SvgWriter, fidelity: &Fidelity, left: f64, size: f6
 }
 
 /// The preview image's SVG (rendered at scale 1): exemplar and output side by side, then their
-/// statistics.
+/// statistics. The output is drawn as `surface` (a reconstructed surface or placed elements, on
+/// `backdrop`) when given, else as points on `domain_mesh` (a surface domain), else as points.
 pub(super) fn preview_svg(
     exemplar: &PointSet,
     output: &PointSet,
@@ -239,6 +295,7 @@ pub(super) fn preview_svg(
     colour_by: Option<&str>,
     surface: Option<&TriangleMesh>,
     backdrop: Option<&TriangleMesh>,
+    domain_mesh: Option<&TriangleMesh>,
 ) -> anyhow::Result<String> {
     let size = 420.0;
     let mut svg = SvgWriter::new(3.0 * size + 20.0, size);
@@ -250,10 +307,16 @@ pub(super) fn preview_svg(
             let title = format!("output surface ({} points, {} triangles)", output.len(), mesh.triangles.len());
             draw_mesh_panel(&mut svg, mesh, backdrop, size + 10.0, size, &title);
         }
-        None => {
-            let title = format!("output ({} points)", output.len());
-            draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &title);
-        }
+        None => match domain_mesh {
+            Some(mesh) => {
+                let title = format!("output ({} points on {} triangles)", output.len(), mesh.triangles.len());
+                draw_points_on_mesh(&mut svg, (output, &output_colours), mesh, size + 10.0, size, &title);
+            }
+            None => {
+                let title = format!("output ({} points)", output.len());
+                draw_panel(&mut svg, output, &output_colours, size + 10.0, size, &title);
+            }
+        },
     }
     draw_statistics(&mut svg, fidelity, 2.0 * size + 20.0, size);
     Ok(svg.finish())
