@@ -159,7 +159,19 @@ fn surface_domains_keep_points_on_the_mesh_and_refuse_bad_fields() {
     std::fs::write(dir.path().join("solid.obj"), octahedron_obj(false)).unwrap();
     let base = ["points", "--exemplar", "grid.csv", "--neighbourhood", "1.5", "--domain", "surface:solid.obj"];
     let run = |extra: &[&str]| motif(dir.path(), &[&base[..], extra].concat());
-    ok(&run(&["--out", "out.csv", "--report", "report.json"]));
+    ok(&run(&["--out", "out.csv", "--report", "report.json", "--preview", "preview.png"]));
+    // The preview draws the points over the domain mesh, shaded grey: the output panel (the
+    // middle third) holds both grey mesh pixels and the points' dark ones.
+    let preview = motif_io::read_image(&dir.path().join("preview.png")).unwrap();
+    let (mut grey, mut dark) = (0, 0);
+    for y in 0..preview.height() {
+        for x in preview.width() / 3..2 * preview.width() / 3 {
+            let [r, g, b, _] = preview.get(x, y);
+            grey += usize::from(r == g && g == b && (100..250).contains(&r));
+            dark += usize::from(r < 80 && g < 80 && b < 100);
+        }
+    }
+    assert!(grey > 5_000 && dark > 500, "grey {grey}, dark {dark}");
     let text = std::fs::read_to_string(dir.path().join("out.csv")).unwrap();
     let points: Vec<Vec<f64>> =
         text.lines().skip(1).map(|l| l.split(',').take(3).map(|v| v.parse().unwrap()).collect()).collect();
