@@ -1,9 +1,11 @@
 //! Generated exemplars for the demo, the benchmarks and the tests: the paper's kinds of input
-//! (a 2D grid-like arrangement, sand ripples, a 3D organic lattice, rigid leaves) drawn from a seed.
+//! (a 2D grid-like arrangement, sand ripples, a 3D organic lattice, rigid leaves) drawn from a seed,
+//! and two surface domains of known area (a torus and a sphere).
 
 use motif_core::SeedStreams;
 use motif_core::math;
 use motif_core::random::Rng;
+use motif_core::TriangleMesh;
 
 use crate::PointSet;
 
@@ -84,4 +86,55 @@ pub fn leaf_exemplar(seed: u64) -> PointSet {
         }
     }
     PointSet { dimension: 2, positions, attribute_names: vec![], attributes: vec![], elements: Some(elements) }
+}
+
+/// A torus about the z axis: tube radius `r` around a circle of radius `big_r`, `around` × `tube`
+/// quads split in two (area `4π² big_r r` in the limit).
+pub fn torus_mesh(big_r: f64, r: f64, around: usize, tube: usize) -> TriangleMesh {
+    let mut vertices = Vec::with_capacity(around * tube);
+    for i in 0..around {
+        let (sin_u, cos_u) = math::sin_cos(std::f64::consts::TAU * i as f64 / around as f64);
+        for j in 0..tube {
+            let (sin_v, cos_v) = math::sin_cos(std::f64::consts::TAU * j as f64 / tube as f64);
+            let radial = big_r + r * cos_v;
+            vertices.push([radial * cos_u, radial * sin_u, r * sin_v]);
+        }
+    }
+    let index = |i: usize, j: usize| ((i % around) * tube + j % tube) as u32;
+    let mut triangles = Vec::with_capacity(2 * around * tube);
+    for i in 0..around {
+        for j in 0..tube {
+            triangles.push([index(i, j), index(i + 1, j), index(i + 1, j + 1)]);
+            triangles.push([index(i, j), index(i + 1, j + 1), index(i, j + 1)]);
+        }
+    }
+    TriangleMesh { vertices, triangles }
+}
+
+/// A sphere of `radius` about the origin: `rings` bands of latitude, `segments` around, the poles
+/// fanned (area `4π radius²` in the limit).
+pub fn sphere_mesh(radius: f64, rings: usize, segments: usize) -> TriangleMesh {
+    let mut vertices = vec![[0.0, 0.0, radius], [0.0, 0.0, -radius]];
+    for ring in 1..rings {
+        let (sin_t, cos_t) = math::sin_cos(std::f64::consts::PI * ring as f64 / rings as f64);
+        for segment in 0..segments {
+            let (sin_p, cos_p) = math::sin_cos(std::f64::consts::TAU * segment as f64 / segments as f64);
+            vertices.push([radius * sin_t * cos_p, radius * sin_t * sin_p, radius * cos_t]);
+        }
+    }
+    let at = |ring: usize, segment: usize| (2 + (ring - 1) * segments + segment % segments) as u32;
+    let mut triangles = Vec::with_capacity(2 * rings * segments);
+    for segment in 0..segments {
+        triangles.push([0, at(1, segment), at(1, segment + 1)]);
+        triangles.push([1, at(rings - 1, segment + 1), at(rings - 1, segment)]);
+    }
+    for ring in 1..rings - 1 {
+        for segment in 0..segments {
+            let (a, b) = (at(ring, segment), at(ring + 1, segment));
+            let (c, d) = (at(ring + 1, segment + 1), at(ring, segment + 1));
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        }
+    }
+    TriangleMesh { vertices, triangles }
 }

@@ -1,10 +1,10 @@
 //! Surface domains: points on the mesh, the same statistics on a flat mesh as in a box, frames
 //! along a cylinder's principal directions, bad meshes refused.
 
-use motif_core::{NoProgress, TriangleMesh, math};
+use motif_core::{NoProgress, TriangleMesh};
 
 use crate::mesh_surface::MeshSurface;
-use crate::samples::hex_exemplar;
+use crate::samples::{hex_exemplar, torus_mesh};
 use crate::{Domain, DomainProblem, Error, Field, Initialization, Input, InputError, Params, SurfaceDirections, synthesize};
 
 /// The square `[0, side]²` in the plane z = `height`, as `cells × cells` pairs of triangles.
@@ -122,38 +122,13 @@ fn a_scaled_pattern_keeps_its_density_on_a_surface() {
     }
 }
 
-/// A torus of tube radius `r` around a circle of radius `big_r` (z up), `around` × `tube` quads
-/// split in two.
-fn torus(big_r: f64, r: f64, around: usize, tube: usize) -> TriangleMesh {
-    let mut vertices = Vec::with_capacity(around * tube);
-    for i in 0..around {
-        let u = std::f64::consts::TAU * i as f64 / around as f64;
-        for j in 0..tube {
-            let v = std::f64::consts::TAU * j as f64 / tube as f64;
-            let (sin_v, cos_v) = math::sin_cos(v);
-            let (sin_u, cos_u) = math::sin_cos(u);
-            let radial = big_r + r * cos_v;
-            vertices.push([radial * cos_u, radial * sin_u, r * sin_v]);
-        }
-    }
-    let index = |i: usize, j: usize| ((i % around) * tube + j % tube) as u32;
-    let mut triangles = Vec::with_capacity(2 * around * tube);
-    for i in 0..around {
-        for j in 0..tube {
-            triangles.push([index(i, j), index(i + 1, j), index(i + 1, j + 1)]);
-            triangles.push([index(i, j), index(i + 1, j + 1), index(i, j + 1)]);
-        }
-    }
-    TriangleMesh { vertices, triangles }
-}
-
 /// Patch copies laid in tangent planes land on the surface: on a torus whose tube is as narrow
 /// as the patches, the copies put 82 % of the points the density asks for when the points laid
 /// off the thin band were dropped; now they are settled onto the surface.
 #[test]
 fn patch_copies_fill_a_torus() {
     let exemplar = swedish_pines();
-    let surface = Domain::Surface { mesh: torus(100.0, 40.0, 64, 32), directions: SurfaceDirections::Curvature };
+    let surface = Domain::Surface { mesh: torus_mesh(100.0, 40.0, 64, 32), directions: SurfaceDirections::Curvature };
     let params = Params::default().with_neighbourhood(Some(32.0)).with_seed(3);
     let output = synthesize(&Input::new(exemplar, surface), &params, &mut NoProgress).unwrap();
     let expected = output.report.expected_points;

@@ -1,8 +1,9 @@
 //! `motif bench --engine points`: the paper's three sizes (Table 1) on generated exemplars, and the
 //! real-data corpus (`points_corpus`).
 
-use motif_points::samples::{hex_exemplar, lattice_exemplar, ripple_exemplar};
-use motif_points::{Domain, Evaluator, Input, Params, PointSet};
+use motif_core::TriangleMesh;
+use motif_points::samples::{hex_exemplar, lattice_exemplar, ripple_exemplar, sphere_mesh, torus_mesh};
+use motif_points::{Domain, Evaluator, Field, Input, Params, PointSet};
 use serde_json::{Value, json};
 
 use crate::suite::Bench;
@@ -94,34 +95,57 @@ fn reconstruction(count: usize) -> anyhow::Result<Value> {
     }))
 }
 
-/// A real pattern on a real surface (run with `--case surface`): the Swedish pines of the corpus
-/// on CGAL's bull (12 396 triangles), scaled so that it holds about 20 000 trees: seconds, count
-/// and fidelity against the random and tiled baselines.
-fn surface(seed: u64) -> anyhow::Result<Value> {
+/// A real pattern on surfaces (run with `--case surface`): the Swedish pines of the corpus on
+/// CGAL's bull (12 396 triangles) scaled so that it holds about 20 000 trees, and on a torus and
+/// a sphere, each beside the same exemplar in a square box of the mesh's area: seconds of both,
+/// count and fidelity against the random and tiled baselines (issue 35: density within 5 %, time
+/// within 3× the box's).
+fn surfaces(seed: u64) -> anyhow::Result<Value> {
     let table = motif_io::read_points(&crate::suite::corpus_folder("points").join("swedishpines.csv"))?;
     let (exemplar, _) = super::table_to_points(&table, "swedishpines.csv")?;
     let mut bull = motif_io::read_mesh(&crate::suite::corpus_folder("meshes").join("bull.obj"))?;
     // 1 585 dm long: about 20 000 pines come out (the plot's density asks for 21 200).
     bull.vertices.iter_mut().for_each(|v| *v = v.map(|c| 1585.0 * c));
-    let triangles = bull.triangles.len();
-    let domain = Domain::Surface { mesh: bull, directions: motif_points::SurfaceDirections::Curvature };
-    let params = Params::default().with_neighbourhood(Some(32.0)).with_seed(seed);
-    let start = std::time::Instant::now();
-    let output =
-        motif_points::synthesize(&motif_points::Input::new(exemplar, domain), &params, &mut motif_core::NoProgress)?;
-    let seconds = start.elapsed().as_secs_f64();
+    Ok(json!({
+        "bull_20000": surface_case(&exemplar, bull, 1.0, seed)?,
+        "torus_400_150_scale_2_5": surface_case(&exemplar, torus_mesh(400.0, 150.0, 96, 48), 2.5, seed)?,
+        "sphere_200": surface_case(&exemplar, sphere_mesh(200.0, 48, 96), 1.0, seed)?,
+        "target_seconds_bull": 60.0,
+        "target_time_over_box": 3.0,
+    }))
+}
+
+/// `exemplar` on `mesh` at `scale`, and in a square box of the mesh's area.
+fn surface_case(exemplar: &PointSet, mesh: TriangleMesh, scale: f64, seed: u64) -> anyhow::Result<Value> {
+    let triangles = mesh.triangles.len();
+    let params = Params::default().with_neighbourhood(Some(32.0)).with_seed(seed).with_scale(Field::Uniform(scale));
+    let run = |domain: Domain| -> anyhow::Result<(motif_points::Output, f64)> {
+        let start = std::time::Instant::now();
+        let input = motif_points::Input::new(exemplar.clone(), domain);
+        let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+        Ok((output, start.elapsed().as_secs_f64()))
+    };
+    let directions = motif_points::SurfaceDirections::Curvature;
+    let (output, seconds) = run(Domain::Surface { mesh, directions })?;
+    let side = output.report.surface.as_ref().map_or(0.0, |s| s.area.sqrt());
+    let (in_box, box_seconds) = run(Domain::Box { min: vec![0.0; 2], max: vec![side, side] })?;
     let fidelity = &output.report.fidelity;
     Ok(json!({
         "triangles": triangles,
+        "scale": scale,
         "points": output.points.len(),
+        "initial_points": output.report.initial_points,
         "expected_points": output.report.expected_points,
         "seconds": seconds,
-        "target_seconds": 60.0,
+        "box_seconds": box_seconds,
+        "box_points": in_box.points.len(),
+        "time_over_box": seconds / box_seconds.max(1e-9),
         "density_ratio": fidelity.density_ratio,
         "nearest_neighbour_distance": { "output": fidelity.output.nearest_neighbour, "random": fidelity.random.nearest_neighbour, "tiled": fidelity.tiled.nearest_neighbour },
         "radial_distribution_distance": { "output": fidelity.output.radial_distribution, "random": fidelity.random.radial_distribution, "tiled": fidelity.tiled.radial_distribution },
         "surface": output.report.surface,
         "stages_ms": output.report.stages_ms,
+        "box_stages_ms": in_box.report.stages_ms,
     }))
 }
 
@@ -165,7 +189,7 @@ pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
         figures.insert("chair_1100_to_23000".into(), bench_case(&chair, domain, 0.75, 2.0, bench.seed, false)?);
     }
     if bench.names("surface") {
-        figures.insert("surface_bull_20000".into(), surface(bench.seed)?);
+        figures.insert("surfaces".into(), surfaces(bench.seed)?);
     }
     if bench.names("reconstruction") {
         figures.insert("reconstruction_50000".into(), reconstruction(50_000)?);
