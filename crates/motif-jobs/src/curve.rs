@@ -391,9 +391,8 @@ impl CurveJob {
                 })?;
             (best.output, self.options.fidelity.then_some(best.fidelity), Some(trials))
         } else {
-            let params = self
-                .params_with(dimensions.width.value, dimensions.piece_length.value)?
-                .with_tile_exemplars(sources);
+            let params =
+                self.params_with(dimensions.width.value, dimensions.piece_length.value)?.with_tile_exemplars(sources);
             let output = match session {
                 Some(session) => session.synthesize(&input, &params, progress)?,
                 None => motif_curve::synthesize(&input, &params, progress)?,
@@ -415,10 +414,7 @@ impl CurveJob {
     /// The exemplars after the first with the tile images appended, and for each of the start,
     /// end and corner tiles the index of its image among all exemplars (the engine draws those
     /// tiles from them). A tile given both as columns and as an image is refused.
-    fn tile_exemplars<'a>(
-        &self,
-        inputs: &CurveInputs<'a>,
-    ) -> Result<TileExemplars<'a>, JobError> {
+    fn tile_exemplars<'a>(&self, inputs: &CurveInputs<'a>) -> Result<TileExemplars<'a>, JobError> {
         let mut exemplars = std::borrow::Cow::Borrowed(inputs.more_exemplars);
         let mut sources = [None; 3];
         let columns = [self.options.start_tile, self.options.end_tile, self.options.corner_tile];

@@ -67,7 +67,7 @@ impl<const D: usize> Raster<D> {
 
 impl<const D: usize> Raster<D> {
     /// Asks the processor to start loading the nodes that [`Raster::sample`] at `p` reads (the
-    /// lower row of its cell; the row above is the next line or two), so that a loop over many
+    /// start of each row of its cell: two in 2D, four in 3D), so that a loop over many
     /// scattered samples overlaps their memory latency. No effect on any value.
     #[inline]
     pub(crate) fn prefetch(&self, p: &Vector<D>) {
@@ -79,7 +79,10 @@ impl<const D: usize> Raster<D> {
             stride *= self.dims[a];
         }
         let row = self.dims[0] * self.channels;
-        for offset in [0, row] {
+        // In 3D the cell's upper layer too.
+        let layer = if D == 3 { row * self.dims[1] } else { 0 };
+        let corners = if D == 3 { 4 } else { 2 };
+        for offset in [0, row, layer, layer + row].into_iter().take(corners) {
             if let Some(value) = self.values.get(index * self.channels + offset) {
                 prefetch_line(value);
             }

@@ -3,9 +3,9 @@
 //! and two surface domains of known area (a torus and a sphere).
 
 use motif_core::SeedStreams;
+use motif_core::TriangleMesh;
 use motif_core::math;
 use motif_core::random::Rng;
-use motif_core::TriangleMesh;
 
 use crate::PointSet;
 

@@ -5,7 +5,9 @@ use motif_core::{NoProgress, TriangleMesh};
 
 use crate::mesh_surface::MeshSurface;
 use crate::samples::{hex_exemplar, torus_mesh};
-use crate::{Domain, DomainProblem, Error, Field, Initialization, Input, InputError, Params, SurfaceDirections, synthesize};
+use crate::{
+    Domain, DomainProblem, Error, Field, Initialization, Input, InputError, Params, SurfaceDirections, synthesize,
+};
 
 /// The square `[0, side]²` in the plane z = `height`, as `cells × cells` pairs of triangles.
 pub(crate) fn flat_mesh(side: f64, cells: u32, height: f64) -> TriangleMesh {
@@ -117,7 +119,11 @@ fn a_scaled_pattern_keeps_its_density_on_a_surface() {
         let output = run(scale);
         let expected = unscaled / (scale * scale);
         let n = output.points.len() as f64;
-        assert!((output.report.expected_points / expected - 1.0).abs() < 0.02, "{scale}: {}", output.report.expected_points);
+        assert!(
+            (output.report.expected_points / expected - 1.0).abs() < 0.02,
+            "{scale}: {}",
+            output.report.expected_points
+        );
         assert!((n / expected - 1.0).abs() < 0.05, "scale {scale}: {n} points for {expected:.0}");
     }
 }

@@ -66,7 +66,10 @@ fn a_job_without_width_and_piece_length_infers_them() {
     let lengths: Vec<f64> = trials.iter().map(|t| t.piece_length).collect();
     assert_eq!(&lengths[..5], &[8.0, 6.0, 10.0, 13.0, 16.0]);
     let best = trials.iter().min_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
-    assert_eq!((run.figures["width"].as_f64(), run.figures["piece_length"].as_f64()), (Some(best.width), Some(best.piece_length)));
+    assert_eq!(
+        (run.figures["width"].as_f64(), run.figures["piece_length"].as_f64()),
+        (Some(best.width), Some(best.piece_length))
+    );
     assert!(trials.iter().all(|t| t.score >= t.patch_distance && t.patch_distance > 0.0), "{trials:?}");
     // The kept output is the one a run given that width and piece length draws.
     let mut settled = job.clone();
