@@ -40,7 +40,7 @@ pub struct Trial {
     pub patch_distance: f64,
     /// Share of the output's patches far from every exemplar patch.
     pub broken_fraction: f64,
-    /// [`score`]: lower is better.
+    /// Patch distance × (1 + 4 × broken share): lower is better.
     pub score: f64,
     /// Seconds the trial took.
     pub seconds: f64,
