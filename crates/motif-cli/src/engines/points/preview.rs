@@ -92,6 +92,41 @@ fn view(p: [f64; 3]) -> (f64, f64, f64) {
     (x, -up, depth)
 }
 
+/// Screen points (from [`view`]) fitted into a square panel of side `size` at `left`.
+struct Fit {
+    low: (f64, f64),
+    scale: f64,
+    left: f64,
+}
+
+impl Fit {
+    const MARGIN: f64 = 16.0;
+
+    fn new(screen: &[(f64, f64, f64)], left: f64, size: f64) -> Self {
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for &(x, y, _) in screen {
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        let extent = (x1 - x0).max(y1 - y0).max(1e-9);
+        Self { low: (x0, y0), scale: (size - 2.0 * Self::MARGIN) / extent, left }
+    }
+
+    fn point(&self, p: (f64, f64, f64)) -> Point {
+        let m = Self::MARGIN;
+        Point::new(self.left + m + (p.0 - self.low.0) * self.scale, m + (p.1 - self.low.1) * self.scale)
+    }
+}
+
+/// How brightly a screen triangle is lit: 0.25 + 0.75 × the cosine between its normal and the view
+/// direction (two-sided). In view coordinates (x right, y down, depth away) the normal's depth
+/// component is that cosine, up to the normal's length.
+fn light([a, b, c]: [(f64, f64, f64); 3]) -> f64 {
+    let (u, w) = ((b.0 - a.0, b.1 - a.1, b.2 - a.2), (c.0 - a.0, c.1 - a.1, c.2 - a.2));
+    let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
+    let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
+    0.25 + 0.75 * (normal.2 / length).abs()
+}
+
 /// A reconstructed surface or placed element meshes, shaded, over an optional grey backdrop (the
 /// surface domain the elements sit on): triangles far to near (painter's order), each lit by the
 /// cosine between its normal and the view direction (two-sided, flat shading).
@@ -112,25 +147,14 @@ fn draw_mesh_panel(
     }
     let first_backdrop = mesh.triangles.len() - backdrop_triangles;
     let screen: Vec<(f64, f64, f64)> = mesh.vertices.iter().map(|&v| view(v)).collect();
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for &(x, y, _) in &screen {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
-    let margin = 16.0;
-    let scale = (size - 2.0 * margin) / extent;
+    let fit = Fit::new(&screen, left, size);
     let depth = |t: &[u32; 3]| t.iter().map(|&v| screen[v as usize].2).sum::<f64>();
     let mut order: Vec<usize> = (0..mesh.triangles.len()).collect();
     order.sort_by(|&a, &b| depth(&mesh.triangles[b]).total_cmp(&depth(&mesh.triangles[a])).then(a.cmp(&b)));
     svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
     for t in order {
-        let [a, b, c] = mesh.triangles[t].map(|v| screen[v as usize]);
-        // In view coordinates (x right, y down, depth away) the normal's depth component is the
-        // cosine with the view direction, up to the normal's length.
-        let (u, w) = ((b.0 - a.0, b.1 - a.1, b.2 - a.2), (c.0 - a.0, c.1 - a.1, c.2 - a.2));
-        let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
-        let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
-        let light = 0.25 + 0.75 * (normal.2 / length).abs();
+        let corners = mesh.triangles[t].map(|v| screen[v as usize]);
+        let light = light(corners);
         let fill = if t >= first_backdrop {
             let grey = (120.0 + 110.0 * light) as u8;
             [grey, grey, grey, 255]
@@ -140,8 +164,7 @@ fn draw_mesh_panel(
         } else {
             [(90.0 + 140.0 * light) as u8, (110.0 + 120.0 * light) as u8, (150.0 + 90.0 * light) as u8, 255]
         };
-        let corner = |p: (f64, f64, f64)| Point::new(left + margin + (p.0 - x0) * scale, margin + (p.1 - y0) * scale);
-        svg.polyline(&[corner(a), corner(b), corner(c)], true, None, Some(fill));
+        svg.polyline(&corners.map(|p| fit.point(p)), true, None, Some(fill));
     }
     svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
 }
@@ -159,14 +182,7 @@ fn draw_points_on_mesh(
     title: &str,
 ) {
     let screen: Vec<(f64, f64, f64)> = mesh.vertices.iter().map(|&v| view(v)).collect();
-    let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
-    for &(x, y, _) in &screen {
-        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
-    }
-    let extent = (x1 - x0).max(y1 - y0).max(1e-9);
-    let margin = 16.0;
-    let scale = (size - 2.0 * margin) / extent;
-    let corner = |p: (f64, f64, f64)| Point::new(left + margin + (p.0 - x0) * scale, margin + (p.1 - y0) * scale);
+    let fit = Fit::new(&screen, left, size);
     let edge = |a: u32, b: u32| {
         let (p, q) = (mesh.vertices[a as usize], mesh.vertices[b as usize]);
         ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
@@ -183,20 +199,17 @@ fn draw_points_on_mesh(
         .chain(points.iter().enumerate().map(|(i, p)| (p.2 - lift, i, true)))
         .collect();
     items.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.2.cmp(&b.2)).then(a.1.cmp(&b.1)));
-    let area = (x1 - x0) * (y1 - y0);
-    let radius = (0.3 * (area / set.len().max(1) as f64).sqrt() * scale).clamp(1.0, 6.0);
+    let side = (size - 2.0 * Fit::MARGIN) / fit.scale;
+    let radius = (0.3 * (side * side / set.len().max(1) as f64).sqrt() * fit.scale).clamp(1.0, 6.0);
     svg.rect(left, 0.0, size, size, None, Some([255, 255, 255, 255]));
     for (_, index, is_point) in items {
         if is_point {
-            svg.circle(corner(points[index]), radius, None, Some(colours[index]));
+            svg.circle(fit.point(points[index]), radius, None, Some(colours[index]));
             continue;
         }
-        let [a, b, c] = mesh.triangles[index].map(|v| screen[v as usize]);
-        let (u, w) = ((b.0 - a.0, b.1 - a.1, b.2 - a.2), (c.0 - a.0, c.1 - a.1, c.2 - a.2));
-        let normal = (u.1 * w.2 - u.2 * w.1, u.2 * w.0 - u.0 * w.2, u.0 * w.1 - u.1 * w.0);
-        let length = (normal.0 * normal.0 + normal.1 * normal.1 + normal.2 * normal.2).sqrt().max(1e-300);
-        let grey = (110.0 + 130.0 * (0.25 + 0.75 * (normal.2 / length).abs())) as u8;
-        svg.polyline(&[corner(a), corner(b), corner(c)], true, None, Some([grey, grey, grey, 255]));
+        let corners = mesh.triangles[index].map(|v| screen[v as usize]);
+        let grey = (110.0 + 130.0 * light(corners)) as u8;
+        svg.polyline(&corners.map(|p| fit.point(p)), true, None, Some([grey, grey, grey, 255]));
     }
     svg.text(Point::new(left + 6.0, 12.0), 11.0, [90, 90, 90, 255], title);
 }
