@@ -382,13 +382,13 @@ impl CurveJob {
             patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         };
         let (output, fidelity, trials) = if dimensions.width.inferred || dimensions.piece_length.inferred {
-            let (best, trials) =
-                search::search(&mut dimensions, inputs.curve.length(), progress, |width, piece_length, progress| {
-                    let params = self.params_with(width, piece_length)?.with_tile_exemplars(sources);
-                    let output = motif_curve::synthesize(&input, &params, progress)?;
-                    let fidelity = measure(&params, &output);
-                    Ok((output, fidelity))
-                })?;
+            let limits = (inputs.curve.length(), search::MAX_PAIRS_TO_SEARCH);
+            let (best, trials) = search::search(&mut dimensions, limits, progress, |width, piece_length, progress| {
+                let params = self.params_with(width, piece_length)?.with_tile_exemplars(sources);
+                let output = motif_curve::synthesize(&input, &params, progress)?;
+                let fidelity = measure(&params, &output);
+                Ok((output, fidelity))
+            })?;
             (best.output, self.options.fidelity.then_some(best.fidelity), Some(trials))
         } else {
             let params =

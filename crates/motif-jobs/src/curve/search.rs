@@ -25,6 +25,11 @@ use crate::JobError;
 pub(crate) const PIECE_LENGTH_FACTORS: [f64; 5] = [1.0, 0.8, 1.25, 1.6, 2.0];
 /// Widths tried after the piece length is settled, as multiples of the inferred one.
 pub(crate) const WIDTH_FACTORS: [f64; 2] = [1.05, 1.1];
+/// Most position pairs (`Σ V_{i−1} V_i`, the dynamic program's size) the first trial may have for
+/// the others to run: the round chain on the heart has 1.8 × 10⁹, the dense chain 2.4 × 10⁹ (7
+/// trials: 17 s), the 600 × 250 chain with the exact solver about 3.5 × 10¹⁰ (over two minutes a
+/// trial). Larger problems keep the guess, with a warning.
+pub(crate) const MAX_PAIRS_TO_SEARCH: u64 = 10_000_000_000;
 /// Weight of the broken-patch share in [`score`]: a point of broken patches costs as much as 4 %
 /// of patch distance.
 pub(crate) const BROKEN_WEIGHT: f64 = 4.0;
@@ -61,11 +66,12 @@ pub(crate) struct Tried {
 /// Runs `run` (one whole run at a width and piece length) over the search's candidates for what
 /// `dimensions` inferred, and returns the best trial (its width and piece length written into
 /// `dimensions`) with every trial's figures. `max_piece_length` caps the candidates (the curve's
-/// length). Errors of the first trial, the guess itself, are the run's errors; a later candidate
+/// length); when the first trial's dynamic program has more than `max_pairs` position pairs
+/// ([`MAX_PAIRS_TO_SEARCH`] in a job), it is kept alone, with a warning. Errors of the first trial, the guess itself, are the run's errors; a later candidate
 /// that fails is skipped.
 pub(crate) fn search(
     dimensions: &mut Dimensions,
-    max_piece_length: f64,
+    (max_piece_length, max_pairs): (f64, u64),
     progress: &mut dyn Progress,
     mut run: impl FnMut(f64, f64, &mut dyn Progress) -> Result<(Output, PatchFidelity), JobError>,
 ) -> Result<(Tried, Vec<Trial>), JobError> {
@@ -103,17 +109,38 @@ pub(crate) fn search(
         }
         Ok(())
     };
+    let mut too_large = false;
     for &l in &lengths {
         attempt(width.value, l, &mut trials, &mut best)?;
+        too_large = trials.len() == 1 && too_large_to_search(best.as_mut().map(|b| &mut b.output), total, max_pairs);
+        if too_large {
+            break;
+        }
     }
     let best_length = best.as_ref().map_or(piece_length.value, |b| b.trial.piece_length);
-    for &w in &widths {
+    for &w in widths.iter().filter(|_| !too_large) {
         attempt(w, best_length, &mut trials, &mut best)?;
     }
     let best = best.expect("the first trial either succeeded or returned its error");
     dimensions.width.value = best.trial.width;
     dimensions.piece_length.value = best.trial.piece_length;
     Ok((best, trials))
+}
+
+/// Whether the first trial's dynamic program was too large for the others to run; if so, says so
+/// in its output's warnings.
+fn too_large_to_search(first: Option<&mut Output>, trials: usize, max_pairs: u64) -> bool {
+    let Some(output) = first else { return false };
+    let pairs = output.report.dp_counters.pairs;
+    if trials <= 1 || pairs <= max_pairs {
+        return false;
+    }
+    output.report.warnings.push(format!(
+        "the width and piece length read off the exemplar were kept without trying others: the dynamic \
+         program compared {pairs:.2e} position pairs, over the {max_pairs:.0e} the size search allows; \
+         give --piece-length (and --width) to choose them, or use --solver coarse, whose trials are cheaper"
+    ));
+    true
 }
 
 /// `value × factor` for each factor, rounded with `round`, at least 1 and at most `max`, without
@@ -156,6 +183,36 @@ mod tests {
         assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 30.0), vec![20.0, 16.0, 25.0, 30.0]);
         assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0]);
         assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![80.0, 84.0]);
+    }
+
+    /// The rings along a line, searched with a pair budget under and over the first trial's.
+    #[test]
+    fn a_problem_over_the_pair_budget_keeps_its_guess_with_a_warning() {
+        use crate::curve::tests::{line, rings};
+        let (exemplar, curve) = (rings(), line());
+        let guess = motif_curve::Dimensions::resolve(&exemplar, None, None, 1.0, 8).unwrap();
+        let run = |width: f64, piece_length: f64, progress: &mut dyn Progress| {
+            let params = motif_curve::Params::DEFAULT.with_width(width).with_piece_length(piece_length);
+            let output = motif_curve::synthesize(&motif_curve::Input::new(&exemplar, &curve), &params, progress)?;
+            let fidelity =
+                motif_curve::patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, 1.0);
+            Ok((output, fidelity))
+        };
+        let mut searched = guess;
+        let (best, trials) = search(&mut searched, (1e9, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
+        assert_eq!(trials.len(), 7, "{trials:?}");
+        assert!(best.output.report.warnings.is_empty());
+        let pairs = best.output.report.dp_counters.pairs;
+        assert!(pairs > 0);
+        let mut kept = guess;
+        let (best, trials) = search(&mut kept, (1e9, pairs / 4), &mut motif_core::NoProgress, run).unwrap();
+        assert_eq!(trials.len(), 1);
+        assert_eq!(kept, guess);
+        assert!(
+            best.output.report.warnings.iter().any(|w| w.contains("without trying others")),
+            "{:?}",
+            best.output.report.warnings
+        );
     }
 
     #[test]

@@ -5,14 +5,14 @@ use motif_core::{NoProgress, Point};
 use super::*;
 use crate::Job;
 
-fn rings() -> RgbaImage {
+pub(super) fn rings() -> RgbaImage {
     RgbaImage::from_fn(96, 24, |x, y| {
         let (dx, dy) = ((x % 16) as f64 - 7.5, y as f64 - 11.5);
         if (4.0..7.0).contains(&motif_core::math::hypot(dx, dy)) { [210, 170, 40, 255] } else { [0; 4] }
     })
 }
 
-fn line() -> Polyline {
+pub(super) fn line() -> Polyline {
     let points = (0..=20).map(|i| Point::new(20.0 + 10.0 * f64::from(i), 60.0)).collect();
     Polyline::new(points, false).unwrap()
 }
