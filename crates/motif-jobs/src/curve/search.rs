@@ -67,8 +67,8 @@ pub(crate) struct Tried {
 /// `dimensions` inferred, and returns the best trial (its width and piece length written into
 /// `dimensions`) with every trial's figures. `max_piece_length` caps the candidates (the curve's
 /// length); when the first trial's dynamic program has more than `max_pairs` position pairs
-/// ([`MAX_PAIRS_TO_SEARCH`] in a job), it is kept alone, with a warning. Errors of the first trial, the guess itself, are the run's errors; a later candidate
-/// that fails is skipped.
+/// ([`MAX_PAIRS_TO_SEARCH`] in a job), it is kept alone, with a warning. Errors of the first
+/// trial, the guess itself, are the run's errors; a later candidate that fails is skipped.
 pub(crate) fn search(
     dimensions: &mut Dimensions,
     (max_piece_length, max_pairs): (f64, u64),
