@@ -42,8 +42,9 @@ class CurveOptions(TypedDict, total=False):
     #: bounds and early exit) or reference (the plain O(V²C) dynamic program), which find the same optimum; or
     #: coarse, for large or dense exemplars: the program on cells of 2–4 pixels first, then the exact one in
     #: bands of positions around the best cells (a cost at least the optimum's; --check-gap measures the
-    #: difference). Default: exact.
-    solver: Literal["exact", "reference", "coarse"]
+    #: difference); or auto: exact, but coarse on an open curve whose program has over 10^10 position pairs (a
+    #: large exemplar along a long curve). The report names the solver that ran. Default: auto.
+    solver: Literal["exact", "reference", "coarse", "auto"]
     #: With --solver coarse, also run the exact solver and report the exact optimum and the coarse solver's
     #: cost gap (exact_optimum, cost_gap); takes at least an exact run's time.
     check_gap: bool

@@ -48,6 +48,27 @@ pub enum Solver {
     /// hold an optimal path (the report gives the gap when the exact solver also runs).
     #[serde(rename = "coarse")]
     CoarseToFine,
+    /// [`Solver::Exact`], or [`Solver::CoarseToFine`] for an open curve whose dynamic program has
+    /// more than [`AUTO_COARSE_PAIRS`] position pairs (`Σ V_{i−1} V_i`): the 600 × 250 real chain
+    /// along 100 pieces has 2.7–3.5 × 10¹⁰ and takes over 100 s exact, 2 s coarse with the same
+    /// optimum. Closed curves stay exact (the coarse bands can miss the cycle). The report names
+    /// the solver that ran.
+    Auto,
+}
+
+/// Position pairs above which [`Solver::Auto`] runs the coarse-to-fine solver on an open curve.
+pub const AUTO_COARSE_PAIRS: u64 = 10_000_000_000;
+
+impl Solver {
+    /// The solver that runs for rows of `positions` valid positions each: `self`, with
+    /// [`Solver::Auto`] decided.
+    pub(crate) fn resolve(self, positions: &[usize], closed: bool) -> Self {
+        if self != Self::Auto {
+            return self;
+        }
+        let pairs: u64 = positions.windows(2).map(|pair| pair[0] as u64 * pair[1] as u64).sum();
+        if !closed && pairs > AUTO_COARSE_PAIRS { Self::CoarseToFine } else { Self::Exact }
+    }
 }
 
 /// One row of the DP table: a piece and its candidate positions.
@@ -217,7 +238,7 @@ fn step_on(
     match solver {
         Solver::Reference => reference_row(model, previous, rights, lefts),
         // The coarse-to-fine solver refines its bands with the exact solver's rows.
-        Solver::Exact | Solver::CoarseToFine => {
+        Solver::Exact | Solver::CoarseToFine | Solver::Auto => {
             let top_right = before.frame.top_right;
             let shift = [top_right.x.round() as i32, top_right.y.round() as i32];
             distinct_row(model, previous, rights, lefts, |predecessors, successors| {
@@ -530,6 +551,22 @@ pub(crate) mod tests {
             }));
         }
         set
+    }
+
+    #[test]
+    fn auto_is_coarse_only_on_large_open_problems() {
+        // 100 rows of 18 660 positions (the 600 × 250 chain): 3.4 × 10¹⁰ pairs.
+        let large = vec![18_660; 100];
+        let small = vec![1_200; 60];
+        assert_eq!(Solver::Auto.resolve(&large, false), Solver::CoarseToFine);
+        assert_eq!(Solver::Auto.resolve(&large, true), Solver::Exact);
+        assert_eq!(Solver::Auto.resolve(&small, false), Solver::Exact);
+        assert_eq!(Solver::Exact.resolve(&large, false), Solver::Exact);
+        assert_eq!(Solver::Reference.resolve(&large, false), Solver::Reference);
+        // Just over and at the threshold.
+        let edge = |n: usize| vec![100_000; n];
+        assert_eq!(Solver::Auto.resolve(&edge(2), false), Solver::Exact);
+        assert_eq!(Solver::Auto.resolve(&edge(3), false), Solver::CoarseToFine);
     }
 
     proptest! {

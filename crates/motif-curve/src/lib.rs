@@ -106,7 +106,7 @@ use motif_core::{Polyline, Progress, RgbaImage};
 pub use crate::brush::{Fit, Flip};
 pub use crate::coarse::CoarseReport;
 pub use crate::cost::AlphaMode;
-pub use crate::dp::Solver;
+pub use crate::dp::{AUTO_COARSE_PAIRS, Solver};
 pub use crate::error::{Error, InputError, LimitError};
 pub use crate::fidelity::{PatchFidelity, patch_fidelity};
 pub use crate::incremental::Incremental;

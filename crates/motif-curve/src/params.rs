@@ -85,8 +85,9 @@ pub struct Params {
     pub closed: ClosedMode,
     /// Synthesis or the repeat baseline. Default [`Method::Synthesis`].
     pub method: Method,
-    /// DP solver (§1.4, §2). Default [`Solver::Exact`]; the exact and reference solvers give the
-    /// same optimum, [`Solver::CoarseToFine`] a cost at least as high (equal on small problems).
+    /// DP solver (§1.4, §2). Default [`Solver::Auto`] (exact, coarse to fine on large open
+    /// problems); the exact and reference solvers give the same optimum,
+    /// [`Solver::CoarseToFine`] a cost at least as high (equal on small problems).
     pub solver: Solver,
     /// With [`Solver::CoarseToFine`], also run the exact solver and report the coarse solver's
     /// cost gap (`Report::exact_optimum`, `Report::cost_gap`); the run then takes at least as long
@@ -191,7 +192,7 @@ impl Params {
         scale: 1.0,
         closed: ClosedMode::Auto,
         method: Method::Synthesis,
-        solver: Solver::Exact,
+        solver: Solver::Auto,
         check_gap: false,
         alpha_mode: AlphaMode::Continuous,
         mismatch_penalty: 1024.0,

@@ -240,8 +240,11 @@ fn dynamic_program(
         reach: [((params.piece_length * params.scale / 2.0).round() as i32).max(1), (samples as i32 / 4).max(1)],
         closed,
     };
+    let positions: Vec<usize> = rows.iter().map(|row| row.positions.len()).collect();
+    let solver = params.solver.resolve(&positions, closed);
+    report.solver = solver;
     let setup = solve::Setup {
-        solver: params.solver,
+        solver,
         closed,
         exact_closed: params.closed == ClosedMode::Exact,
         closed_max_starts: params.closed_max_starts,

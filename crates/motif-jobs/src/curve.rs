@@ -30,7 +30,7 @@ type TileExemplars<'a> = (std::borrow::Cow<'a, [RgbaImage]>, [Option<usize>; 3])
 
 crate::choice_option!(ClosedMode: "auto", "approx", "exact", "no");
 crate::choice_option!(Method: "synth", "repeat");
-crate::choice_option!(Solver: "exact", "reference", "coarse");
+crate::choice_option!(Solver: "exact", "reference", "coarse", "auto");
 crate::choice_option!(AlphaMode: "binary", "continuous");
 crate::choice_option!(PieceShape: "rigid", "bent");
 crate::choice_option!(Fit: "none", "stretch", "space");
@@ -82,8 +82,10 @@ crate::declare_options! {
         /// profile tree, lower bounds and early exit) or reference (the plain O(V²C) dynamic
         /// program), which find the same optimum; or coarse, for large or dense exemplars: the
         /// program on cells of 2–4 pixels first, then the exact one in bands of positions around
-        /// the best cells (a cost at least the optimum's; --check-gap measures the difference).
-        [value_name: "exact|reference|coarse"]
+        /// the best cells (a cost at least the optimum's; --check-gap measures the difference);
+        /// or auto: exact, but coarse on an open curve whose program has over 10^10 position
+        /// pairs (a large exemplar along a long curve). The report names the solver that ran.
+        [value_name: "auto|exact|reference|coarse"]
         solver: Solver = DEFAULTS.solver,
         /// With --solver coarse, also run the exact solver and report the exact optimum and the
         /// coarse solver's cost gap (exact_optimum, cost_gap); takes at least an exact run's time.

@@ -43,7 +43,7 @@ fn one() -> f64 {
 
 /// The parameters of a case (the exact solver).
 pub(super) fn params_of(case: &CorpusCase, method: Method) -> CurveParams {
-    let mut params = CurveParams::default();
+    let mut params = CurveParams::default().with_solver(Solver::Exact);
     params.width = case.width;
     params.piece_length = case.piece_length;
     params.scale = case.scale;
