@@ -313,12 +313,12 @@ impl<const D: usize> Quilt<'_, D> {
         !self.layout.on_surface || self.tiling.tile_of(x) == copy.tile
     }
 
-    /// Where a copy's point laid at `x` lands, if it is kept: on a surface, the end of a walk along
-    /// the surface from the copy's centre towards `x` (see [`walk_on_surface`]; its tangent plane departs from a curved surface by `u²/2R` at `u` from the
-    /// copy's centre, far more than the thin band Ω is there: points laid in the plane and
-    /// tested as they were were dropped beyond about 19 units on a tube of radius 60, and patch
-    /// initialization placed 82 % of a torus's points), kept when it lands in the copy's tile
-    /// and in Ω.
+    /// Where a copy's point laid at `x` lands, if it is kept: on a surface, the end of a walk
+    /// along the surface from the copy's centre towards `x` ([`walk_on_surface`]), kept when it
+    /// lands in the copy's tile and in Ω. The tangent plane departs from a curved surface by
+    /// `u²/2R` at `u` from the copy's centre, far more than the thin band Ω is there: points
+    /// laid in the plane and tested as they were were dropped beyond about 19 units on a tube of
+    /// radius 60, and patch initialization placed 82 % of a torus's points.
     fn landing(&self, copy: &TileCopy<D>, x: &Vector<D>) -> Option<Vector<D>> {
         let x = match self.settle {
             Some(settle) => walk_on_surface(settle, &copy.centre, x, self.exemplar.spacing * copy.scale),
