@@ -224,17 +224,22 @@ fn red_pixels(image: &RgbaImage) -> Vec<(usize, usize)> {
     red
 }
 
-#[test]
-fn corner_tiles_are_drawn_at_the_corners_of_a_closed_frame_and_nowhere_else() {
-    let exemplar = bars_with_red_tile();
-    // A 160 × 120 rectangle, closed: four 90° corners.
-    let frame = motif_core::Polyline::new(
+/// A closed 160 × 120 rectangle at (20, 20): four 90° corners.
+fn rectangle_frame() -> motif_core::Polyline {
+    motif_core::Polyline::new(
         [(20.0, 20.0), (180.0, 20.0), (180.0, 140.0), (20.0, 140.0)]
             .map(|(x, y)| motif_core::Point::new(x, y))
             .to_vec(),
         true,
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn corner_tiles_are_drawn_at_the_corners_of_a_closed_frame_and_nowhere_else() {
+    let exemplar = bars_with_red_tile();
+    // A 160 × 120 rectangle, closed: four 90° corners.
+    let frame = rectangle_frame();
     let mut with_corners = params(16.0, 20.0).with_corner_tile(Some([170, 200]));
     with_corners.canvas = crate::Canvas::Size { width: 200, height: 160 };
     let output = synthesize(&Input::new(&exemplar, &frame), &with_corners, &mut NoProgress).unwrap();
@@ -341,13 +346,7 @@ fn tiles_from_images_of_their_own_are_drawn_whole_and_only_as_tiles() {
     assert!(high - low > 125 && red.iter().all(|&(x, _)| x < low + 30 || x + 30 > high), "{low} {high}");
     assert!(red.len() > 2 * 250, "{}", red.len());
     // An image corner tile on a closed frame: blue at the four corners.
-    let frame = motif_core::Polyline::new(
-        [(20.0, 20.0), (180.0, 20.0), (180.0, 140.0), (20.0, 140.0)]
-            .map(|(x, y)| motif_core::Point::new(x, y))
-            .to_vec(),
-        true,
-    )
-    .unwrap();
+    let frame = rectangle_frame();
     let input = Input::new(&exemplar, &frame).with_more_exemplars(&images[1..]);
     let cornered = params(16.0, 20.0).with_tile_exemplars([None, None, Some(1)]);
     let output = synthesize(&input, &cornered, &mut NoProgress).unwrap();
