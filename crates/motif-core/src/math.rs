@@ -142,6 +142,24 @@ pub fn log10(x: f64) -> f64 {
     libm::log10(x)
 }
 
+/// Natural logarithm.
+#[inline]
+pub fn ln(x: f64) -> f64 {
+    libm::log(x)
+}
+
+/// Arc tangent (radians), in [−π/2, π/2].
+#[inline]
+pub fn atan(x: f64) -> f64 {
+    libm::atan(x)
+}
+
+/// Hyperbolic sine.
+#[inline]
+pub fn sinh(x: f64) -> f64 {
+    libm::sinh(x)
+}
+
 /// `√(x² + y²)` without undue overflow.
 #[inline]
 pub fn hypot(x: f64, y: f64) -> f64 {

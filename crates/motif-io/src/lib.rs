@@ -16,9 +16,12 @@
 //! - `mesh`: triangle meshes read from OBJ (via `tobj`, sections welded) or PLY faces
 //!   ([`read_mesh`]), and written as OBJ ([`write_obj`]).
 //! - [`json`]: reports and piece lists via `serde_json`.
+//! - `maps`: OpenStreetMap extracts in ([`read_osm`], via `osmpbf`) and tile pyramids out
+//!   ([`write_pmtiles`], via `pmtiles`).
 
 mod frames;
 pub mod json;
+mod maps;
 mod mesh;
 pub mod points;
 pub mod raster;
@@ -30,11 +33,12 @@ use std::path::{Path, PathBuf};
 
 pub use frames::FramePattern;
 pub use json::{read_json, write_json};
+pub use maps::{OsmCounts, PyramidInfo, read_osm, write_pmtiles};
 pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};
 pub use raster::{
-    ImageBudget, MAX_MAP_PIXELS, MAX_PIXELS, Rgba16, decode_image, decode_image_within, read_image, read_image_within,
-    read_png16, read_png16_within, write_png, write_png16,
+    ImageBudget, MAX_MAP_PIXELS, MAX_PIXELS, Rgba16, decode_image, decode_image_within, encode_png, read_image,
+    read_image_within, read_png16, read_png16_within, write_png, write_png16,
 };
 pub(crate) use staging::write_with;
 pub use staging::{begin_outputs, check_folder_writable, commit_outputs, create_folder, discard_outputs, stop_outputs};

@@ -233,6 +233,16 @@ fn end_of_scan(bytes: &[u8], start: usize) -> usize {
     bytes.len()
 }
 
+/// An 8-bit RGBA image as PNG bytes (for tiles served or packed rather than written alone).
+pub fn encode_png(image: &RgbaImage) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    let encoder = image::codecs::png::PngEncoder::new(&mut bytes);
+    // Writing into memory fails only for an image too large for PNG, which no tile is.
+    let (width, height) = (image.width() as u32, image.height() as u32);
+    let _ = image::ImageEncoder::write_image(encoder, image.as_bytes(), width, height, image::ExtendedColorType::Rgba8);
+    bytes
+}
+
 /// Writes an 8-bit RGBA PNG atomically.
 pub fn write_png(path: &Path, image: &RgbaImage) -> Result<()> {
     if image.is_empty() {

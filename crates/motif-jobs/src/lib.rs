@@ -41,6 +41,7 @@ pub mod options;
 pub mod points;
 pub mod strokes;
 pub mod stylize;
+pub mod tiles;
 
 pub use error::{ErrorKind, JobError};
 pub use job::{Finished, Job, JobEntry};
@@ -57,6 +58,7 @@ pub const JOBS: &[JobEntry] = &[
     JobEntry::of::<stylize::InpaintJob>(),
     JobEntry::of::<stylize::ZoomJob>(),
     JobEntry::of::<stylize::VideoJob>(),
+    JobEntry::of::<tiles::TilesJob>(),
 ];
 
 /// Per-stage milliseconds as a JSON object, in order.

@@ -12,6 +12,7 @@ use motif_jobs::curve::CurveJob;
 use motif_jobs::points::PointsJob;
 use motif_jobs::strokes::StrokesJob;
 use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, VideoJob, ZoomJob};
+use motif_jobs::tiles::TilesJob;
 
 use crate::context::Context;
 use crate::registry::Engine;
@@ -20,6 +21,7 @@ pub(crate) mod curve;
 pub(crate) mod points;
 pub(crate) mod strokes;
 pub(crate) mod stylize;
+pub(crate) mod tiles;
 
 /// A job's long help: its summary, then its details.
 fn long_about<J: Job>() -> String {
@@ -48,6 +50,8 @@ pub enum EngineCommand {
     Zoom(stylize::ZoomArgs),
     #[command(about = VideoJob::SUMMARY, long_about = long_about::<VideoJob>(), allow_negative_numbers = true)]
     Video(stylize::VideoArgs),
+    #[command(about = TilesJob::SUMMARY, long_about = long_about::<TilesJob>())]
+    Tiles(tiles::TilesArgs),
 }
 
 impl EngineCommand {
@@ -63,6 +67,7 @@ impl EngineCommand {
             EngineCommand::Inpaint(_) => InpaintJob::NAME,
             EngineCommand::Zoom(_) => ZoomJob::NAME,
             EngineCommand::Video(_) => VideoJob::NAME,
+            EngineCommand::Tiles(_) => TilesJob::NAME,
         }
     }
 
@@ -78,6 +83,7 @@ impl EngineCommand {
             EngineCommand::Inpaint(args) => stylize::run_inpaint(args, context),
             EngineCommand::Zoom(args) => stylize::run_zoom(args, context),
             EngineCommand::Video(args) => stylize::run_video(args, context),
+            EngineCommand::Tiles(args) => tiles::run(args, context),
         }
     }
 }
