@@ -21,6 +21,7 @@ raise ``OSError``.
 from __future__ import annotations
 
 import json
+import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -37,6 +38,7 @@ __all__ = [
     "curve",
     "points",
     "strokes",
+    "tiles",
     "read_image",
     "write_png",
     "read_points",
@@ -73,6 +75,7 @@ _ARGUMENTS = {
     "curve": {"width", "piece-length"},
     "points": {"neighbourhood", "domain", "seed"},
     "strokes": {"scale", "target", "seed"},
+    "tiles": {"seed", "zoom"},
 }
 
 
@@ -581,3 +584,28 @@ def options(engine: str) -> List[str]:
     if engine not in _ARGUMENTS:
         raise ValueError(f"no engine named {engine!r}; engines: {', '.join(sorted(_ARGUMENTS))}")
     return sorted(name.replace("-", "_") for name in set(_motif.options(engine)) - _ARGUMENTS[engine])
+
+
+def tiles(
+    map: Union[str, "os.PathLike[str]"],
+    legend: Optional[Union[str, "os.PathLike[str]"]] = None,
+    *,
+    zoom: Optional[Tuple[int, int]] = None,
+    seed: int = 1,
+    threads: Optional[int] = None,
+    **options: Any,
+) -> Any:
+    """A stylized slippy map of the OpenStreetMap extract ``map`` (``motif tiles``).
+
+    ``legend`` is a folder of CLASS.png textures or a STYLE.json (default: the built-in legend of
+    real GIMP textures); ``zoom`` = (low, high), the levels of ``pyramid()`` (default (12, 16)).
+    The textures are pre-synthesized once, here; the result's ``render(z, x, y, layer="stylized")``
+    gives any tile as an H×W×4 array ("plain" for the segment map), ``pyramid()`` lists the
+    tiles of ``zoom`` over the map and ``report()`` the run's figures as JSON. Tiles have the
+    bytes of ``motif tiles`` with the same options and seed.
+    """
+    fixed: Dict[str, Any] = {"seed": _seed(seed)}
+    if zoom is not None:
+        fixed["zoom"] = [int(zoom[0]), int(zoom[1])]
+    job = _job("tiles", fixed, options)
+    return _motif.tiles(os.fspath(map), job, None if legend is None else os.fspath(legend), threads)

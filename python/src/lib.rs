@@ -407,6 +407,66 @@ fn stylize<'py>(
     Ok((array_of(py, &RgbaImage::from_float(&run.output.image))?, report_json(&run.figures)))
 }
 
+/// A map's tile set (`motif tiles`): the textures pre-synthesized once, any tile on demand.
+#[pyclass(frozen, module = "motif._motif")]
+struct Tiles(motif_jobs::tiles::TilesRun);
+
+#[pymethods]
+impl Tiles {
+    /// Tile `(z, x, y)` of layer `layer` ("stylized" or "plain") as an H×W×4 uint8 array.
+    #[pyo3(signature = (z, x, y, layer="stylized", threads=None))]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        z: u8,
+        x: u32,
+        y: u32,
+        layer: &str,
+        threads: Option<usize>,
+    ) -> PyResult<Image<'py>> {
+        let layer = match layer {
+            "stylized" => motif_jobs::tiles::Layer::Stylized,
+            "plain" => motif_jobs::tiles::Layer::Plain,
+            other => {
+                return Err(OptionError::new_err(format!("layer must be \"stylized\" or \"plain\", not {other:?}")));
+            }
+        };
+        let tile = motif_jobs::tiles::TileId::new(z, x, y).map_err(|error| OptionError::new_err(error.to_string()))?;
+        let image = detached(py, threads, || self.0.render(tile, layer))?.map_err(job_error)?;
+        array_of(py, &image)
+    }
+
+    /// The tiles of the job's zoom levels that meet the map, as (z, x, y), by zoom, row, column.
+    fn pyramid(&self) -> Vec<(u8, u32, u32)> {
+        self.0.pyramid().into_iter().map(|tile| (tile.z, tile.x, tile.y)).collect()
+    }
+
+    /// The figures of the run, as JSON.
+    fn report(&self) -> String {
+        report_json(&self.0.figures)
+    }
+}
+
+/// `motif tiles`: the tile set of the OpenStreetMap extract at `map` with the legend at `legend`
+/// (a folder, a JSON file, or the built-in one when `None`).
+#[pyfunction]
+#[pyo3(signature = (map, job, legend=None, threads=None))]
+fn tiles(
+    py: Python<'_>,
+    map: std::path::PathBuf,
+    job: &str,
+    legend: Option<std::path::PathBuf>,
+    threads: Option<usize>,
+) -> PyResult<Tiles> {
+    let job: motif_jobs::tiles::TilesJob = description(job)?;
+    let limit = motif_core::DEFAULT_MAX_MEMORY;
+    let (map, _) = py.detach(|| motif_io::read_osm(&map, limit)).map_err(io_error)?;
+    let legend = py.detach(|| motif_io::read_legend(legend.as_deref(), limit)).map_err(io_error)?;
+    let inputs = motif_jobs::tiles::TilesInputs { map, legend };
+    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
+    Ok(Tiles(run))
+}
+
 /// `motif curve` along a polyline of (N, 2) points (closed when the last repeats the first):
 /// (image, pieces JSON, report JSON).
 #[pyfunction]
@@ -577,6 +637,8 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(curve, module)?)?;
     module.add_function(wrap_pyfunction!(points, module)?)?;
     module.add_function(wrap_pyfunction!(strokes, module)?)?;
+    module.add_function(wrap_pyfunction!(tiles, module)?)?;
+    module.add_class::<Tiles>()?;
     module.add_function(wrap_pyfunction!(options, module)?)?;
     module.add_function(wrap_pyfunction!(jobs, module)?)?;
     module.add("MotifError", module.py().get_type::<MotifError>())?;

@@ -73,7 +73,7 @@ def test_presynth_and_band_stylize_equal_the_cli(cli, tmp_path, photo):
 def test_every_job_is_a_function_and_a_command(cli, tmp_path):
     """`motif.jobs()` lists motif-jobs' JOBS: each is a function here and a `motif` command with its summary."""
     names = [name for name, _ in motif.jobs()]
-    assert names == ["curve", "points", "strokes", "stylize", "presynth", "texture", "inpaint", "zoom", "video"]
+    assert names == ["curve", "points", "strokes", "stylize", "presynth", "texture", "inpaint", "zoom", "video", "tiles"]
     for name, summary in motif.jobs():
         assert name in motif.__all__ and callable(getattr(motif, name)), name
         assert summary in cli([name, "--help"], tmp_path).stdout, name

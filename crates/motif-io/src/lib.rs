@@ -16,11 +16,14 @@
 //! - `mesh`: triangle meshes read from OBJ (via `tobj`, sections welded) or PLY faces
 //!   ([`read_mesh`]), and written as OBJ ([`write_obj`]).
 //! - [`json`]: reports and piece lists via `serde_json`.
+//! - `legend`: map legends ([`read_legend`]: a folder of textures, a JSON file, or the built-in
+//!   one).
 //! - `maps`: OpenStreetMap extracts in ([`read_osm`], via `osmpbf`) and tile pyramids out
 //!   ([`write_pmtiles`], via `pmtiles`).
 
 mod frames;
 pub mod json;
+mod legend;
 mod maps;
 mod mesh;
 pub mod points;
@@ -33,6 +36,7 @@ use std::path::{Path, PathBuf};
 
 pub use frames::FramePattern;
 pub use json::{read_json, write_json};
+pub use legend::read_legend;
 pub use maps::{OsmCounts, PyramidInfo, read_osm, write_pmtiles};
 pub use mesh::{read_mesh, write_obj};
 pub use points::{Column, ColumnKind, PointFormat, PointTable, parse_points, read_points, write_points};

@@ -12,6 +12,7 @@
 //! - `map`: [`MapBuilder`] and [`MapData`], the features in drawing order with an `rstar` index.
 //! - `raster`: a tile's segment map drawn with `tiny-skia`, anti-aliased, with a margin.
 //! - `legend`: a [`Legend`] (a texture or a colour per class) and its atlas, the style exemplar.
+//! - `seams`: [`seam_error`], how visible the borders of tiles rendered apart are.
 //! - `tiles`: [`TileSet`]: the presynthesis (§3.7, once) and any tile rendered on demand, its
 //!   textures laid in the zoom level's coordinates so neighbouring tiles continue each other.
 //!
@@ -44,6 +45,7 @@ mod mercator;
 mod params;
 mod raster;
 mod rings;
+mod seams;
 mod tiles;
 
 pub use class::{MapClass, Shape, classify};
@@ -55,4 +57,5 @@ pub use mercator::{
 };
 pub use params::Params;
 pub use raster::{TileFrame, crop_margin, segment_map};
+pub use seams::seam_error;
 pub use tiles::{Layer, TileSet, TileSetReport};

@@ -26,7 +26,7 @@ pub struct Params {
     /// default 5.
     pub patch_size: usize,
     /// Search-vote iterations of the band (it starts from the textures' own matches). Range
-    /// 1..=20, default 2.
+    /// 1..=20, default 1.
     pub band_iterations: usize,
     /// PatchMatch iterations per search of the band. Range 1..=20, default 1.
     pub band_patchmatch_iterations: usize,
@@ -63,7 +63,7 @@ impl Params {
         band: 2,
         texture_size: 128,
         patch_size: 5,
-        band_iterations: 2,
+        band_iterations: 1,
         band_patchmatch_iterations: 1,
         min_line_width: 1.0,
         seed: 0,

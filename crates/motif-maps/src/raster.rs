@@ -13,8 +13,10 @@ use crate::mercator::{TileId, UnitPoint};
 pub struct TileFrame {
     /// The tile.
     pub tile: TileId,
-    /// Its side in pixels.
+    /// A tile's side in pixels.
     pub size: usize,
+    /// Tiles a side drawn as one square from `tile` east and south (1: the tile alone).
+    pub span: usize,
     /// Pixels drawn around it on every side.
     pub margin: usize,
 }
@@ -22,7 +24,7 @@ pub struct TileFrame {
 impl TileFrame {
     /// Side of the drawn square, margin included.
     pub fn side(&self) -> usize {
-        self.size + 2 * self.margin
+        self.span * self.size + 2 * self.margin
     }
 
     /// Pixels per unit of the square at this zoom.
@@ -52,22 +54,25 @@ impl TileFrame {
     /// The drawn square in the unit square, `[x0, y0, x1, y1]`.
     fn unit_bounds(&self) -> [f64; 4] {
         let [x, y] = self.tile.origin();
-        let (pad, span) = (self.margin as f64 / self.scale(), self.size as f64 / self.scale());
+        let (pad, span) = (self.margin as f64 / self.scale(), (self.span * self.size) as f64 / self.scale());
         [x - pad, y - pad, x + span + pad, y + span + pad]
     }
 }
 
-fn paint_of(class: MapClass) -> Paint<'static> {
+fn paint_of(class: MapClass, anti_alias: bool) -> Paint<'static> {
     let [r, g, b] = class.colour();
     let mut paint = Paint::default();
     paint.set_color_rgba8(r, g, b, 255);
-    paint.anti_alias = true;
+    paint.anti_alias = anti_alias;
     paint
 }
 
-/// The segment map of `frame`: land, then every feature in drawing order,
-/// lines at least `min_line_width` pixels wide so small roads stay visible at low zooms.
-pub fn segment_map(map: &MapData, frame: &TileFrame, min_line_width: f32) -> RgbaImage {
+/// The segment map of `frame`: land, then every feature in drawing order, lines at least
+/// `min_line_width` pixels wide so small roads stay visible at low zooms. Anti-aliased for the
+/// plain map; aliased (every pixel exactly one class's colour) as the guide of the stylized one,
+/// whose band blends the classes itself: a blend of two colours on an anti-aliased edge can lie
+/// nearest a third class's colour and would take that class's texture.
+pub fn segment_map(map: &MapData, frame: &TileFrame, min_line_width: f32, anti_alias: bool) -> RgbaImage {
     let side = frame.side();
     let Some(mut pixmap) = Pixmap::new(side as u32, side as u32) else {
         return RgbaImage::new(side, side);
@@ -75,7 +80,7 @@ pub fn segment_map(map: &MapData, frame: &TileFrame, min_line_width: f32) -> Rgb
     let [r, g, b] = MapClass::Land.colour();
     pixmap.fill(Color::from_rgba8(r, g, b, 255));
     for feature in map.features_in(frame.unit_bounds()) {
-        let paint = paint_of(feature.class);
+        let paint = paint_of(feature.class, anti_alias);
         match &feature.geometry {
             Geometry::Area(rings) => {
                 let mut path = PathBuilder::new();
@@ -111,10 +116,10 @@ fn trace(path: &mut PathBuilder, frame: &TileFrame, points: &[UnitPoint]) {
     }
 }
 
-/// The tile's own pixels of a drawn square (the margin cut off).
+/// The tiles' own pixels of a drawn square (the margin cut off).
 pub fn crop_margin(image: &RgbaImage, frame: &TileFrame) -> RgbaImage {
-    let m = frame.margin;
-    RgbaImage::from_fn(frame.size, frame.size, |x, y| image.get(x + m, y + m))
+    let (m, side) = (frame.margin, frame.span * frame.size);
+    RgbaImage::from_fn(side, side, |x, y| image.get(x + m, y + m))
 }
 
 #[cfg(test)]
@@ -124,7 +129,7 @@ mod tests {
     use crate::map::MapBuilder;
 
     fn frame(z: u8, x: u32, y: u32, margin: usize) -> TileFrame {
-        TileFrame { tile: TileId::new(z, x, y).unwrap(), size: 64, margin }
+        TileFrame { tile: TileId::new(z, x, y).unwrap(), size: 64, span: 1, margin }
     }
 
     #[test]
@@ -137,7 +142,7 @@ mod tests {
             vec![vec![[0.0, 0.0], [0.25, 0.0], [0.25, 0.5], [0.0, 0.5], [0.0, 0.0]]],
         );
         let map = builder.build();
-        let image = segment_map(&map, &frame(1, 0, 0, 0), 1.0);
+        let image = segment_map(&map, &frame(1, 0, 0, 0), 1.0, true);
         let building = MapClass::Building.colour();
         let land = MapClass::Land.colour();
         assert_eq!(&image.get(10, 10)[..3], &building);
@@ -154,7 +159,7 @@ mod tests {
         builder.add(MapClass::Water, Shape::Area, vec![vec![[0.2, 0.2], [0.7, 0.3], [0.4, 0.45], [0.2, 0.2]]]);
         let map = builder.build();
         let (left, right) = (frame(2, 0, 1, 8), frame(2, 1, 1, 8));
-        let (a, b) = (segment_map(&map, &left, 1.0), segment_map(&map, &right, 1.0));
+        let (a, b) = (segment_map(&map, &left, 1.0, true), segment_map(&map, &right, 1.0, true));
         // Pixel column 64 + 8 of the left square is column 8 of the right one (the tile border);
         // the drawn squares overlap by 16 columns.
         let mut differences = 0;

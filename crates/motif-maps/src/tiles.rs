@@ -121,18 +121,24 @@ impl TileSet {
         &self.params
     }
 
-    /// Where tile `tile`'s pixels lie, margin included.
-    pub fn frame(&self, tile: TileId) -> TileFrame {
-        TileFrame { tile, size: self.params.tile_size, margin: self.params.resolved_margin() }
+    /// Where the pixels of the `span × span` tiles from `tile` lie, margin included.
+    pub fn frame(&self, tile: TileId, span: usize) -> TileFrame {
+        TileFrame { tile, size: self.params.tile_size, span, margin: self.params.resolved_margin() }
     }
 
     /// Tile `tile` of layer `layer`, `tile_size` pixels a side.
     pub fn render(&self, tile: TileId, layer: Layer) -> Result<RgbaImage, Error> {
-        let frame = self.frame(tile);
-        let segments = segment_map(&self.map, &frame, self.params.min_line_width);
+        self.render_block(tile, 1, layer)
+    }
+
+    /// The `span × span` tiles from `tile` east and south rendered as one piece (the reference
+    /// that tiles rendered apart are compared with), `span · tile_size` pixels a side.
+    pub fn render_block(&self, tile: TileId, span: usize, layer: Layer) -> Result<RgbaImage, Error> {
+        let frame = self.frame(tile, span.max(1));
+        let width = self.params.min_line_width;
         let image = match layer {
-            Layer::Plain => segments,
-            Layer::Stylized => self.stylize(&frame, &segments)?,
+            Layer::Plain => segment_map(&self.map, &frame, width, true),
+            Layer::Stylized => self.stylize(&frame, &segment_map(&self.map, &frame, width, false))?,
         };
         Ok(crop_margin(&image, &frame))
     }
@@ -177,6 +183,10 @@ fn band_params(params: &Params) -> motif_stylize::Params {
         .with_band(params.band)
         .with_band_search_vote_iterations(params.band_iterations)
         .with_band_patchmatch_iterations(params.band_patchmatch_iterations)
+        // The band starts at the textures' own matches: refine them locally, without the
+        // occurrence penalty (made for whole images; a thin band has little to spread).
+        .with_band_local_search(true)
+        .with_uniformity(0.0)
 }
 
 /// `texture` as seen from a drawn square whose top-left pixel is `(x, y)` of the zoom level: its
@@ -206,4 +216,79 @@ fn shifted(texture: &SegmentTexture, x: i64, y: i64) -> SegmentTexture {
         ..field.clone()
     });
     SegmentTexture { colour: texture.colour.clone(), image, field }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{MapBuilder, Shape, project};
+
+    fn small_map() -> MapData {
+        let mut map = MapBuilder::new();
+        let at = |dx: f64, dy: f64| project(24.940 + dx, 60.172 - dy);
+        map.add(
+            MapClass::Forest,
+            Shape::Area,
+            vec![vec![at(0.0, 0.0), at(0.004, 0.0), at(0.004, 0.002), at(0.0, 0.002), at(0.0, 0.0)]],
+        );
+        map.add(MapClass::MajorRoad, Shape::Line(14.0), vec![vec![at(-0.001, 0.001), at(0.006, 0.0015)]]);
+        map.add(
+            MapClass::Water,
+            Shape::Area,
+            vec![vec![at(0.001, 0.0025), at(0.005, 0.0025), at(0.003, 0.004), at(0.001, 0.0025)]],
+        );
+        map.build()
+    }
+
+    fn legend() -> Legend {
+        let stripes =
+            RgbaImage::from_fn(12, 12, |x, y| if (x + y) % 6 < 3 { [30, 90, 30, 255] } else { [60, 140, 50, 255] });
+        let ripples = RgbaImage::from_fn(10, 10, |x, y| [20, 60 + ((x * 7 + y * 3) % 10) as u8 * 8, 160, 255]);
+        Legend::plain()
+            .with(MapClass::Forest, crate::Fill::Texture(stripes))
+            .with(MapClass::Water, crate::Fill::Texture(ripples))
+    }
+
+    fn tile_at(lon: f64, lat: f64, dx: u32) -> TileId {
+        let [x, y] = project(lon, lat);
+        TileId::new(17, (x * 131072.0) as u32 + dx, (y * 131072.0) as u32).unwrap()
+    }
+
+    #[test]
+    fn a_tile_does_not_depend_on_the_tiles_before_it_nor_on_threads() {
+        let params = Params::default().with_tile_size(64).with_texture_size(32).with_seed(4);
+        let (a, b) = (tile_at(24.9415, 60.1712, 0), tile_at(24.9415, 60.1712, 1));
+        let first = TileSet::new(small_map(), &legend(), &params, &mut motif_core::NoProgress).unwrap();
+        let forward = [first.render(a, Layer::Stylized).unwrap(), first.render(b, Layer::Stylized).unwrap()];
+        let second = TileSet::new(small_map(), &legend(), &params, &mut motif_core::NoProgress).unwrap();
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let backward =
+            pool.install(|| [second.render(b, Layer::Stylized).unwrap(), second.render(a, Layer::Stylized).unwrap()]);
+        assert_eq!(forward[0], backward[1]);
+        assert_eq!(forward[1], backward[0]);
+        // The stylized tile is not its plain segment map, and it uses the water texture's colours.
+        let plain = first.render(a, Layer::Plain).unwrap();
+        assert_ne!(plain, forward[0]);
+        assert_eq!((plain.width(), plain.height()), (64, 64));
+    }
+
+    #[test]
+    fn the_texture_continues_across_the_border_of_two_tiles() {
+        // Far from every edge (inside the forest), pixels are copied from the texture laid in the
+        // zoom level's coordinates: the last column of one tile and the first of the next are
+        // neighbours in the texture too, so a block rendered whole has the same pixels there.
+        let params = Params::default().with_tile_size(64).with_texture_size(32).with_band(0).with_seed(2);
+        let set = TileSet::new(small_map(), &legend(), &params, &mut motif_core::NoProgress).unwrap();
+        let first = tile_at(24.9405, 60.17185, 0);
+        let whole = set.render_block(first, 2, Layer::Stylized).unwrap();
+        for (index, (dx, dy)) in [(0u32, 0u32), (1, 0), (0, 1), (1, 1)].into_iter().enumerate() {
+            let tile = set.render(TileId::new(first.z, first.x + dx, first.y + dy).unwrap(), Layer::Stylized).unwrap();
+            for y in 0..64 {
+                for x in 0..64 {
+                    let (wx, wy) = (x + 64 * dx as usize, y + 64 * dy as usize);
+                    assert_eq!(tile.get(x, y), whole.get(wx, wy), "tile {index} at {x},{y}");
+                }
+            }
+        }
+    }
 }

@@ -108,6 +108,11 @@ pub struct Params {
     /// [`band_search_vote_iterations`](Self::band_search_vote_iterations)). Range 1..=100,
     /// default 2.
     pub band_patchmatch_iterations: usize,
+    /// Band mode with a seeded start only: the random search stays within
+    /// [`LOCAL_SEARCH_RADIUS`](crate::LOCAL_SEARCH_RADIUS) pixels of each band pixel's match
+    /// instead of ranging over the whole style. The band starts at the textures' own matches, so
+    /// a local refinement keeps them and costs about half (map tiles use it). Default off.
+    pub band_local_search: bool,
     /// Refuse runs that would synthesize more output pixels than this (summed over the textures of
     /// a presynthesis). Default 64 000 000 (about 8 × 8 k pixels; some 15 minutes on two cores).
     pub max_pixels: usize,
@@ -150,6 +155,7 @@ impl Params {
         band: 4,
         band_search_vote_iterations: 3,
         band_patchmatch_iterations: 2,
+        band_local_search: false,
         max_pixels: 64_000_000,
         max_memory: motif_core::DEFAULT_MAX_MEMORY,
         tileable: false,
@@ -216,6 +222,7 @@ motif_core::builders! { Params {
     with_band => band: usize,
     with_band_search_vote_iterations => band_search_vote_iterations: usize,
     with_band_patchmatch_iterations => band_patchmatch_iterations: usize,
+    with_band_local_search => band_local_search: bool,
     with_max_pixels => max_pixels: usize,
     with_max_memory => max_memory: u64,
     with_tileable => tileable: bool,

@@ -308,7 +308,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
     /// when there is one.
     fn level_of(&self, index: usize, patch: usize) -> Level<'_> {
         let mut level = Level::new(self.spec(index, patch));
-        if self.local[index] {
+        let seeded_band = self.problem.composition.is_some() && self.problem.seeds.is_some();
+        if self.local[index] || (seeded_band && self.params.band_local_search) {
             level.search_radius = LOCAL_SEARCH_RADIUS;
         }
         if self.native {

@@ -106,6 +106,9 @@ pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     if bench.names("structure") {
         figures.insert("structure".into(), structure(bench)?);
     }
+    if bench.names("tiles") {
+        figures.insert("tiles".into(), super::tiles_bench::tiles(bench)?);
+    }
     if bench.names("texture-native") {
         figures.insert("texture_native".into(), super::native_bench::texture_native(bench)?);
     }

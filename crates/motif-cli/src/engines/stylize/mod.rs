@@ -7,6 +7,7 @@ mod cache;
 mod demo;
 mod masks;
 mod native_bench;
+mod tiles_bench;
 mod video;
 mod video_bench;
 

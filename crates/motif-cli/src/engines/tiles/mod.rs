@@ -1,7 +1,6 @@
 //! `motif tiles`: a stylized slippy map from an OpenStreetMap extract: `render` packs a pyramid
 //! into one PMTiles archive, `serve` answers `/{z}/{x}/{y}.png` on 127.0.0.1.
 
-mod legend;
 mod serve;
 
 use std::path::{Path, PathBuf};
@@ -114,7 +113,7 @@ pub(crate) fn run(args: &TilesArgs, context: &mut Context) -> anyhow::Result<()>
         }
     }
     let (map, counts) = motif_io::read_osm(&args.map, context.max_memory)?;
-    let legend = legend::read(args.legend.as_deref(), context.max_memory)?;
+    let legend = motif_io::read_legend(args.legend.as_deref(), context.max_memory)?;
     let job = TilesJob { seed: context.seed, zoom: args.zoom, options: args.options.options.clone() };
     let run = job.run(TilesInputs { map, legend }, context.progress())?;
     context.job_figures(run.figures.clone());

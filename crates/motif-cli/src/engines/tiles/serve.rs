@@ -59,8 +59,15 @@ pub(super) fn serve(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &
         max_requests: args.max_requests,
         info,
     };
+    // The address on stdout (what a script reads, --port 0 included), the rest on stderr.
+    #[allow(clippy::print_stdout, reason = "the server's address is the command's output")]
+    {
+        println!("http://{address}/");
+    }
+    let _ = std::io::Write::flush(&mut std::io::stdout());
     context.summary(&format!(
-        "motif tiles: serving http://{address}/{{z}}/{{x}}/{{y}}.png ({workers} workers, cache {}); Ctrl-C stops",
+        "motif tiles: serving http://{address}/{{z}}/{{x}}/{{y}}.png and /plain/{{z}}/{{x}}/{{y}}.png ({workers} workers, \
+         cache {}); Ctrl-C stops",
         shared.cache.display()
     ));
     std::thread::scope(|scope| {

@@ -1,0 +1,82 @@
+//! `motif bench --engine stylize --case tiles`: the stylized map of the real Helsinki extract
+//! (`data/real/maps`), tile by tile on one thread (issue 36, item 4), and the seam figure of a
+//! 4 × 4 block of tiles rendered apart against the same block rendered whole (item 3).
+
+use motif_core::RgbaImage;
+use motif_jobs::Job;
+use motif_jobs::tiles::{Layer, TileId, TilesInputs, TilesJob, TilesRun, seam_error};
+use serde_json::{Value, json};
+
+use crate::suite::Bench;
+
+/// Milliseconds of `f`, and its value.
+fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let start = std::time::Instant::now();
+    let value = f();
+    (value, start.elapsed().as_secs_f64() * 1000.0)
+}
+
+/// The `q`-quantile of sorted values (nearest rank).
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() as f64 * q).ceil() as usize).clamp(1, sorted.len()) - 1]
+}
+
+/// The `span × span` tiles from `first` rendered apart and joined.
+fn joined(run: &TilesRun, first: TileId, span: u32, layer: Layer) -> anyhow::Result<RgbaImage> {
+    let size = run.tiles.params().tile_size;
+    let side = size * span as usize;
+    let mut tiles = Vec::new();
+    for dy in 0..span {
+        for dx in 0..span {
+            tiles.push(run.render(TileId::new(first.z, first.x + dx, first.y + dy)?, layer)?);
+        }
+    }
+    let span = span as usize;
+    Ok(RgbaImage::from_fn(side, side, |x, y| tiles[(y / size) * span + x / size].get(x % size, y % size)))
+}
+
+pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
+    let folder = crate::suite::corpus_folder("maps");
+    let (map, _) = motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?;
+    let legend = motif_io::read_legend(None, u64::MAX)?;
+    let job = TilesJob { seed: bench.seed, zoom: Some([16, 16]), ..TilesJob::new() };
+    let (run, presynth_ms) = timed(|| job.run(TilesInputs { map, legend }, &mut motif_core::NoProgress));
+    let run = run?;
+    let mut tiles = run.pyramid();
+    if bench.quick {
+        tiles.truncate(4);
+    }
+    // One core: the issue's target is per tile on one thread once the presynthesis is made.
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let mut figures = serde_json::Map::new();
+    for layer in [Layer::Stylized, Layer::Plain] {
+        let mut ms: Vec<f64> =
+            pool.install(|| tiles.iter().map(|&tile| timed(|| run.render(tile, layer)).1).collect::<Vec<f64>>());
+        ms.sort_by(f64::total_cmp);
+        figures.insert(
+            layer.name().into(),
+            json!({"tiles": ms.len(), "median_ms": quantile(&ms, 0.5), "p95_ms": quantile(&ms, 0.95), "max_ms": quantile(&ms, 1.0)}),
+        );
+    }
+    // Seams over a 4 × 4 block inside the map (2 × 2 when quick), apart against whole.
+    let span = if bench.quick { 2 } else { 4 };
+    let first =
+        tiles.iter().copied().min().ok_or_else(|| anyhow::anyhow!("the Helsinki extract gave no tile at zoom 16"))?;
+    let first = TileId::new(first.z, first.x, first.y + 1)?;
+    let apart = joined(&run, first, span, Layer::Stylized)?;
+    let whole = run.tiles.render_block(first, span as usize, Layer::Stylized)?;
+    let size = run.tiles.params().tile_size;
+    let differing = apart.pixels().iter().zip(whole.pixels()).filter(|(a, b)| a != b).count();
+    figures.insert(
+        "seams".into(),
+        json!({
+            "block": [span, span], "first_tile": [first.z, first.x, first.y],
+            "apart": seam_error(&apart, size), "whole": seam_error(&whole, size),
+            "pixels_differing_from_whole": differing as f64 / apart.pixels().len() as f64,
+        }),
+    );
+    figures.insert("presynth_ms".into(), json!(presynth_ms));
+    figures.insert("margin".into(), run.figures["margin"].clone());
+    figures.insert("threads".into(), json!(1));
+    Ok(Value::Object(figures))
+}
