@@ -543,3 +543,28 @@ class VideoOptions(TypedDict, total=False):
     #: Weight of the temporal guide (the previous output carried along the motion; against flicker); 0 stylizes
     #: frames independently of each other. Allowed: 0–1000. Default: 2.
     temporal_weight: float
+
+
+class TilesOptions(TypedDict, total=False):
+    """Options of `motif.tiles()` and `motif tiles`."""
+
+    #: Side of a tile in pixels (slippy maps use 256). Allowed: 64–1024. Default: 256.
+    tile_size: int
+    #: Pixels drawn and stylized around each tile and cut off, so the band's patches at a tile's edge see what
+    #: its neighbour's see; 0 = the band plus twice the patch size (the report's `margin`). Allowed: 0–256. Default: 0.
+    margin: int
+    #: Band half-width T in pixels (Texler et al. §3.7): pixels farther than this from a class edge are copied
+    #: from the class's pre-synthesized texture, only the band between is optimized; 0 = composition only.
+    #: Wider bands blend the classes' edges more, slower. Allowed: 0–64. Default: 2.
+    band: int
+    #: Side of each class's pre-synthesized texture in pixels, made once for all tiles (they tile seamlessly;
+    #: larger ones repeat less often and take longer to make). Allowed: 16–1024. Default: 128.
+    texture_size: int
+    #: Patch side in pixels, odd, of the presynthesis and the band. Allowed: 3–15. Default: 5.
+    patch_size: int
+    #: Search-vote iterations of the band (it starts from the textures' own matches). Allowed: 1–20. Default: 1.
+    band_iters: int
+    #: PatchMatch iterations per search of the band. Allowed: 1–20. Default: 1.
+    band_patchmatch_iters: int
+    #: Narrowest line drawn, in pixels, so that small roads stay visible at low zooms. Allowed: 0.25–16. Default: 1.
+    min_line_width: float

@@ -157,6 +157,7 @@ fn every_entry_names_what_its_description_holds() {
     use motif_jobs::points::{DomainSpec, PointsJob};
     use motif_jobs::strokes::{StrokesJob, TargetSpec};
     use motif_jobs::stylize::{InpaintJob, PresynthJob, StylizeJob, TextureJob, VideoJob, ZoomJob};
+    use motif_jobs::tiles::TilesJob;
     use motif_jobs::{Job, JobEntry};
     use std::collections::BTreeSet;
 
@@ -174,6 +175,7 @@ fn every_entry_names_what_its_description_holds() {
         held(&InpaintJob::new()),
         held(&ZoomJob::new(1, 1)),
         held(&VideoJob::new()),
+        held(&TilesJob::new()),
     ];
     let listed: Vec<&str> = motif_jobs::JOBS.iter().map(|entry| entry.name).collect();
     assert_eq!(jobs.iter().map(|(name, _)| *name).collect::<Vec<_>>(), listed, "JOBS lists every job, in order");
