@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 use common::{error_of, motif, ok};
+use motif_jobs::tiles::{project, tiles_covering};
 
 fn helsinki() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/maps/Helsinki.osm.pbf")
@@ -25,18 +26,12 @@ fn archive_tiles(path: &Path) -> Vec<((u8, u32, u32), Vec<u8>)> {
         let header = reader.get_header();
         let mut tiles = Vec::new();
         for z in header.min_zoom..=header.max_zoom {
-            let side = 1u32 << z;
-            let column = |lon: f64| (((lon + 180.0) / 360.0 * f64::from(side)) as u32).min(side - 1);
-            let row = |lat: f64| {
-                let (sin, pi) = (lat.to_radians().sin(), std::f64::consts::PI);
-                (((0.5 - ((1.0 + sin) / (1.0 - sin)).ln() / (4.0 * pi)) * f64::from(side)) as u32).min(side - 1)
-            };
-            for y in row(f64::from(header.max_latitude))..=row(f64::from(header.min_latitude)) {
-                for x in column(f64::from(header.min_longitude))..=column(f64::from(header.max_longitude)) {
-                    let coord = pmtiles::TileCoord::new(z, x, y).unwrap();
-                    if let Some(bytes) = reader.get_tile(coord).await.unwrap() {
-                        tiles.push(((z, x, y), bytes.to_vec()));
-                    }
+            let [x0, y0] = project(header.min_longitude, header.max_latitude);
+            let [x1, y1] = project(header.max_longitude, header.min_latitude);
+            for tile in tiles_covering([x0, y0, x1, y1], z) {
+                let coord = pmtiles::TileCoord::new(tile.z, tile.x, tile.y).unwrap();
+                if let Some(bytes) = reader.get_tile(coord).await.unwrap() {
+                    tiles.push(((tile.z, tile.x, tile.y), bytes.to_vec()));
                 }
             }
         }

@@ -76,7 +76,7 @@ impl Params {
         check_count("band", self.band, 0, 64)?;
         check_count("texture-size", self.texture_size, 16, 1024)?;
         check_count("patch-size", self.patch_size, 3, 15)?;
-        if self.patch_size % 2 == 0 {
+        if self.patch_size.is_multiple_of(2) {
             return Err(InvalidParameter::new("patch-size", self.patch_size, "must be odd, between 3 and 15").into());
         }
         check_count("band-iterations", self.band_iterations, 1, 20)?;

@@ -153,10 +153,9 @@ mod tests {
         (0..n)
             .map(|i| {
                 let ([ax, ay], [bx, by]) = (ring[i], ring[(i + 1) % n]);
-                ax * by - bx * ay
+                bx * ay - ax * by
             })
             .sum::<f64>()
-            * -1.0
     }
 
     #[test]

@@ -57,7 +57,8 @@ pub struct TilesArgs {
     /// Default: the built-in legend, real GIMP textures (data/real/maps/legend).
     #[arg(long, value_name = "DIR|STYLE.json")]
     pub legend: Option<PathBuf>,
-    /// Zoom levels of the pyramid, LOW-HIGH (render; default 12-16).
+    /// Zoom levels of the pyramid `render` packs, LOW-HIGH or one level; levels 12 to 16 when
+    /// not given.
     #[arg(long, value_name = "LOW-HIGH", value_parser = parse_zoom)]
     pub zoom: Option<[u8; 2]>,
     /// The layer `render` packs.
