@@ -1,0 +1,53 @@
+"""`motif.tiles`: the stylized map of the real Helsinki extract, tile for tile the bytes the
+`motif tiles serve` command answers with the same options and seed."""
+
+import subprocess
+import urllib.request
+
+import numpy as np
+import pytest
+
+import motif
+from conftest import BINARY, ROOT
+
+MAP = ROOT / "data" / "real" / "maps" / "Helsinki.osm.pbf"
+
+
+def test_tiles_equal_the_servers(tmp_path):
+    tiles = motif.tiles(MAP, zoom=(16, 16), seed=5, band=3)
+    pyramid = tiles.pyramid()
+    assert len(pyramid) == 24 and all(z == 16 for z, _, _ in pyramid)
+    z, x, y = pyramid[9]
+    stylized = tiles.render(z, x, y)
+    plain = tiles.render(z, x, y, layer="plain")
+    assert stylized.shape == plain.shape == (256, 256, 4)
+    assert not np.array_equal(stylized, plain)
+    server = subprocess.Popen(
+        [str(BINARY), "--seed", "5", "--quiet", "tiles", "serve", "--map", str(MAP), "--band", "3", "--port", "0"]
+        + ["--cache-dir", str(tmp_path / "cache"), "--max-requests", "1"],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        address = server.stdout.readline().strip()
+        with urllib.request.urlopen(f"{address}{z}/{x}/{y}.png", timeout=120) as response:
+            (tmp_path / "tile.png").write_bytes(response.read())
+    finally:
+        assert server.wait(timeout=120) == 0
+    assert np.array_equal(motif.read_image(str(tmp_path / "tile.png")), stylized)
+    report = __import__("json").loads(tiles.report())
+    assert report["margin"] == 3 + 2 * 5 and report["features"]["water"] > 0
+
+
+def test_bad_tile_options_are_refused_by_name():
+    with pytest.raises(motif.OptionError, match="band"):
+        motif.tiles(MAP, band=500)
+    with pytest.raises(TypeError, match="bandwidth"):
+        motif.tiles(MAP, bandwidth=3)
+    tiles = motif.tiles(MAP, zoom=(16, 16), texture_size=32)
+    with pytest.raises(motif.OptionError, match="layer"):
+        tiles.render(16, 37308, 18968, layer="satellite")
+    with pytest.raises(motif.OptionError, match="2\\^16"):
+        tiles.render(16, 70000, 18968)
+    with pytest.raises(OSError, match="nothing.osm.pbf"):
+        motif.tiles(ROOT / "nothing.osm.pbf")
