@@ -122,7 +122,7 @@ pub(crate) fn run(args: &TilesArgs, context: &mut Context) -> anyhow::Result<()>
         .figure("osm", serde_json::json!({"nodes": counts.nodes, "ways": counts.ways, "relations": counts.relations}));
     match args.action {
         TilesAction::Render => render(args, &job, &run, context),
-        TilesAction::Serve => serve::serve(args, &job, &run, context),
+        TilesAction::Serve => serve::serve(args, &job, run, context),
     }
 }
 

@@ -1,5 +1,6 @@
-//! `motif tiles serve`: tiles on demand over HTTP on 127.0.0.1 (`tiny_http`), each rendered once
-//! into a disk cache, with ETags, by a bounded pool of workers.
+//! `motif tiles serve`: tiles on demand over HTTP on 127.0.0.1 (`axum` on `tokio`), each rendered
+//! once into a disk cache, with ETags, by a bounded pool of workers (`--workers` renders at once,
+//! the other requests wait their turn).
 //!
 //! A tile's ETag names the run (a digest of the map file, the legend, the job and the version)
 //! and the tile, so a client's copy stays valid across restarts while nothing changed; the cache
@@ -7,11 +8,15 @@
 
 use std::io::Read as _;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use anyhow::Context as _;
+use axum::extract::State;
+use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
+use axum::response::{Html, IntoResponse, Response};
 use motif_jobs::tiles::{Layer, TileId, TilesJob, TilesRun};
-use tiny_http::{Header, Method, Request, Response, Server};
+use tokio::sync::{Notify, Semaphore};
 
 use super::TilesArgs;
 use crate::context::Context;
@@ -19,46 +24,60 @@ use crate::context::Context;
 /// The page `/` answers: what the server offers.
 const INDEX: &str = "<!doctype html><meta charset=utf-8><title>motif tiles</title>\
 <h1>motif tiles</h1><p>Stylized tiles: <code>/{z}/{x}/{y}.png</code>; the plain segment map: \
-<code>/plain/{z}/{x}/{y}.png</code>; the run: <code>/tiles.json</code>.</p>";
+<code>/plain/{z}/{x}/{y}.png</code>; the run: <code>/tiles.json</code>. A map to pan: \
+<code>web/maps</code> (see docs/maps.md).</p>";
 
-/// What every worker shares.
-struct Shared<'a> {
-    run: &'a TilesRun,
+/// What every request shares.
+struct Shared {
+    run: TilesRun,
     cache: PathBuf,
     key: String,
+    info: String,
+    workers: Semaphore,
     served: AtomicU64,
     rendered: AtomicU64,
     max_requests: Option<u64>,
-    info: String,
+    stop: Notify,
 }
 
-/// Serves until `--max-requests` requests were answered (or forever).
-pub(super) fn serve(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Context) -> anyhow::Result<()> {
+impl Shared {
+    /// Counts an answered request; the last one allowed by `--max-requests` stops the server.
+    fn answered(&self) {
+        let served = self.served.fetch_add(1, Ordering::SeqCst) + 1;
+        if self.max_requests.is_some_and(|max| served >= max) {
+            self.stop.notify_one();
+        }
+    }
+}
+
+/// Serves until `--max-requests` requests were answered (or until interrupted).
+pub(super) fn serve(args: &TilesArgs, job: &TilesJob, run: TilesRun, context: &mut Context) -> anyhow::Result<()> {
     let key = run_key(args, job)?;
     let cache = args.cache_dir.clone().unwrap_or_else(|| std::env::temp_dir().join("motif-tiles")).join(&key);
     motif_io::create_folder(&cache)?;
-    let server = Server::http(("127.0.0.1", args.port))
-        .map_err(|error| anyhow::anyhow!("cannot listen on 127.0.0.1:{}: {error}", args.port))?;
-    let address = server.server_addr().to_ip().context("the server has no IP address")?;
     let workers = args.workers.map_or(context.threads, usize::from).max(1);
-    let [x0, y0, x1, y1] = run.tiles.map().bounds();
-    let centre = motif_jobs::tiles::unproject([(x0 + x1) / 2.0, (y0 + y1) / 2.0]);
-    let info = serde_json::json!({
-        "tiles": ["/{z}/{x}/{y}.png"], "plain": ["/plain/{z}/{x}/{y}.png"],
-        "minzoom": run.zooms[0], "maxzoom": motif_jobs::tiles::MAX_ZOOM.min(20),
-        "center": [centre.0, centre.1, run.zooms[0].max(14)], "tile_size": run.tiles.params().tile_size,
-        "attribution": "© OpenStreetMap contributors (ODbL)",
-    })
-    .to_string();
-    let shared = Shared {
+    let info = info(&run);
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .max_blocking_threads(workers.max(2))
+        .enable_all()
+        .build()
+        .context("cannot start the server's runtime")?;
+    let listener = runtime
+        .block_on(tokio::net::TcpListener::bind(("127.0.0.1", args.port)))
+        .with_context(|| format!("cannot listen on 127.0.0.1:{}", args.port))?;
+    let address = listener.local_addr().context("the server has no address")?;
+    let shared = Arc::new(Shared {
         run,
         cache,
         key,
+        info,
+        workers: Semaphore::new(workers),
         served: AtomicU64::new(0),
         rendered: AtomicU64::new(0),
         max_requests: args.max_requests,
-        info,
-    };
+        stop: Notify::new(),
+    });
     // The address on stdout (what a script reads, --port 0 included), the rest on stderr.
     #[allow(clippy::print_stdout, reason = "the server's address is the command's output")]
     {
@@ -70,89 +89,94 @@ pub(super) fn serve(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &
          cache {}); Ctrl-C stops",
         shared.cache.display()
     ));
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| work(&server, &shared));
-        }
-    });
+    let app = axum::Router::new()
+        .route("/", axum::routing::get(index))
+        .route("/tiles.json", axum::routing::get(tiles_json))
+        .fallback(tile)
+        .with_state(shared.clone());
+    let stopping = shared.clone();
+    runtime
+        .block_on(async move {
+            axum::serve(listener, app).with_graceful_shutdown(async move { stopping.stop.notified().await }).await
+        })
+        .context("the tile server stopped")?;
     context.figure("requests", shared.served.load(Ordering::SeqCst));
     context.figure("rendered", shared.rendered.load(Ordering::SeqCst));
     Ok(())
 }
 
-/// One worker: answers requests until the server is told to stop.
-fn work(server: &Server, shared: &Shared<'_>) {
-    while let Ok(request) = server.recv() {
-        answer(request, shared);
-        let served = shared.served.fetch_add(1, Ordering::SeqCst) + 1;
-        if shared.max_requests.is_some_and(|max| served >= max) {
-            server.unblock();
-        }
-        if shared.max_requests.is_some_and(|max| shared.served.load(Ordering::SeqCst) >= max) {
-            // Wake every other worker too: each `unblock` releases one `recv`.
-            server.unblock();
-            return;
-        }
-    }
+/// What `/tiles.json` says: the URL templates, zoom levels, the map's bounds and centre.
+fn info(run: &TilesRun) -> String {
+    let [x0, y0, x1, y1] = run.tiles.map().bounds();
+    let centre = motif_jobs::tiles::unproject([(x0 + x1) / 2.0, (y0 + y1) / 2.0]);
+    let ((west, north), (east, south)) =
+        (motif_jobs::tiles::unproject([x0, y0]), motif_jobs::tiles::unproject([x1, y1]));
+    serde_json::json!({
+        "tiles": ["/{z}/{x}/{y}.png"], "plain": ["/plain/{z}/{x}/{y}.png"],
+        "minzoom": run.zooms[0], "maxzoom": motif_jobs::tiles::MAX_ZOOM.min(20),
+        "center": [centre.0, centre.1, run.zooms[0].max(14)], "bounds": [west, south, east, north],
+        "tile_size": run.tiles.params().tile_size,
+        "attribution": "© OpenStreetMap contributors (ODbL)",
+    })
+    .to_string()
 }
 
-fn header(name: &str, value: &str) -> Header {
-    Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("ASCII header")
+async fn index(State(shared): State<Arc<Shared>>) -> Html<&'static str> {
+    shared.answered();
+    Html(INDEX)
 }
 
-fn answer(request: Request, shared: &Shared<'_>) {
-    let url = request.url().split('?').next().unwrap_or("").to_string();
-    if *request.method() != Method::Get && *request.method() != Method::Head {
-        let _ = request.respond(Response::from_string("only GET and HEAD\n").with_status_code(405));
-        return;
-    }
-    match url.as_str() {
-        "/" => {
-            let _ = request
-                .respond(Response::from_string(INDEX).with_header(header("Content-Type", "text/html; charset=utf-8")));
-            return;
-        }
-        "/tiles.json" => {
-            let response = Response::from_string(shared.info.clone())
-                .with_header(header("Content-Type", "application/json"))
-                .with_header(header("Access-Control-Allow-Origin", "*"));
-            let _ = request.respond(response);
-            return;
-        }
-        _ => {}
-    }
-    let Some((layer, tile)) = parse_tile(&url) else {
-        let _ = request.respond(
-            Response::from_string(format!(
-                "no tile at {url}: ask /{{z}}/{{x}}/{{y}}.png or /plain/{{z}}/{{x}}/{{y}}.png with x and y below 2^z\n"
-            ))
-            .with_status_code(404),
+async fn tiles_json(State(shared): State<Arc<Shared>>) -> Response {
+    shared.answered();
+    let headers = [(header::CONTENT_TYPE, "application/json"), (header::ACCESS_CONTROL_ALLOW_ORIGIN, "*")];
+    (headers, shared.info.clone()).into_response()
+}
+
+/// `/{z}/{x}/{y}.png` or `/plain/{z}/{x}/{y}.png`: from the cache or rendered by one of the
+/// workers; 304 when the client's ETag is the tile's; 404 for anything else.
+async fn tile(State(shared): State<Arc<Shared>>, uri: Uri, request_headers: HeaderMap) -> Response {
+    let response = tile_response(&shared, uri.path(), &request_headers).await;
+    shared.answered();
+    response
+}
+
+async fn tile_response(shared: &Arc<Shared>, url: &str, request_headers: &HeaderMap) -> Response {
+    let Some((layer, tile)) = parse_tile(url) else {
+        let message = format!(
+            "no tile at {url}: ask /{{z}}/{{x}}/{{y}}.png or /plain/{{z}}/{{x}}/{{y}}.png with x and y below 2^z\n"
         );
-        return;
+        return (StatusCode::NOT_FOUND, message).into_response();
     };
     let etag = format!("\"{}-{}-{}-{}-{}\"", shared.key, layer.name(), tile.z, tile.x, tile.y);
-    let matches = request
-        .headers()
+    let matches = request_headers
+        .get_all(header::IF_NONE_MATCH)
         .iter()
-        .any(|h| h.field.equiv("If-None-Match") && h.value.as_str().split(',').any(|v| v.trim() == etag));
-    let common = |response: Response<std::io::Cursor<Vec<u8>>>| {
-        response
-            .with_header(header("ETag", &etag))
-            .with_header(header("Cache-Control", "public, max-age=3600"))
-            .with_header(header("Access-Control-Allow-Origin", "*"))
-    };
-    if matches {
-        let _ = request.respond(common(Response::from_data(Vec::new())).with_status_code(304));
-        return;
+        .filter_map(|value| value.to_str().ok())
+        .any(|value| value.split(',').any(|v| v.trim() == etag));
+    let mut headers = HeaderMap::new();
+    if let Ok(value) = HeaderValue::from_str(&etag) {
+        headers.insert(header::ETAG, value);
     }
-    match tile_bytes(shared, layer, tile) {
-        Ok(png) => {
-            let _ = request.respond(common(Response::from_data(png)).with_header(header("Content-Type", "image/png")));
+    headers.insert(header::CACHE_CONTROL, HeaderValue::from_static("public, max-age=3600"));
+    headers.insert(header::ACCESS_CONTROL_ALLOW_ORIGIN, HeaderValue::from_static("*"));
+    if matches {
+        return (StatusCode::NOT_MODIFIED, headers).into_response();
+    }
+    let Ok(permit) = shared.workers.acquire().await else {
+        return (StatusCode::SERVICE_UNAVAILABLE, "the server is stopping\n").into_response();
+    };
+    let worker = shared.clone();
+    let rendered = tokio::task::spawn_blocking(move || tile_bytes(&worker, layer, tile)).await;
+    drop(permit);
+    match rendered {
+        Ok(Ok(png)) => {
+            headers.insert(header::CONTENT_TYPE, HeaderValue::from_static("image/png"));
+            (headers, png).into_response()
         }
-        Err(error) => {
-            let _ = request
-                .respond(Response::from_string(format!("cannot render {url}: {error:#}\n")).with_status_code(500));
+        Ok(Err(error)) => {
+            (StatusCode::INTERNAL_SERVER_ERROR, format!("cannot render {url}: {error:#}\n")).into_response()
         }
+        Err(error) => (StatusCode::INTERNAL_SERVER_ERROR, format!("cannot render {url}: {error}\n")).into_response(),
     }
 }
 
@@ -174,7 +198,7 @@ fn parse_tile(url: &str) -> Option<(Layer, TileId)> {
 
 /// The tile's PNG: from the cache, else rendered and cached (written atomically, so a worker
 /// never reads half a file).
-fn tile_bytes(shared: &Shared<'_>, layer: Layer, tile: TileId) -> anyhow::Result<Vec<u8>> {
+fn tile_bytes(shared: &Shared, layer: Layer, tile: TileId) -> anyhow::Result<Vec<u8>> {
     let path = shared
         .cache
         .join(layer.name())
