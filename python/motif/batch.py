@@ -1,5 +1,6 @@
-"""Large stylizations as many independent tasks on Dask: a big guide in overlapping tiles, or a
-frame sequence split into its keyframe intervals (``motif video``).
+"""Large stylizations as many independent tasks on Dask: a big guide in overlapping tiles, a
+frame sequence split into its keyframe intervals (``motif video``), or a map's tile pyramid
+(``motif tiles render``).
 
 motif schedules nothing itself: the tasks go to a ``dask.distributed`` ``Client`` (yours, or a
 ``LocalCluster`` started for the call and closed after it). The style and the source guides are
@@ -15,13 +16,14 @@ enough for the finest levels, where a seam would show, to agree across it.
 
 from __future__ import annotations
 
+import os
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
 import motif
 
-__all__ = ["stylize_tiles", "stylize_frames", "tile_grid", "seam_error"]
+__all__ = ["stylize_tiles", "stylize_frames", "render_tiles", "tile_grid", "seam_error"]
 
 
 def tile_grid(height: int, width: int, tile: int, overlap: int) -> List[Tuple[Tuple[int, int], Tuple[int, int, int, int], Tuple[int, int, int, int]]]:
@@ -215,3 +217,44 @@ def seam_error(image: np.ndarray, tile: int) -> float:
     if at_borders.size == 0 or elsewhere.mean() == 0:
         return 1.0
     return float(at_borders.mean() / elsewhere.mean())
+
+
+def _render_tile(tiles: Any, tile: Tuple[int, int, int], layer: str, threads: int) -> Tuple[Tuple[int, int, int], bytes]:
+    z, x, y = tile
+    return tile, tiles.render_png(z, x, y, layer=layer, threads=threads)
+
+
+def render_tiles(
+    map: Any,
+    zooms: Tuple[int, int] = (12, 16),
+    out: Optional[str] = None,
+    *,
+    legend: Any = None,
+    layer: str = "stylized",
+    client: Any = None,
+    threads: int = 1,
+    seed: int = 1,
+    **options: Any,
+) -> Dict[Tuple[int, int, int], bytes]:
+    """Renders the tile pyramid of ``motif tiles render`` on Dask: one task per tile.
+
+    The tile set (:func:`motif.tiles` of ``map``, ``legend``, ``zooms``, ``seed`` and
+    ``options``) is scattered to every worker once; it travels as the call that made it and is
+    made again there (the map and legend paths must be readable by the workers), so each worker
+    pre-synthesizes the textures once, with the same bytes. Returns {(z, x, y): PNG bytes}; with
+    ``out``, also writes them as one PMTiles archive, byte for byte the archive ``motif tiles
+    render`` writes with the same options and seed.
+    """
+    legend_path = None if legend is None else os.path.abspath(os.fspath(legend))
+    tiles = motif.tiles(os.path.abspath(os.fspath(map)), legend_path, zoom=zooms, seed=seed, **options)
+    pyramid = tiles.pyramid()
+    dask_client, close = _client(client)
+    try:
+        [remote] = dask_client.scatter([tiles], broadcast=True, hash=False)
+        futures = [dask_client.submit(_render_tile, remote, tile, layer, threads, pure=False) for tile in pyramid]
+        rendered = dask_client.gather(futures)
+    finally:
+        close()
+    if out is not None:
+        tiles.write_archive(os.fspath(out), rendered, layer)
+    return dict(rendered)

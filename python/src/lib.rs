@@ -17,7 +17,7 @@ use motif_jobs::{Job, JobError};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyMemoryError, PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyType};
+use pyo3::types::{PyBytes, PyDict, PyList, PyType};
 
 type Image<'py> = Bound<'py, numpy::PyArray3<u8>>;
 type PyColumns<'py> = Vec<(String, bool, PyReadonlyArray1<'py, f64>)>;
@@ -409,7 +409,27 @@ fn stylize<'py>(
 
 /// A map's tile set (`motif tiles`): the textures pre-synthesized once, any tile on demand.
 #[pyclass(frozen, module = "motif._motif")]
-struct Tiles(motif_jobs::tiles::TilesRun);
+struct Tiles {
+    run: motif_jobs::tiles::TilesRun,
+    job: motif_jobs::tiles::TilesJob,
+    /// The map file, the job's JSON and the legend file or folder: what `tiles` was called with,
+    /// so that a pickled tile set (a Dask task's) is made again from them.
+    map: std::path::PathBuf,
+    description: String,
+    legend: Option<std::path::PathBuf>,
+}
+
+fn layer_of(layer: &str) -> PyResult<motif_jobs::tiles::Layer> {
+    match layer {
+        "stylized" => Ok(motif_jobs::tiles::Layer::Stylized),
+        "plain" => Ok(motif_jobs::tiles::Layer::Plain),
+        other => Err(OptionError::new_err(format!("layer must be \"stylized\" or \"plain\", not {other:?}"))),
+    }
+}
+
+fn tile_of(z: u8, x: u32, y: u32) -> PyResult<motif_jobs::tiles::TileId> {
+    motif_jobs::tiles::TileId::new(z, x, y).map_err(|error| OptionError::new_err(error.to_string()))
+}
 
 #[pymethods]
 impl Tiles {
@@ -424,26 +444,71 @@ impl Tiles {
         layer: &str,
         threads: Option<usize>,
     ) -> PyResult<Image<'py>> {
-        let layer = match layer {
-            "stylized" => motif_jobs::tiles::Layer::Stylized,
-            "plain" => motif_jobs::tiles::Layer::Plain,
-            other => {
-                return Err(OptionError::new_err(format!("layer must be \"stylized\" or \"plain\", not {other:?}")));
-            }
-        };
-        let tile = motif_jobs::tiles::TileId::new(z, x, y).map_err(|error| OptionError::new_err(error.to_string()))?;
-        let image = detached(py, threads, || self.0.render(tile, layer))?.map_err(job_error)?;
+        let (layer, tile) = (layer_of(layer)?, tile_of(z, x, y)?);
+        let image = detached(py, threads, || self.run.render(tile, layer))?.map_err(job_error)?;
         array_of(py, &image)
+    }
+
+    /// Tile `(z, x, y)` as the PNG bytes `motif tiles` serves and packs.
+    #[pyo3(signature = (z, x, y, layer="stylized", threads=None))]
+    fn render_png<'py>(
+        &self,
+        py: Python<'py>,
+        z: u8,
+        x: u32,
+        y: u32,
+        layer: &str,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let (layer, tile) = (layer_of(layer)?, tile_of(z, x, y)?);
+        let image = detached(py, threads, || self.run.render(tile, layer))?.map_err(job_error)?;
+        Ok(PyBytes::new(py, &motif_io::encode_png(&image)))
+    }
+
+    /// Writes `tiles` ((z, x, y), PNG bytes) of layer `layer` as one PMTiles archive at `path`,
+    /// with the header `motif tiles render` writes for the same job.
+    #[pyo3(signature = (path, tiles, layer="stylized"))]
+    fn write_archive(
+        &self,
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        tiles: Vec<((u8, u32, u32), Vec<u8>)>,
+        layer: &str,
+    ) -> PyResult<()> {
+        let layer = layer_of(layer)?;
+        let mut packed = Vec::with_capacity(tiles.len());
+        for ((z, x, y), png) in tiles {
+            packed.push((tile_of(z, x, y)?, png));
+        }
+        let name = self.map.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let header = self.job.archive_header(&self.run, &name, layer);
+        let info = motif_io::PyramidInfo {
+            zooms: (header.zooms[0], header.zooms[1]),
+            bounds: header.bounds,
+            metadata: header.metadata,
+        };
+        py.detach(|| motif_io::write_pmtiles(&path, &info, &packed)).map_err(io_error)
+    }
+
+    /// Pickled as the call that made it: the textures are pre-synthesized again where it is
+    /// unpickled (the same bytes: the run is deterministic).
+    #[allow(clippy::type_complexity, reason = "pickle's (callable, arguments) pair")]
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (std::path::PathBuf, String, Option<std::path::PathBuf>))> {
+        let function = py.import("motif._motif")?.getattr("tiles")?;
+        Ok((function, (self.map.clone(), self.description.clone(), self.legend.clone())))
     }
 
     /// The tiles of the job's zoom levels that meet the map, as (z, x, y), by zoom, row, column.
     fn pyramid(&self) -> Vec<(u8, u32, u32)> {
-        self.0.pyramid().into_iter().map(|tile| (tile.z, tile.x, tile.y)).collect()
+        self.run.pyramid().into_iter().map(|tile| (tile.z, tile.x, tile.y)).collect()
     }
 
     /// The figures of the run, as JSON.
     fn report(&self) -> String {
-        report_json(&self.0.figures)
+        report_json(&self.run.figures)
     }
 }
 
@@ -458,13 +523,14 @@ fn tiles(
     legend: Option<std::path::PathBuf>,
     threads: Option<usize>,
 ) -> PyResult<Tiles> {
+    let text = job.to_string();
     let job: motif_jobs::tiles::TilesJob = description(job)?;
     let limit = motif_core::DEFAULT_MAX_MEMORY;
-    let (map, _) = py.detach(|| motif_io::read_osm(&map, limit)).map_err(io_error)?;
-    let legend = py.detach(|| motif_io::read_legend(legend.as_deref(), limit)).map_err(io_error)?;
-    let inputs = motif_jobs::tiles::TilesInputs { map, legend };
+    let (map_data, _) = py.detach(|| motif_io::read_osm(&map, limit)).map_err(io_error)?;
+    let legend_data = py.detach(|| motif_io::read_legend(legend.as_deref(), limit)).map_err(io_error)?;
+    let inputs = motif_jobs::tiles::TilesInputs { map: map_data, legend: legend_data };
     let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
-    Ok(Tiles(run))
+    Ok(Tiles { run, job, map, description: text, legend })
 }
 
 /// `motif curve` along a polyline of (N, 2) points (closed when the last repeats the first):

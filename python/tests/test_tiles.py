@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import motif
+import motif.batch
 from conftest import BINARY, ROOT
 
 MAP = ROOT / "data" / "real" / "maps" / "Helsinki.osm.pbf"
@@ -51,3 +52,16 @@ def test_bad_tile_options_are_refused_by_name():
         tiles.render(16, 70000, 18968)
     with pytest.raises(OSError, match="nothing.osm.pbf"):
         motif.tiles(ROOT / "nothing.osm.pbf")
+
+
+def test_render_tiles_on_dask_packs_the_clis_archive(cli, tmp_path):
+    """A pyramid rendered as Dask tasks on a LocalCluster (two worker processes, the tile set
+    scattered to each) is byte for byte the archive of `motif tiles render`."""
+    cli(["--seed", "4", "tiles", "render", "--map", MAP, "--zoom", "15-16", "--band", "3", "--out", "cli.pmtiles"], tmp_path)
+    from dask.distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        with Client(cluster) as client:
+            tiles = motif.batch.render_tiles(MAP, (15, 16), tmp_path / "dask.pmtiles", client=client, seed=4, band=3)
+    assert len(tiles) == 24 + 9
+    assert (tmp_path / "dask.pmtiles").read_bytes() == (tmp_path / "cli.pmtiles").read_bytes()

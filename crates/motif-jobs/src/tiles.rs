@@ -136,6 +136,35 @@ impl TilesJob {
     }
 }
 
+/// What a pyramid's archive says about itself besides its tiles: the same from every front end,
+/// so that archives of the same job have the same bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArchiveHeader {
+    /// The lowest and highest zoom level.
+    pub zooms: [u8; 2],
+    /// `[west, south, east, north]` in degrees: the map's rectangle.
+    pub bounds: [f64; 4],
+    /// A JSON object: the map's file name, a description, the attribution, the layer and the job.
+    pub metadata: String,
+}
+
+impl TilesJob {
+    /// The header of the archive of `run`'s pyramid of layer `layer`, for the map file named
+    /// `map_name`.
+    pub fn archive_header(&self, run: &TilesRun, map_name: &str, layer: Layer) -> ArchiveHeader {
+        let [x0, y0, x1, y1] = run.tiles.map().bounds();
+        let ((west, north), (east, south)) = (unproject([x0, y0]), unproject([x1, y1]));
+        let metadata = json!({
+            "name": map_name,
+            "description": "motif tiles: a stylized OpenStreetMap extract",
+            "attribution": "© OpenStreetMap contributors (ODbL)",
+            "layer": layer.name(),
+            "job": self,
+        });
+        ArchiveHeader { zooms: run.zooms, bounds: [west, south, east, north], metadata: metadata.to_string() }
+    }
+}
+
 /// A map error as a job error (parameters as options, the stylization as the engine's).
 fn maps_error(error: motif_maps::Error) -> JobError {
     match error {

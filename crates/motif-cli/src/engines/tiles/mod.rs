@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Context as _;
 use clap::{Args, ValueEnum};
 use motif_jobs::Job;
-use motif_jobs::tiles::{Layer, MAX_ZOOM, TileId, TilesInputs, TilesJob, TilesOptions, TilesRun, unproject};
+use motif_jobs::tiles::{Layer, MAX_ZOOM, TileId, TilesInputs, TilesJob, TilesOptions, TilesRun};
 use rayon::prelude::*;
 
 use crate::context::Context;
@@ -143,19 +143,12 @@ fn render(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Contex
         context.progress().report("rendering tiles", rendered.len() as f64 / tiles.len() as f64);
     }
     let ms = start.elapsed().as_secs_f64() * 1000.0;
-    let [x0, y0, x1, y1] = run.tiles.map().bounds();
-    let ((west, north), (east, south)) = (unproject([x0, y0]), unproject([x1, y1]));
-    let metadata = serde_json::json!({
-        "name": args.map.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
-        "description": "motif tiles: a stylized OpenStreetMap extract",
-        "attribution": "© OpenStreetMap contributors (ODbL)",
-        "layer": layer.name(),
-        "job": job,
-    });
+    let name = args.map.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let header = job.archive_header(run, &name, layer);
     let info = motif_io::PyramidInfo {
-        zooms: (run.zooms[0], run.zooms[1]),
-        bounds: [west, south, east, north],
-        metadata: metadata.to_string(),
+        zooms: (header.zooms[0], header.zooms[1]),
+        bounds: header.bounds,
+        metadata: header.metadata,
     };
     motif_io::write_pmtiles(out, &info, &rendered)?;
     let bytes: usize = rendered.iter().map(|(_, png)| png.len()).sum();
