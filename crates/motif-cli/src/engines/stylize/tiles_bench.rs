@@ -7,6 +7,8 @@ use motif_jobs::Job;
 use motif_jobs::tiles::{Layer, TileId, TilesInputs, TilesJob, TilesRun, seam_error};
 use serde_json::{Value, json};
 
+use std::io::{BufRead, BufReader, Read, Write};
+
 use crate::suite::Bench;
 
 /// Milliseconds of `f`, and its value.
@@ -75,8 +77,80 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
             "pixels_differing_from_whole": differing as f64 / apart.pixels().len() as f64,
         }),
     );
+    figures.insert("server".into(), server_throughput(&folder.join("Helsinki.osm.pbf"), bench)?);
     figures.insert("presynth_ms".into(), json!(presynth_ms));
     figures.insert("margin".into(), run.figures["margin"].clone());
     figures.insert("threads".into(), json!(1));
     Ok(Value::Object(figures))
+}
+
+/// One GET to the server over HTTP/1.0 (a load generator's client): the status and body length.
+fn get(address: &str, path: &str) -> anyhow::Result<(u16, usize)> {
+    let mut stream = std::net::TcpStream::connect(address)?;
+    stream.set_read_timeout(Some(std::time::Duration::from_secs(60)))?;
+    write!(stream, "GET {path} HTTP/1.0\r\nHost: {address}\r\n\r\n")?;
+    let mut response = Vec::new();
+    stream.read_to_end(&mut response)?;
+    let head = String::from_utf8_lossy(&response[..response.len().min(64)]).into_owned();
+    let status = head.split(' ').nth(1).and_then(|code| code.parse().ok()).unwrap_or(0);
+    Ok((status, response.len()))
+}
+
+/// `motif tiles serve` (this binary, 2 workers) under a bounded local load: 4 clients request
+/// the tiles of zoom 16 and 17 over the map (every one rendered: cold), then the same again (the
+/// disk cache: warm); tiles per second of each pass. Requests go to 127.0.0.1 only, each pass
+/// a fixed count, each request at most 60 s.
+fn server_throughput(map: &std::path::Path, bench: &Bench) -> anyhow::Result<Value> {
+    let cache = std::env::temp_dir().join(format!("motif-bench-tiles-{}", std::process::id()));
+    let mut server = std::process::Command::new(std::env::current_exe()?)
+        .args(["--quiet", "--seed", &bench.seed.to_string(), "tiles", "serve", "--port", "0", "--workers", "2"])
+        .arg("--map")
+        .arg(map)
+        .arg("--cache-dir")
+        .arg(&cache)
+        .stdout(std::process::Stdio::piped())
+        .spawn()?;
+    let result = (|| -> anyhow::Result<Value> {
+        let mut line = String::new();
+        BufReader::new(server.stdout.take().ok_or_else(|| anyhow::anyhow!("no server output"))?)
+            .read_line(&mut line)?;
+        let address = line.trim().trim_start_matches("http://").trim_end_matches('/').to_string();
+        let (map_data, _) = motif_io::read_osm(map, u64::MAX)?;
+        let zooms: &[u8] = if bench.quick { &[15] } else { &[16, 17] };
+        let paths: Vec<String> = zooms
+            .iter()
+            .flat_map(|&z| motif_jobs::tiles::tiles_covering(map_data.bounds(), z))
+            .map(|tile| format!("/{}/{}/{}.png", tile.z, tile.x, tile.y))
+            .collect();
+        let pass = |paths: &[String]| -> anyhow::Result<(f64, usize)> {
+            let start = std::time::Instant::now();
+            let failures = std::thread::scope(|scope| {
+                let clients: Vec<_> = (0..4)
+                    .map(|k| {
+                        let address = &address;
+                        scope.spawn(move || {
+                            paths
+                                .iter()
+                                .skip(k)
+                                .step_by(4)
+                                .filter(|path| !matches!(get(address, path), Ok((200, _))))
+                                .count()
+                        })
+                    })
+                    .collect();
+                clients.into_iter().map(|client| client.join().unwrap_or(usize::MAX)).sum::<usize>()
+            });
+            Ok((paths.len() as f64 / start.elapsed().as_secs_f64(), failures))
+        };
+        let (cold, cold_failures) = pass(&paths)?;
+        let (warm, warm_failures) = pass(&paths)?;
+        Ok(json!({
+            "tiles": paths.len(), "clients": 4, "workers": 2, "zooms": zooms,
+            "cold_tiles_per_s": cold, "warm_tiles_per_s": warm, "failed": cold_failures + warm_failures,
+        }))
+    })();
+    let _ = server.kill();
+    let _ = server.wait();
+    let _ = std::fs::remove_dir_all(&cache);
+    result
 }
