@@ -502,8 +502,8 @@ impl Tiles {
     }
 
     /// The tiles of the job's zoom levels that meet the map, as (z, x, y), by zoom, row, column.
-    fn pyramid(&self) -> Vec<(u8, u32, u32)> {
-        self.run.pyramid().into_iter().map(|tile| (tile.z, tile.x, tile.y)).collect()
+    fn pyramid(&self) -> PyResult<Vec<(u8, u32, u32)>> {
+        Ok(self.run.pyramid().map_err(job_error)?.into_iter().map(|tile| (tile.z, tile.x, tile.y)).collect())
     }
 
     /// The figures of the run, as JSON.

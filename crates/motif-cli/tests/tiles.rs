@@ -174,6 +174,9 @@ fn bad_maps_legends_and_arguments_are_refused_by_name() {
     assert!(error.contains("style.json") && error.contains("lava") && error.contains("minor-road"), "{error}");
     let error = error_of(&motif(dir.path(), &["tiles", "render", "--map", map, "--out", "t.pmtiles", "--band", "99"]));
     assert!(error.contains("--band") || error.contains("band"), "{error}");
+    let error =
+        error_of(&motif(dir.path(), &["tiles", "render", "--map", map, "--zoom", "16-24", "--out", "t.pmtiles"]));
+    assert!(error.contains("zoom = 16-24") && error.contains("100000"), "{error}");
     let output = motif(dir.path(), &["tiles", "render", "--map", map, "--zoom", "9-3", "--out", "t.pmtiles"]);
     assert_eq!(output.status.code(), Some(2));
     assert!(!dir.path().join("t.pmtiles").exists());

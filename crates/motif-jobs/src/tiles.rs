@@ -19,6 +19,9 @@ pub use motif_maps::{
 
 const DEFAULTS: motif_maps::Params = motif_maps::Params::DEFAULT;
 
+/// The most tiles a packed pyramid may hold (about an hour on two cores at 40 ms a tile).
+pub const MAX_PYRAMID_TILES: usize = 100_000;
+
 /// The zoom levels a pyramid takes when the job names none.
 pub const DEFAULT_ZOOM: [u8; 2] = [12, 16];
 
@@ -202,10 +205,31 @@ impl Finished for TilesRun {
 
 impl TilesRun {
     /// The tiles of the pyramid: every tile of the job's zoom levels that meets the map, by zoom
-    /// then row then column.
-    pub fn pyramid(&self) -> Vec<TileId> {
-        let bounds = self.tiles.map().bounds();
-        (self.zooms[0]..=self.zooms[1]).flat_map(|z| tiles_covering(bounds, z)).collect()
+    /// then row then column. Refused, by `zoom`, beyond [`MAX_PYRAMID_TILES`] (counted first).
+    pub fn pyramid(&self) -> Result<Vec<TileId>, JobError> {
+        let [x0, y0, x1, y1] = self.tiles.map().bounds();
+        let count: f64 = (self.zooms[0]..=self.zooms[1])
+            .map(|z| {
+                let side = (1u64 << z) as f64;
+                let span = |low: f64, high: f64| {
+                    ((high * side).floor().min(side - 1.0) - (low * side).floor().max(0.0) + 1.0).max(1.0)
+                };
+                span(x0, x1) * span(y0, y1)
+            })
+            .sum();
+        if count > MAX_PYRAMID_TILES as f64 {
+            return Err(motif_core::InvalidParameter::new(
+                "zoom",
+                format!("{}-{}", self.zooms[0], self.zooms[1]),
+                format!(
+                    "gives {count:.0} tiles over this map, more than {MAX_PYRAMID_TILES} (hours of work and gigabytes); \
+                     pack fewer zoom levels, or serve the deep ones on demand"
+                ),
+            )
+            .into());
+        }
+        let bounds = [x0, y0, x1, y1];
+        Ok((self.zooms[0]..=self.zooms[1]).flat_map(|z| tiles_covering(bounds, z)).collect())
     }
 
     /// Tile `tile` of layer `layer`.

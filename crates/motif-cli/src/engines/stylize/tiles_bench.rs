@@ -44,7 +44,7 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
     let job = TilesJob { seed: bench.seed, zoom: Some([16, 16]), ..TilesJob::new() };
     let (run, presynth_ms) = timed(|| job.run(TilesInputs { map, legend }, &mut motif_core::NoProgress));
     let run = run?;
-    let mut tiles = run.pyramid();
+    let mut tiles = run.pyramid()?;
     if bench.quick {
         tiles.truncate(4);
     }

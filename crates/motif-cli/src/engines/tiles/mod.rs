@@ -129,7 +129,7 @@ pub(crate) fn run(args: &TilesArgs, context: &mut Context) -> anyhow::Result<()>
 /// Renders the pyramid into one PMTiles archive.
 fn render(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Context) -> anyhow::Result<()> {
     let out = args.out.as_deref().context("no --out")?;
-    let tiles = run.pyramid();
+    let tiles = run.pyramid()?;
     let layer = Layer::from(args.layer);
     let start = std::time::Instant::now();
     // In chunks, so that progress is told between them (the bar lives on this thread).
