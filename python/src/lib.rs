@@ -431,6 +431,20 @@ fn tile_of(z: u8, x: u32, y: u32) -> PyResult<motif_jobs::tiles::TileId> {
     motif_jobs::tiles::TileId::new(z, x, y).map_err(|error| OptionError::new_err(error.to_string()))
 }
 
+impl Tiles {
+    /// Tile `(z, x, y)` of the layer named `layer`, rendered without the GIL.
+    fn image(
+        &self,
+        py: Python<'_>,
+        (z, x, y): (u8, u32, u32),
+        layer: &str,
+        threads: Option<usize>,
+    ) -> PyResult<RgbaImage> {
+        let (layer, tile) = (layer_of(layer)?, tile_of(z, x, y)?);
+        detached(py, threads, || self.run.render(tile, layer))?.map_err(job_error)
+    }
+}
+
 #[pymethods]
 impl Tiles {
     /// Tile `(z, x, y)` of layer `layer` ("stylized" or "plain") as an H×W×4 uint8 array.
@@ -444,9 +458,7 @@ impl Tiles {
         layer: &str,
         threads: Option<usize>,
     ) -> PyResult<Image<'py>> {
-        let (layer, tile) = (layer_of(layer)?, tile_of(z, x, y)?);
-        let image = detached(py, threads, || self.run.render(tile, layer))?.map_err(job_error)?;
-        array_of(py, &image)
+        array_of(py, &self.image(py, (z, x, y), layer, threads)?)
     }
 
     /// Tile `(z, x, y)` as the PNG bytes `motif tiles` serves and packs.
@@ -460,9 +472,7 @@ impl Tiles {
         layer: &str,
         threads: Option<usize>,
     ) -> PyResult<Bound<'py, PyBytes>> {
-        let (layer, tile) = (layer_of(layer)?, tile_of(z, x, y)?);
-        let image = detached(py, threads, || self.run.render(tile, layer))?.map_err(job_error)?;
-        Ok(PyBytes::new(py, &motif_io::encode_png(&image)))
+        Ok(PyBytes::new(py, &motif_io::encode_png(&self.image(py, (z, x, y), layer, threads)?)))
     }
 
     /// Writes `tiles` ((z, x, y), PNG bytes) of layer `layer` as one PMTiles archive at `path`,

@@ -116,13 +116,18 @@ pub(crate) fn run(args: &TilesArgs, context: &mut Context) -> anyhow::Result<()>
     let (map, counts) = motif_io::read_osm(&args.map, context.max_memory)?;
     let legend = motif_io::read_legend(args.legend.as_deref(), context.max_memory)?;
     let job = TilesJob { seed: context.seed, zoom: args.zoom, options: args.options.options.clone() };
+    // The server's cache and ETags name everything a tile depends on, read before the run takes them.
+    let key = match args.action {
+        TilesAction::Serve => Some(serve::run_key(&args.map, &legend, &job)?),
+        TilesAction::Render => None,
+    };
     let run = job.run(TilesInputs { map, legend }, context.progress())?;
     context.job_figures(run.figures.clone());
     context
         .figure("osm", serde_json::json!({"nodes": counts.nodes, "ways": counts.ways, "relations": counts.relations}));
     match args.action {
         TilesAction::Render => render(args, &job, &run, context),
-        TilesAction::Serve => serve::serve(args, &job, run, context),
+        TilesAction::Serve => serve::serve(args, key.unwrap_or_default(), run, context),
     }
 }
 

@@ -6,7 +6,6 @@
 //! and the tile, so a client's copy stays valid across restarts while nothing changed; the cache
 //! folder is keyed by the same digest.
 
-use std::io::Read as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -15,7 +14,7 @@ use anyhow::Context as _;
 use axum::extract::State;
 use axum::http::{HeaderMap, HeaderValue, StatusCode, Uri, header};
 use axum::response::{Html, IntoResponse, Response};
-use motif_jobs::tiles::{Layer, TileId, TilesJob, TilesRun};
+use motif_jobs::tiles::{Fill, Layer, Legend, MapClass, TileId, TilesJob, TilesRun};
 use tokio::sync::{Notify, Semaphore};
 
 use super::TilesArgs;
@@ -51,8 +50,7 @@ impl Shared {
 }
 
 /// Serves until `--max-requests` requests were answered (or until interrupted).
-pub(super) fn serve(args: &TilesArgs, job: &TilesJob, run: TilesRun, context: &mut Context) -> anyhow::Result<()> {
-    let key = run_key(args, job)?;
+pub(super) fn serve(args: &TilesArgs, key: String, run: TilesRun, context: &mut Context) -> anyhow::Result<()> {
     let cache = args.cache_dir.clone().unwrap_or_else(|| std::env::temp_dir().join("motif-tiles")).join(&key);
     motif_io::create_folder(&cache)?;
     let workers = args.workers.map_or(context.threads, usize::from).max(1);
@@ -205,7 +203,7 @@ fn tile_bytes(shared: &Shared, layer: Layer, tile: TileId) -> anyhow::Result<Vec
         .join(tile.z.to_string())
         .join(tile.x.to_string())
         .join(format!("{}.png", tile.y));
-    if let Ok(bytes) = std::fs::read(&path) {
+    if let Ok(bytes) = motif_io::read_bytes(&path) {
         return Ok(bytes);
     }
     let image = shared.run.render(tile, layer)?;
@@ -218,38 +216,22 @@ fn tile_bytes(shared: &Shared, layer: Layer, tile: TileId) -> anyhow::Result<Vec
     Ok(png)
 }
 
-/// A digest of everything a tile depends on: the map file, the legend, the job and the version.
-fn run_key(args: &TilesArgs, job: &TilesJob) -> anyhow::Result<String> {
+/// A digest of everything a tile depends on: the map file's bytes, the legend as read (each
+/// class's colour or texture pixels), the job and the version.
+pub(super) fn run_key(map: &Path, legend: &Legend, job: &TilesJob) -> anyhow::Result<String> {
     let mut hasher = crc32fast::Hasher::new();
-    hash_file(&mut hasher, &args.map)?;
-    if let Some(legend) = &args.legend {
-        if legend.is_dir() {
-            let mut entries: Vec<PathBuf> = std::fs::read_dir(legend)
-                .with_context(|| legend.display().to_string())?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .collect();
-            entries.sort();
-            for entry in entries.iter().filter(|entry| entry.is_file()) {
-                hasher.update(entry.to_string_lossy().as_bytes());
-                hash_file(&mut hasher, entry)?;
+    hasher.update(&motif_io::read_bytes(map)?);
+    for class in MapClass::ALL {
+        match legend.fill(class) {
+            Fill::Colour(rgb) => hasher.update(rgb),
+            Fill::Texture(image) => {
+                hasher.update(&(image.width() as u64).to_le_bytes());
+                hasher.update(&(image.height() as u64).to_le_bytes());
+                hasher.update(image.as_bytes());
             }
-        } else {
-            hash_file(&mut hasher, legend)?;
         }
     }
     hasher.update(serde_json::to_string(job)?.as_bytes());
     hasher.update(env!("CARGO_PKG_VERSION").as_bytes());
     Ok(format!("{:08x}", hasher.finalize()))
-}
-
-fn hash_file(hasher: &mut crc32fast::Hasher, path: &Path) -> anyhow::Result<()> {
-    let mut file = std::fs::File::open(path).with_context(|| path.display().to_string())?;
-    let mut buffer = vec![0; 1 << 16];
-    loop {
-        let read = file.read(&mut buffer).with_context(|| path.display().to_string())?;
-        if read == 0 {
-            return Ok(());
-        }
-        hasher.update(&buffer[..read]);
-    }
 }
