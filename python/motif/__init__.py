@@ -148,7 +148,8 @@ def texture(
 ) -> Any:
     """Grows a texture of ``size`` = (width, height) from ``exemplar`` (``motif texture``).
 
-    Options: ``patch_size`` (5), ``coarse_patch_size`` (0: off; 11 keeps structures),
+    Options: ``patch_size`` (5), ``coarse_patch_size`` (inferred without a quilt: 11, or 15 for an
+    exemplar of 1024 pixels a side or more; 0: off),
     ``structure_weight`` (0: off; 3 keeps the gaps between elements), ``quilt_block`` (inferred:
     half the exemplar's side when the output is larger; 0: off), ``uniformity`` (3500), ``pyramid_levels``, ``search_vote_iters``,
     ``patchmatch_iters``, ``stop_threshold``, ``nnf`` ('patchmatch' or 'exact'), ``tileable``,
@@ -560,7 +561,7 @@ def strokes(
 
 
 def read_image(path: str) -> np.ndarray:
-    """Reads a PNG or JPEG as an H×W×4 uint8 array."""
+    """Reads a PNG, JPEG or WebP as an H×W×4 uint8 array."""
     return _motif.read_image(path)
 
 

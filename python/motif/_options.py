@@ -248,7 +248,9 @@ class StylizeOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
@@ -313,7 +315,9 @@ class PresynthOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
@@ -361,7 +365,9 @@ class TextureOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
@@ -408,7 +414,9 @@ class InpaintOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
@@ -453,7 +461,9 @@ class ZoomOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level
@@ -502,7 +512,9 @@ class VideoOptions(TypedDict, total=False):
     patch_size: int
     #: Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at the finest: odd,
     #: or 0 for --patch-size everywhere. The coarse levels decide the layout; larger patches there keep regular
-    #: structures (bricks, weaves, parquet) whole. Allowed: 0–31. Default: 0.
+    #: structures (bricks, weaves, parquet) whole. Not given: `texture` infers it when it has no quilt (11, or
+    #: 15 for an exemplar of 1024 pixels a side or more; the report's `coarse_patch_size` and
+    #: `coarse_patch_size_inferred`), the other commands use --patch-size everywhere. Allowed: 0–31.
     coarse_patch_size: int
     #: Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps, grooves; found by
     #: splitting its luminance in two) as one more channel, relative to a colour channel, at the coarsest level

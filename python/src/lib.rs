@@ -144,7 +144,7 @@ fn report_json(figures: &serde_json::Map<String, serde_json::Value>) -> String {
     serde_json::Value::Object(figures.clone()).to_string()
 }
 
-/// Reads a PNG or JPEG as an H×W×4 uint8 array.
+/// Reads a PNG, JPEG or WebP as an H×W×4 uint8 array.
 #[pyfunction]
 fn read_image<'py>(py: Python<'py>, path: std::path::PathBuf) -> PyResult<Image<'py>> {
     let image = py.detach(|| motif_io::read_image(&path)).map_err(io_error)?;

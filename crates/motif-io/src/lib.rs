@@ -9,7 +9,7 @@
 //!   happen all together or not at all ([`begin_outputs`], [`commit_outputs`],
 //!   [`discard_outputs`]), the folders made for outputs ([`create_folder`]), the check that a
 //!   folder takes files ([`check_folder_writable`]) and [`stop_outputs`] for a signal handler.
-//! - [`raster`]: PNG (8-bit RGBA/RGB/grey/grey-alpha, 16-bit read) and JPEG (read) via `image`.
+//! - [`raster`]: PNG (8-bit RGBA/RGB/grey/grey-alpha, 16-bit read), JPEG and WebP (read) via `image`.
 //! - [`svg`]: SVG read through `usvg` (paths as `kurbo` paths in document coordinates, transforms
 //!   applied, with stroke and fill), SVG write ([`SvgWriter`]) and rasterization via `resvg`.
 //! - [`points`]: point tables as PLY (ascii or binary, via `ply-rs-bw`) or CSV (via `csv`).

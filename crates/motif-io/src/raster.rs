@@ -1,4 +1,4 @@
-//! PNG and JPEG through the `image` crate.
+//! PNG, JPEG and WebP through the `image` crate.
 
 use std::io::BufWriter;
 use std::path::Path;
@@ -47,7 +47,7 @@ impl ImageBudget {
     }
 }
 
-/// Reads a PNG (8-bit or 16-bit; grey, grey-alpha, RGB or RGBA) or JPEG as 8-bit RGBA, within
+/// Reads a PNG (8-bit or 16-bit; grey, grey-alpha, RGB or RGBA), JPEG or WebP as 8-bit RGBA, within
 /// the default [`ImageBudget`].
 ///
 /// The format is detected from the content, not the name, so a text file named `.png` is
@@ -62,7 +62,7 @@ pub fn read_image_within(path: &Path, budget: ImageBudget) -> Result<RgbaImage> 
     decode_image_within(crate::read_bytes(path)?, path, budget)
 }
 
-/// Decodes PNG or JPEG bytes as [`read_image`] does; `path` is the file (or label) errors name.
+/// Decodes PNG, JPEG or WebP bytes as [`read_image`] does; `path` is the file (or label) errors name.
 pub fn decode_image(bytes: Vec<u8>, path: &Path) -> Result<RgbaImage> {
     decode_image_within(bytes, path, ImageBudget::default())
 }
@@ -119,7 +119,7 @@ pub fn write_png16(path: &Path, image: &Rgba16) -> Result<()> {
     })
 }
 
-/// Decodes PNG or JPEG bytes within `budget`, into samples a caller copies to `bytes_per_pixel`
+/// Decodes PNG, JPEG or WebP bytes within `budget`, into samples a caller copies to `bytes_per_pixel`
 /// RGBA (4 or 8): the declared size is checked before decoding, and a JPEG must be complete.
 fn decode(
     bytes: Vec<u8>,
@@ -130,8 +130,9 @@ fn decode(
     let reader = ImageReader::new(std::io::Cursor::new(&bytes[..]))
         .with_guessed_format()
         .map_err(|source| IoError::Io { path: path.to_path_buf(), source })?;
-    let format =
-        reader.format().ok_or_else(|| IoError::format(path, "is not a PNG or JPEG image (unrecognized content)"))?;
+    let format = reader
+        .format()
+        .ok_or_else(|| IoError::format(path, "is not a PNG, JPEG or WebP image (unrecognized content)"))?;
     if format == ImageFormat::Jpeg && !jpeg_is_complete(&bytes) {
         return Err(IoError::format(path, "the JPEG is truncated or damaged: it ends before its end-of-image marker"));
     }
@@ -327,6 +328,21 @@ mod tests {
         trailing.extend_from_slice(b"\0\0trailer");
         std::fs::write(&path, &trailing).unwrap();
         assert_eq!(read_image(&path).unwrap().width(), 64);
+    }
+
+    #[test]
+    fn lossless_webp_reads_exactly_and_a_cut_one_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let image = RgbaImage::from_fn(23, 11, |x, y| [(x * 11) as u8, (y * 23) as u8, 77, 255 - (x * y) as u8]);
+        let mut bytes = Vec::new();
+        let encoder = image::codecs::webp::WebPEncoder::new_lossless(&mut bytes);
+        image::ImageEncoder::write_image(encoder, image.as_bytes(), 23, 11, image::ExtendedColorType::Rgba8).unwrap();
+        let path = dir.path().join("texture.webp");
+        std::fs::write(&path, &bytes).unwrap();
+        assert_eq!(read_image(&path).unwrap(), image);
+        let cut = dir.path().join("cut.webp");
+        std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+        assert!(read_image(&cut).unwrap_err().to_string().contains("cut.webp"));
     }
 
     #[test]

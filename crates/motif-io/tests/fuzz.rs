@@ -65,6 +65,14 @@ fn jpeg_seed() -> Vec<u8> {
     bytes
 }
 
+fn webp_seed() -> Vec<u8> {
+    let mut bytes = Vec::new();
+    let pixels: Vec<u8> = (0..14 * 10 * 4).map(|i| (i * 29 % 251) as u8).collect();
+    let encoder = image::codecs::webp::WebPEncoder::new_lossless(&mut bytes);
+    image::ImageEncoder::write_image(encoder, &pixels, 14, 10, image::ExtendedColorType::Rgba8).unwrap();
+    bytes
+}
+
 const PLY_ASCII: &str = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
                          property int label\nend_header\n0 0 1\n1.5 2 0\n3 -1 1\n";
 const CSV: &str = "x,y,dbh\n0,0,12.5\n1.5,2,3\n3,-1,40\n";
@@ -110,6 +118,7 @@ fn check_svg(text: &str) {
 fn seeds_are_valid_files() {
     assert_eq!(decode_image(png_seed(), Path::new("seed.png")).unwrap().width(), 12);
     assert_eq!(decode_image(jpeg_seed(), Path::new("seed.jpg")).unwrap().width(), 16);
+    assert_eq!(decode_image(webp_seed(), Path::new("seed.webp")).unwrap().width(), 14);
     assert_eq!(parse_points(PLY_ASCII.as_bytes(), PointFormat::PlyAscii, Path::new("a.ply")).unwrap().rows, 3);
     assert_eq!(parse_points(&ply_binary_seed(), PointFormat::PlyBinary, Path::new("b.ply")).unwrap().rows, 2);
     assert_eq!(parse_points(CSV.as_bytes(), PointFormat::Csv, Path::new("c.csv")).unwrap().rows, 3);
@@ -132,6 +141,11 @@ proptest! {
     #[test]
     fn mutated_jpegs(edits in edits()) {
         check_image(mutate(&jpeg_seed(), &edits));
+    }
+
+    #[test]
+    fn mutated_webps(edits in edits()) {
+        check_image(mutate(&webp_seed(), &edits));
     }
 
     #[test]

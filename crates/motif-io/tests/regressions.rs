@@ -18,7 +18,7 @@ const CASES: &[(&str, &str)] = &[
     ("png-cut-to-a-third.png", "cannot decode"),
     ("jpeg-cut-before-its-end.jpg", "the JPEG is truncated"),
     ("png-zero-width.png", "Invalid image dimensions"),
-    ("text-named-png.png", "is not a PNG or JPEG"),
+    ("text-named-png.png", "is not a PNG, JPEG or WebP"),
     ("ply-declares-two-billion-vertices.ply", "not a valid PLY"),
     ("ply-binary-declares-two-billion-vertices.ply", "not a valid PLY"),
     ("ply-without-vertex-element.ply", "no `vertex` element"),

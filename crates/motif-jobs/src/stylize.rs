@@ -40,8 +40,11 @@ crate::declare_options! {
         /// Patch side at the coarsest pyramid level, shrinking level by level to --patch-size at
         /// the finest: odd, or 0 for --patch-size everywhere. The coarse levels decide the
         /// layout; larger patches there keep regular structures (bricks, weaves, parquet) whole.
+        /// Not given: `texture` infers it when it has no quilt (11, or 15 for an exemplar of
+        /// 1024 pixels a side or more; the report's `coarse_patch_size` and
+        /// `coarse_patch_size_inferred`), the other commands use --patch-size everywhere.
         [value_name: "P", range: (0.0, 31.0)]
-        coarse_patch_size: usize = DEFAULTS.coarse_patch_size,
+        coarse_patch_size: Option<usize> = None,
         /// Texture synthesis: weight of the exemplar's distance to its features (mortar, gaps,
         /// grooves; found by splitting its luminance in two) as one more channel, relative to a
         /// colour channel, at the coarsest level and falling to 0 at the finest (Kaspar et al.
@@ -90,7 +93,7 @@ impl SynthesisOptions {
             .with_style_weight(self.style_weight)
             .with_uniformity(self.uniformity)
             .with_patch_size(self.patch_size)
-            .with_coarse_patch_size(self.coarse_patch_size)
+            .with_coarse_patch_size(self.coarse_patch_size.unwrap_or(DEFAULTS.coarse_patch_size))
             .with_structure_weight(self.structure_weight)
             .with_quilt_block(self.quilt_block.unwrap_or(DEFAULTS.quilt_block))
             .with_pyramid_levels(self.pyramid_levels)
@@ -413,6 +416,16 @@ impl TextureJob {
             Some(block) => (block, false),
             None if masked || self.options.own.tileable || shared.structure_weight > 0.0 => (0, true),
             None => (motif_stylize::inferred_quilt_block(exemplar_size, (self.size[0], self.size[1])), true),
+        }
+    }
+
+    /// The coarse patch side for an `exemplar_size` exemplar with `quilt_block` (0: none), and
+    /// whether it was inferred: the one given, else [`motif_stylize::inferred_coarse_patch_size`].
+    pub fn coarse_patch_size(&self, exemplar_size: (usize, usize), quilt_block: usize) -> (usize, bool) {
+        let shared = &self.options.shared;
+        match shared.coarse_patch_size {
+            Some(side) => (side, false),
+            None => (motif_stylize::inferred_coarse_patch_size(exemplar_size, shared.patch_size, quilt_block), true),
         }
     }
 }

@@ -43,7 +43,8 @@
 //!   broken courses.
 //! - `quilting`: image quilting (Efros and Freeman 2001) as the start of texture optimization
 //!   ([`Params::quilt_block`]): whole elements in continuous courses, mended at the finest level;
-//!   [`inferred_quilt_block`], the block `motif texture` uses when none is given.
+//!   [`inferred_quilt_block`], the block `motif texture` uses when none is given, and
+//!   [`inferred_coarse_patch_size`], its coarse patch side when there is no quilt.
 //! - [`samples`]: seeded map-like guides and styles for demos and benchmarks.
 //!
 //! All randomness comes from [`motif_core::SeedStreams`] keyed by (level, iteration, tile), and
@@ -112,7 +113,7 @@ pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, fli
 pub use native::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use params::{NnfMethod, Params, Segmentation};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize};
-pub use quilting::inferred_quilt_block;
+pub use quilting::{inferred_coarse_patch_size, inferred_quilt_block};
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure_fidelity::{nearest_patch_distance, sharpness};
 pub use structure_guidance::{line_contrast, mean_feature_distance};

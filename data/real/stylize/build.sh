@@ -4,7 +4,9 @@
 # installed; if it is not, this script fetches it with `apt-get download` into a temporary folder
 # (the same for python3-skimage). Then makes the anti-aliased segment guides
 # chelsea_segments.png and stone_segments.png from them with segment_guides.py.
-# Made with gimp-data 2.10.34-1+deb12u10 and python3-skimage 0.19.3-8 (Debian bookworm), Python 3.11.
+# Also copies GNOME's 4096 x 4096 wood wallpaper (wood-4096.webp) from gnome-backgrounds.
+# Made with gimp-data 2.10.34-1+deb12u10, python3-skimage 0.19.3-8 and gnome-backgrounds 43.1-1
+# (Debian bookworm), Python 3.11.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -24,6 +26,10 @@ done
 # The photo the video footage is filmed over (`motif demo`, `motif bench --case video`): copied
 # byte for byte.
 cp "$(package_file python3-skimage usr/lib/python3/dist-packages/skimage/data/chelsea.png)" "$here/chelsea.png"
+
+# A texture at its native size for the speed of large exemplars (`motif bench --case
+# texture-native`): GNOME's wood panel wallpaper, 4096 x 4096 WebP, copied byte for byte.
+cp "$(package_file gnome-backgrounds usr/share/backgrounds/gnome/wood-l.webp)" "$here/wood-4096.webp"
 
 # Anti-aliased segment guides made from the photo and the stone wall (standard library only).
 "$PYTHON" "$here/segment_guides.py" "$here"

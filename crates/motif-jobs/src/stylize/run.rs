@@ -105,12 +105,15 @@ impl TextureJob {
     ) -> Result<StylizeRun, JobError> {
         let exemplar_size = (inputs.exemplar.width(), inputs.exemplar.height());
         let (quilt_block, inferred) = self.quilt_block(exemplar_size, inputs.mask.is_some());
-        let params = self.params()?.with_quilt_block(quilt_block);
+        let (coarse_patch_size, coarse_inferred) = self.coarse_patch_size(exemplar_size, quilt_block);
+        let params = self.params()?.with_quilt_block(quilt_block).with_coarse_patch_size(coarse_patch_size);
         let mut input = Input::texture(inputs.exemplar, self.size[0], self.size[1]);
         input.mask = inputs.mask;
         let mut run = StylizeRun::of(motif_stylize::synthesize(&input, &params, progress)?);
         run.figures.insert("quilt_block".into(), json!(quilt_block));
         run.figures.insert("quilt_block_inferred".into(), json!(inferred));
+        run.figures.insert("coarse_patch_size".into(), json!(coarse_patch_size));
+        run.figures.insert("coarse_patch_size_inferred".into(), json!(coarse_inferred));
         Ok(run)
     }
 }

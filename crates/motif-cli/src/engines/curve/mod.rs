@@ -23,7 +23,7 @@ use crate::job_args::JobArgs;
 /// options ([`CurveOptions`], declared in `motif_jobs::curve`).
 #[derive(Args, Debug)]
 pub struct CurveArgs {
-    /// Exemplar image (PNG/JPEG) with alpha: opaque pixels are the pattern, on a transparent
+    /// Exemplar image (PNG/JPEG/WebP) with alpha: opaque pixels are the pattern, on a transparent
     /// background. Repeat to mix several exemplars (up to 16): pieces may come from any of them.
     #[arg(long, value_name = "EX.png", required = true)]
     pub exemplar: Vec<PathBuf>,

@@ -72,7 +72,7 @@ fn same_size(mask: &RgbaImage, mask_path: &Path, image: &RgbaImage, image_path: 
 /// Options of `motif inpaint`.
 #[derive(Args, Debug)]
 pub struct InpaintArgs {
-    /// The image with a hole to fill (PNG/JPEG).
+    /// The image with a hole to fill (PNG/JPEG/WebP).
     #[arg(long, value_name = "IMAGE.png")]
     pub image: PathBuf,
     /// The hole: white (at least half white and half opaque) where the image is filled, black
@@ -123,7 +123,7 @@ pub(crate) fn run_inpaint(args: &InpaintArgs, context: &mut Context) -> anyhow::
 /// Options of `motif zoom`.
 #[derive(Args, Debug)]
 pub struct ZoomArgs {
-    /// The texture exemplar (PNG/JPEG).
+    /// The texture exemplar (PNG/JPEG/WebP).
     #[arg(long, value_name = "EX.png")]
     pub exemplar: PathBuf,
     /// Size of every zoom level in pixels.

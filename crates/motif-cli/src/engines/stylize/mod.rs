@@ -33,7 +33,7 @@ use crate::job_args::JobArgs;
 /// Options of `motif stylize`.
 #[derive(Args, Debug)]
 pub struct StylizeArgs {
-    /// The style exemplar A' (PNG/JPEG; RGB, or RGBA when it has transparency).
+    /// The style exemplar A' (PNG/JPEG/WebP; RGB, or RGBA when it has transparency).
     #[arg(long, value_name = "A1.png")]
     pub style: PathBuf,
     /// A guide pair: the source guide A (the style's size) and the target guide B (the output's
@@ -97,7 +97,7 @@ pub struct PresynthArgs {
 /// Options of `motif texture`.
 #[derive(Args, Debug)]
 pub struct TextureArgs {
-    /// The texture exemplar (PNG/JPEG).
+    /// The texture exemplar (PNG/JPEG/WebP).
     #[arg(long, value_name = "EX.png")]
     pub exemplar: PathBuf,
     /// Output size in pixels.
@@ -304,9 +304,16 @@ pub(crate) fn run_texture(args: &TextureArgs, context: &mut Context) -> anyhow::
             format!(", quilt block {block}{}", if inferred == Some(true) { " (inferred)" } else { "" })
         }
     };
+    let coarse = match (run.figures["coarse_patch_size"].as_u64(), run.figures["coarse_patch_size_inferred"].as_bool())
+    {
+        (Some(0) | None, _) => String::new(),
+        (Some(side), inferred) => {
+            format!(", coarse patch {side}{}", if inferred == Some(true) { " (inferred)" } else { "" })
+        }
+    };
     context.job_figures(run.figures);
     context.summary(&format!(
-        "motif texture: {}×{}{}{quilt} in {:.0} ms, energy {:.0} → {}",
+        "motif texture: {}×{}{}{quilt}{coarse} in {:.0} ms, energy {:.0} → {}",
         args.size.0,
         args.size.1,
         if args.options.own.tileable { " (tileable)" } else { "" },
