@@ -8,6 +8,10 @@ use crate::class::MapClass;
 use crate::map::{Geometry, MapData};
 use crate::mercator::{TileId, UnitPoint};
 
+/// Subdivisions of a pixel that the geometry is snapped to (`tiny-skia`'s fixed point has six
+/// fractional bits).
+const SNAP: f64 = 64.0;
+
 /// Where a tile's pixels lie: the tile, its side in pixels and the frame around it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TileFrame {
@@ -40,15 +44,15 @@ impl TileFrame {
         (x * size - margin, y * size - margin)
     }
 
-    /// A unit-square point in the drawn square's pixels.
+    /// A unit-square point in the drawn square's pixels: its position in the zoom level's pixels
+    /// snapped to 1/64 pixel, less the square's origin. Both steps are exact, so two squares see
+    /// the same point at positions that differ by whole pixels exactly (a tile and the block
+    /// around it rasterize alike).
     fn pixel(&self, [x, y]: UnitPoint) -> (f32, f32) {
-        let side = self.tile.side() as f64;
-        let size = self.size as f64;
-        let margin = self.margin as f64;
-        (
-            ((x * side - f64::from(self.tile.x)) * size + margin) as f32,
-            ((y * side - f64::from(self.tile.y)) * size + margin) as f32,
-        )
+        let scale = self.scale() * SNAP;
+        let (ox, oy) = self.global_origin();
+        let local = |unit: f64, origin: i64| ((unit * scale).round() / SNAP - origin as f64) as f32;
+        (local(x, ox), local(y, oy))
     }
 
     /// The drawn square in the unit square, `[x0, y0, x1, y1]`.

@@ -92,22 +92,38 @@ fn transform_1d(f: &[f32], d: &mut [f32], v: &mut [usize], z: &mut [f32]) {
     }
 }
 
+/// The output being composed: its size, and where its top-left lies in the textures' plane.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Target {
+    pub size: (usize, usize),
+    pub origin: (i64, i64),
+}
+
+impl Target {
+    /// The pixel of a `width × height` texture that output pixel `(x, y)` takes: the textures
+    /// tile the plane.
+    fn texture_pixel(&self, (x, y): (usize, usize), (width, height): (usize, usize)) -> (usize, usize) {
+        let at = |v: usize, origin: i64, side: usize| (v as i64 + origin).rem_euclid(side as i64) as usize;
+        (at(x, self.origin.0, width), at(y, self.origin.1, height))
+    }
+}
+
 /// The target filled from the textures: pixel `(x, y)` of label `l` takes
-/// `textures[texture_of[l]]` at `(x mod width, y mod height)` (the textures tile).
+/// `textures[texture_of[l]]` at its [`Target::texture_pixel`].
 pub(crate) fn compose(
     labels: &[u16],
-    width: usize,
-    height: usize,
+    target: Target,
     textures: &[&FloatImage],
     texture_of: &[usize],
     channels: usize,
 ) -> FloatImage {
+    let (width, height) = target.size;
     let mut out = FloatImage::new(width, height, channels);
     for y in 0..height {
         for x in 0..width {
             let texture = textures[texture_of[usize::from(labels[y * width + x])]];
-            let value = texture.pixel(x % texture.width(), y % texture.height());
-            out.pixel_mut(x, y).copy_from_slice(value);
+            let (tx, ty) = target.texture_pixel((x, y), (texture.width(), texture.height()));
+            out.pixel_mut(x, y).copy_from_slice(texture.pixel(tx, ty));
         }
     }
     out
@@ -117,23 +133,23 @@ pub(crate) fn compose(
 pub(crate) const NO_SEED: u32 = u32::MAX;
 
 /// The textures' fields composed like [`compose`]: the source centre (`y · source_width + x`) that
-/// texture pixel `(x mod width, y mod height)` came from, or [`NO_SEED`] where the texture has no
+/// the texture pixel of output pixel `(x, y)` came from, or [`NO_SEED`] where the texture has no
 /// field.
 pub(crate) fn compose_field(
     labels: &[u16],
-    width: usize,
-    height: usize,
+    target: Target,
     fields: &[Option<&crate::NearestNeighbourField>],
     texture_of: &[usize],
     source_width: usize,
 ) -> Vec<u32> {
+    let (width, height) = target.size;
     let mut out = vec![NO_SEED; width * height];
     for y in 0..height {
         for x in 0..width {
             let index = y * width + x;
             if let Some(field) = fields[texture_of[usize::from(labels[index])]] {
-                let at = (y % field.height) * field.width + x % field.width;
-                if let Some([sx, sy]) = field.matches[at] {
+                let (tx, ty) = target.texture_pixel((x, y), (field.width, field.height));
+                if let Some([sx, sy]) = field.matches[ty * field.width + tx] {
                     out[index] = sy * source_width as u32 + sx;
                 }
             }
@@ -152,9 +168,10 @@ pub(crate) fn compose_textures(
     textures: &[SegmentTexture],
     labels: &SegmentLabels,
     (style_width, style_height, channels): (usize, usize, usize),
-    (width, height): (usize, usize),
+    target: Target,
     band_width: usize,
 ) -> Result<Composition, Error> {
+    let (width, height) = target.size;
     if textures.is_empty() {
         return Err(Error::Input(InputError::NoTextures));
     }
@@ -205,13 +222,13 @@ pub(crate) fn compose_textures(
     debug_assert_eq!(labels.colours.len(), textures.len());
     let texture_of: Vec<usize> = (0..textures.len()).collect();
     let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
-    let composed = compose(&labels.target, width, height, &images, &texture_of, channels);
+    let composed = compose(&labels.target, target, &images, &texture_of, channels);
     let domain = band_mask(&labels.target, width, height, band_width);
     let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
     let seeds = fields
         .iter()
         .any(Option::is_some)
-        .then(|| compose_field(&labels.target, width, height, &fields, &texture_of, style_width));
+        .then(|| compose_field(&labels.target, target, &fields, &texture_of, style_width));
     Ok((composed, domain, seeds))
 }
 
@@ -251,11 +268,15 @@ mod tests {
         let (first, second) = (field(0), field(5));
         let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];
         // Label 0 takes texture 1, label 1 texture 0.
-        let out = compose_field(&labels, 3, 2, &[Some(&first), Some(&second)], &[1, 0], 10);
+        let target = Target { size: (3, 2), origin: (0, 0) };
+        let out = compose_field(&labels, target, &[Some(&first), Some(&second)], &[1, 0], 10);
         // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
         // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
         assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
-        assert_eq!(compose_field(&labels, 3, 2, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
+        assert_eq!(compose_field(&labels, target, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
+        // Shifted by one column in the plane: (0,0) takes texture pixel (1,0), (1,0) pixel (0,0).
+        let shifted = Target { size: (3, 2), origin: (-1, 0) };
+        assert_eq!(compose_field(&labels, shifted, &[Some(&first), Some(&second)], &[1, 0], 10)[..2], [17, 16]);
     }
 
     #[test]

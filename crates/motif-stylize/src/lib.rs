@@ -168,17 +168,23 @@ pub struct Input<I = FloatImage> {
     pub textures: Option<Vec<SegmentTexture>>,
     /// Synthesize only the masked pixels and keep the others exactly.
     pub mask: Option<Mask<I>>,
+    /// Where the output's top-left pixel lies in the textures' plane: output pixel `(x, y)` takes
+    /// texture pixel `((x + origin.0) mod w, (y + origin.1) mod h)`, and the band's local search
+    /// ([`Params::band_local_search`]) keys its random draws by that position. Windows of one
+    /// large picture (a slippy map's tiles) pass their own top-left; `(0, 0)` otherwise.
+    pub texture_origin: (i64, i64),
 }
 
 impl<I: ChannelImage> Input<I> {
     /// Guided stylization of the target guides' size.
     pub fn guided(style: I, guides: Vec<Guide<I>>) -> Self {
-        Self { style, guides, size: None, textures: None, mask: None }
+        Self { style, guides, size: None, textures: None, mask: None, texture_origin: (0, 0) }
     }
 
     /// Non-guided texture synthesis of `width × height` from `exemplar`.
     pub fn texture(exemplar: I, width: usize, height: usize) -> Self {
-        Self { style: exemplar, guides: Vec::new(), size: Some((width, height)), textures: None, mask: None }
+        let size = Some((width, height));
+        Self { style: exemplar, guides: Vec::new(), size, textures: None, mask: None, texture_origin: (0, 0) }
     }
 
     /// Inpainting: fills the `hole` of `image` (per pixel, row by row, `true` = fill) from the
@@ -186,7 +192,7 @@ impl<I: ChannelImage> Input<I> {
     pub fn inpaint(image: I, hole: Vec<bool>) -> Self {
         let size = Some((image.width(), image.height()));
         let mask = Mask { keep: image.clone(), hole, exclude_hole_from_style: true };
-        Self { style: image, guides: Vec::new(), size, textures: None, mask: Some(mask) }
+        Self { style: image, guides: Vec::new(), size, textures: None, mask: Some(mask), texture_origin: (0, 0) }
     }
 }
 
@@ -349,8 +355,8 @@ pub fn synthesize<I: ChannelImage>(
         Some(textures) => {
             let labels = labels.as_ref().expect("textures imply segments");
             let style_shape = (style.width(), style.height(), style.channels());
-            let (composed, domain, seeds) =
-                band::compose_textures(textures, labels, style_shape, target_size, params.band)?;
+            let target = band::Target { size: target_size, origin: input.texture_origin };
+            let (composed, domain, seeds) = band::compose_textures(textures, labels, style_shape, target, params.band)?;
             (Some((composed, domain)), seeds)
         }
         None => (None, None),
@@ -392,6 +398,7 @@ pub fn synthesize<I: ChannelImage>(
         tileable: params.tileable,
         composition,
         seeds,
+        origin: input.texture_origin,
         mask: input.mask.as_ref(),
         structure_weight: None,
     };

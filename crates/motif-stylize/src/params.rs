@@ -108,10 +108,16 @@ pub struct Params {
     /// [`band_search_vote_iterations`](Self::band_search_vote_iterations)). Range 1..=100,
     /// default 2.
     pub band_patchmatch_iterations: usize,
-    /// Band mode with a seeded start only: the random search stays within
+    /// Band mode with a seeded start only: a local search. The random search stays within
     /// [`LOCAL_SEARCH_RADIUS`](crate::LOCAL_SEARCH_RADIUS) pixels of each band pixel's match
-    /// instead of ranging over the whole style. The band starts at the textures' own matches, so
-    /// a local refinement keeps them and costs about half (map tiles use it). Default off.
+    /// instead of ranging over the whole style (the band starts at the textures' own matches, so
+    /// a local refinement keeps them and costs about half), every pixel propagates from its four
+    /// neighbours' matches as they were when the iteration began, and draws its random numbers
+    /// from its position in the textures' plane ([`Input::texture_origin`](crate::Input)). A
+    /// band pixel's result then depends only on the picture within a few pixels of it: windows
+    /// of one map with margins of `band + 2 · patch_size` pixels (map tiles) have exactly the
+    /// pixels of the whole map rendered at once, when the occurrence penalty is off
+    /// (`uniformity` 0). Default off.
     pub band_local_search: bool,
     /// Refuse runs that would synthesize more output pixels than this (summed over the textures of
     /// a presynthesis). Default 64 000 000 (about 8 × 8 k pixels; some 15 minutes on two cores).

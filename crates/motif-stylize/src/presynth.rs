@@ -101,6 +101,7 @@ pub fn presynthesize(
             tileable: true,
             composition: None,
             seeds: None,
+            origin: (0, 0),
             mask: None,
             structure_weight: None,
         };

@@ -68,8 +68,10 @@ impl Field {
     }
 
     /// The given starting centres (source index, e.g. composed from the pre-synthesized textures'
-    /// fields), each kept where it is a valid centre the pixel may use, else a random one.
-    pub(crate) fn seeded(level: &Level, seeds: &[u32], streams: &SeedStreams) -> Field {
+    /// fields), each kept where it is a valid centre the pixel may use, else a random one: drawn
+    /// from the row's stream, or with `plane` (the target's origin in the textures' plane) from
+    /// the pixel's own ([`plane_key`]).
+    pub(crate) fn seeded(level: &Level, seeds: &[u32], streams: &SeedStreams, plane: Option<(i64, i64)>) -> Field {
         let (x0, x1) = level.valid_x();
         let (y0, y1) = level.valid_y();
         let width = level.target_width;
@@ -83,6 +85,9 @@ impl Field {
                 let valid = seeds[t] != crate::band::NO_SEED && (x0..x1).contains(&sx) && (y0..y1).contains(&sy);
                 *slot = if valid && level.allowed(t, seeds[t]) {
                     seeds[t]
+                } else if let Some(origin) = plane {
+                    let mut own = streams.stream("init pixel", plane_key((x, y), origin));
+                    random_centre(level, t, &mut own, (x0, x1, y0, y1))
                 } else {
                     random_centre(level, t, &mut stream, (x0, x1, y0, y1))
                 };
@@ -446,6 +451,87 @@ fn patchmatch_tiles_with<const ROW: usize, const SMALL: bool>(
                 delta.clear();
             },
         );
+}
+
+/// The key of target pixel `(x, y)` of a target whose top-left lies at `origin` in the textures'
+/// plane: its position in that plane, so that overlapping windows of one plane draw the same
+/// numbers for the same pixel.
+pub(crate) fn plane_key((x, y): (usize, usize), origin: (i64, i64)) -> u64 {
+    let gx = (x as i64).wrapping_add(origin.0) as u32;
+    let gy = (y as i64).wrapping_add(origin.1) as u32;
+    (u64::from(gy) << 32) | u64::from(gx)
+}
+
+/// One iteration of the band's local search ([`crate::Params::band_local_search`]; pixels marked
+/// in `converged` keep their match): every band
+/// pixel reads the field only as it was when the iteration started (propagation from its four
+/// neighbours' matches, shifted: Jacobi, not PatchMatch's scan order) and draws its random
+/// candidates within the level's search radius from a stream keyed by its position in the
+/// textures' plane ([`plane_key`]). A pixel's new match thus depends only on what lies within a
+/// patch of it, so two overlapping windows of one map (a slippy map's tiles) find the same
+/// matches wherever both see that far around a pixel.
+pub(crate) fn local_band_iteration(
+    level: &Level,
+    field: &mut Field,
+    previous: &mut Vec<u32>,
+    occurrence: &Occurrence,
+    streams: &SeedStreams,
+    (origin, converged): ((i64, i64), Option<&[bool]>),
+) {
+    previous.clear();
+    previous.extend_from_slice(&field.matches);
+    specialize!(level, local_band_rows)(level, field, previous, occurrence, streams, (origin, converged));
+}
+
+/// [`local_band_iteration`] with the patch row length `ROW` (bytes) fixed at compile time, or 0.
+fn local_band_rows<const ROW: usize>(
+    level: &Level,
+    field: &mut Field,
+    previous: &[u32],
+    occurrence: &Occurrence,
+    streams: &SeedStreams,
+    (origin, converged): ((i64, i64), Option<&[bool]>),
+) {
+    let (width, height) = (level.target_width as i64, level.target_height as i64);
+    let (x0, x1) = level.valid_x();
+    let (y0, y1) = level.valid_y();
+    let source_width = level.source_width;
+    let rows = field.matches.par_chunks_mut(level.target_width).zip(field.costs.par_chunks_mut(level.target_width));
+    rows.enumerate().for_each_init(
+        || (OmegaDelta::new(level, None), Candidates::new()),
+        |(delta, scratch), (y, (matches, costs))| {
+            for x in 0..level.target_width {
+                let t = y * level.target_width + x;
+                if !level.is_active(t) || converged.is_some_and(|c| c[t]) {
+                    continue;
+                }
+                let start = previous[t];
+                let mut best =
+                    Best { centre: start, distance: costs[x], total: costs[x] + occurrence.cost(start, delta) };
+                let here = (t, x, y);
+                for (dx, dy) in [(-1_i64, 0_i64), (1, 0), (0, -1), (0, 1)] {
+                    let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+                    if nx < 0 || ny < 0 || nx >= width || ny >= height {
+                        continue;
+                    }
+                    let n = (ny * width + nx) as usize;
+                    if !level.is_active(n) {
+                        continue;
+                    }
+                    let s = previous[n] as usize;
+                    let (sx, sy) = ((s % source_width) as i64 - dx, (s / source_width) as i64 - dy);
+                    if (x0 as i64..x1 as i64).contains(&sx) && (y0 as i64..y1 as i64).contains(&sy) {
+                        let candidate = (sy as usize * source_width + sx as usize) as u32;
+                        best.consider::<ROW>(level, occurrence, delta, candidate, here);
+                    }
+                }
+                let mut stream = streams.stream("pixel", plane_key((x, y), origin));
+                scratch.random_search::<ROW, false>(level, occurrence, delta, &mut stream, &mut best, here);
+                matches[x] = best.centre;
+                costs[x] = best.distance;
+            }
+        },
+    );
 }
 
 /// Brute-force search: every target pixel tries every allowed valid source centre, with the

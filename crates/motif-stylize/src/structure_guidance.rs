@@ -38,6 +38,7 @@ pub(crate) fn synthesize_with_structure(
         tileable: params.tileable,
         composition: None,
         seeds: None,
+        origin: (0, 0),
         mask: None,
         structure_weight: Some(params.structure_weight * colour_weight),
     };

@@ -8,7 +8,7 @@ use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
 use crate::native::{LOCAL_SEARCH_RADIUS, OCCURRENCE_SOURCE_SHARE, is_local, is_native};
 use crate::occurrence::Occurrence;
-use crate::search::{Field, exact_search, patchmatch_iteration};
+use crate::search::{Field, exact_search, local_band_iteration, patchmatch_iteration};
 use crate::vote::{vote, weight_code};
 use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, segments};
 
@@ -29,6 +29,8 @@ pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
     /// Band mode: the starting source centre of every target pixel, from the textures' fields
     /// ([`crate::band::NO_SEED`] = none).
     pub seeds: Option<Vec<u32>>,
+    /// The output's top-left in the textures' plane ([`crate::Input::texture_origin`]).
+    pub origin: (i64, i64),
     /// Synthesize only the hole, keep the rest (checked: the output's size, the style's channels).
     pub mask: Option<&'a crate::Mask<I>>,
     /// Structure guidance: the style's last channel is the feature distance, of this weight at
@@ -304,6 +306,13 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         }
     }
 
+    /// With [`Params::band_local_search`] on a band seeded from the textures' fields: the
+    /// target's origin in the textures' plane, which keys the band's local search.
+    fn local_band(&self) -> Option<(i64, i64)> {
+        let seeded_band = self.problem.composition.is_some() && self.problem.seeds.is_some();
+        (seeded_band && self.params.band_local_search).then_some(self.problem.origin)
+    }
+
     /// Level `index` with patches of side `patch`, restricted to the band (§3.7) or the hole
     /// when there is one.
     fn level_of(&self, index: usize, patch: usize) -> Level<'_> {
@@ -343,7 +352,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         let patch = patch_at_level(params, levels, index, self.source_size, self.problem.target_size);
         let mut level = self.level_of(index, patch);
         let mut field = match (coarser, &self.problem.seeds) {
-            (None, Some(seeds)) => Field::seeded(&level, seeds, &streams),
+            (None, Some(seeds)) => Field::seeded(&level, seeds, &streams, self.local_band()),
             (None, None) => Field::random(&level, &streams),
             (Some((coarse, coarse_level)), _) => Field::upsample(&coarse, &coarse_level, &level, &streams),
         };
@@ -352,7 +361,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         // A level that refines upsampled matches searches a few pixels around each: no patch can
         // gather many target patches, and Ω over the whole exemplar would cost what it saves.
         let mut occurrence = Occurrence::new(&level, if self.local[index] { 0.0 } else { params.uniformity });
-        let mut searcher = Searcher { params, streams: &streams, scratch };
+        let mut searcher = Searcher { params, streams: &streams, scratch, local_band: self.local_band() };
         let mut energies = Vec::with_capacity(params.search_vote_iterations);
         let mut converged: Option<Vec<bool>> = None;
         for iteration in 0..params.search_vote_iterations {
@@ -413,7 +422,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         let mut occurrence = Occurrence::new(&fine, 0.0);
         field.recompute_costs(&fine);
         let streams = self.streams.child("extra pass", 0);
-        let mut searcher = Searcher { params: self.params, streams: &streams, scratch };
+        let mut searcher = Searcher { params: self.params, streams: &streams, scratch, local_band: None };
         searcher.search(&fine, field, &mut occurrence, 0, None, false);
         let energies = vec![field.mean_energy(&fine, &occurrence)];
         vote(&fine, field, image, true, 0.0);
@@ -532,6 +541,8 @@ struct Searcher<'s> {
     params: &'s Params,
     streams: &'s SeedStreams,
     scratch: &'s mut Vec<u32>,
+    /// The band's local search, at this origin in the textures' plane (see [`Em::local_band`]).
+    local_band: Option<(i64, i64)>,
 }
 
 impl Searcher<'_> {
@@ -547,8 +558,16 @@ impl Searcher<'_> {
         omega_current: bool,
     ) {
         let params = self.params;
-        match params.nnf {
-            NnfMethod::PatchMatch => {
+        match (params.nnf, self.local_band) {
+            (NnfMethod::PatchMatch, Some(origin)) => {
+                for k in 0..params.patchmatch_iterations {
+                    occurrence.refresh(level, &field.matches);
+                    let key = (iteration * params.patchmatch_iterations + k) as u64;
+                    let streams = self.streams.child("local search", key);
+                    local_band_iteration(level, field, self.scratch, occurrence, &streams, (origin, converged));
+                }
+            }
+            (NnfMethod::PatchMatch, None) => {
                 for k in 0..params.patchmatch_iterations {
                     if k > 0 || !omega_current {
                         occurrence.refresh(level, &field.matches);
@@ -558,7 +577,7 @@ impl Searcher<'_> {
                     patchmatch_iteration(level, field, self.scratch, occurrence, &streams, k, converged);
                 }
             }
-            NnfMethod::Exact => {
+            (NnfMethod::Exact, _) => {
                 if !omega_current {
                     occurrence.refresh(level, &field.matches);
                 }

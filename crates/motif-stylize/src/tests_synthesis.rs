@@ -308,6 +308,60 @@ fn seeded_band_starts_lower_and_keeps_textures_outside() {
     }
 }
 
+/// The band's local search (`Params::band_local_search`) on two overlapping windows of one
+/// plane (a guide of discs drawn in the plane's coordinates, each window with its own
+/// `texture_origin`): where both see `band + 2 · patch` pixels around a pixel, they give it the
+/// same bytes, and the band was optimized (it differs from the composition). Without the local
+/// search the windows disagree in the band.
+#[test]
+fn local_band_search_gives_overlapping_windows_the_same_pixels() {
+    let case = two_segment_case();
+    let params = Params { segments: Some(Segmentation::Palette), band: 2, ..Default::default() }
+        .with_band_search_vote_iterations(1)
+        .with_band_patchmatch_iterations(1)
+        .with_uniformity(0.0)
+        .with_band_local_search(true);
+    let presynth = PresynthInput { style: case.style.clone(), guide: case.guides[0].source.clone(), size: (32, 32) };
+    let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
+    let plane = |x: i64, y: i64| {
+        let (dx, dy) = ((x.rem_euclid(30) - 15) as f32, (y.rem_euclid(26) - 13) as f32);
+        if dx * dx + dy * dy < 64.0 { [0.0, 0.0, 1.0] } else { [1.0, 0.0, 0.0] }
+    };
+    let window = |origin: (i64, i64), params: &Params| {
+        let target = flat(80, 64, |x, y| plane(x as i64 + origin.0, y as i64 + origin.1));
+        let mut input = Input::guided(
+            case.style.clone(),
+            vec![Guide { source: case.guides[0].source.clone(), target, weight: None }],
+        );
+        input.textures = Some(textures.clone());
+        input.texture_origin = origin;
+        synthesize(&input, params, &mut NoProgress).unwrap().image
+    };
+    let (a_origin, b_origin) = ((-7, 3), (10, 12));
+    let reach = (params.band + 2 * params.patch_size) as i64;
+    let agreement = |params: &Params| {
+        let (a, b) = (window(a_origin, params), window(b_origin, params));
+        let (mut same, mut all) = (0, 0);
+        for y in reach..64 - reach {
+            for x in reach..80 - reach {
+                let (u, v) = (x + b_origin.0 - a_origin.0, y + b_origin.1 - a_origin.1);
+                if (reach..80 - reach).contains(&u) && (reach..64 - reach).contains(&v) {
+                    all += 1;
+                    same += usize::from(b.pixel(x as usize, y as usize) == a.pixel(u as usize, v as usize));
+                }
+            }
+        }
+        (same, all)
+    };
+    let (same, all) = agreement(&params);
+    assert!(all > 1000, "{all} pixels overlap");
+    assert_eq!(same, all, "the local search: {same} of {all} overlapping pixels agree");
+    let composed = window(a_origin, &params.clone().with_band(0));
+    assert_ne!(window(a_origin, &params), composed, "the band was optimized");
+    let (same, all) = agreement(&params.clone().with_band_local_search(false));
+    assert!(same < all, "PatchMatch's scan order and window-keyed draws: {same} of {all} agree");
+}
+
 #[test]
 fn texture_fields_must_fit_their_texture_and_the_style() {
     let input = two_segment_case();
@@ -469,6 +523,7 @@ fn byte_and_float(input: &Input) -> (Input<ByteImage>, Input) {
             .collect(),
         size: input.size,
         textures: None,
+        texture_origin: input.texture_origin,
         mask: byte_input.mask.as_ref().map(|m| Mask {
             keep: m.keep.to_float(),
             hole: m.hole.clone(),
