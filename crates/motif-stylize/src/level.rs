@@ -336,24 +336,31 @@ impl<'a> Level<'a> {
     }
 
     /// Like [`distance`](Self::distance) without early exit, split into the style part and the
-    /// guide part (for the report; not a hot path).
-    pub(crate) fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32) {
+    /// guide part (for the report), with the distance itself, summed row by row as
+    /// [`distance_from`](Self::distance_from) sums it (the same value).
+    pub(crate) fn distance_parts(&self, s: u32, x: usize, y: usize) -> (f32, f32, f32) {
         let (channels, style_channels) = (self.channels, self.style_channels);
         let row_len = self.patch * channels;
         let mut source_offset = (s as usize - self.radius * (self.source_width + 1)) * channels;
         let mut target_offset = (y * self.padded_width + x) * channels;
-        let (mut style, mut all) = (0_u32, 0_u32);
+        let (mut style, mut guide, mut total) = (0_u32, 0_u32, 0.0_f32);
         for _ in 0..self.patch {
             let source = &self.source[source_offset..source_offset + row_len];
             let target = &self.target[target_offset..target_offset + row_len];
-            all += row_distance(source, target);
+            let (mut row_style, mut row_guide) = (0_u32, 0_u32);
             for (a, b) in source.chunks_exact(channels).zip(target.chunks_exact(channels)) {
-                style += row_distance(&a[..style_channels], &b[..style_channels]);
+                for (channel, (&p, &q)) in a.iter().zip(b).enumerate() {
+                    let d = i32::from(p) - i32::from(q);
+                    if channel < style_channels { row_style += (d * d) as u32 } else { row_guide += (d * d) as u32 }
+                }
             }
+            style += row_style;
+            guide += row_guide;
+            total += self.weight * (row_style + row_guide) as f32;
             source_offset += self.source_width * channels;
             target_offset += self.padded_width * channels;
         }
-        (self.weight * style as f32, self.weight * (all - style) as f32)
+        (self.weight * style as f32, self.weight * guide as f32, total)
     }
 
     /// Replaces the target's style channels by `image` (target size, values in `[0, 1]`) and

@@ -502,7 +502,9 @@ fn local_band_rows<const ROW: usize>(
         |(delta, scratch), (y, (matches, costs))| {
             for x in 0..level.target_width {
                 let t = y * level.target_width + x;
-                if !level.is_active(t) || converged.is_some_and(|c| c[t]) {
+                // The band's own pixels: the patches around it that reach into it keep their
+                // textures' matches (their centres lie in one segment, where those are right).
+                if !level.in_domain(t) || converged.is_some_and(|c| c[t]) {
                     continue;
                 }
                 let start = previous[t];

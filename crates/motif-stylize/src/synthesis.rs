@@ -453,10 +453,11 @@ impl Figures {
         // The weights the final vote gave each patch, before the costs are recomputed for the figures.
         let area = (level.patch * level.patch) as f32;
         let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
-        field.recompute_costs(level);
         let final_lambda = if params.extra_pass_3x3 || local { 0.0 } else { params.uniformity };
         let mut occurrence = Occurrence::new(level, final_lambda);
         occurrence.refresh(level, &field.matches);
+        // One pass: the costs recomputed against the final image, and the energy's parts.
+        let energy = energy_parts(level, field, &occurrence);
         let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
         for (t, value) in error_map.data_mut().iter_mut().enumerate() {
             if level.is_active(t) {
@@ -464,7 +465,7 @@ impl Figures {
             }
         }
         Self {
-            energy: energy_parts(level, field, &occurrence),
+            energy,
             source_coverage: Occurrence::coverage(level, &field.matches),
             error_map,
             searched: level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count()),
@@ -587,22 +588,29 @@ impl Searcher<'_> {
     }
 }
 
-/// Mean per searched pixel of the style distance, guide distance and penalty.
-fn energy_parts(level: &Level, field: &Field, occurrence: &Occurrence) -> EnergyParts {
+/// Mean per searched pixel of the style distance, guide distance and penalty; recomputes every
+/// searched pixel's cost on the way (as [`Field::recompute_costs`] does, to the same values).
+fn energy_parts(level: &Level, field: &mut Field, occurrence: &Occurrence) -> EnergyParts {
     use rayon::prelude::*;
-    let rows: Vec<(f64, f64, f64, usize)> = (0..level.target_height)
-        .into_par_iter()
-        .map(|y| {
+    let width = level.target_width;
+    let matches = &field.matches;
+    let rows: Vec<(f64, f64, f64, usize)> = field
+        .costs
+        .par_chunks_mut(width)
+        .enumerate()
+        .map(|(y, costs)| {
             let (mut style, mut guide, mut penalty, mut count) = (0.0_f64, 0.0_f64, 0.0_f64, 0usize);
-            for x in 0..level.target_width {
-                let t = y * level.target_width + x;
+            for (x, cost) in costs.iter_mut().enumerate() {
+                let t = y * width + x;
                 if !level.is_active(t) {
+                    *cost = 0.0;
                     continue;
                 }
-                let (s, g) = level.distance_parts(field.matches[t], x, y);
+                let (s, g, total) = level.distance_parts(matches[t], x, y);
+                *cost = total;
                 style += f64::from(s);
                 guide += f64::from(g);
-                penalty += f64::from(occurrence.snapshot_cost(field.matches[t]));
+                penalty += f64::from(occurrence.snapshot_cost(matches[t]));
                 count += 1;
             }
             (style, guide, penalty, count)
