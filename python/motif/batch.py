@@ -239,9 +239,9 @@ def render_tiles(
     """Renders the tile pyramid of ``motif tiles render`` on Dask: one task per tile.
 
     The tile set (:func:`motif.tiles` of ``map``, ``legend``, ``zooms``, ``seed`` and
-    ``options``) is scattered to every worker once; it travels as the call that made it and is
-    made again there (the map and legend paths must be readable by the workers), so each worker
-    pre-synthesizes the textures once, with the same bytes. Returns {(z, x, y): PNG bytes}; with
+    ``options``) is made here and scattered to every worker once, with its pre-synthesized
+    textures (numpy arrays in its pickle): the workers read the map and legend again (their paths
+    must be readable there) but do not pre-synthesize. Returns {(z, x, y): PNG bytes}; with
     ``out``, also writes them as one PMTiles archive, byte for byte the archive ``motif tiles
     render`` writes with the same options and seed.
     """

@@ -500,15 +500,17 @@ impl Tiles {
         py.detach(|| motif_io::write_pmtiles(&path, &info, &packed)).map_err(io_error)
     }
 
-    /// Pickled as the call that made it: the textures are pre-synthesized again where it is
-    /// unpickled (the same bytes: the run is deterministic).
+    /// Pickled as the call that made it and its pre-synthesized textures (numpy arrays): where it
+    /// is unpickled the map and legend are read again, the presynthesis is not run.
     #[allow(clippy::type_complexity, reason = "pickle's (callable, arguments) pair")]
     fn __reduce__<'py>(
         &self,
         py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyAny>, (std::path::PathBuf, String, Option<std::path::PathBuf>))> {
-        let function = py.import("motif._motif")?.getattr("tiles")?;
-        Ok((function, (self.map.clone(), self.description.clone(), self.legend.clone())))
+    ) -> PyResult<(Bound<'py, PyAny>, (std::path::PathBuf, String, Option<std::path::PathBuf>, Vec<TextureOut<'py>>))>
+    {
+        let function = py.import("motif._motif")?.getattr("tiles_with_textures")?;
+        let textures = self.run.tiles.textures().iter().map(|texture| texture_out(py, texture)).collect();
+        Ok((function, (self.map.clone(), self.description.clone(), self.legend.clone(), textures)))
     }
 
     /// The tiles of the job's zoom levels that meet the map, as (z, x, y), by zoom, row, column.
@@ -522,6 +524,94 @@ impl Tiles {
     }
 }
 
+/// A pre-synthesized texture as plain values and flat arrays: its colour, (width, height,
+/// channels), its pixels, and its field ((width, height, source width, source height, patch),
+/// two u32 per pixel with `u32::MAX` for none, the vote weights).
+type TextureOut<'py> = (Vec<f32>, (usize, usize, usize), Bound<'py, PyArray1<f32>>, Option<FieldOut<'py>>);
+type FieldOut<'py> =
+    ((usize, usize, usize, usize, usize), Bound<'py, PyArray1<u32>>, Option<Bound<'py, PyArray1<u16>>>);
+type TextureIn<'py> = (Vec<f32>, (usize, usize, usize), PyReadonlyArray1<'py, f32>, Option<FieldIn<'py>>);
+type FieldIn<'py> =
+    ((usize, usize, usize, usize, usize), PyReadonlyArray1<'py, u32>, Option<PyReadonlyArray1<'py, u16>>);
+
+/// No match, in a [`FieldOut`]'s coordinates.
+const NO_MATCH: u32 = u32::MAX;
+
+fn texture_out<'py>(py: Python<'py>, texture: &motif_jobs::stylize::SegmentTexture) -> TextureOut<'py> {
+    let image = &texture.image;
+    let field = texture.field.as_ref().map(|field| {
+        let matches = field.matches.iter().flat_map(|m| m.unwrap_or([NO_MATCH; 2])).collect();
+        let shape = (field.width, field.height, field.source_width, field.source_height, field.patch_size);
+        let weights = field.weights.as_ref().map(|w| PyArray1::from_slice(py, w));
+        (shape, PyArray1::from_vec(py, matches), weights)
+    });
+    let shape = (image.width(), image.height(), image.channels());
+    (texture.colour.clone(), shape, PyArray1::from_slice(py, image.data()), field)
+}
+
+fn texture_in(
+    index: usize,
+    (colour, (width, height, channels), pixels, field): TextureIn<'_>,
+) -> PyResult<motif_jobs::stylize::SegmentTexture> {
+    let bad = |what: &str| InputError::new_err(format!("pickled tile set: texture {}: {what}", index + 1));
+    let image = motif_core::FloatImage::from_data(width, height, channels, pixels.as_slice()?.to_vec())
+        .map_err(|error| bad(&error.to_string()))?;
+    let field = match field {
+        None => None,
+        Some(((width, height, source_width, source_height, patch_size), matches, weights)) => {
+            let matches = matches.as_slice()?;
+            let weights = weights.map(|w| w.as_slice().map(<[u16]>::to_vec)).transpose()?;
+            let pixels = width.checked_mul(height).ok_or_else(|| bad("field too large"))?;
+            if matches.len() != 2 * pixels || weights.as_ref().is_some_and(|w| w.len() != pixels) {
+                return Err(bad("field arrays do not match its size"));
+            }
+            let matches = matches.chunks_exact(2).map(|m| (m[0] != NO_MATCH).then_some([m[0], m[1]])).collect();
+            Some(motif_jobs::stylize::NearestNeighbourField {
+                width,
+                height,
+                source_width,
+                source_height,
+                patch_size,
+                matches,
+                weights,
+            })
+        }
+    };
+    Ok(motif_jobs::stylize::SegmentTexture { colour, image, field })
+}
+
+/// Reads the map and the legend, and checks the job: what [`tiles`] and [`tiles_with_textures`]
+/// start from.
+fn tiles_inputs(
+    py: Python<'_>,
+    map: &std::path::Path,
+    job: &str,
+    legend: Option<&std::path::Path>,
+) -> PyResult<(motif_jobs::tiles::TilesJob, motif_jobs::tiles::TilesInputs)> {
+    let job: motif_jobs::tiles::TilesJob = description(job)?;
+    let limit = motif_core::DEFAULT_MAX_MEMORY;
+    let (map_data, _) = py.detach(|| motif_io::read_osm(map, limit)).map_err(io_error)?;
+    let legend_data = py.detach(|| motif_io::read_legend(legend, limit)).map_err(io_error)?;
+    Ok((job, motif_jobs::tiles::TilesInputs { map: map_data, legend: legend_data }))
+}
+
+/// A tile set unpickled: [`tiles`] with the textures it pre-synthesized (no presynthesis here).
+#[pyfunction]
+#[pyo3(signature = (map, job, legend, textures, threads=None))]
+fn tiles_with_textures(
+    py: Python<'_>,
+    map: std::path::PathBuf,
+    job: &str,
+    legend: Option<std::path::PathBuf>,
+    textures: Vec<TextureIn<'_>>,
+    threads: Option<usize>,
+) -> PyResult<Tiles> {
+    let (parsed, inputs) = tiles_inputs(py, &map, job, legend.as_deref())?;
+    let textures = textures.into_iter().enumerate().map(|(index, t)| texture_in(index, t)).collect::<PyResult<_>>()?;
+    let run = detached(py, threads, || parsed.run_with_textures(inputs, textures))?.map_err(job_error)?;
+    Ok(Tiles { run, job: parsed, map, description: job.to_string(), legend })
+}
+
 /// `motif tiles`: the tile set of the OpenStreetMap extract at `map` with the legend at `legend`
 /// (a folder, a JSON file, or the built-in one when `None`).
 #[pyfunction]
@@ -533,14 +623,9 @@ fn tiles(
     legend: Option<std::path::PathBuf>,
     threads: Option<usize>,
 ) -> PyResult<Tiles> {
-    let text = job.to_string();
-    let job: motif_jobs::tiles::TilesJob = description(job)?;
-    let limit = motif_core::DEFAULT_MAX_MEMORY;
-    let (map_data, _) = py.detach(|| motif_io::read_osm(&map, limit)).map_err(io_error)?;
-    let legend_data = py.detach(|| motif_io::read_legend(legend.as_deref(), limit)).map_err(io_error)?;
-    let inputs = motif_jobs::tiles::TilesInputs { map: map_data, legend: legend_data };
-    let run = detached(py, threads, || job.run(inputs, &mut NoProgress))?.map_err(job_error)?;
-    Ok(Tiles { run, job, map, description: text, legend })
+    let (parsed, inputs) = tiles_inputs(py, &map, job, legend.as_deref())?;
+    let run = detached(py, threads, || parsed.run(inputs, &mut NoProgress))?.map_err(job_error)?;
+    Ok(Tiles { run, job: parsed, map, description: job.to_string(), legend })
 }
 
 /// `motif curve` along a polyline of (N, 2) points (closed when the last repeats the first):
@@ -714,6 +799,7 @@ fn _motif(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(points, module)?)?;
     module.add_function(wrap_pyfunction!(strokes, module)?)?;
     module.add_function(wrap_pyfunction!(tiles, module)?)?;
+    module.add_function(wrap_pyfunction!(tiles_with_textures, module)?)?;
     module.add_class::<Tiles>()?;
     module.add_function(wrap_pyfunction!(options, module)?)?;
     module.add_function(wrap_pyfunction!(jobs, module)?)?;

@@ -40,6 +40,27 @@ def test_tiles_equal_the_servers(tmp_path):
     assert report["margin"] == 3 + 2 * 5 and report["features"]["water"] > 0
 
 
+def test_a_pickled_tile_set_carries_its_textures():
+    """Pickling ships the pre-synthesized textures (numpy arrays): the copy does not run the
+    presynthesis again and renders the same bytes; damaged textures are refused by name."""
+    import json
+    import pickle
+
+    tiles = motif.tiles(MAP, zoom=(16, 16), seed=3, texture_size=32)
+    copy = pickle.loads(pickle.dumps(tiles))
+    assert json.loads(tiles.report())["presynthesized"] is True
+    assert json.loads(copy.report())["presynthesized"] is False
+    assert json.loads(copy.report())["presynth_ms"] == 0
+    assert copy.render_png(16, 37308, 18968) == tiles.render_png(16, 37308, 18968)
+    function, (map_path, job, legend, textures) = tiles.__reduce__()
+    assert len(textures) == 8 and textures[0][1] == (32, 32, 3)
+    with pytest.raises(motif.OptionError, match="textures"):
+        function(map_path, job, legend, textures[1:])
+    colour, shape, pixels, field = textures[0]
+    with pytest.raises(motif.InputError, match="texture 1"):
+        function(map_path, job, legend, [(colour, shape, pixels[:-1], field)] + textures[1:])
+
+
 def test_bad_tile_options_are_refused_by_name():
     with pytest.raises(motif.OptionError, match="band"):
         motif.tiles(MAP, band=500)

@@ -252,8 +252,27 @@ impl Job for TilesJob {
 
     fn run(&self, inputs: TilesInputs, progress: &mut dyn Progress) -> Result<TilesRun, JobError> {
         let params = self.params()?;
-        let zooms = self.zooms()?;
         let tiles = TileSet::new(inputs.map, &inputs.legend, &params, progress).map_err(maps_error)?;
+        self.finish(tiles)
+    }
+}
+
+impl TilesJob {
+    /// [`Job::run`] with the textures of an earlier run of the same job and legend
+    /// ([`TileSet::textures`], e.g. shipped to a Dask worker): no presynthesis, the same tiles.
+    pub fn run_with_textures(
+        &self,
+        inputs: TilesInputs,
+        textures: Vec<motif_stylize::SegmentTexture>,
+    ) -> Result<TilesRun, JobError> {
+        let params = self.params()?;
+        let tiles = TileSet::with_textures(inputs.map, &inputs.legend, &params, textures).map_err(maps_error)?;
+        self.finish(tiles)
+    }
+
+    /// The run of `tiles`, with its figures.
+    fn finish(&self, tiles: TileSet) -> Result<TilesRun, JobError> {
+        let zooms = self.zooms()?;
         let report = tiles.report();
         let mut figures = crate::object(json!(report));
         figures.insert("zoom".into(), json!(zooms));

@@ -55,8 +55,11 @@ pub struct TileSetReport {
     pub texture_size: usize,
     /// The atlas the textures come from, `[width, height]`.
     pub atlas_size: [usize; 2],
-    /// Milliseconds the presynthesis took.
+    /// Milliseconds the presynthesis took (0 when the textures were given).
     pub presynth_ms: f64,
+    /// Whether the textures were pre-synthesized here (false: given, made before by the same
+    /// legend and parameters, see [`TileSet::with_textures`]).
+    pub presynthesized: bool,
     /// Features of the map per class, by class name.
     pub features: Vec<(&'static str, usize)>,
 }
@@ -94,17 +97,61 @@ impl TileSet {
         let mut textures = motif_stylize::presynthesize(&input, &stylize, progress)?;
         // Presynthesis orders textures by its labels; tiles want them by class.
         textures.sort_by_key(|texture| class_of(&texture.colour).index());
+        let presynth_ms = Some(motif_core::timing::elapsed_ms(start));
+        Ok(Self::assemble(map, legend, params, Styled { style, guide, textures }, presynth_ms))
+    }
+
+    /// The tile set of `map` with textures pre-synthesized before by [`TileSet::new`] with the
+    /// same legend and parameters (its [`TileSet::textures`], e.g. shipped to another machine):
+    /// no presynthesis, and the same tiles to the byte. Refused unless there is one texture per
+    /// class, in class order, `texture_size` a side, with the legend's channels.
+    pub fn with_textures(
+        map: MapData,
+        legend: &Legend,
+        params: &Params,
+        textures: Vec<SegmentTexture>,
+    ) -> Result<Self, Error> {
+        params.validate()?;
+        let (style, guide) = legend.atlas(2 * params.patch_size + 1);
+        let side = params.texture_size;
+        let fits = |(index, texture): (usize, &SegmentTexture)| {
+            let image = &texture.image;
+            class_of(&texture.colour) == MapClass::ALL[index]
+                && (image.width(), image.height(), image.channels()) == (side, side, style.channels())
+        };
+        if textures.len() != MapClass::ALL.len() || !textures.iter().enumerate().all(fits) {
+            let allowed = format!(
+                "one texture per class ({}), in that order, {side}×{side} with {} channels: those of a tile set \
+                 made with the same legend and parameters",
+                MapClass::ALL.len(),
+                style.channels()
+            );
+            return Err(
+                motif_core::InvalidParameter::new("textures", format!("{} given", textures.len()), allowed).into()
+            );
+        }
+        Ok(Self::assemble(map, legend, params, Styled { style, guide, textures }, None))
+    }
+
+    /// The tile set and its report; `presynth_ms` when the textures were made here.
+    fn assemble(map: MapData, legend: &Legend, params: &Params, styled: Styled, presynth_ms: Option<f64>) -> Self {
         let report = TileSetReport {
             tile_size: params.tile_size,
             margin: params.resolved_margin(),
             margin_inferred: params.margin == 0,
             textured_classes: legend.textured().into_iter().map(MapClass::name).collect(),
             texture_size: params.texture_size,
-            atlas_size: [style.width(), style.height()],
-            presynth_ms: motif_core::timing::elapsed_ms(start),
+            atlas_size: [styled.style.width(), styled.style.height()],
+            presynth_ms: presynth_ms.unwrap_or(0.0),
+            presynthesized: presynth_ms.is_some(),
             features: MapClass::ALL.iter().map(|class| (class.name(), map.class_counts()[class.index()])).collect(),
         };
-        Ok(Self { map, params: params.clone(), styled: Styled { style, guide, textures }, report })
+        Self { map, params: params.clone(), styled, report }
+    }
+
+    /// The pre-synthesized textures, one per class in class order (for [`TileSet::with_textures`]).
+    pub fn textures(&self) -> &[SegmentTexture] {
+        &self.styled.textures
     }
 
     /// What making it did.
@@ -240,6 +287,22 @@ mod tests {
         let plain = first.render(a, Layer::Plain).unwrap();
         assert_ne!(plain, forward[0]);
         assert_eq!((plain.width(), plain.height()), (64, 64));
+    }
+
+    #[test]
+    fn a_tile_set_made_from_shipped_textures_renders_the_same_bytes() {
+        let params = Params::default().with_tile_size(64).with_texture_size(32).with_seed(5);
+        let made = TileSet::new(small_map(), &legend(), &params, &mut motif_core::NoProgress).unwrap();
+        let shipped = TileSet::with_textures(small_map(), &legend(), &params, made.textures().to_vec()).unwrap();
+        assert!(made.report().presynthesized && !shipped.report().presynthesized);
+        let tile = tile_at(24.9415, 60.1712, 0);
+        assert_eq!(made.render(tile, Layer::Stylized).unwrap(), shipped.render(tile, Layer::Stylized).unwrap());
+        // Textures of another size, or too few, are refused by name.
+        let other = params.clone().with_texture_size(16);
+        let error = TileSet::with_textures(small_map(), &legend(), &other, made.textures().to_vec()).unwrap_err();
+        assert!(error.to_string().contains("textures") && error.to_string().contains("16×16"), "{error}");
+        let error = TileSet::with_textures(small_map(), &legend(), &params, made.textures()[1..].to_vec()).unwrap_err();
+        assert!(error.to_string().contains("7 given"), "{error}");
     }
 
     /// Pixels of `frame`'s aliased segment map that differ from `block`'s at the same place of

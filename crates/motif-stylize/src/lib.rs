@@ -17,7 +17,8 @@
 //!   exact brute-force search of §4.2.
 //! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
-//!   upsampling (§3.5), the optional 3×3 pass, the report.
+//!   upsampling (§3.5), the optional 3×3 pass, the report; `outcome`: the figures of the final
+//!   field (energy parts, coverage, error map) and the field in public form.
 //! - `native`: for an exemplar much larger than the output, the coarse levels search the whole
 //!   (reduced) exemplar and the finer ones refine the upsampled matches within a few pixels
 //!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
@@ -78,6 +79,7 @@ mod mask;
 mod motion;
 mod native;
 mod occurrence;
+mod outcome;
 mod params;
 mod presynth;
 mod quilting;

@@ -4,13 +4,13 @@
 use motif_core::timing::Clock;
 use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 
-use crate::field::NearestNeighbourField;
 use crate::level::{Level, LevelSpec};
 use crate::native::{LOCAL_SEARCH_RADIUS, OCCURRENCE_SOURCE_SHARE, is_local, is_native};
 use crate::occurrence::Occurrence;
+use crate::outcome::{Figures, composition_only, public_field};
 use crate::search::{Field, exact_search, local_band_iteration, patchmatch_iteration};
-use crate::vote::{vote, weight_code};
-use crate::{EnergyParts, Error, LevelReport, NnfMethod, Output, Params, Report, segments};
+use crate::vote::vote;
+use crate::{Error, LevelReport, NnfMethod, Output, Params, Report, segments};
 
 /// A validated problem in the engine's terms (built by the public entry points).
 pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
@@ -435,105 +435,9 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
     }
 }
 
-/// Figures of the output itself: its final patch distances and the penalty of its field.
-struct Figures {
-    energy: EnergyParts,
-    source_coverage: f64,
-    /// Per-pixel energy of the final field (0 outside the band or hole).
-    error_map: FloatImage,
-    /// Target patches optimized.
-    searched: usize,
-    /// The weights the final vote gave each patch.
-    vote_weights: Vec<u16>,
-}
-
-impl Figures {
-    /// `local`: the finest level refined upsampled matches, without the occurrence penalty.
-    fn new(field: &mut Field, level: &Level, params: &Params, local: bool) -> Self {
-        // The weights the final vote gave each patch, before the costs are recomputed for the figures.
-        let area = (level.patch * level.patch) as f32;
-        let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
-        let final_lambda = if params.extra_pass_3x3 || local { 0.0 } else { params.uniformity };
-        let mut occurrence = Occurrence::new(level, final_lambda);
-        occurrence.refresh(level, &field.matches);
-        // One pass: the costs recomputed against the final image, and the energy's parts.
-        let energy = energy_parts(level, field, &occurrence);
-        let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
-        for (t, value) in error_map.data_mut().iter_mut().enumerate() {
-            if level.is_active(t) {
-                *value = field.costs[t] + occurrence.snapshot_cost(field.matches[t]);
-            }
-        }
-        Self {
-            energy,
-            source_coverage: Occurrence::coverage(level, &field.matches),
-            error_map,
-            searched: level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count()),
-            vote_weights,
-        }
-    }
-}
-
-/// The public field of the final level, with the final vote's weights. It is the largest buffer
-/// made at the end: the level's stacks and the costs are freed first.
-fn public_field(field: Field, mut level: Level, vote_weights: Vec<u16>) -> NearestNeighbourField {
-    let (width, height, source_width, source_height, patch_size) =
-        (level.target_width, level.target_height, level.source_width, level.source_height, level.patch);
-    let active = level.active.take();
-    drop(level);
-    let Field { matches, costs } = field;
-    drop(costs);
-    NearestNeighbourField {
-        width,
-        height,
-        source_width,
-        source_height,
-        patch_size,
-        matches: matches
-            .iter()
-            .enumerate()
-            .map(|(t, &s)| {
-                active.as_ref().is_none_or(|active| active[t]).then(|| {
-                    let s = s as usize;
-                    [(s % source_width) as u32, (s / source_width) as u32]
-                })
-            })
-            .collect(),
-        weights: Some(vote_weights),
-    }
-}
-
 /// Patches none of whose pixels `changed` (by the stop threshold, in the last vote).
 fn converged_patches(level: &Level, changed: &[bool]) -> Vec<bool> {
     dilate(changed, level.target_width, level.target_height, level.radius).into_iter().map(|c| !c).collect()
-}
-
-/// The output of a band with no pixels: the composed textures, no field, zero energy.
-fn composition_only(composed: &FloatImage, source_size: (usize, usize), patch: usize, start: Clock) -> Output {
-    let (width, height) = (composed.width(), composed.height());
-    let total_ms = motif_core::timing::elapsed_ms(start);
-    Output {
-        image: composed.clone(),
-        field: NearestNeighbourField {
-            width,
-            height,
-            source_width: source_size.0,
-            source_height: source_size.1,
-            patch_size: patch,
-            matches: vec![None; width * height],
-            weights: None,
-        },
-        error_map: FloatImage::new(width, height, 1),
-        report: Report {
-            energy: EnergyParts { total: 0.0, style: 0.0, guide: 0.0, occurrence: 0.0 },
-            source_coverage: 0.0,
-            levels: Vec::new(),
-            stages_ms: vec![("composition".to_string(), total_ms)],
-            total_ms,
-            searched_pixels: 0,
-            estimated_memory_bytes: 0,
-        },
-    }
 }
 
 /// What the searches of one level share: the parameters, the level's random streams and the
@@ -586,38 +490,4 @@ impl Searcher<'_> {
             }
         }
     }
-}
-
-/// Mean per searched pixel of the style distance, guide distance and penalty; recomputes every
-/// searched pixel's cost on the way (as [`Field::recompute_costs`] does, to the same values).
-fn energy_parts(level: &Level, field: &mut Field, occurrence: &Occurrence) -> EnergyParts {
-    use rayon::prelude::*;
-    let width = level.target_width;
-    let matches = &field.matches;
-    let rows: Vec<(f64, f64, f64, usize)> = field
-        .costs
-        .par_chunks_mut(width)
-        .enumerate()
-        .map(|(y, costs)| {
-            let (mut style, mut guide, mut penalty, mut count) = (0.0_f64, 0.0_f64, 0.0_f64, 0usize);
-            for (x, cost) in costs.iter_mut().enumerate() {
-                let t = y * width + x;
-                if !level.is_active(t) {
-                    *cost = 0.0;
-                    continue;
-                }
-                let (s, g, total) = level.distance_parts(matches[t], x, y);
-                *cost = total;
-                style += f64::from(s);
-                guide += f64::from(g);
-                penalty += f64::from(occurrence.snapshot_cost(matches[t]));
-                count += 1;
-            }
-            (style, guide, penalty, count)
-        })
-        .collect();
-    let (style, guide, penalty, count) =
-        rows.iter().fold((0.0, 0.0, 0.0, 0), |a, r| (a.0 + r.0, a.1 + r.1, a.2 + r.2, a.3 + r.3));
-    let n = count.max(1) as f64;
-    EnergyParts { total: (style + guide + penalty) / n, style: style / n, guide: guide / n, occurrence: penalty / n }
 }
