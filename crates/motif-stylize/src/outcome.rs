@@ -26,7 +26,10 @@ pub(crate) struct Figures {
 
 impl Figures {
     /// `local`: the finest level refined upsampled matches, without the occurrence penalty.
-    pub(crate) fn new(field: &mut Field, level: &Level, params: &Params, local: bool) -> Self {
+    /// `band_only`: the band's local search searched the band's own pixels only (not the patches
+    /// around it), and the figures are of those.
+    pub(crate) fn new(field: &mut Field, level: &Level, params: &Params, local: bool, band_only: bool) -> Self {
+        let searched = |t: usize| if band_only { level.in_domain(t) } else { level.is_active(t) };
         // The weights the final vote gave each patch, before the costs are recomputed for the figures.
         let area = (level.patch * level.patch) as f32;
         let vote_weights = field.costs.iter().map(|&cost| weight_code(cost, area)).collect();
@@ -34,10 +37,10 @@ impl Figures {
         let mut occurrence = Occurrence::new(level, final_lambda);
         occurrence.refresh(level, &field.matches);
         // One pass: the costs recomputed against the final image, and the energy's parts.
-        let energy = energy_parts(level, field, &occurrence);
+        let energy = energy_parts(level, field, &occurrence, &searched);
         let mut error_map = FloatImage::new(level.target_width, level.target_height, 1);
         for (t, value) in error_map.data_mut().iter_mut().enumerate() {
-            if level.is_active(t) {
+            if searched(t) {
                 *value = field.costs[t] + occurrence.snapshot_cost(field.matches[t]);
             }
         }
@@ -45,7 +48,7 @@ impl Figures {
             energy,
             source_coverage: Occurrence::coverage(level, &field.matches),
             error_map,
-            searched: level.active.as_ref().map_or(level.target_len(), |a| a.iter().filter(|&&b| b).count()),
+            searched: (0..level.target_len()).filter(|&t| searched(t)).count(),
             vote_weights,
         }
     }
@@ -115,7 +118,12 @@ pub(crate) fn composition_only(
 
 /// Mean per searched pixel of the style distance, guide distance and penalty; recomputes every
 /// searched pixel's cost on the way (as [`Field::recompute_costs`] does, to the same values).
-fn energy_parts(level: &Level, field: &mut Field, occurrence: &Occurrence) -> EnergyParts {
+fn energy_parts(
+    level: &Level,
+    field: &mut Field,
+    occurrence: &Occurrence,
+    searched: &(impl Fn(usize) -> bool + Sync),
+) -> EnergyParts {
     use rayon::prelude::*;
     let width = level.target_width;
     let matches = &field.matches;
@@ -127,7 +135,7 @@ fn energy_parts(level: &Level, field: &mut Field, occurrence: &Occurrence) -> En
             let (mut style, mut guide, mut penalty, mut count) = (0.0_f64, 0.0_f64, 0.0_f64, 0usize);
             for (x, cost) in costs.iter_mut().enumerate() {
                 let t = y * width + x;
-                if !level.is_active(t) {
+                if !searched(t) {
                     *cost = 0.0;
                     continue;
                 }

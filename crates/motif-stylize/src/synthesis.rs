@@ -178,7 +178,7 @@ pub(crate) fn run<I: ChannelImage>(
         timer.add(&report.name, report.ms);
         reports.push(report);
     }
-    let figures = Figures::new(&mut field, &level, params, em.local[0]);
+    let figures = Figures::new(&mut field, &level, params, em.local[0], em.local_band().is_some());
     let field = public_field(field, level, figures.vote_weights);
     Ok(Output {
         image,
