@@ -384,7 +384,7 @@ impl CurveJob {
             patch_fidelity(&exemplar, &output.image, &output.ribbon_top, &output.ribbon_bottom, params.scale)
         };
         let (output, fidelity, trials) = if dimensions.width.inferred || dimensions.piece_length.inferred {
-            let limits = (inputs.curve.length(), search::MAX_PAIRS_TO_SEARCH);
+            let limits = (inputs.curve.length(), self.options.scale, search::MAX_PAIRS_TO_SEARCH);
             let (best, trials) = search::search(&mut dimensions, limits, progress, |width, piece_length, progress| {
                 let params = self.params_with(width, piece_length)?.with_tile_exemplars(sources);
                 let output = motif_curve::synthesize(&input, &params, progress)?;

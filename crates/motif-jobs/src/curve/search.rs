@@ -6,7 +6,9 @@
 //! piece length (or width) was inferred tries a few values around the guess and keeps the one whose
 //! output scores best:
 //!
-//! 1. piece lengths of [`PIECE_LENGTH_FACTORS`] × the guess, at the guessed width;
+//! 1. piece lengths of [`PIECE_LENGTH_FACTORS`] × the guess, and half the pattern's period when
+//!    it has one (a length that divides the period keeps the motifs' phase from piece to piece),
+//!    at the guessed width;
 //! 2. widths of [`WIDTH_FACTORS`] × the guess, at the best piece length (wider ribbons only: the
 //!    guess is the narrowest that holds the pattern with its margin).
 //!
@@ -66,18 +68,19 @@ pub(crate) struct Tried {
 /// Runs `run` (one whole run at a width and piece length) over the search's candidates for what
 /// `dimensions` inferred, and returns the best trial (its width and piece length written into
 /// `dimensions`) with every trial's figures. `max_piece_length` caps the candidates (the curve's
-/// length); when the first trial's dynamic program has more than `max_pairs` position pairs
-/// ([`MAX_PAIRS_TO_SEARCH`] in a job), it is kept alone, with a warning. Errors of the first
-/// trial, the guess itself, are the run's errors; a later candidate that fails is skipped.
+/// length); `scale` turns the pattern's period into canvas pixels; when the first trial's
+/// dynamic program has more than `max_pairs` position pairs ([`MAX_PAIRS_TO_SEARCH`] in a job),
+/// it is kept alone, with a warning. Errors of the first trial, the guess itself, are the run's
+/// errors; a later candidate that fails is skipped.
 pub(crate) fn search(
     dimensions: &mut Dimensions,
-    (max_piece_length, max_pairs): (f64, u64),
+    (max_piece_length, scale, max_pairs): (f64, f64, u64),
     progress: &mut dyn Progress,
     mut run: impl FnMut(f64, f64, &mut dyn Progress) -> Result<(Output, PatchFidelity), JobError>,
 ) -> Result<(Tried, Vec<Trial>), JobError> {
     let (width, piece_length) = (dimensions.width, dimensions.piece_length);
     let lengths: Vec<f64> = if piece_length.inferred {
-        candidates(piece_length.value, &PIECE_LENGTH_FACTORS, f64::round, max_piece_length)
+        piece_lengths(piece_length.value, dimensions.period, scale, max_piece_length)
     } else {
         vec![piece_length.value]
     };
@@ -143,6 +146,18 @@ fn too_large_to_search(first: Option<&mut Output>, trials: usize, max_pairs: u64
     true
 }
 
+/// The piece lengths tried around `guess`: [`PIECE_LENGTH_FACTORS`] × the guess, then half the
+/// pattern's `period` (exemplar pixels, at `scale` exemplar pixels per canvas pixel) when it has
+/// one and it is not among them; rounded, at most `max`.
+fn piece_lengths(guess: f64, period: Option<usize>, scale: f64, max: f64) -> Vec<f64> {
+    let mut lengths = candidates(guess, &PIECE_LENGTH_FACTORS, f64::round, max);
+    let half_period = period.map(|period| (period as f64 / (2.0 * scale)).round().clamp(1.0, max));
+    if let Some(half) = half_period.filter(|half| !lengths.contains(half)) {
+        lengths.push(half);
+    }
+    lengths
+}
+
 /// `value × factor` for each factor, rounded with `round`, at least 1 and at most `max`, without
 /// repeats, in the order of `factors`.
 fn candidates(value: f64, factors: &[f64], round: fn(f64) -> f64, max: f64) -> Vec<f64> {
@@ -177,6 +192,15 @@ impl Progress for Labelled<'_> {
 mod tests {
     use super::*;
 
+    /// Half the period joins the lengths around the guess (in canvas pixels, once).
+    #[test]
+    fn half_the_period_is_tried_too() {
+        assert_eq!(piece_lengths(22.0, Some(40), 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 20.0]);
+        assert_eq!(piece_lengths(20.0, Some(40), 1.0, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0]);
+        assert_eq!(piece_lengths(22.0, Some(40), 2.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 10.0]);
+        assert_eq!(piece_lengths(22.0, None, 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0]);
+    }
+
     #[test]
     fn candidates_are_rounded_capped_and_unique() {
         assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0]);
@@ -199,13 +223,16 @@ mod tests {
             Ok((output, fidelity))
         };
         let mut searched = guess;
-        let (best, trials) = search(&mut searched, (1e9, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
+        let (best, trials) = search(&mut searched, (1e9, 1.0, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
+        // Five lengths around the guess (half the rings' 16-pixel period among them), then two
+        // wider ribbons.
+        assert_eq!(guess.period, Some(16));
         assert_eq!(trials.len(), 7, "{trials:?}");
         assert!(best.output.report.warnings.is_empty());
         let pairs = best.output.report.dp_counters.pairs;
         assert!(pairs > 0);
         let mut kept = guess;
-        let (best, trials) = search(&mut kept, (1e9, pairs / 4), &mut motif_core::NoProgress, run).unwrap();
+        let (best, trials) = search(&mut kept, (1e9, 1.0, pairs / 4), &mut motif_core::NoProgress, run).unwrap();
         assert_eq!(trials.len(), 1);
         assert_eq!(kept, guess);
         assert!(
