@@ -6,8 +6,9 @@
 //! position), so the copied pixels continue across tile borders exactly, and the band is refined
 //! by the local search of `motif_stylize::Params::band_local_search`, whose random draws are keyed
 //! by the same coordinates and whose every pixel depends only on the picture a few pixels around
-//! it. With a margin wider than that reach, a tile has exactly the pixels of the map rendered
-//! whole: no seam, and nothing depends on the tiles rendered before it nor on the thread count.
+//! it. With a margin wider than that reach, a tile has the pixels of the map rendered whole, but
+//! near the rare pixels where `tiny-skia` draws its segment map differently (see the tests): no
+//! seam, and nothing depends on the tiles rendered before it nor on the thread count.
 
 use motif_core::{ByteImage, Progress, RgbaImage};
 use motif_stylize::{Guide, Input, PresynthInput, SegmentTexture, Segmentation};
