@@ -93,7 +93,7 @@ fn quilting_keeps_regular_textures_whole() {
 
 /// With no `--quilt-block`, growing a texture infers the block, half the exemplar's smaller side
 /// (the README's example): the same bytes as that block given, reported as inferred, and the
-/// report says when a given block wins.
+/// report says when a given block wins. Likewise the coarse patch where there is no quilt.
 #[test]
 fn growing_a_texture_infers_half_the_exemplar_as_quilt_block() {
     let dir = tempfile::tempdir().unwrap();
@@ -119,4 +119,17 @@ fn growing_a_texture_infers_half_the_exemplar_as_quilt_block() {
     assert_eq!((report["quilt_block"].as_u64(), report["quilt_block_inferred"].as_bool()), (Some(0), Some(false)));
     let (_, report, _) = run(&["--tileable"], "tile.png");
     assert_eq!((report["quilt_block"].as_u64(), report["quilt_block_inferred"].as_bool()), (Some(0), Some(true)));
+    // Without a quilt the coarse patch is inferred instead (11 for a 96-pixel exemplar), said in
+    // the report and the summary, and the same bytes as 11 given; with a quilt there is none.
+    let (tileable, report, summary) = run(&["--tileable"], "tile-again.png");
+    let coarse = |report: &serde_json::Value| {
+        (report["coarse_patch_size"].as_u64(), report["coarse_patch_size_inferred"].as_bool())
+    };
+    assert_eq!(coarse(&report), (Some(11), Some(true)));
+    assert!(summary.contains("coarse patch 11 (inferred)"), "{summary}");
+    let (given, report, _) = run(&["--tileable", "--coarse-patch-size", "11"], "tile-given.png");
+    assert_eq!(coarse(&report), (Some(11), Some(false)));
+    assert_eq!(tileable, given, "the inferred coarse patch is the given one's output");
+    let (_, report, _) = run(&[], "quilted.png");
+    assert_eq!(coarse(&report), (Some(0), Some(true)));
 }
