@@ -247,10 +247,17 @@ fn far_segments(source: &FloatImage, target: &FloatImage, colours: &[Vec<f32>]) 
     if colours.is_empty() || colours.iter().any(|c| c.len() != channels) || source.channels() != channels {
         return Vec::new();
     }
+    let target_colours = histogram(target);
+    // A target of segment colours only (map tiles, exact guides) has no far colour whatever the
+    // tolerance: the source's histogram, the larger one, is not needed.
+    let is_segment_colour = |key: &[u8; 4]| colours.iter().any(|c| squared(c, &unkey(key, channels)) == 0.0);
+    if target_colours.iter().all(|(key, _)| is_segment_colour(key)) {
+        return Vec::new();
+    }
     let limit = tolerance(&histogram(source), channels, colours);
     let near = limit * limit;
     let mut bins: BTreeMap<[u8; 4], (usize, Vec<f64>)> = BTreeMap::new();
-    for (key, count) in histogram(target) {
+    for (key, count) in target_colours {
         let colour = unkey(&key, channels);
         let nearest = colours.iter().map(|c| squared(c, &colour)).fold(f32::INFINITY, f32::min);
         if nearest <= near || blend_residual(&colour, colours) <= near {
