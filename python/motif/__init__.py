@@ -603,7 +603,8 @@ def tiles(
     The textures are pre-synthesized once, here; the result's ``render(z, x, y, layer="stylized")``
     gives any tile as an H×W×4 array ("plain" for the segment map), ``pyramid()`` lists the
     tiles of ``zoom`` over the map and ``report()`` the run's figures as JSON. Tiles have the
-    bytes of ``motif tiles`` with the same options and seed.
+    bytes of ``motif tiles`` with the same options and seed. It pickles with its textures (a
+    Dask worker reads the map and legend again but does not pre-synthesize).
     """
     fixed: Dict[str, Any] = {"seed": _seed(seed)}
     if zoom is not None:
