@@ -462,14 +462,14 @@ pub(crate) fn plane_key((x, y): (usize, usize), origin: (i64, i64)) -> u64 {
     (u64::from(gy) << 32) | u64::from(gx)
 }
 
-/// One iteration of the band's local search ([`crate::Params::band_local_search`]; pixels marked
-/// in `converged` keep their match): every band
-/// pixel reads the field only as it was when the iteration started (propagation from its four
-/// neighbours' matches, shifted: Jacobi, not PatchMatch's scan order) and draws its random
-/// candidates within the level's search radius from a stream keyed by its position in the
-/// textures' plane ([`plane_key`]). A pixel's new match thus depends only on what lies within a
-/// patch of it, so two overlapping windows of one map (a slippy map's tiles) find the same
-/// matches wherever both see that far around a pixel.
+/// One iteration of the band's local search ([`crate::Params::band_local_search`]): every band
+/// pixel (but those marked in `converged`, which keep their match) reads the field only as it
+/// was when the iteration started (propagation from its four neighbours' matches, shifted:
+/// Jacobi, not PatchMatch's scan order) and draws its random candidates within the level's
+/// search radius from a stream keyed by its position in the textures' plane ([`plane_key`]). A
+/// pixel's new match thus depends only on what lies within a patch of it, so two overlapping
+/// windows of one map (a slippy map's tiles) find the same matches wherever both see that far
+/// around a pixel.
 pub(crate) fn local_band_iteration(
     level: &Level,
     field: &mut Field,
