@@ -22,6 +22,7 @@
 //! were copied with; existing points and rigid elements keep their places; a move that would leave
 //! the domain is not made; a step is kept only when it lowers the energy.
 
+use motif_core::random::Stream;
 use rayon::prelude::*;
 
 use crate::domain::Region;
@@ -49,6 +50,10 @@ const NEAREST_WEIGHT: f64 = 1.0;
 const FIRST_STEP: f64 = 0.02;
 /// The step grows after each kept step up to this.
 const LARGEST_STEP: f64 = 0.1;
+/// Relocation after the gradient steps (module `relocation`): sweeps at least, proposals in all
+/// at least (up to the most sweeps). Measured on the corpus: docs/points.md, "Relocation".
+const RELOCATION: relocation::Settings =
+    relocation::Settings { sweeps: 10, proposals: 250_000, most_sweeps: 1000, quantum: None };
 /// A surplus over the expected count below this fraction of it is left alone.
 const COUNT_SLACK: f64 = 0.01;
 
@@ -56,16 +61,21 @@ fn rings() -> usize {
     (REACH / RING).round() as usize
 }
 
-/// Rings whose kernel lies within `depth` spacings of the centre: ring `b` reaches `(b + 1) h + e`.
-fn usable_rings(depth: f64) -> usize {
-    if depth <= 0.0 { 0 } else { (((depth - RAMP) / RING).floor().max(0.0) as usize).min(rings()) }
+/// Rings whose kernel (of ramp half-width `ramp`) lies within `depth` spacings of the centre: ring
+/// `b` reaches `(b + 1) h + ramp`.
+fn usable_rings(depth: f64, ramp: f64) -> usize {
+    if depth <= 0.0 { 0 } else { (((depth - ramp) / RING).floor().max(0.0) as usize).min(rings()) }
 }
 
 /// The kernel of ring `b` at distance `d` and its derivative: 1 inside the ring, ramps of half-width
-/// `e` across its edges (neighbouring rings' kernels sum to 1), so a distance near an edge is shared.
-fn kernel(b: usize, d: f64) -> (f64, f64) {
-    let e = RAMP;
+/// `ramp` across its edges (neighbouring rings' kernels sum to 1), so a distance near an edge is
+/// shared; a ramp of 0 makes hard rings `[b h, (b + 1) h)`.
+fn kernel(b: usize, d: f64, ramp: f64) -> (f64, f64) {
+    let e = ramp;
     let (low, high) = (b as f64 * RING, (b + 1) as f64 * RING);
+    if e == 0.0 {
+        return (f64::from(u8::from(low <= d && d < high)), 0.0);
+    }
     let rise = (d - (low - e)) / (2.0 * e);
     let fall = ((high + e) - d) / (2.0 * e);
     if rise <= 0.0 || fall <= 0.0 {
@@ -79,11 +89,10 @@ fn kernel(b: usize, d: f64) -> (f64, f64) {
     }
 }
 
-/// The rings a distance `d` touches.
-fn touched(d: f64) -> std::ops::Range<usize> {
-    let e = RAMP;
-    let low = ((d - e) / RING).floor().max(0.0) as usize;
-    let high = (((d + e) / RING).ceil().max(0.0) as usize).min(rings());
+/// The rings a distance `d` touches (kernels of ramp half-width `ramp`).
+fn touched(d: f64, ramp: f64) -> std::ops::Range<usize> {
+    let low = ((d - ramp) / RING).floor().max(0.0) as usize;
+    let high = (((d + ramp) / RING).floor().max(0.0) as usize + 1).min(rings());
     low.min(high)..high
 }
 
@@ -91,6 +100,8 @@ fn touched(d: f64) -> std::ops::Range<usize> {
 /// nearest-neighbour distances, in spacings.
 #[derive(Debug, Clone)]
 pub(crate) struct Target {
+    /// Half-width of the rings' ramps (`RAMP`, or 0 for hard rings).
+    ramp: f64,
     per_centre: Vec<f64>,
     nearest: Vec<f64>,
     /// Points per unit volume, in spacings.
@@ -98,24 +109,30 @@ pub(crate) struct Target {
 }
 
 impl Target {
-    /// The exemplar's statistics: `points` and `depth` in spacings, `volume` its window's.
-    pub(crate) fn new<const D: usize>(points: &[Vector<D>], depth: &dyn Fn(&Vector<D>) -> f64, volume: f64) -> Self {
-        let grid = StaticGrid::new(points, REACH + RAMP);
+    /// The exemplar's statistics: `points` and `depth` in spacings, `volume` its window's, pairs
+    /// counted with ring kernels of ramp half-width `ramp`.
+    pub(crate) fn new<const D: usize>(
+        points: &[Vector<D>],
+        depth: &dyn Fn(&Vector<D>) -> f64,
+        volume: f64,
+        ramp: f64,
+    ) -> Self {
+        let grid = StaticGrid::new(points, REACH + ramp);
         let mut sums = vec![0.0; rings()];
         let mut centres = vec![0usize; rings()];
         let mut nearest = Vec::new();
         for (i, p) in points.iter().enumerate() {
             let depth = depth(p);
-            let usable = usable_rings(depth);
+            let usable = usable_rings(depth, ramp);
             let mut closest = f64::INFINITY;
-            grid.for_each_within(p, REACH + RAMP, |j, _, d2| {
+            grid.for_each_within(p, REACH + ramp, |j, _, d2| {
                 if j == i {
                     return;
                 }
                 let d = d2.sqrt();
                 closest = closest.min(d);
-                for b in touched(d).take_while(|&b| b < usable) {
-                    sums[b] += kernel(b, d).0;
+                for b in touched(d, ramp).take_while(|&b| b < usable) {
+                    sums[b] += kernel(b, d, ramp).0;
                 }
             });
             centres[..usable].iter_mut().for_each(|c| *c += 1);
@@ -126,7 +143,7 @@ impl Target {
         nearest.sort_by(f64::total_cmp);
         let per_centre =
             sums.iter().zip(&centres).map(|(s, &c)| if c == 0 { f64::NAN } else { s / c as f64 }).collect();
-        Self { per_centre, nearest, density: points.len() as f64 / volume.max(1e-300) }
+        Self { ramp, per_centre, nearest, density: points.len() as f64 / volume.max(1e-300) }
     }
 
     /// The exemplar's nearest-neighbour distance at quantile `q ∈ [0, 1]`.
@@ -163,10 +180,22 @@ pub struct StatisticsRefinement {
     pub movable_points: usize,
     /// Points removed from a surplus over the expected count.
     pub removed_points: usize,
-    /// The energy (pair chi-square plus nearest-neighbour term) before the gradient steps.
+    /// The energy (pair chi-square with ramped rings plus nearest-neighbour term) before the
+    /// gradient steps.
     pub energy_before: f64,
     /// The energy after them.
     pub energy_after: f64,
+    /// Relocations proposed after the gradient steps (Tscheschel and Stoyan's moves of one point
+    /// to a new place).
+    pub relocations_tried: usize,
+    /// Relocations kept (they lowered the energy with hard rings).
+    pub relocations_kept: usize,
+    /// Sweeps of relocation run (a sweep proposes a move per movable point).
+    pub relocation_sweeps: usize,
+    /// The energy with hard rings (the bench's g(r) rings) before the relocations.
+    pub relocation_energy_before: f64,
+    /// The energy with hard rings after them.
+    pub relocation_energy_after: f64,
     /// Gradient steps kept (they lowered the energy).
     pub steps_kept: usize,
     /// Gradient steps tried.
@@ -195,9 +224,10 @@ fn evaluate<const D: usize>(
     movable: Option<&[bool]>,
 ) -> Evaluation<D> {
     let bins = rings();
-    let reach = REACH + RAMP;
-    let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d)).collect();
-    let pairs = Pairs { positions, grid: StaticGrid::new(positions, reach), reach, usable };
+    let ramp = target.ramp;
+    let reach = REACH + ramp;
+    let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d, ramp)).collect();
+    let pairs = Pairs { positions, grid: StaticGrid::new(positions, reach), reach, ramp, usable };
     let per_point = pairs.per_point();
     let mut counts = vec![0.0; bins];
     let mut centres = vec![0usize; bins];
@@ -255,6 +285,7 @@ struct Pairs<'a, const D: usize> {
     positions: &'a [Vector<D>],
     grid: StaticGrid<D>,
     reach: f64,
+    ramp: f64,
     /// Per point, how many rings fit inside the domain around it.
     usable: Vec<usize>,
 }
@@ -278,8 +309,8 @@ impl<const D: usize> Pairs<'_, D> {
                         closest = d;
                         nearest = j;
                     }
-                    for b in touched(d).take_while(|&b| b < usable[i]) {
-                        counts[b] += kernel(b, d).0;
+                    for b in touched(d, self.ramp).take_while(|&b| b < usable[i]) {
+                        counts[b] += kernel(b, d, self.ramp).0;
                     }
                 });
                 (counts, nearest, closest)
@@ -305,10 +336,10 @@ impl<const D: usize> Pairs<'_, D> {
                     }
                     let d = d2.sqrt();
                     let mut slope = 0.0;
-                    for b in touched(d) {
+                    for b in touched(d, self.ramp) {
                         let centres = (b < usable[i]) as usize + (b < usable[j]) as usize;
                         if centres > 0 {
-                            slope += slopes[b] * centres as f64 * kernel(b, d).1;
+                            slope += slopes[b] * centres as f64 * kernel(b, d, self.ramp).1;
                         }
                     }
                     if per_point[i].1 == j {
@@ -332,11 +363,12 @@ impl<const D: usize> Pairs<'_, D> {
 /// after a refused one.
 pub(crate) fn refine<const D: usize>(
     target: &Target,
-    output: Output<'_, D>,
+    output: &mut Output<'_, D>,
     iterations: usize,
     outcome: &mut StatisticsRefinement,
 ) {
     let Output { positions, movable, depth, allowed, settle, volume } = output;
+    let (movable, depth, allowed, settle, volume) = (*movable, *depth, *allowed, *settle, *volume);
     if positions.len() < 2 || target.nearest.is_empty() || !movable.iter().any(|&m| m) {
         return;
     }
@@ -377,93 +409,6 @@ pub(crate) fn refine<const D: usize>(
     outcome.energy_after = current.energy;
 }
 
-/// Chooses up to `surplus` movable points to remove, each for how much its removal alone changes
-/// the pair term, least first; the first `required` go in any case, the others only in batches that
-/// lower the whole energy. Returns the removed indices, ascending.
-pub(crate) fn thin<const D: usize>(
-    target: &Target,
-    positions: &[Vector<D>],
-    movable: &[bool],
-    depth: &(dyn Fn(&Vector<D>) -> f64 + Sync),
-    volume: f64,
-    required: usize,
-    surplus: usize,
-) -> Vec<usize> {
-    let bins = rings();
-    let reach = REACH + RAMP;
-    let density_ratio = |n: usize| n as f64 / volume.max(1e-300) / target.density;
-    // `kept[i]`: the original index of the i-th remaining point.
-    let mut kept: Vec<usize> = (0..positions.len()).collect();
-    let mut points = positions.to_vec();
-    let mut depths: Vec<f64> = points.par_iter().map(depth).collect();
-    let mut current = evaluate(target, &points, &depths, density_ratio(points.len()), None);
-    let (mut removed, mut batch) = (0, surplus.div_ceil(4).max(1));
-    while removed < surplus && batch > 0 {
-        let ratio_after = density_ratio(points.len().saturating_sub(1));
-        let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d)).collect();
-        let grid = StaticGrid::new(&points, reach);
-        let mut gains: Vec<(f64, usize)> = (0..points.len())
-            .into_par_iter()
-            .filter(|&i| movable[kept[i]])
-            .map(|i| {
-                // The pairs that go with point i: as a centre, and as a neighbour of other centres.
-                let mut lost = vec![0.0; bins];
-                grid.for_each_within(&points[i], reach, |j, _, d2| {
-                    if j != i {
-                        let d = d2.sqrt();
-                        for b in touched(d) {
-                            lost[b] += ((b < usable[i]) as usize + (b < usable[j]) as usize) as f64 * kernel(b, d).0;
-                        }
-                    }
-                });
-                let change: f64 = (0..bins)
-                    .filter(|&b| current.weights[b] > 0.0)
-                    .map(|b| {
-                        let centres = current.centres[b] - (b < usable[i]) as usize;
-                        let after = current.counts[b] - lost[b] - centres as f64 * target.per_centre[b] * ratio_after;
-                        let before = current.counts[b] - current.wanted[b];
-                        current.weights[b] * (after * after - before * before)
-                    })
-                    .sum();
-                (change, i)
-            })
-            .filter(|(change, _)| *change < 0.0 || removed < required)
-            .collect();
-        gains.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        // Removals two spacings apart barely change each other's pairs, so a batch of them is
-        // judged by their single changes, then checked as a whole.
-        let mut picked: Vec<usize> = Vec::new();
-        for &(_, i) in &gains {
-            let size =
-                if removed < required { (required - removed).min(batch.max(1)) } else { batch.min(surplus - removed) };
-            if picked.len() >= size {
-                break;
-            }
-            if picked.iter().all(|&q| linear::norm2(&linear::sub(&points[i], &points[q])) >= 4.0) {
-                picked.push(i);
-            }
-        }
-        if picked.is_empty() {
-            break;
-        }
-        picked.sort_unstable();
-        let staying: Vec<usize> = (0..points.len()).filter(|i| picked.binary_search(i).is_err()).collect();
-        let next_points: Vec<Vector<D>> = staying.iter().map(|&i| points[i]).collect();
-        let next_depths: Vec<f64> = staying.iter().map(|&i| depths[i]).collect();
-        let next = evaluate(target, &next_points, &next_depths, density_ratio(next_points.len()), None);
-        if next.energy < current.energy || removed < required {
-            removed += picked.len();
-            kept = staying.iter().map(|&i| kept[i]).collect();
-            (points, depths, current) = (next_points, next_depths, next);
-        } else {
-            batch /= 2;
-        }
-    }
-    let mut gone = vec![true; positions.len()];
-    kept.iter().for_each(|&i| gone[i] = false);
-    (0..positions.len()).filter(|&i| gone[i]).collect()
-}
-
 /// Whether the refinement runs on `setup` (a uniform scale, `iterations` above 0).
 fn applies<const D: usize>(setup: &Setup<D>, iterations: usize) -> bool {
     let scales = &setup.quadrature.scale;
@@ -486,6 +431,7 @@ pub(crate) fn refine_state<const D: usize>(
     state: &mut State<D>,
     iterations: usize,
     count_tolerance: f64,
+    stream: &mut Stream,
 ) -> Option<StatisticsRefinement> {
     if !applies(setup, iterations) {
         return None;
@@ -508,7 +454,7 @@ pub(crate) fn refine_state<const D: usize>(
     let (region, quadrature) = (&setup.region, &setup.quadrature);
     let plane = if let Region::Surface { .. } = region { 2 } else { D };
     let window_volume: f64 = (0..plane).map(|a| high[a] - low[a]).product();
-    let target = Target::new(&exemplar_points, &|p| fidelity::box_depth(p, &low, &high, plane), window_volume);
+    let target = Target::new(&exemplar_points, &|p| fidelity::box_depth(p, &low, &high, plane), window_volume, RAMP);
     let volume = match region {
         Region::Surface { surface, .. } => surface.area(),
         _ => region.volume().unwrap_or(quadrature.len() as f64 * quadrature.spacing().powi(D as i32)),
@@ -542,7 +488,7 @@ pub(crate) fn refine_state<const D: usize>(
         }
     }
     outcome.movable_points = movable.iter().filter(|&&m| m).count();
-    let output = Output {
+    let mut output = Output {
         positions: &mut positions,
         movable: &movable,
         depth: &depth,
@@ -550,12 +496,26 @@ pub(crate) fn refine_state<const D: usize>(
         settle: &settle,
         volume,
     };
-    refine(&target, output, iterations, &mut outcome);
-    // Only the points that moved are written back: the trip through spacings is not exact.
-    for ((p, moved), _) in state.positions.iter_mut().zip(&positions).zip(&movable).filter(|(_, m)| **m) {
-        *p = to_output(moved);
-    }
+    refine(&target, &mut output, iterations, &mut outcome);
+    // Relocation moves the same points: the copied patches' interiors keep what the isotropic
+    // statistics do not see (orientation, types, curves; moving them too made rows of points lose
+    // their direction). On a surface, proposals are brought onto it (`settle`).
+    let quantum = relocation::coordinate_quantum(&exemplar.positions, exemplar.spacing).map(|q| q * scale / spacing);
+    let settings = relocation::Settings { quantum, ..RELOCATION };
+    let hard = Target::new(&exemplar_points, &|p| fidelity::box_depth(p, &low, &high, plane), window_volume, 0.0);
+    relocation::relocate(&hard, &mut output, settings, stream, &mut outcome);
+    write_back(state, &positions, spacing);
     Some(outcome)
+}
+
+/// Writes the refined `positions` (in spacings of `spacing`) into `state`: only the points that
+/// moved, since the trip through spacings is not exact.
+fn write_back<const D: usize>(state: &mut State<D>, positions: &[Vector<D>], spacing: f64) {
+    for (p, moved) in state.positions.iter_mut().zip(positions) {
+        if linear::scale(p, 1.0 / spacing) != *moved {
+            *p = linear::scale(moved, spacing);
+        }
+    }
 }
 
 /// The points the refinement moves: free points the optimization moved and, when `grow`, every
@@ -577,6 +537,12 @@ fn movable_points<const D: usize>(state: &State<D>, positions: &[Vector<D>], gro
         })
         .collect()
 }
+
+#[path = "relocation.rs"]
+mod relocation;
+#[path = "thinning.rs"]
+mod thinning;
+pub(crate) use thinning::thin;
 
 #[cfg(test)]
 #[path = "tests_pair_statistics.rs"]

@@ -288,8 +288,14 @@ fn finish<const D: usize>(
 ) -> Result<Output, Error> {
     let Course { mut state, mut timer, energies, added, removed, rejected, held_by_bound, final_energy, .. } = course;
     timer.start("pair statistics");
-    let pair_statistics =
-        crate::pair_statistics::refine_state(setup, &mut state, params.statistics_iterations, params.count_tolerance);
+    let mut stream = SeedStreams::new(params.seed).stream("relocation", 0);
+    let pair_statistics = crate::pair_statistics::refine_state(
+        setup,
+        &mut state,
+        params.statistics_iterations,
+        params.count_tolerance,
+        &mut stream,
+    );
     timer.start("fidelity");
     let fidelity = measure_fidelity(setup, &state.positions, params.seed);
     let points = to_point_set(setup, &state);

@@ -29,11 +29,17 @@ fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
     move |p: &Vector<2>| fidelity::box_depth(p, &[0.0, 0.0], &[side, side], 2)
 }
 
-/// Refines every point of `points` in the box `[0, side)²` with no other constraint.
-fn refine_all(target: &Target, points: &mut [Vector<2>], side: f64, iterations: usize) -> StatisticsRefinement {
+/// Refines every point of `points` in the box `[0, side)²` with no other constraint: `sweeps`
+/// relocations per point, then `iterations` gradient steps.
+fn refine_all(
+    target: &Target,
+    points: &mut [Vector<2>],
+    side: f64,
+    (sweeps, iterations): (usize, usize),
+) -> StatisticsRefinement {
     let movable = vec![true; points.len()];
     let depth = box_depth(side);
-    let output = Output {
+    let mut output = Output {
         positions: points,
         movable: &movable,
         depth: &depth,
@@ -42,21 +48,29 @@ fn refine_all(target: &Target, points: &mut [Vector<2>], side: f64, iterations: 
         volume: side * side,
     };
     let mut outcome = StatisticsRefinement::default();
-    refine(target, output, iterations, &mut outcome);
+    refine(target, &mut output, iterations, &mut outcome);
+    let mut stream = SeedStreams::new(1).stream("relocation", 0);
+    relocation::relocate(
+        target,
+        &mut output,
+        relocation::Settings { sweeps, proposals: 0, most_sweeps: sweeps, quantum: None },
+        &mut stream,
+        &mut outcome,
+    );
     outcome
 }
 
 fn grid_target(side: usize) -> Target {
     let s = side as f64;
-    Target::new(&jittered_grid(side, 1), &box_depth(s), s * s)
+    Target::new(&jittered_grid(side, 1), &box_depth(s), s * s, RAMP)
 }
 
 #[test]
 fn ring_kernels_share_each_distance() {
     for step in 1..390 {
         let d = 0.05 + step as f64 * 0.01;
-        let total: f64 = touched(d).map(|b| kernel(b, d).0).sum();
-        let everywhere: f64 = (0..rings()).map(|b| kernel(b, d).0).sum();
+        let total: f64 = touched(d, RAMP).map(|b| kernel(b, d, RAMP).0).sum();
+        let everywhere: f64 = (0..rings()).map(|b| kernel(b, d, RAMP).0).sum();
         assert!((total - 1.0).abs() < 1e-12, "d = {d}: kernels sum to {total}");
         assert!((everywhere - total).abs() < 1e-12, "d = {d}: a ring outside `touched` counts");
     }
@@ -100,7 +114,7 @@ fn refinement_lowers_the_energy_and_leaves_fixed_points_alone() {
     let movable: Vec<bool> = (0..points.len()).map(|i| i % 3 != 0).collect();
     let depth = box_depth(side);
     let inside = |p: &Vector<2>| p.iter().all(|&x| (0.0..=side).contains(&x));
-    let output = Output {
+    let mut output = Output {
         positions: &mut points,
         movable: &movable,
         depth: &depth,
@@ -109,7 +123,7 @@ fn refinement_lowers_the_energy_and_leaves_fixed_points_alone() {
         volume: side * side,
     };
     let mut outcome = StatisticsRefinement::default();
-    refine(&target, output, 30, &mut outcome);
+    refine(&target, &mut output, 30, &mut outcome);
     assert!(outcome.steps_kept > 5, "{outcome:?}");
     assert!(outcome.energy_after < 0.7 * outcome.energy_before, "{outcome:?}");
     for i in 0..points.len() {
@@ -156,7 +170,7 @@ fn the_same_points_whatever_the_thread_count() {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let mut points = random_points(120, side, 11);
-            refine_all(&target, &mut points, side, 10);
+            refine_all(&target, &mut points, side, (5, 10));
             points
         })
     };
@@ -182,7 +196,7 @@ fn thinning_removes_what_is_required_even_when_the_energy_rises() {
 fn an_exemplar_without_counted_neighbours_still_refines() {
     // Three points, each nearer the window's border than its nearest neighbour.
     let exemplar = [[0.2, 0.2], [1.8, 0.2], [1.0, 1.8]];
-    let target = Target::new(&exemplar, &box_depth(2.0), 4.0);
+    let target = Target::new(&exemplar, &box_depth(2.0), 4.0, RAMP);
     assert!(target.nearest.is_empty());
     let side = 6.0;
     let mut points = random_points(20, side, 3);
@@ -190,6 +204,6 @@ fn an_exemplar_without_counted_neighbours_still_refines() {
     let depth = box_depth(side);
     let removed = thin(&target, &points, &movable, &depth, side * side, 5, 5);
     assert!(removed.len() <= 5);
-    refine_all(&target, &mut points, side, 5);
+    refine_all(&target, &mut points, side, (5, 5));
     assert!(points.iter().all(|p| p.iter().all(|x| x.is_finite())));
 }

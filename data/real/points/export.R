@@ -52,7 +52,7 @@ whole <- function(X) {
 }
 
 data(longleaf, amacrine, anemones, bei, lansing, spruces, swedishpines, redwood,
-     japanesepines, osteo)
+     japanesepines, osteo, finpines)
 
 # longleaf: 584 pines in 200 x 200 m, mark = diameter at breast height (cm).
 p <- whole(longleaf)
@@ -91,6 +91,12 @@ write_case("swedishpines", list(x = p$x, y = p$y), p$window)
 # redwood: 62 seedlings, window [0,1] x [-1,0] moved to [0,1] x [0,1] (clustered).
 p <- whole(redwood)
 write_case("redwood", list(x = p$x, y = p$y), p$window)
+
+# finpines: 126 Scots pines in 10 x 10 m (clustered: the data set a Matern cluster process is
+# classically fitted to), marks diameter at breast height (cm) and height (m).
+p <- whole(finpines)
+write_case("finpines", list(x = p$x, y = p$y, diameter = num(marks(p$X)$diameter),
+                            height = num(marks(p$X)$height)), p$window)
 
 # japanesepines: 65 pines in the unit square (unit 5.7 m), close to complete randomness.
 p <- whole(japanesepines)

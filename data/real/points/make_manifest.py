@@ -40,6 +40,9 @@ CASES = [
      SPATSTAT + "`swedishpines`: Strand (1972), Ripley (1981), Spatial statistics"),
     ("redwood", "clustered, unmarked", "test",
      SPATSTAT + "`redwood`: Strauss (1975), Biometrika 62, 467-475, subset by Ripley (1977)"),
+    ("finpines", "clustered, marked (diameter: at breast height, cm; height: m)", "bench",
+     SPATSTAT + "`finpines`: Penttinen, Stoyan and Henttonen (1992), Forest Science 38, 806-824; "
+     "Stoyan and Stoyan (1994), Fractals, Random Shapes and Point Fields"),
     ("japanesepines", "close to complete spatial randomness, unmarked", "test",
      SPATSTAT + "`japanesepines`: Numata (1961), via Diggle (2003), Statistical Analysis of "
      "Spatial Point Patterns"),

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use anyhow::bail;
-use motif_points::{Domain, Input, Params};
+use motif_points::{Domain, Initialization, Input, Params};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -26,8 +26,18 @@ pub(super) struct CorpusCase {
     pub purpose: String,
 }
 
-/// Runs one corpus case and returns its figures, with the targets checked.
+/// Runs one corpus case and returns its figures, with the targets checked; a clustered
+/// case runs from random points too (`from_random_points`).
 pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::Result<Value> {
+    let mut figures = run_once(folder, case, seed, Initialization::Patches)?;
+    if case.kind.starts_with("clustered") {
+        figures["from_random_points"] = run_once(folder, case, seed, Initialization::Random)?;
+    }
+    Ok(figures)
+}
+
+/// One run of a corpus case from `initialization`.
+fn run_once(folder: &Path, case: &CorpusCase, seed: u64, initialization: Initialization) -> anyhow::Result<Value> {
     let table = motif_io::read_points(&folder.join(&case.file))?;
     let (exemplar, discrete) = table_to_points(&table, &format!("corpus case {}", case.name))?;
     if case.domain.len() != exemplar.dimension {
@@ -38,6 +48,7 @@ pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::R
     params.discrete_attributes = discrete;
     params.exemplar_window = Some((vec![0.0; case.window.len()], case.window.clone()));
     params.seed = seed;
+    params.initialization = initialization;
     let domain = Domain::Box { min: vec![0.0; case.domain.len()], max: case.domain.clone() };
     let input = Input::new(exemplar, domain);
     let start = std::time::Instant::now();
@@ -61,6 +72,12 @@ pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::R
             "output": o.radial_distribution, "random": r.radial_distribution, "tiled": t.radial_distribution,
             "exemplar_halves": h.radial_distribution,
         },
+        // Mean size of the cluster a point belongs to (points closer than one spacing linked), the
+        // exemplar's, and each set's over it.
+        "cluster_size": {
+            "exemplar": fidelity.exemplar_statistics.mean_cluster_size,
+            "output": o.cluster_size_ratio, "random": r.cluster_size_ratio, "tiled": t.cluster_size_ratio,
+        },
         "targets": {
             "density_within_3_percent": (fidelity.density_ratio - 1.0).abs() <= 0.03,
             "half_of_random": o.nearest_neighbour <= 0.5 * r.nearest_neighbour && o.radial_distribution <= 0.5 * r.radial_distribution,
@@ -78,7 +95,8 @@ pub(super) fn run_case(folder: &Path, case: &CorpusCase, seed: u64) -> anyhow::R
 const SLOW_CASES: [&str; 1] = ["chain_contours"];
 
 /// The corpus figures: every case of the manifest that `selected` accepts (slow cases only when
-/// `named` accepts them), and a summary of how many meet each target.
+/// `named` accepts them), and a summary of how many runs (clustered cases run twice) meet each
+/// target.
 pub(super) fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&str) -> bool) -> anyhow::Result<Value> {
     let folder = corpus_folder("points");
     let cases: Vec<CorpusCase> = read_cases(&folder)?;
@@ -93,10 +111,12 @@ pub(super) fn bench(seed: u64, selected: &dyn Fn(&str) -> bool, named: &dyn Fn(&
             continue;
         }
         let value = run_case(&folder, case, seed)?;
-        counts[0] += 1;
         let keys = ["density_within_3_percent", "half_of_random", "within_1_5_of_tiled", "tiled_copy_half_of_random"];
-        for (slot, key) in keys.iter().enumerate() {
-            counts[slot + 1] += usize::from(value["targets"][key].as_bool() == Some(true));
+        for run in std::iter::once(&value).chain(value.get("from_random_points")) {
+            counts[0] += 1;
+            for (slot, key) in keys.iter().enumerate() {
+                counts[slot + 1] += usize::from(run["targets"][key].as_bool() == Some(true));
+            }
         }
         figures.insert(case.name.clone(), value);
     }

@@ -1,0 +1,550 @@
+//! Relocation: the reconstruction step of Tscheschel and Stoyan (2006, "Statistical reconstruction
+//! of random point patterns") on the pair-statistics energy, before its gradient steps.
+//!
+//! Gradient steps move points by fractions of a spacing, so they cannot gather scattered points
+//! into the clusters of a clustered exemplar (from random points longleaf stayed as far from its
+//! g(r) as a random set) nor take a point out of a ring the exemplar never shows. Relocation moves
+//! one movable point at a time to a proposed place and keeps the move only when the whole energy
+//! (the ring chi-square and the nearest-neighbour term of the parent module) goes down. The energy
+//! change of a move is exact and local: the move changes the pairs within the rings' reach of its
+//! two places, the nearest neighbours there, and the ranks of the nearest-neighbour distances
+//! (one pass over their sorted list). Proposals, a third each:
+//! - anywhere in the domain's bounding box (Tscheschel and Stoyan's uniform proposal);
+//! - at one of the exemplar's nearest-neighbour distances (drawn from them) from a random point,
+//!   in a random direction: where the exemplar's clusters and spacings say points sit;
+//! - within one spacing of where the point is.
+//!
+//! Everything is sequential and drawn from one seeded stream: the same seed gives the same moves
+//! on any thread count.
+
+use motif_core::random::{Rng, Stream};
+
+use super::{NEAREST_WEIGHT, Output, REACH, RING, StatisticsRefinement, Target, kernel, rings, touched, usable_rings};
+use crate::grid::{DynamicGrid, bounds};
+use crate::linear::{self, Vector};
+
+/// A point's nearest neighbour and its distance (`usize::MAX`, infinity: none within reach).
+type Nearest = (usize, f64);
+
+/// The output's pairs and nearest neighbours, kept up to date move by move.
+struct Book<'a, const D: usize> {
+    target: &'a Target,
+    positions: &'a mut [Vector<D>],
+    depths: Vec<f64>,
+    usable: Vec<usize>,
+    grid: DynamicGrid<D>,
+    /// Kernel-weighted pair counts and usable centres per ring (as the parent's `evaluate`).
+    counts: Vec<f64>,
+    centres: Vec<usize>,
+    nearest: Vec<Nearest>,
+    /// The counted nearest-neighbour distances (a neighbour no farther than the point is deep),
+    /// sorted, with their point.
+    sorted: Vec<(f64, usize)>,
+    density_ratio: f64,
+    /// The nearest-neighbour part of `energy`.
+    nearest_energy: f64,
+    /// The exemplar's nearest-neighbour distance at each rank of `sorted` (its quantiles).
+    wanted_nearest: Vec<f64>,
+    energy: f64,
+}
+
+/// What a proposed move changes.
+struct Move<const D: usize> {
+    point: usize,
+    to: Vector<D>,
+    depth: f64,
+    usable: usize,
+    /// Change of each ring's count.
+    counts: Vec<f64>,
+    /// New nearest neighbours, by point.
+    nearest: Vec<(usize, Nearest)>,
+    nearest_energy: f64,
+    energy: f64,
+}
+
+/// How relocation runs.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Settings {
+    /// Proposals per movable point, at least (a sweep proposes one per movable point).
+    pub sweeps: usize,
+    /// Proposals in all, at least, up to `most_sweeps` per movable point: a small output gets
+    /// more sweeps (its clusters form from fewer points, so each move counts for more).
+    pub proposals: usize,
+    pub most_sweeps: usize,
+    /// The exemplar's coordinate quantum in spacings ([`coordinate_quantum`]): proposed places are
+    /// rounded to its multiples.
+    pub quantum: Option<f64>,
+}
+
+/// An exemplar's coordinate quantum is kept only when it is finer than this many spacings (a
+/// coarser grid would decide where points go more than the rings do).
+const COARSEST_QUANTUM: f64 = 1.0 / 3.0;
+
+/// The coarsest power of ten of which every coordinate of `points` is a whole multiple (data
+/// recorded to 0.01 gives 0.01), when it is finer than [`COARSEST_QUANTUM`] × `spacing`.
+pub(super) fn coordinate_quantum<const D: usize>(points: &[Vector<D>], spacing: f64) -> Option<f64> {
+    (-9..=9).rev().map(|k| 10f64.powi(k)).filter(|&q| q < COARSEST_QUANTUM * spacing).find(|&q| {
+        points.iter().flatten().all(|&x| {
+            let units = x / q;
+            (units - units.round()).abs() <= 1e-6 * units.abs().max(1.0)
+        })
+    })
+}
+
+/// Relocates movable points of `output` (in spacings), each proposal kept when it lowers the
+/// energy, for as many sweeps as `settings` give. Records the proposals tried and kept, the sweeps,
+/// and the energy before and after them in `outcome`.
+pub(super) fn relocate<const D: usize>(
+    target: &Target,
+    output: &mut Output<'_, D>,
+    settings: Settings,
+    stream: &mut Stream,
+    outcome: &mut StatisticsRefinement,
+) {
+    let movable: Vec<usize> = (0..output.positions.len()).filter(|&i| output.movable[i]).collect();
+    if movable.is_empty() || output.positions.len() < 2 || target.nearest.is_empty() {
+        return;
+    }
+    let density_ratio = output.positions.len() as f64 / output.volume.max(1e-300) / target.density;
+    let depths: Vec<f64> = output.positions.iter().map(|p| (output.depth)(p)).collect();
+    let (low, high) = bounds(output.positions);
+    let mut book = Book::new(target, &mut *output.positions, depths, density_ratio);
+    outcome.relocation_energy_before = book.energy;
+    let sweeps = settings.proposals.div_ceil(movable.len()).clamp(settings.sweeps, settings.most_sweeps);
+    for _ in 0..sweeps {
+        for _ in 0..movable.len() {
+            let point = movable[stream.random_range(0..movable.len())];
+            let mut to = (output.settle)(&propose(&book, point, (low, high), stream));
+            if let Some(q) = settings.quantum {
+                to = (output.settle)(&std::array::from_fn(|a| (to[a] / q).round() * q));
+            }
+            outcome.relocations_tried += 1;
+            if !(output.allowed)(&to) {
+                continue;
+            }
+            let change = book.try_move(point, to, (output.depth)(&to));
+            if change.energy < book.energy {
+                book.apply(change);
+                outcome.relocations_kept += 1;
+            }
+        }
+        outcome.relocation_sweeps += 1;
+    }
+    outcome.relocation_energy_after = book.energy;
+}
+
+/// A place for `point`: uniform in `[low, high]`, at an exemplar nearest-neighbour distance from
+/// another point, or within a spacing of its own place (a third each).
+fn propose<const D: usize>(
+    book: &Book<'_, D>,
+    point: usize,
+    (low, high): (Vector<D>, Vector<D>),
+    stream: &mut Stream,
+) -> Vector<D> {
+    match stream.random_range(0..3u32) {
+        0 => std::array::from_fn(|a| low[a] + (high[a] - low[a]) * stream.random::<f64>()),
+        1 => {
+            let other = stream.random_range(0..book.positions.len());
+            let distance = book.target.nearest_at(stream.random::<f64>());
+            linear::add(&book.positions[other], &linear::scale(&direction(stream), distance))
+        }
+        _ => {
+            let distance = stream.random::<f64>();
+            linear::add(&book.positions[point], &linear::scale(&direction(stream), distance))
+        }
+    }
+}
+
+/// A uniform random unit vector (rejection from the cube).
+fn direction<const D: usize>(stream: &mut Stream) -> Vector<D> {
+    loop {
+        let v: Vector<D> = std::array::from_fn(|_| 2.0 * stream.random::<f64>() - 1.0);
+        let n2 = linear::norm2(&v);
+        if (1e-4..=1.0).contains(&n2) {
+            return linear::scale(&v, 1.0 / n2.sqrt());
+        }
+    }
+}
+
+impl<'a, const D: usize> Book<'a, D> {
+    fn new(target: &'a Target, positions: &'a mut [Vector<D>], depths: Vec<f64>, density_ratio: f64) -> Self {
+        let (low, high) = bounds(positions);
+        let mut grid = DynamicGrid::new(low, high, REACH + target.ramp);
+        positions.iter().enumerate().for_each(|(i, p)| grid.insert(i, p));
+        let usable: Vec<usize> = depths.iter().map(|&d| usable_rings(d, target.ramp)).collect();
+        let (mut counts, mut centres) = (vec![0.0; rings()], vec![0usize; rings()]);
+        let mut nearest = vec![(usize::MAX, f64::INFINITY); positions.len()];
+        let mut book = Self {
+            target,
+            positions,
+            depths,
+            usable,
+            grid,
+            counts: Vec::new(),
+            centres: Vec::new(),
+            nearest: Vec::new(),
+            sorted: Vec::new(),
+            density_ratio,
+            nearest_energy: 0.0,
+            wanted_nearest: Vec::new(),
+            energy: 0.0,
+        };
+        for i in 0..book.positions.len() {
+            centres[..book.usable[i]].iter_mut().for_each(|c| *c += 1);
+            book.for_each_neighbour(&book.positions[i], i, |j, d| {
+                // Each pair once, from its lower index, for both its centres.
+                if j > i {
+                    add_pair(&mut counts, d, book.usable[i], book.usable[j], (1.0, target.ramp));
+                }
+                if d < nearest[i].1 || (d == nearest[i].1 && j < nearest[i].0) {
+                    nearest[i] = (j, d);
+                }
+            });
+        }
+        let mut sorted: Vec<(f64, usize)> =
+            (0..book.positions.len()).filter(|&i| nearest[i].1 <= book.depths[i]).map(|i| (nearest[i].1, i)).collect();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        book.nearest_energy = nearest_energy(target, &sorted);
+        book.energy = pair_energy(target, density_ratio, |b| (counts[b], centres[b] as f64)) + book.nearest_energy;
+        book.wanted_nearest = wanted_nearest(target, sorted.len());
+        (book.counts, book.centres, book.nearest, book.sorted) = (counts, centres, nearest, sorted);
+        book
+    }
+
+    /// Calls `visit(j, d)` for every point `j ≠ skip` within the rings' reach of `p`.
+    fn for_each_neighbour(&self, p: &Vector<D>, skip: usize, mut visit: impl FnMut(usize, f64)) {
+        let reach = REACH + self.target.ramp;
+        self.grid.for_each_candidate(p, reach, |j| {
+            if j != skip {
+                let d = linear::norm2(&linear::sub(p, &self.positions[j])).sqrt();
+                if d < reach {
+                    visit(j, d);
+                }
+            }
+        });
+    }
+
+    /// What moving `point` to `to` (whose depth is `depth`) changes, and the energy after it.
+    fn try_move(&self, point: usize, to: Vector<D>, depth: f64) -> Move<D> {
+        let from = self.positions[point];
+        let (usable, ramp) = (usable_rings(depth, self.target.ramp), self.target.ramp);
+        let mut counts = vec![0.0; rings()];
+        // Points whose nearest neighbour was the moved point look again; the others take it if it
+        // came closer.
+        let mut orphans = Vec::new();
+        self.for_each_neighbour(&from, point, |j, d| {
+            add_pair(&mut counts, d, self.usable[point], self.usable[j], (-1.0, ramp));
+            if self.nearest[j].0 == point {
+                orphans.push(j);
+            }
+        });
+        let mut own = (usize::MAX, f64::INFINITY);
+        let mut nearest = vec![(point, own)];
+        self.for_each_neighbour(&to, point, |j, d| {
+            add_pair(&mut counts, d, usable, self.usable[j], (1.0, ramp));
+            if d < own.1 || (d == own.1 && j < own.0) {
+                own = (j, d);
+            }
+            let (k, e) = self.nearest[j];
+            if k != point && (d < e || (d == e && point < k)) {
+                nearest.push((j, (point, d)));
+            }
+        });
+        nearest[0].1 = own;
+        nearest.extend(orphans.into_iter().map(|j| (j, self.nearest_without(j, point, &to))));
+        let nearest_part = self.nearest_energy_after(&nearest, point, depth);
+        let centre_change = |b: usize| usize::from(b < usable) as f64 - usize::from(b < self.usable[point]) as f64;
+        let pair_part = pair_energy(self.target, self.density_ratio, |b| {
+            (self.counts[b] + counts[b], self.centres[b] as f64 + centre_change(b))
+        });
+        Move {
+            point,
+            to,
+            depth,
+            usable,
+            counts,
+            nearest,
+            nearest_energy: nearest_part,
+            energy: pair_part + nearest_part,
+        }
+    }
+
+    /// The nearest neighbour of `j` when `moved` sits at `to`.
+    fn nearest_without(&self, j: usize, moved: usize, to: &Vector<D>) -> Nearest {
+        let p = self.positions[j];
+        let mut best = (usize::MAX, f64::INFINITY);
+        self.for_each_neighbour(&p, j, |k, d| {
+            if k != moved && (d < best.1 || (d == best.1 && k < best.0)) {
+                best = (k, d);
+            }
+        });
+        let d = linear::norm2(&linear::sub(&p, to)).sqrt();
+        if d < REACH + self.target.ramp && (d < best.1 || (d == best.1 && moved < best.0)) {
+            best = (moved, d);
+        }
+        best
+    }
+
+    /// Whether point `i` with nearest neighbour `nearest` (the moved `point` at `depth`) counts.
+    fn counted(&self, (i, (_, d)): (usize, Nearest), point: usize, depth: f64) -> bool {
+        d <= if i == point { depth } else { self.depths[i] }
+    }
+
+    /// Visits the counted nearest-neighbour distances after `changes` (the moved `point` now at
+    /// `depth`) in sorted order, without building the list (most moves are refused).
+    fn merge_nearest(
+        &self,
+        changes: &[(usize, Nearest)],
+        point: usize,
+        depth: f64,
+        mut visit: impl FnMut((f64, usize)),
+    ) {
+        let changed = |i: usize| changes.iter().any(|&(c, _)| c == i);
+        let mut added: Vec<(f64, usize)> =
+            changes.iter().filter(|&&change| self.counted(change, point, depth)).map(|&(i, (_, d))| (d, i)).collect();
+        added.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut extra = added.into_iter().peekable();
+        for &entry in self.sorted.iter().filter(|&&(_, i)| !changed(i)) {
+            while let Some(next) = extra.next_if(|next| next.0 < entry.0 || (next.0 == entry.0 && next.1 < entry.1)) {
+                visit(next);
+            }
+            visit(entry);
+        }
+        extra.for_each(visit);
+    }
+
+    /// The nearest-neighbour term after `changes` (see [`Self::merge_nearest`]).
+    fn nearest_energy_after(&self, changes: &[(usize, Nearest)], point: usize, depth: f64) -> f64 {
+        let leaving: Vec<(f64, usize)> = changes
+            .iter()
+            .filter(|&&(i, _)| self.nearest[i].1 <= self.depths[i])
+            .map(|&(i, _)| (self.nearest[i].1, i))
+            .collect();
+        let mut arriving: Vec<(f64, usize)> =
+            changes.iter().filter(|&&change| self.counted(change, point, depth)).map(|&(i, (_, d))| (d, i)).collect();
+        if leaving.len() == arriving.len() {
+            return self.nearest_energy + self.nearest_change(&leaving, &mut arriving);
+        }
+        let n = (self.sorted.len() - leaving.len() + arriving.len()) as f64;
+        let (mut energy, mut rank) = (0.0, 0.0);
+        self.merge_nearest(changes, point, depth, |(d, _)| {
+            energy += nearest_miss(self.target, d, (rank + 0.5) / n);
+            rank += 1.0;
+        });
+        energy
+    }
+
+    /// The change of the nearest-neighbour term when the entries `leaving` the sorted list are
+    /// replaced by as many `arriving`: only the ranks between the first and last place touched
+    /// change (the count, and so every other rank's quantile, stays).
+    fn nearest_change(&self, leaving: &[(f64, usize)], arriving: &mut [(f64, usize)]) -> f64 {
+        let place = |entry: &(f64, usize)| self.sorted.partition_point(|e| before(e, entry));
+        let (mut low, mut high) = (usize::MAX, 0);
+        for entry in leaving {
+            let k = place(entry);
+            (low, high) = (low.min(k), high.max(k + 1));
+        }
+        for entry in arriving.iter() {
+            let k = place(entry);
+            (low, high) = (low.min(k), high.max(k));
+        }
+        if low >= high {
+            return 0.0;
+        }
+        arriving.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let miss = |d: f64, rank: usize| {
+            let miss = (d - self.wanted_nearest[rank]) / RING;
+            NEAREST_WEIGHT * miss * miss
+        };
+        let old = &self.sorted[low..high];
+        let mut change = -old.iter().enumerate().map(|(t, e)| miss(e.0, low + t)).sum::<f64>();
+        let mut extra = arriving.iter().peekable();
+        let mut rank = low;
+        for entry in old.iter().filter(|e| !leaving.iter().any(|l| l.1 == e.1)) {
+            while let Some(next) = extra.next_if(|next| before(next, entry)) {
+                change += miss(next.0, rank);
+                rank += 1;
+            }
+            change += miss(entry.0, rank);
+            rank += 1;
+        }
+        for next in extra {
+            change += miss(next.0, rank);
+            rank += 1;
+        }
+        change
+    }
+
+    fn apply(&mut self, change: Move<D>) {
+        let Move { point, to, depth, usable, counts, nearest, nearest_energy, energy } = change;
+        let mut sorted = Vec::with_capacity(self.sorted.len() + 1);
+        self.merge_nearest(&nearest, point, depth, |entry| sorted.push(entry));
+        self.grid.remove(point, &self.positions[point]);
+        self.grid.insert(point, &to);
+        self.centres[..self.usable[point]].iter_mut().for_each(|c| *c -= 1);
+        self.centres[..usable].iter_mut().for_each(|c| *c += 1);
+        self.counts.iter_mut().zip(&counts).for_each(|(c, d)| *c += d);
+        (self.positions[point], self.depths[point], self.usable[point]) = (to, depth, usable);
+        nearest.into_iter().for_each(|(i, n)| self.nearest[i] = n);
+        if sorted.len() != self.sorted.len() {
+            self.wanted_nearest = wanted_nearest(self.target, sorted.len());
+        }
+        (self.sorted, self.nearest_energy, self.energy) = (sorted, nearest_energy, energy);
+    }
+}
+
+/// Adds `sign` × the pair at distance `d` to each ring it touches (kernels of ramp half-width
+/// `ramp`), once for each of its two centres that may count the ring (`usable_i`, `usable_j` rings).
+fn add_pair(counts: &mut [f64], d: f64, usable_i: usize, usable_j: usize, (sign, ramp): (f64, f64)) {
+    for b in touched(d, ramp) {
+        let centres = (b < usable_i) as usize + (b < usable_j) as usize;
+        if centres > 0 {
+            counts[b] += sign * centres as f64 * kernel(b, d, ramp).0;
+        }
+    }
+}
+
+/// The ring chi-square of the parent's `evaluate`, `ring(b)` giving ring `b`'s pair count and
+/// usable centres.
+fn pair_energy(target: &Target, density_ratio: f64, ring: impl Fn(usize) -> (f64, f64)) -> f64 {
+    let mut energy = 0.0;
+    for (b, &per_centre) in target.per_centre.iter().enumerate() {
+        let (count, centres) = ring(b);
+        if centres == 0.0 || per_centre.is_nan() {
+            continue;
+        }
+        let wanted = (centres * per_centre * density_ratio).max(1.0);
+        energy += (count - wanted).powi(2) / wanted;
+    }
+    energy
+}
+
+/// The exemplar's nearest-neighbour distance at each rank of `n` sorted ones.
+fn wanted_nearest(target: &Target, n: usize) -> Vec<f64> {
+    (0..n).map(|rank| target.nearest_at((rank as f64 + 0.5) / n as f64)).collect()
+}
+
+/// Whether entry `a` of the sorted nearest-neighbour list comes before `b`.
+fn before(a: &(f64, usize), b: &(f64, usize)) -> bool {
+    a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).is_lt()
+}
+
+/// The nearest-neighbour term of the parent's `nearest_term`, over sorted counted distances.
+fn nearest_energy(target: &Target, sorted: &[(f64, usize)]) -> f64 {
+    let n = sorted.len() as f64;
+    sorted.iter().enumerate().map(|(rank, &(d, _))| nearest_miss(target, d, (rank as f64 + 0.5) / n)).sum()
+}
+
+/// One counted nearest-neighbour distance `d` at quantile `q` against the exemplar's there.
+fn nearest_miss(target: &Target, d: f64, q: f64) -> f64 {
+    let miss = (d - target.nearest_at(q)) / RING;
+    NEAREST_WEIGHT * miss * miss
+}
+
+#[cfg(test)]
+mod tests {
+    use motif_core::SeedStreams;
+
+    use super::super::evaluate;
+    use super::*;
+    use crate::fidelity;
+
+    fn random_points(n: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
+        let mut stream = SeedStreams::new(seed).stream("points", 0);
+        (0..n).map(|_| [side * stream.random::<f64>(), side * stream.random::<f64>()]).collect()
+    }
+
+    /// Tight clusters of `per` points (radius 0.4) around random centres in `[0, side)²`.
+    fn clusters(count: usize, per: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
+        let mut stream = SeedStreams::new(seed).stream("clusters", 0);
+        let mut points = Vec::new();
+        for _ in 0..count {
+            let centre = [1.0 + (side - 2.0) * stream.random::<f64>(), 1.0 + (side - 2.0) * stream.random::<f64>()];
+            for _ in 0..per {
+                let offset = linear::scale(&direction::<2>(&mut stream), 0.4 * stream.random::<f64>());
+                points.push(linear::add(&centre, &offset));
+            }
+        }
+        points
+    }
+
+    fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
+        move |p: &Vector<2>| fidelity::box_depth(p, &[0.0, 0.0], &[side, side], 2)
+    }
+
+    /// The energy kept move by move equals the one computed from scratch (the parent's
+    /// `evaluate`) after every kept move, and so do the nearest neighbours.
+    #[test]
+    fn the_energy_kept_move_by_move_is_the_energy_from_scratch() {
+        let side = 12.0;
+        let depth = box_depth(side);
+        let target = Target::new(&clusters(20, 5, side, 1), &depth, side * side, 0.0);
+        let mut points = random_points(100, side, 2);
+        let depths: Vec<f64> = points.iter().map(&depth).collect();
+        let ratio = 1.0;
+        let mut book = Book::new(&target, &mut points, depths, ratio);
+        let mut stream = SeedStreams::new(3).stream("moves", 0);
+        let mut kept = 0;
+        for _ in 0..600 {
+            let point = stream.random_range(0..book.positions.len());
+            let to = propose(&book, point, ([0.0; 2], [side; 2]), &mut stream);
+            if !to.iter().all(|x| (0.0..side).contains(x)) {
+                continue;
+            }
+            let change = book.try_move(point, to, depth(&to));
+            if change.energy < book.energy {
+                book.apply(change);
+                kept += 1;
+                let scratch = evaluate(&target, book.positions, &book.depths, ratio, None).energy;
+                assert!((scratch - book.energy).abs() <= 1e-9 * scratch.max(1.0), "{scratch} against {}", book.energy);
+            }
+        }
+        assert!(kept > 20, "{kept} moves kept");
+        let (moved, nearest) = (book.positions.to_vec(), book.nearest.clone());
+        let mut copy = moved.clone();
+        let fresh = Book::new(&target, &mut copy, moved.iter().map(&depth).collect(), ratio);
+        assert_eq!(fresh.nearest, nearest);
+    }
+
+    /// From random points, relocation gathers points into the exemplar's clusters: the g(r)
+    /// distance to the exemplar falls to under half the random set's, and fixed points stay.
+    #[test]
+    fn relocation_forms_the_clusters_of_a_clustered_exemplar() {
+        let side = 16.0;
+        let depth = box_depth(side);
+        let exemplar = clusters(30, 6, side, 4);
+        let target = Target::new(&exemplar, &depth, side * side, 0.0);
+        let mut points = random_points(exemplar.len(), side, 5);
+        let before = points.clone();
+        let movable: Vec<bool> = (0..points.len()).map(|i| i % 10 != 0).collect();
+        let inside = |p: &Vector<2>| p.iter().all(|&x| (0.0..=side).contains(&x));
+        let mut output = Output {
+            positions: &mut points,
+            movable: &movable,
+            depth: &depth,
+            allowed: &inside,
+            settle: &|p: &Vector<2>| *p,
+            volume: side * side,
+        };
+        let mut outcome = StatisticsRefinement::default();
+        relocate(
+            &target,
+            &mut output,
+            Settings { sweeps: 40, proposals: 0, most_sweeps: 40, quantum: None },
+            &mut SeedStreams::new(6).stream("relocation", 0),
+            &mut outcome,
+        );
+        assert!(outcome.relocation_energy_after < 0.2 * outcome.relocation_energy_before, "{outcome:?}");
+        let statistics = |points: &[Vector<2>]| {
+            let sample = fidelity::Sample { points, depth: &depth, volume: side * side, dimension: 2 };
+            fidelity::statistics(&sample, 1.0)
+        };
+        let g_distance =
+            |points: &[Vector<2>]| fidelity::distances(&statistics(&exemplar), &statistics(points)).radial_distribution;
+        let (random, relocated) = (g_distance(&before), g_distance(&points));
+        assert!(relocated < 0.5 * random, "g(r) distance {relocated}, random {random}");
+        for i in (0..points.len()).filter(|&i| !movable[i]) {
+            assert_eq!(points[i], before[i], "fixed point {i} moved");
+        }
+    }
+}
