@@ -53,7 +53,7 @@ fn refine_all(
     relocation::relocate(
         target,
         &mut output,
-        relocation::Settings { sweeps, proposals: 0, most_sweeps: sweeps, quantum: None },
+        relocation::Settings { sweeps, proposals: 0, quantum: None },
         &mut stream,
         &mut outcome,
     );
