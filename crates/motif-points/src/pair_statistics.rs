@@ -145,6 +145,11 @@ impl Target {
         Self { ramp, per_centre, nearest, density: points.len() as f64 / volume.max(1e-300) }
     }
 
+    /// The exemplar's largest counted nearest-neighbour distance.
+    fn farthest_nearest(&self) -> f64 {
+        self.nearest.last().copied().unwrap_or(f64::INFINITY)
+    }
+
     /// The exemplar's nearest-neighbour distance at quantile `q ∈ [0, 1]`.
     fn nearest_at(&self, q: f64) -> f64 {
         let n = self.nearest.len();

@@ -56,7 +56,7 @@ struct Move<const D: usize> {
     usable: usize,
     /// Change of each ring's count.
     counts: Vec<f64>,
-    /// New nearest neighbours, by point.
+    /// New nearest neighbours, by point (the moved point's first).
     nearest: Vec<(usize, Nearest)>,
     nearest_energy: f64,
     energy: f64,
@@ -119,11 +119,12 @@ pub(super) fn relocate<const D: usize>(
                 to = (output.settle)(&std::array::from_fn(|a| (to[a] / q).round() * q));
             }
             outcome.relocations_tried += 1;
-            if !(output.allowed)(&to) {
+            let depth = (output.depth)(&to);
+            if !(output.allowed)(&to) || !deep_enough(depth, book.depths[point]) {
                 continue;
             }
-            let change = book.try_move(point, to, (output.depth)(&to));
-            if change.energy < book.energy {
+            let change = book.try_move(point, to, depth);
+            if change.energy < book.energy && !book.isolates(&change) {
                 book.apply(change);
                 outcome.relocations_kept += 1;
             }
@@ -131,6 +132,14 @@ pub(super) fn relocate<const D: usize>(
         outcome.relocation_sweeps += 1;
     }
     outcome.relocation_energy_after = book.energy;
+}
+
+/// Whether a point `from_depth` deep may move to a place `depth` deep (spacings): not nearer the
+/// border than a spacing unless it was already. The statistics count a point near the border
+/// only as another's neighbour (its own rings and nearest neighbour reach outside), so without
+/// this rule surplus points were dumped along the borders, where they are nearly invisible.
+fn deep_enough(depth: f64, from_depth: f64) -> bool {
+    depth >= from_depth.min(1.0)
 }
 
 /// A place for `point`: uniform in `[low, high]`, at an exemplar nearest-neighbour distance from
@@ -267,6 +276,17 @@ impl<'a, const D: usize> Book<'a, D> {
             nearest_energy: nearest_part,
             energy: pair_part + nearest_part,
         }
+    }
+
+    /// Whether `change` drops the moved point farther from its nearest neighbour than any exemplar
+    /// point is from its own: alone in empty space or along a border, which the statistics barely
+    /// see (the nearest-neighbour term does not count a point nearer the border than its
+    /// neighbour) but a user does (stray dots between a traced chain's rings). Points a move
+    /// leaves behind are not held to it: forming clusters from random points leaves some alone
+    /// for a while (holding them too left the redwood from random points at 1.6–2.5 × the tiled
+    /// copy's g(r) distance, seeds 1–4).
+    fn isolates(&self, change: &Move<D>) -> bool {
+        change.nearest[0].1.1 > self.target.farthest_nearest()
     }
 
     /// The nearest neighbour of `j` when `moved` sits at `to`.
