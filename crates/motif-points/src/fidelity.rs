@@ -46,7 +46,7 @@ pub struct Statistics {
     /// Centres deep enough to count for each ring (0: the ring's g is unknown, reported as 0).
     pub ring_centres: Vec<usize>,
     /// Mean size of the cluster a point belongs to (`Σ size² / points`), clusters linking points
-    /// closer than [`CLUSTER_LINK`] spacings: 1 for points all farther apart, larger for
+    /// closer than one spacing (`CLUSTER_LINK`): 1 for points all farther apart, larger for
     /// clustered sets.
     pub mean_cluster_size: f64,
     /// Counted nearest-neighbour distances, sorted (for the Wasserstein distance; not reported).
