@@ -30,8 +30,10 @@
 //!   bounds around the exemplar's density.
 //! - `pair_statistics` (after Algorithm 1; not in the paper): the points near the seams between
 //!   copies move so that the output's ring counts and nearest-neighbour distances follow the
-//!   exemplar's (pair-correlation synthesis, Öztireli and Gross 2012), and a surplus over the
-//!   exemplar's density is thinned where that helps them most.
+//!   exemplar's (pair-correlation synthesis, Öztireli and Gross 2012), then are relocated one at
+//!   a time where that brings the statistics closer (its `relocation`: Tscheschel and Stoyan
+//!   2006, which forms a clustered exemplar's clusters from random points), and a surplus over the
+//!   exemplar's density is thinned where that helps them most (its `thinning`).
 //! - `init` (§5.2): patch initialization (default; each quadrature point starts matched to its
 //!   copy's source); `placement`: random points, and placing exemplar points or elements.
 //! - `setup`: the exemplar as features (attributes normalized, labels detected), the domain and
