@@ -1,16 +1,17 @@
 //! Relocation: the reconstruction step of Tscheschel and Stoyan (2006, "Statistical reconstruction
-//! of random point patterns") on the pair-statistics energy, before its gradient steps.
+//! of random point patterns") on the pair-statistics energy, after its gradient steps.
 //!
 //! Gradient steps move points by fractions of a spacing, so they cannot gather scattered points
 //! into the clusters of a clustered exemplar (from random points longleaf stayed as far from its
 //! g(r) as a random set) nor take a point out of a ring the exemplar never shows. Relocation moves
 //! one movable point at a time to a proposed place and keeps the move only when the whole energy
-//! goes down: the parent module's ring chi-square with hard rings, plus a chi-square of the
-//! histogram of counted nearest-neighbour distances (bins of a ring's width) against the
-//! exemplar's. Both are histograms, so the energy change of a move is exact, local and cheap: the
-//! pairs within the rings' reach of its two places and the nearest neighbours there. (The
-//! parent's rank-matched nearest-neighbour term needs a pass over the sorted distances per move:
-//! 21 000 points on a mesh spent 70 µs a proposal on it.) Proposals, a third each:
+//! goes down: the parent module's ring chi-square with hard rings (the bench's g(r) rings), plus
+//! the Wasserstein distance between the counted nearest-neighbour distances and the exemplar's,
+//! read off cumulative histograms of fine bins. Both are histograms, so the energy change of a
+//! move is exact, local and cheap: the pairs within the rings' reach of its two places and the
+//! nearest neighbours there. (The parent's rank-matched nearest-neighbour term needs a pass over
+//! the sorted distances per move: 21 000 points spent 70 µs a proposal on it.) Proposals, a third
+//! each:
 //! - anywhere in the domain's bounding box (Tscheschel and Stoyan's uniform proposal);
 //! - at one of the exemplar's nearest-neighbour distances (drawn from them) from a random point,
 //!   in a random direction: where the exemplar's clusters and spacings say points sit;
@@ -35,7 +36,7 @@ struct Book<'a, const D: usize> {
     depths: Vec<f64>,
     usable: Vec<usize>,
     grid: DynamicGrid<D>,
-    /// Kernel-weighted pair counts and usable centres per ring (as the parent's `evaluate`).
+    /// Pair counts and usable centres per ring (as the parent's `evaluate`, with the target's rings).
     counts: Vec<f64>,
     centres: Vec<usize>,
     nearest: Vec<Nearest>,
@@ -68,7 +69,7 @@ struct Move<const D: usize> {
 /// How relocation runs.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Settings {
-    /// Proposals per movable point, at least (a sweep proposes one per movable point).
+    /// Sweeps at least (a sweep proposes one move per movable point).
     pub sweeps: usize,
     /// Proposals in all, at least: fewer movable points get more sweeps (clusters form from few
     /// points, one move at a time: 62 redwood seedlings in a box four times their window, from
