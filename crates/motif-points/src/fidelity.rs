@@ -49,6 +49,10 @@ pub struct Statistics {
     /// closer than one spacing (`CLUSTER_LINK`): 1 for points all farther apart, larger for
     /// clustered sets.
     pub mean_cluster_size: f64,
+    /// Mean local thickness of a 3D set: the root-mean-square distance of a point and its 12
+    /// nearest neighbours from their plane, in spacings (a sheet or shell is thin; a uniform
+    /// random set about 1.4); 0 for 2D sets and sets on a surface.
+    pub thickness: f64,
     /// Counted nearest-neighbour distances, sorted (for the Wasserstein distance; not reported).
     #[serde(skip)]
     nearest: Vec<f64>,
@@ -66,6 +70,8 @@ pub struct Distances {
     pub rings_compared: usize,
     /// The set's mean cluster size over the exemplar's (1: clusters of the exemplar's size).
     pub cluster_size_ratio: f64,
+    /// The set's mean local thickness over the exemplar's (3D sets; 0 otherwise).
+    pub thickness_ratio: f64,
 }
 
 /// The fidelity figures of a synthesis.
@@ -179,6 +185,7 @@ pub(crate) fn statistics<const D: usize>(sample: &Sample<'_, D>, spacing: f64) -
         radial_distribution,
         ring_centres: usable,
         mean_cluster_size: clusters.mean_size(),
+        thickness: if sample.dimension == 3 { crate::thickness::mean_thickness(points, spacing) } else { 0.0 },
         nearest,
     }
 }
@@ -230,6 +237,7 @@ pub(crate) fn distances(reference: &Statistics, other: &Statistics) -> Distances
         radial_distribution: if rings.is_empty() { 0.0 } else { total / rings.len() as f64 },
         rings_compared: rings.len(),
         cluster_size_ratio: other.mean_cluster_size / reference.mean_cluster_size.max(1e-300),
+        thickness_ratio: if reference.thickness > 0.0 { other.thickness / reference.thickness } else { 0.0 },
     }
 }
 

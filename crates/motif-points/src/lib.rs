@@ -119,6 +119,7 @@ mod tests_attributes;
 mod tests_surface;
 #[cfg(test)]
 mod tests_synthesis;
+mod thickness;
 mod triangles;
 mod volume;
 

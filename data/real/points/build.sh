@@ -4,7 +4,8 @@
 # Needs
 #   Debian packages: r-base-core r-cran-spatstat.data r-cran-spatstat.geom (the point patterns),
 #                    librsvg2-bin (rsvg-convert), openclipart-svg (the chain drawing) and
-#                    pymol-data (the protein structure); the last two need not be installed:
+#                    pymol-data (the protein structure) and libcgal-demo (the fin sheet); the
+#                    last three need not be installed:
 #                    if they are not, this script fetches them with `apt-get download` into a
 #                    temporary folder and unpacks them there.
 #   Python 3 with the pip packages numpy, Pillow and scikit-image (the contour tracing), e.g.
@@ -36,5 +37,8 @@ rsvg-convert -w 220 -h 220 "$svg" -o "$tmp/chain_220.png"
 # 3. A cube of atoms of the crystal structure PDB 1TII.
 "$PYTHON" "$here/pdb_atoms.py" "$(package_file pymol-data usr/share/pymol/data/demo/1tii.pdb)" "$here"
 
-# 4. Checks every CSV and writes cases.json.
+# 4. A real 3D sheet with normals: CGAL's fin (CC0), from Debian's libcgal-demo.
+"$PYTHON" "$here/cgal_sheet.py" "$(package_file libcgal-demo usr/share/doc/libcgal-dev/data.tar.gz)" "$here"
+
+# 5. Checks every CSV and writes cases.json.
 "$PYTHON" "$here/make_manifest.py" "$here" "$tmp/windows.tsv"

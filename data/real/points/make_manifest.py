@@ -54,6 +54,10 @@ CASES = [
      "PDB entry 1TII (E. coli heat-labile enterotoxin type IIB, X-ray 2.25 Å, F. van den Akker "
      "and W.G.J. Hol, deposited 1996) as shipped in Debian pymol-data 2.5.0 "
      "(usr/share/pymol/data/demo/1tii.pdb), atoms in the cube [18,33] x [12,27] x [-21,-6] Å"),
+    ("fin_sheet", "3D continuous structure: a curved sheet (CGAL's fin) sampled with unit normals "
+     "(nx, ny, nz)", "bench",
+     "CGAL 5.5.1 data/points_3/fin90_with_PCA_normals.xyz, via Debian libcgal-demo 5.5.1-2 "
+     "(usr/share/doc/libcgal-dev/data.tar.gz), moved to the origin (cgal_sheet.py)"),
     ("chain_contours", "continuous structure: alpha = 128 contour samples every 1.75 px with unit "
      "outward normals (nx, ny), px, y down", "bench",
      "openclipart 'Gold Chain of Round Links' by Jonadab (Debian openclipart-svg 0.18, "
@@ -62,6 +66,7 @@ CASES = [
 ]
 LICENCE = {
     "chain_contours": "public domain (openclipart)",
+    "fin_sheet": "CC0 1.0 (CGAL's LICENSE: files without a copyright notice)",
     "protein_atoms": "CC0 1.0 (wwPDB data policy); file shipped in Debian pymol-data (PyMOL "
                      "licence, permissive)",
 }
@@ -87,7 +92,8 @@ def mean_nn(pts):
 
 def main():
     folder, windows_tsv = sys.argv[1], sys.argv[2]
-    windows = {"chain_contours": [200.0, 200.0], "protein_atoms": [15.0, 15.0, 15.0]}
+    windows = {"chain_contours": [200.0, 200.0], "protein_atoms": [15.0, 15.0, 15.0],
+               "fin_sheet": [1.1593, 0.7426, 0.7861]}
     with open(windows_tsv) as f:
         for line in f:
             name, *w = line.split("\t")

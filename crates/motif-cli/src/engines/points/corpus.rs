@@ -78,6 +78,12 @@ fn run_once(folder: &Path, case: &CorpusCase, seed: u64, initialization: Initial
             "exemplar": fidelity.exemplar_statistics.mean_cluster_size,
             "output": o.cluster_size_ratio, "random": r.cluster_size_ratio, "tiled": t.cluster_size_ratio,
         },
+        // 3D cases: mean local thickness (a point and its 12 nearest neighbours off their plane,
+        // in spacings), the exemplar's, and each set's over it (a sheet keeps its layers near 1).
+        "thickness": (fidelity.exemplar_statistics.thickness > 0.0).then(|| json!({
+            "exemplar": fidelity.exemplar_statistics.thickness,
+            "output": o.thickness_ratio, "random": r.thickness_ratio, "tiled": t.thickness_ratio,
+        })),
         "targets": {
             "density_within_3_percent": (fidelity.density_ratio - 1.0).abs() <= 0.03,
             "half_of_random": o.nearest_neighbour <= 0.5 * r.nearest_neighbour && o.radial_distribution <= 0.5 * r.radial_distribution,
