@@ -23,7 +23,7 @@ pub struct BenchArgs {
     pub quick: bool,
     /// Run only the cases of this name (repeat for several): a corpus case (e.g. longleaf,
     /// chain_round), a generated workload (curve: 199x82, 325x64; points: helix, sand, chair;
-    /// stylize: 0.15mp, 1mp, table1, exact; slow: structure, video, texture-native), or a group: corpus, generated, scale (strokes: the ε
+    /// stylize: 0.15mp, 1mp, table1, exact; slow: structure, video, texture-native, surface, volume), or a group: corpus, generated, scale (strokes: the ε
     /// inferred from each corpus drawing). Slow cases run only when named. Default: every case but
     /// the slow ones.
     #[arg(long = "case", value_name = "NAME")]

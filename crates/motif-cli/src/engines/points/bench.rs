@@ -115,6 +115,37 @@ fn surfaces(seed: u64) -> anyhow::Result<Value> {
     }))
 }
 
+/// A real 3D sheet inside a real mesh's volume (run with `--case volume`): CGAL's fin (the
+/// corpus's `fin_sheet`, 757 points with normals) at half scale inside CGAL's bull, with the
+/// fidelity and thickness figures against the random and tiled baselines (issue 35: within 1.5×
+/// of the tiled copy, layers kept).
+fn sheet_in_volume(seed: u64) -> anyhow::Result<Value> {
+    let folder = crate::suite::corpus_folder("points");
+    let table = motif_io::read_points(&folder.join("fin_sheet.csv"))?;
+    let (exemplar, _) = super::table_to_points(&table, "fin_sheet.csv")?;
+    let bull = motif_io::read_mesh(&crate::suite::corpus_folder("meshes").join("bull.obj"))?;
+    let mut params = Params::default().with_neighbourhood(Some(0.058)).with_seed(seed).with_scale(Field::Uniform(0.5));
+    params.exemplar_window = Some((vec![0.0; 3], vec![1.1593, 0.7426, 0.7861]));
+    let start = std::time::Instant::now();
+    let input = motif_points::Input::new(exemplar, Domain::Volume(bull));
+    let output = motif_points::synthesize(&input, &params, &mut motif_core::NoProgress)?;
+    let fidelity = &output.report.fidelity;
+    let (o, r, t) = (&fidelity.output, &fidelity.random, &fidelity.tiled);
+    Ok(json!({
+        "seconds": start.elapsed().as_secs_f64(),
+        "points": output.points.len(),
+        "expected_points": output.report.expected_points,
+        "density_ratio": fidelity.density_ratio,
+        "nearest_neighbour_distance": { "output": o.nearest_neighbour, "random": r.nearest_neighbour, "tiled": t.nearest_neighbour },
+        "radial_distribution_distance": { "output": o.radial_distribution, "random": r.radial_distribution, "tiled": t.radial_distribution },
+        "thickness": {
+            "exemplar": fidelity.exemplar_statistics.thickness,
+            "output": o.thickness_ratio, "random": r.thickness_ratio, "tiled": t.thickness_ratio,
+        },
+        "stages_ms": output.report.stages_ms,
+    }))
+}
+
 /// `exemplar` on `mesh` at `scale`, and in a square box of the mesh's area.
 fn surface_case(exemplar: &PointSet, mesh: TriangleMesh, scale: f64, seed: u64) -> anyhow::Result<Value> {
     let triangles = mesh.triangles.len();
@@ -190,6 +221,9 @@ pub(super) fn bench(bench: &Bench) -> anyhow::Result<Value> {
     }
     if bench.names("surface") {
         figures.insert("surfaces".into(), surfaces(bench.seed)?);
+    }
+    if bench.names("volume") {
+        figures.insert("fin_sheet_in_bull".into(), sheet_in_volume(bench.seed)?);
     }
     if bench.names("reconstruction") {
         figures.insert("reconstruction_50000".into(), reconstruction(50_000)?);
