@@ -41,7 +41,8 @@
 //!   fidelity figures read off the final state.
 //! - `solver` (Algorithm 1): the multi-scale loop, progressive synthesis (§6.2), the report.
 //! - `fidelity`: nearest-neighbour and g(r) distances to the exemplar in units of its spacing,
-//!   with a random set, a tiled copy and the exemplar's halves as baselines.
+//!   the mean cluster size and (3D) the local thickness of `thickness`, with a random set, a
+//!   tiled copy and the exemplar's halves as baselines.
 //! - [`samples`]: generated exemplars (demo, benchmarks); [`EnergyCase`]: single evaluations of T
 //!   for benchmarks.
 //! - `quilting` (§5.2 with image quilting): each initial patch's source chosen by how well its
