@@ -232,6 +232,7 @@ fn band_params(params: &Params) -> motif_stylize::Params {
         // The band starts at the textures' own matches: refine them locally, without the
         // occurrence penalty (made for whole images; a thin band has little to spread).
         .with_band_local_search(true)
+        .with_final_figures(false)
         .with_uniformity(0.0)
 }
 

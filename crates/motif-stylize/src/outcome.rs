@@ -116,6 +116,24 @@ pub(crate) fn composition_only(
     }
 }
 
+/// The output of a run without its final figures (`Params::final_figures` off): the image, an
+/// empty field and error map, a zero energy, the levels' reports and times.
+pub(crate) fn image_only(
+    image: FloatImage,
+    source_size: (usize, usize),
+    patch: usize,
+    (levels, timer, start): (Vec<crate::LevelReport>, motif_core::timing::StageTimer, Clock),
+    searched_pixels: usize,
+) -> Output {
+    let mut output = composition_only(&FloatImage::new(0, 0, 1), source_size, patch, start);
+    output.image = image;
+    output.report.levels = levels;
+    output.report.stages_ms = timer.finish();
+    output.report.total_ms = motif_core::timing::elapsed_ms(start);
+    output.report.searched_pixels = searched_pixels;
+    output
+}
+
 /// Mean per searched pixel of the style distance, guide distance and penalty; recomputes every
 /// searched pixel's cost on the way (as [`Field::recompute_costs`] does, to the same values).
 fn energy_parts(

@@ -7,7 +7,7 @@ use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 use crate::level::{Level, LevelSpec};
 use crate::native::{LOCAL_SEARCH_RADIUS, OCCURRENCE_SOURCE_SHARE, is_local, is_native};
 use crate::occurrence::Occurrence;
-use crate::outcome::{Figures, composition_only, public_field};
+use crate::outcome::{Figures, composition_only, image_only, public_field};
 use crate::search::{Field, exact_search, local_band_iteration, patchmatch_iteration};
 use crate::vote::vote;
 use crate::{Error, LevelReport, NnfMethod, Output, Params, Report, segments};
@@ -177,6 +177,13 @@ pub(crate) fn run<I: ChannelImage>(
         (level, report) = em.extra_pass(&mut field, level, &mut image, &mut scratch, progress);
         timer.add(&report.name, report.ms);
         reports.push(report);
+    }
+    if !params.final_figures {
+        let band_only = em.local_band().is_some();
+        let searched = (0..level.target_len())
+            .filter(|&t| if band_only { level.in_domain(t) } else { level.is_active(t) })
+            .count();
+        return Ok(image_only(image, source_size, params.patch_size, (reports, timer, start), searched));
     }
     let figures = Figures::new(&mut field, &level, params, em.local[0], em.local_band().is_some());
     let field = public_field(field, level, figures.vote_weights);

@@ -360,6 +360,16 @@ fn local_band_search_gives_overlapping_windows_the_same_pixels() {
     assert_ne!(window(a_origin, &params), composed, "the band was optimized");
     let (same, all) = agreement(&params.clone().with_band_local_search(false));
     assert!(same < all, "PatchMatch's scan order and window-keyed draws: {same} of {all} agree");
+    // Without the final figures (map tiles): the same bytes, and no field or error map.
+    let bare = params.clone().with_final_figures(false);
+    assert_eq!(window(a_origin, &bare), window(a_origin, &params));
+    let target = flat(80, 64, |x, y| plane(x as i64, y as i64));
+    let mut input =
+        Input::guided(case.style.clone(), vec![Guide { source: case.guides[0].source.clone(), target, weight: None }]);
+    input.textures = Some(textures.clone());
+    let output = synthesize(&input, &bare, &mut NoProgress).unwrap();
+    assert_eq!((output.field.matches.len(), output.error_map.width()), (0, 0));
+    assert!(output.report.searched_pixels > 0 && !output.report.levels.is_empty());
 }
 
 #[test]
