@@ -1,7 +1,9 @@
 //! Pair-statistics refinement: after the paper's optimization, the points near the seams between
 //! copied patches (every point, from random initialization) move by gradient descent so that the
-//! output's pair statistics follow the exemplar's measured ones, and a surplus over the exemplar's
-//! density is removed where that helps them most.
+//! output's pair statistics follow the exemplar's measured ones, then jump one at a time where
+//! that brings them closer (child module `relocation`, which forms clusters the small steps
+//! cannot; not on surfaces), and a surplus over the exemplar's density is removed where that helps
+//! them most (child module `thinning`).
 //!
 //! Roveri et al.'s energy T rewards windows that some exemplar window explains on average; it has
 //! no term for the distribution of pair distances over the whole output, and on the real corpus
