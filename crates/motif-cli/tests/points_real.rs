@@ -99,7 +99,7 @@ fn small_real_patterns_keep_their_density_and_beat_a_random_set() {
 /// nearest-neighbour distances within 1.5× of a tiled copy's, and the mean cluster size nearer the
 /// exemplar's than a random set's. Relocation (docs/points.md) forms the clusters; before it, the
 /// redwood from random points stayed at 0.75–0.79 × the random set's g(r) distance. Redwood
-/// (seeds 1–4, both starts: 0.67–1.44 × the tiled copy's g(r) distance) and the Finnish pines.
+/// (seeds 1–4, both starts: 0.80–1.29 × the tiled copy's g(r) distance) and the Finnish pines.
 #[test]
 fn clustered_real_patterns_form_their_clusters_from_either_start() {
     let cases = [
