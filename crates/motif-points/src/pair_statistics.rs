@@ -147,6 +147,14 @@ impl Target {
         Self { ramp, per_centre, nearest, density: points.len() as f64 / volume.max(1e-300) }
     }
 
+    /// The pair count ring `b` asks for around `centres` usable centres of an output
+    /// `density_ratio` times as dense as the exemplar (at least 1); `None` when the ring is not
+    /// compared (no centre, or the exemplar cannot estimate it).
+    fn wanted(&self, b: usize, centres: f64, density_ratio: f64) -> Option<f64> {
+        let per_centre = self.per_centre[b];
+        (centres > 0.0 && !per_centre.is_nan()).then(|| (centres * per_centre * density_ratio).max(1.0))
+    }
+
     /// The exemplar's largest counted nearest-neighbour distance.
     fn farthest_nearest(&self) -> f64 {
         self.nearest.last().copied().unwrap_or(f64::INFINITY)
@@ -244,11 +252,8 @@ fn evaluate<const D: usize>(
     let mut energy = 0.0;
     let (mut wanted, mut weights, mut slopes) = (vec![0.0; bins], vec![0.0; bins], vec![0.0; bins]);
     for b in 0..bins {
-        let per_centre = target.per_centre[b];
-        if centres[b] == 0 || per_centre.is_nan() {
-            continue;
-        }
-        wanted[b] = (centres[b] as f64 * per_centre * density_ratio).max(1.0);
+        let Some(asked) = target.wanted(b, centres[b] as f64, density_ratio) else { continue };
+        wanted[b] = asked;
         weights[b] = 1.0 / wanted[b];
         let excess = counts[b] - wanted[b];
         energy += excess * excess * weights[b];

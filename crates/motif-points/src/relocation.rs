@@ -383,16 +383,12 @@ fn add_pair(counts: &mut [f64], d: f64, usable_i: usize, usable_j: usize, (sign,
 /// The ring chi-square of the parent's `evaluate`, `ring(b)` giving ring `b`'s pair count and
 /// usable centres.
 fn pair_energy(target: &Target, density_ratio: f64, ring: impl Fn(usize) -> (f64, f64)) -> f64 {
-    let mut energy = 0.0;
-    for (b, &per_centre) in target.per_centre.iter().enumerate() {
-        let (count, centres) = ring(b);
-        if centres == 0.0 || per_centre.is_nan() {
-            continue;
-        }
-        let wanted = (centres * per_centre * density_ratio).max(1.0);
-        energy += (count - wanted).powi(2) / wanted;
-    }
-    energy
+    (0..rings())
+        .filter_map(|b| {
+            let (count, centres) = ring(b);
+            target.wanted(b, centres, density_ratio).map(|wanted| (count - wanted).powi(2) / wanted)
+        })
+        .sum()
 }
 
 /// Bins of the nearest-neighbour histogram: a tenth of a ring's width up to the rings' reach.
