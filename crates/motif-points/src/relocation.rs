@@ -414,13 +414,9 @@ fn shares(target: &Target) -> Vec<f64> {
 mod tests {
     use motif_core::SeedStreams;
 
+    use super::super::tests::{box_depth, in_box, random_points};
     use super::*;
     use crate::fidelity;
-
-    fn random_points(n: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
-        let mut stream = SeedStreams::new(seed).stream("points", 0);
-        (0..n).map(|_| [side * stream.random::<f64>(), side * stream.random::<f64>()]).collect()
-    }
 
     /// Tight clusters of `per` points (radius 0.4) around random centres in `[0, side)²`.
     fn clusters(count: usize, per: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
@@ -434,10 +430,6 @@ mod tests {
             }
         }
         points
-    }
-
-    fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
-        move |p: &Vector<2>| fidelity::box_depth(p, &[0.0, 0.0], &[side, side], 2)
     }
 
     /// The energy, pair counts and nearest-neighbour histogram kept move by move equal those of a
@@ -492,14 +484,7 @@ mod tests {
         let before = points.clone();
         let movable: Vec<bool> = (0..points.len()).map(|i| i % 10 != 0).collect();
         let inside = |p: &Vector<2>| p.iter().all(|&x| (0.0..=side).contains(&x));
-        let mut output = Output {
-            positions: &mut points,
-            movable: &movable,
-            depth: &depth,
-            allowed: &inside,
-            settle: &|p: &Vector<2>| *p,
-            volume: side * side,
-        };
+        let mut output = in_box(&mut points, &movable, &depth, &inside, side);
         let mut outcome = StatisticsRefinement::default();
         relocate(
             &target,

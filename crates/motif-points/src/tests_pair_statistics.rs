@@ -7,7 +7,7 @@ use motif_core::random::Rng;
 use super::*;
 
 /// `n` uniform random points in `[0, side)²` (distances in spacings).
-fn random_points(n: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
+pub(super) fn random_points(n: usize, side: f64, seed: u64) -> Vec<Vector<2>> {
     let mut stream = SeedStreams::new(seed).stream("points", 0);
     (0..n).map(|_| [side * stream.random::<f64>(), side * stream.random::<f64>()]).collect()
 }
@@ -25,8 +25,23 @@ fn jittered_grid(side: usize, seed: u64) -> Vec<Vector<2>> {
     points
 }
 
-fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
+pub(super) fn box_depth(side: f64) -> impl Fn(&Vector<2>) -> f64 + Sync {
     move |p: &Vector<2>| fidelity::box_depth(p, &[0.0, 0.0], &[side, side], 2)
+}
+
+/// The refinement's view of `positions` in the box `[0, side]²`: `movable` points may go where
+/// `allowed` says, nothing is settled.
+pub(super) fn in_box<'a>(
+    positions: &'a mut [Vector<2>],
+    movable: &'a [bool],
+    depth: &'a (dyn Fn(&Vector<2>) -> f64 + Sync),
+    allowed: &'a (dyn Fn(&Vector<2>) -> bool + Sync),
+    side: f64,
+) -> Output<'a, 2> {
+    fn unmoved(p: &Vector<2>) -> Vector<2> {
+        *p
+    }
+    Output { positions, movable, depth, allowed, settle: &unmoved, volume: side * side }
 }
 
 /// Refines every point of `points` in the box `[0, side)²` with no other constraint: `sweeps`
@@ -39,14 +54,7 @@ fn refine_all(
 ) -> StatisticsRefinement {
     let movable = vec![true; points.len()];
     let depth = box_depth(side);
-    let mut output = Output {
-        positions: points,
-        movable: &movable,
-        depth: &depth,
-        allowed: &|_: &Vector<2>| true,
-        settle: &|p: &Vector<2>| *p,
-        volume: side * side,
-    };
+    let mut output = in_box(points, &movable, &depth, &|_: &Vector<2>| true, side);
     let mut outcome = StatisticsRefinement::default();
     refine(target, &mut output, iterations, &mut outcome);
     let mut stream = SeedStreams::new(1).stream("relocation", 0);
@@ -114,14 +122,7 @@ fn refinement_lowers_the_energy_and_leaves_fixed_points_alone() {
     let movable: Vec<bool> = (0..points.len()).map(|i| i % 3 != 0).collect();
     let depth = box_depth(side);
     let inside = |p: &Vector<2>| p.iter().all(|&x| (0.0..=side).contains(&x));
-    let mut output = Output {
-        positions: &mut points,
-        movable: &movable,
-        depth: &depth,
-        allowed: &inside,
-        settle: &|p: &Vector<2>| *p,
-        volume: side * side,
-    };
+    let mut output = in_box(&mut points, &movable, &depth, &inside, side);
     let mut outcome = StatisticsRefinement::default();
     refine(&target, &mut output, 30, &mut outcome);
     assert!(outcome.steps_kept > 5, "{outcome:?}");
