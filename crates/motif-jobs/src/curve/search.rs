@@ -9,13 +9,19 @@
 //! 1. piece lengths of [`PIECE_LENGTH_FACTORS`] × the guess, and half the pattern's period when
 //!    it has one (a length that divides the period keeps the motifs' phase from piece to piece),
 //!    at the guessed width;
-//! 2. widths of [`WIDTH_FACTORS`] × the guess, at the best piece length (wider ribbons only: the
-//!    guess is the narrowest that holds the pattern with its margin).
+//! 2. widths of [`WIDTH_FACTORS`] × the guess, at the best piece length (a little narrower and
+//!    wider: the guess's 15 % margin is a rule of thumb, and every one of them still holds the
+//!    pattern's height);
+//! 3. at the best width, the piece lengths halfway between the best length and its nearest tried
+//!    neighbours below and above (the output's fidelity is not smooth in the length, so the ladder
+//!    of step 1 alone misses good lengths between its rungs).
 //!
 //! The score is the output's mean patch distance to the exemplar, raised by its share of broken
 //! patches ([`score`]). Each trial is a whole run with the job's own solver and seed, so the kept
 //! output is byte-identical to a run given that width and piece length. A value the job gives is
-//! never searched.
+//! never searched. Two budgets in position pairs (not seconds, so the output is the same on any
+//! machine) keep a large problem from taking a dozen trials' time: [`MAX_PAIRS_TO_SEARCH`] for
+//! the first trial, [`SEARCH_BUDGET`] times it for the whole search.
 
 use motif_core::Progress;
 use motif_curve::{Dimensions, Output, PatchFidelity};
@@ -24,14 +30,19 @@ use serde::{Deserialize, Serialize};
 use crate::JobError;
 
 /// Piece lengths tried, as multiples of the inferred one (the inferred one first).
-pub(crate) const PIECE_LENGTH_FACTORS: [f64; 5] = [1.0, 0.8, 1.25, 1.6, 2.0];
+pub(crate) const PIECE_LENGTH_FACTORS: [f64; 6] = [1.0, 0.8, 1.25, 1.6, 2.0, 2.5];
 /// Widths tried after the piece length is settled, as multiples of the inferred one.
-pub(crate) const WIDTH_FACTORS: [f64; 2] = [1.05, 1.1];
+pub(crate) const WIDTH_FACTORS: [f64; 4] = [0.95, 0.98, 1.05, 1.1];
 /// Most position pairs (`Σ V_{i−1} V_i`, the dynamic program's size) the first trial may have for
 /// the others to run: the round chain on the heart has 1.8 × 10⁹, the dense chain 2.4 × 10⁹ (7
 /// trials: 17 s), the 600 × 250 chain with the exact solver about 3.5 × 10¹⁰ (over two minutes a
 /// trial). Larger problems keep the guess, with a warning.
 pub(crate) const MAX_PAIRS_TO_SEARCH: u64 = 10_000_000_000;
+/// The search's whole budget, in multiples of the largest first trial ([`MAX_PAIRS_TO_SEARCH`]
+/// in a job): once its trials have compared that many position pairs, the rest are left out, so
+/// that a large problem takes a few trials' time, not a dozen (the 600 × 250 chain on the
+/// flourish: trials of up to 10¹⁰ pairs and 25 s each).
+pub(crate) const SEARCH_BUDGET: u64 = 4;
 /// Weight of the broken-patch share in [`score`]: a point of broken patches costs as much as 4 %
 /// of patch distance.
 pub(crate) const BROKEN_WEIGHT: f64 = 4.0;
@@ -49,6 +60,8 @@ pub struct Trial {
     pub broken_fraction: f64,
     /// Patch distance × (1 + 4 × broken share): lower is better.
     pub score: f64,
+    /// Position pairs its dynamic program compared (what the search's budget counts).
+    pub pairs: u64,
     /// Seconds the trial took.
     pub seconds: f64,
 }
@@ -70,8 +83,10 @@ pub(crate) struct Tried {
 /// `dimensions`) with every trial's figures. `max_piece_length` caps the candidates (the curve's
 /// length); `scale` turns the pattern's period into canvas pixels; when the first trial's
 /// dynamic program has more than `max_pairs` position pairs ([`MAX_PAIRS_TO_SEARCH`] in a job),
-/// it is kept alone, with a warning. Errors of the first trial, the guess itself, are the run's
-/// errors; a later candidate that fails is skipped.
+/// it is kept alone, with a warning, and once the trials' dynamic programs have compared
+/// [`SEARCH_BUDGET`] × `max_pairs` pairs in all, the search stops there, with a warning. Errors
+/// of the first trial, the guess itself, are the run's errors; a later candidate that fails is
+/// skipped.
 pub(crate) fn search(
     dimensions: &mut Dimensions,
     (max_piece_length, scale, max_pairs): (f64, f64, u64),
@@ -86,48 +101,108 @@ pub(crate) fn search(
     };
     let widths: Vec<f64> =
         if width.inferred { candidates(width.value, &WIDTH_FACTORS, f64::ceil, f64::INFINITY) } else { Vec::new() };
-    let total = lengths.len() + widths.len();
-    let mut trials = Vec::with_capacity(total);
-    let mut best: Option<Tried> = None;
-    let mut attempt = |w: f64, l: f64, trials: &mut Vec<Trial>, best: &mut Option<Tried>| {
-        let mut labelled = Labelled { inner: &mut *progress, trial: trials.len() + 1, total };
+    // A factor that rounds back to the guess would repeat a trial of step 1.
+    let widths: Vec<f64> = widths.into_iter().filter(|&w| w != width.value).collect();
+    // Step 3 tries at most two lengths; the count is exact once step 1 has chosen.
+    let planned = lengths.len() + widths.len() + if piece_length.inferred { 2 } else { 0 };
+    let mut state = Trials::new(planned, max_pairs.saturating_mul(SEARCH_BUDGET));
+    state.attempt((width.value, lengths[0]), progress, &mut run)?;
+    if too_large_to_search(state.best.as_mut().map(|b| &mut b.output), planned, max_pairs) {
+        return Ok(state.finish(dimensions));
+    }
+    for &l in &lengths[1..] {
+        state.attempt((width.value, l), progress, &mut run)?;
+    }
+    let best_length = state.best().piece_length;
+    let between = if piece_length.inferred { lengths_between(best_length, &lengths) } else { Vec::new() };
+    state.planned = lengths.len() + widths.len() + between.len();
+    for &w in &widths {
+        state.attempt((w, best_length), progress, &mut run)?;
+    }
+    let best_width = state.best().width;
+    for &l in &between {
+        state.attempt((best_width, l), progress, &mut run)?;
+    }
+    Ok(state.finish(dimensions))
+}
+
+/// The search so far: the trials run, the best one, and the position pairs their dynamic
+/// programs compared.
+struct Trials {
+    trials: Vec<Trial>,
+    best: Option<Tried>,
+    planned: usize,
+    spent_pairs: u64,
+    budget_pairs: u64,
+    /// Trials left out because the budget was spent.
+    skipped: usize,
+}
+
+impl Trials {
+    fn new(planned: usize, budget_pairs: u64) -> Self {
+        Self { trials: Vec::with_capacity(planned), best: None, planned, spent_pairs: 0, budget_pairs, skipped: 0 }
+    }
+
+    /// The best trial so far (there is one once the first trial has returned).
+    fn best(&self) -> Trial {
+        self.best.as_ref().expect("the first trial either succeeded or returned its error").trial
+    }
+
+    /// Runs one trial at `(width, piece_length)` unless the budget is spent, and keeps it if it
+    /// scores best. Only the first trial's error is returned.
+    fn attempt(
+        &mut self,
+        (width, piece_length): (f64, f64),
+        progress: &mut dyn Progress,
+        run: &mut impl FnMut(f64, f64, &mut dyn Progress) -> Result<(Output, PatchFidelity), JobError>,
+    ) -> Result<(), JobError> {
+        if self.spent_pairs >= self.budget_pairs {
+            self.skipped += 1;
+            return Ok(());
+        }
+        let mut labelled = Labelled { inner: progress, trial: self.trials.len() + 1, total: self.planned };
         let started = std::time::Instant::now();
-        let result = run(w, l, &mut labelled);
-        let (output, fidelity) = match result {
+        let (output, fidelity) = match run(width, piece_length, &mut labelled) {
             Ok(done) => done,
-            Err(error) if best.is_none() => return Err(error),
+            Err(error) if self.best.is_none() => return Err(error),
             Err(_) => return Ok(()),
         };
+        let pairs = output.report.dp_counters.pairs;
+        self.spent_pairs = self.spent_pairs.saturating_add(pairs);
         let trial = Trial {
-            width: w,
-            piece_length: l,
+            pairs,
+            width,
+            piece_length,
             patch_distance: fidelity.mean_distance,
             broken_fraction: fidelity.broken_fraction,
             score: score(&fidelity),
             seconds: started.elapsed().as_secs_f64(),
         };
-        trials.push(trial);
-        if best.as_ref().is_none_or(|b| trial.score < b.trial.score) {
-            *best = Some(Tried { trial, output, fidelity });
+        self.trials.push(trial);
+        if self.best.as_ref().is_none_or(|b| trial.score < b.trial.score) {
+            self.best = Some(Tried { trial, output, fidelity });
         }
         Ok(())
-    };
-    let mut too_large = false;
-    for &l in &lengths {
-        attempt(width.value, l, &mut trials, &mut best)?;
-        too_large = trials.len() == 1 && too_large_to_search(best.as_mut().map(|b| &mut b.output), total, max_pairs);
-        if too_large {
-            break;
+    }
+
+    /// The best trial (with a warning when the budget cut the search short) and every trial's
+    /// figures; the best width and piece length written into `dimensions`.
+    fn finish(self, dimensions: &mut Dimensions) -> (Tried, Vec<Trial>) {
+        let mut best = self.best.expect("the first trial either succeeded or returned its error");
+        if self.skipped > 0 {
+            best.output.report.warnings.push(format!(
+                "the size search stopped after {} of {} trials: their dynamic programs had compared {:.2e} position \
+                 pairs, its budget; give --piece-length (and --width) to choose them, or use --solver coarse, whose \
+                 trials are cheaper",
+                self.trials.len(),
+                self.trials.len() + self.skipped,
+                self.spent_pairs as f64
+            ));
         }
+        dimensions.width.value = best.trial.width;
+        dimensions.piece_length.value = best.trial.piece_length;
+        (best, self.trials)
     }
-    let best_length = best.as_ref().map_or(piece_length.value, |b| b.trial.piece_length);
-    for &w in widths.iter().filter(|_| !too_large) {
-        attempt(w, best_length, &mut trials, &mut best)?;
-    }
-    let best = best.expect("the first trial either succeeded or returned its error");
-    dimensions.width.value = best.trial.width;
-    dimensions.piece_length.value = best.trial.piece_length;
-    Ok((best, trials))
 }
 
 /// Whether the first trial's dynamic program was too large for the others to run; if so, says so
@@ -156,6 +231,21 @@ fn piece_lengths(guess: f64, period: Option<usize>, scale: f64, max: f64) -> Vec
         lengths.push(half);
     }
     lengths
+}
+
+/// The lengths halfway between `best` and its nearest neighbours below and above in `tried`
+/// (rounded; those already tried or equal to `best` left out).
+fn lengths_between(best: f64, tried: &[f64]) -> Vec<f64> {
+    let below = tried.iter().copied().filter(|&l| l < best).max_by(f64::total_cmp);
+    let above = tried.iter().copied().filter(|&l| l > best).min_by(f64::total_cmp);
+    let mut between: Vec<f64> = Vec::with_capacity(2);
+    for neighbour in [below, above].into_iter().flatten() {
+        let middle = ((best + neighbour) / 2.0).round();
+        if middle != best && middle != neighbour && !tried.contains(&middle) && !between.contains(&middle) {
+            between.push(middle);
+        }
+    }
+    between
 }
 
 /// `value × factor` for each factor, rounded with `round`, at least 1 and at most `max`, without
@@ -195,18 +285,32 @@ mod tests {
     /// Half the period joins the lengths around the guess (in canvas pixels, once).
     #[test]
     fn half_the_period_is_tried_too() {
-        assert_eq!(piece_lengths(22.0, Some(40), 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 20.0]);
-        assert_eq!(piece_lengths(20.0, Some(40), 1.0, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0]);
-        assert_eq!(piece_lengths(22.0, Some(40), 2.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 10.0]);
-        assert_eq!(piece_lengths(22.0, None, 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0]);
+        assert_eq!(piece_lengths(22.0, Some(40), 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 55.0, 20.0]);
+        assert_eq!(piece_lengths(20.0, Some(40), 1.0, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0, 50.0]);
+        assert_eq!(piece_lengths(22.0, Some(40), 2.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 55.0, 10.0]);
+        assert_eq!(piece_lengths(22.0, None, 1.0, 100.0), vec![22.0, 18.0, 28.0, 35.0, 44.0, 55.0]);
     }
 
     #[test]
     fn candidates_are_rounded_capped_and_unique() {
-        assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![20.0, 16.0, 25.0, 32.0, 40.0]);
+        assert_eq!(
+            candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0),
+            vec![20.0, 16.0, 25.0, 32.0, 40.0, 50.0]
+        );
         assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 30.0), vec![20.0, 16.0, 25.0, 30.0]);
-        assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0]);
-        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![80.0, 84.0]);
+        assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0, 3.0]);
+        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![73.0, 75.0, 80.0, 84.0]);
+    }
+
+    /// Step 3's lengths lie halfway to the best length's neighbours, never on a tried one.
+    #[test]
+    fn lengths_between_the_best_and_its_neighbours() {
+        let tried = [20.0, 16.0, 25.0, 32.0, 40.0, 50.0];
+        assert_eq!(lengths_between(25.0, &tried), vec![23.0, 29.0]);
+        assert_eq!(lengths_between(16.0, &tried), vec![18.0]);
+        assert_eq!(lengths_between(50.0, &tried), vec![45.0]);
+        assert_eq!(lengths_between(2.0, &[1.0, 2.0, 3.0]), Vec::<f64>::new());
+        assert_eq!(lengths_between(30.0, &[30.0]), Vec::<f64>::new());
     }
 
     /// The rings along a line, searched with a pair budget under and over the first trial's.
@@ -223,13 +327,18 @@ mod tests {
             Ok((output, fidelity))
         };
         let mut searched = guess;
-        let (best, trials) = search(&mut searched, (1e9, 1.0, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
-        // Five lengths around the guess (half the rings' 16-pixel period among them), then two
-        // wider ribbons.
+        let (best, all) = search(&mut searched, (1e9, 1.0, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
+        // Six lengths around the guess (half the rings' 16-pixel period among them), two wider
+        // ribbons (the narrower ones round back to the guess), two lengths next to the best one.
         assert_eq!(guess.period, Some(16));
-        assert_eq!(trials.len(), 7, "{trials:?}");
+        assert_eq!(all.len(), 10, "{all:?}");
+        let tried: Vec<(f64, f64)> = all.iter().map(|t| (t.width, t.piece_length)).collect();
+        let unique: std::collections::BTreeSet<(u64, u64)> =
+            tried.iter().map(|&(w, l)| (w.to_bits(), l.to_bits())).collect();
+        assert_eq!(unique.len(), tried.len(), "a trial repeated: {tried:?}");
+        assert!(all.iter().all(|t| t.score >= best.trial.score));
         assert!(best.output.report.warnings.is_empty());
-        let pairs = best.output.report.dp_counters.pairs;
+        let pairs = all[0].pairs;
         assert!(pairs > 0);
         let mut kept = guess;
         let (best, trials) = search(&mut kept, (1e9, 1.0, pairs / 4), &mut motif_core::NoProgress, run).unwrap();
@@ -240,6 +349,23 @@ mod tests {
             "{:?}",
             best.output.report.warnings
         );
+        // A first trial within the limit, a whole search over the budget (4 first trials' pairs):
+        // it stops once the budget is spent, says so, and keeps the best of the trials it ran.
+        let ran = 1 + all
+            .iter()
+            .scan(0, |spent, t| {
+                *spent += t.pairs;
+                Some(*spent)
+            })
+            .take_while(|&spent| spent < 4 * pairs)
+            .count();
+        assert!(ran < 10, "the budget stops this search part way: {all:?}");
+        let (best, trials) = search(&mut guess.clone(), (1e9, 1.0, pairs), &mut motif_core::NoProgress, run).unwrap();
+        let figures = |t: &Trial| (t.width, t.piece_length, t.score, t.pairs);
+        assert_eq!(trials.iter().map(figures).collect::<Vec<_>>(), all[..ran].iter().map(figures).collect::<Vec<_>>());
+        assert!(trials.iter().all(|t| t.score >= best.trial.score));
+        let warning = best.output.report.warnings.iter().find(|w| w.contains("size search stopped after"));
+        assert!(warning.is_some_and(|w| w.contains(&format!("after {ran} of "))), "{warning:?}");
     }
 
     #[test]
