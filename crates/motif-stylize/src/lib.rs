@@ -114,7 +114,7 @@ pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use native::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use params::{NnfMethod, Params, Segmentation};
-pub use presynth::{PresynthInput, presynth_memory, presynthesize};
+pub use presynth::{PresynthInput, presynth_memory, presynthesize, presynthesize_closer};
 pub use quilting::{inferred_coarse_patch_size, inferred_quilt_block};
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
 pub use structure_fidelity::{nearest_patch_distance, sharpness};
