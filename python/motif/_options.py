@@ -581,3 +581,10 @@ class TilesOptions(TypedDict, total=False):
     band_patchmatch_iters: int
     #: Narrowest line drawn, in pixels, so that small roads stay visible at low zooms. Allowed: 0.25–16. Default: 1.
     min_line_width: float
+    #: Levels of the texture pyramid, so that zooming in keeps the textures' layout: the first textures serve
+    #: --base-zoom and below; each next level, twice the side and synthesized under the one before magnified
+    #: twice, serves the next zoom (deeper zooms take the last). Made when a tile first needs them; 1 = the
+    #: same textures at every zoom. Allowed: 1–4. Default: 2.
+    texture_levels: int
+    #: Zoom level of the first textures of the pyramid (see --texture-levels). Allowed: 0–24. Default: 15.
+    base_zoom: int

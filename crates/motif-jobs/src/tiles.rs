@@ -14,7 +14,7 @@ use crate::{Finished, Job, JobError};
 /// crate.
 pub use motif_maps::{
     Fill, Layer, Legend, MAX_ZOOM, MapBuilder, MapClass, MapData, TileId, TileSet, TileSetReport, project, seam_error,
-    tiles_covering, unproject,
+    tiles_covering, unproject, zoom_error,
 };
 
 const DEFAULTS: motif_maps::Params = motif_maps::Params::DEFAULT;
@@ -57,6 +57,15 @@ crate::declare_options! {
         /// Narrowest line drawn, in pixels, so that small roads stay visible at low zooms.
         [value_name: "PX", range: (0.25, 16.0)]
         min_line_width: f32 = DEFAULTS.min_line_width,
+        /// Levels of the texture pyramid, so that zooming in keeps the textures' layout: the
+        /// first textures serve --base-zoom and below; each next level, twice the side and
+        /// synthesized under the one before magnified twice, serves the next zoom (deeper zooms
+        /// take the last). Made when a tile first needs them; 1 = the same textures at every zoom.
+        [value_name: "N", range: (1.0, 4.0)]
+        texture_levels: usize = DEFAULTS.texture_levels,
+        /// Zoom level of the first textures of the pyramid (see --texture-levels).
+        [value_name: "Z", range: (0.0, 24.0)]
+        base_zoom: usize = DEFAULTS.base_zoom as usize,
     }
 }
 
@@ -119,6 +128,8 @@ impl TilesJob {
             .with_band_iterations(o.band_iters)
             .with_band_patchmatch_iterations(o.band_patchmatch_iters)
             .with_min_line_width(o.min_line_width)
+            .with_texture_levels(o.texture_levels)
+            .with_base_zoom(u8::try_from(o.base_zoom).unwrap_or(u8::MAX))
             .with_seed(self.seed);
         params.validate().map_err(maps_error)?;
         Ok(params)

@@ -14,7 +14,10 @@
 //! - `legend`: a [`Legend`] (a texture or a colour per class) and its atlas, the style exemplar.
 //! - `seams`: [`seam_error`], how visible the borders of tiles rendered apart are.
 //! - `tiles`: [`TileSet`]: the presynthesis (§3.7, once) and any tile rendered on demand, its
-//!   textures laid in the zoom level's coordinates so neighbouring tiles continue each other.
+//!   textures laid in the zoom level's coordinates so neighbouring tiles continue each other; a
+//!   pyramid of textures, each level twice the side and guided by the one before (§5.3's zoom,
+//!   [`Params::texture_levels`]), so that zooming in keeps the layout.
+//! - `zoom`: [`zoom_error`], how far a tile's four tiles at the next zoom stray from it.
 //!
 //! The crate does no I/O (readers of `.osm.pbf` files live in `motif-io`) and builds for
 //! `wasm32`.
@@ -47,6 +50,7 @@ mod raster;
 mod rings;
 mod seams;
 mod tiles;
+mod zoom;
 
 pub use class::{MapClass, Shape, classify};
 pub use error::Error;
@@ -59,3 +63,4 @@ pub use params::Params;
 pub use raster::{TileFrame, crop_margin, segment_map};
 pub use seams::seam_error;
 pub use tiles::{Layer, TileSet, TileSetReport};
+pub use zoom::zoom_error;

@@ -33,6 +33,15 @@ pub struct Params {
     /// Narrowest line drawn, in pixels, so that small roads stay visible at low zooms. Range
     /// 0.25..=16, default 1.
     pub min_line_width: f32,
+    /// Levels of the texture pyramid: the pre-synthesized textures serve zoom [`Params::base_zoom`]
+    /// and below; each further level, twice the side of the one before and guided by it
+    /// magnified (`motif_stylize::presynthesize_closer`), serves the next zoom, so that zooming in
+    /// keeps the textures' layout; zooms past the last level take the last. Made when a tile
+    /// first needs them. 1 = the same textures at every zoom. Range 1..=4, default 2.
+    pub texture_levels: usize,
+    /// The zoom level of the first textures (see [`Params::texture_levels`]). Range
+    /// 0..=[`MAX_ZOOM`](crate::MAX_ZOOM), default 15.
+    pub base_zoom: u8,
     /// Seed of every random choice (presynthesis and band). Default 0.
     pub seed: u64,
 }
@@ -52,6 +61,8 @@ motif_core::builders! { Params {
     with_band_iterations => band_iterations: usize,
     with_band_patchmatch_iterations => band_patchmatch_iterations: usize,
     with_min_line_width => min_line_width: f32,
+    with_texture_levels => texture_levels: usize,
+    with_base_zoom => base_zoom: u8,
     with_seed => seed: u64,
 }}
 
@@ -66,6 +77,8 @@ impl Params {
         band_iterations: 1,
         band_patchmatch_iterations: 1,
         min_line_width: 1.0,
+        texture_levels: 2,
+        base_zoom: 15,
         seed: 0,
     };
 
@@ -82,7 +95,24 @@ impl Params {
         check_count("band-iterations", self.band_iterations, 1, 20)?;
         check_count("band-patchmatch-iterations", self.band_patchmatch_iterations, 1, 20)?;
         motif_core::error::check_range("min-line-width", f64::from(self.min_line_width), 0.25, 16.0)?;
+        check_count("texture-levels", self.texture_levels, 1, 4)?;
+        check_count("base-zoom", usize::from(self.base_zoom), 0, usize::from(crate::MAX_ZOOM))?;
+        // The last level's textures, 2^(levels − 1) times the first's side.
+        let last_side = self.texture_size << (self.texture_levels - 1);
+        if last_side > 2048 {
+            let allowed = format!(
+                "at most {} with --texture-size {}: the last level's textures would be {last_side} pixels a side, over 2048",
+                1 + (2048 / self.texture_size).ilog2(),
+                self.texture_size
+            );
+            return Err(InvalidParameter::new("texture-levels", self.texture_levels, allowed).into());
+        }
         Ok(())
+    }
+
+    /// The texture pyramid's level for tiles of zoom `zoom` (0: the pre-synthesized textures).
+    pub fn texture_level(&self, zoom: u8) -> usize {
+        usize::from(zoom.saturating_sub(self.base_zoom)).min(self.texture_levels - 1)
     }
 
     /// The margin drawn around each tile: the given one, or the band plus twice the patch size.

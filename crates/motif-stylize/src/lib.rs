@@ -166,8 +166,9 @@ pub struct Input<I = FloatImage> {
     /// guides' size (or be `None`).
     pub size: Option<(usize, usize)>,
     /// Pre-synthesized textures, one per segment: fill everything outside the band around
-    /// segment edges from them and optimize only the band (§3.7). Needs guides.
-    pub textures: Option<Vec<SegmentTexture>>,
+    /// segment edges from them and optimize only the band (§3.7). Needs guides. Shared (`Arc`):
+    /// a tile server hands the same textures to every tile without copying them.
+    pub textures: Option<std::sync::Arc<[SegmentTexture]>>,
     /// Synthesize only the masked pixels and keep the others exactly.
     pub mask: Option<Mask<I>>,
     /// Where the output's top-left pixel lies in the textures' plane: output pixel `(x, y)` takes

@@ -170,7 +170,7 @@ fn band_mode_keeps_textures_outside_the_band() {
         assert!(texture.image.data().chunks_exact(3).all(|p| (p[2] > p[0]) == blue));
     }
     let mut banded = input.clone();
-    banded.textures = Some(textures.clone());
+    banded.textures = Some(textures.clone().into());
     params.band = 0;
     let composed = synthesize(&banded, &params, &mut NoProgress).unwrap();
     assert!(composed.field.matches.iter().all(Option::is_none));
@@ -219,7 +219,7 @@ fn quantized_segments_with_a_cache_accept_anti_aliased_guides() {
     });
     let blends = input.guides[0].target.data().chunks_exact(3).filter(|p| p[0] > 0.02 && p[0] < 0.98).count();
     assert!(blends > 20, "{blends} anti-aliased pixels");
-    input.textures = Some(textures);
+    input.textures = Some(textures.into());
     let output = synthesize(&input, &params, &mut NoProgress).unwrap();
     // Far from the edge each pixel keeps its segment's colours.
     let (centre, corner) = (output.image.pixel(25, 22), output.image.pixel(2, 2));
@@ -278,7 +278,7 @@ fn seeded_band_starts_lower_and_keeps_textures_outside() {
     let textures = presynthesize(&presynth, &params, &mut NoProgress).unwrap();
     assert!(textures.iter().all(|t| t.field.as_ref().is_some_and(|f| f.matches.iter().all(Option::is_some))));
     let mut seeded = input.clone();
-    seeded.textures = Some(textures.clone());
+    seeded.textures = Some(textures.clone().into());
     let mut unseeded = input.clone();
     unseeded.textures = Some(textures.iter().cloned().map(|t| SegmentTexture { field: None, ..t }).collect());
     let run = |input: &Input, params: &Params, threads: usize| {
@@ -333,7 +333,7 @@ fn local_band_search_gives_overlapping_windows_the_same_pixels() {
             case.style.clone(),
             vec![Guide { source: case.guides[0].source.clone(), target, weight: None }],
         );
-        input.textures = Some(textures.clone());
+        input.textures = Some(textures.clone().into());
         input.texture_origin = origin;
         synthesize(&input, params, &mut NoProgress).unwrap().image
     };
@@ -366,7 +366,7 @@ fn local_band_search_gives_overlapping_windows_the_same_pixels() {
     let target = flat(80, 64, |x, y| plane(x as i64, y as i64));
     let mut input =
         Input::guided(case.style.clone(), vec![Guide { source: case.guides[0].source.clone(), target, weight: None }]);
-    input.textures = Some(textures.clone());
+    input.textures = Some(textures.clone().into());
     let output = synthesize(&input, &bare, &mut NoProgress).unwrap();
     assert_eq!((output.field.matches.len(), output.error_map.width()), (0, 0));
     assert!(output.report.searched_pixels > 0 && !output.report.levels.is_empty());
@@ -386,7 +386,7 @@ fn texture_fields_must_fit_their_texture_and_the_style() {
     outside[0].field.as_mut().unwrap().matches[3] = Some([u32::MAX, 7]);
     for bad in [wrong_size, wrong_source, outside] {
         let mut banded = input.clone();
-        banded.textures = Some(bad);
+        banded.textures = Some(bad.into());
         let error = synthesize(&banded, &params, &mut NoProgress).unwrap_err();
         assert!(
             matches!(

@@ -65,7 +65,7 @@ impl StylizeJob {
             .map(|(index, (source, target))| Guide { source, target, weight: weight.get(index).copied() })
             .collect();
         let mut input = Input::guided(style, guides);
-        input.textures = textures;
+        input.textures = textures.map(Into::into);
         input.mask = mask;
         Ok(StylizeRun::of(motif_stylize::synthesize(&input, &params, progress)?))
     }

@@ -249,7 +249,7 @@ fn table_1(bench: &Bench) -> anyhow::Result<Value> {
         let mut rows = Map::new();
         for band in [0, 2, 4, 8] {
             let mut input = guided.clone();
-            input.textures = Some(textures.clone());
+            input.textures = Some(textures.clone().into());
             let mut banded = params.clone();
             banded.band = band;
             let start = std::time::Instant::now();

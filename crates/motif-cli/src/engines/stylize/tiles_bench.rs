@@ -4,7 +4,7 @@
 
 use motif_core::RgbaImage;
 use motif_jobs::Job;
-use motif_jobs::tiles::{Layer, TileId, TilesInputs, TilesJob, TilesRun, seam_error};
+use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob, TilesRun, seam_error, zoom_error};
 use serde_json::{Value, json};
 
 use std::io::{BufRead, BufReader, Read, Write};
@@ -51,6 +51,11 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
     // One core: the target is per tile on one thread once the presynthesis is made.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let mut figures = serde_json::Map::new();
+    // The texture pyramid's level for this zoom is made once, by the first tile that needs it:
+    // the timing is of tiles once every texture is there (the "warm cache").
+    let (warm, level_ms) = timed(|| tiles.first().map(|&tile| run.render(tile, Layer::Stylized)).transpose());
+    warm?;
+    figures.insert("texture_level_ms".into(), json!(level_ms));
     for layer in [Layer::Stylized, Layer::Plain] {
         let mut ms: Vec<f64> =
             pool.install(|| tiles.iter().map(|&tile| timed(|| run.render(tile, layer)).1).collect::<Vec<f64>>());
@@ -77,11 +82,54 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
             "pixels_differing_from_whole": differing as f64 / apart.pixels().len() as f64,
         }),
     );
+    figures.insert("zoom".into(), zoom_figures(&run, first, &folder)?);
     figures.insert("server".into(), server_throughput(&folder.join("Helsinki.osm.pbf"), bench)?);
     figures.insert("presynth_ms".into(), json!(presynth_ms));
     figures.insert("margin".into(), run.figures["margin"].clone());
     figures.insert("threads".into(), json!(1));
     Ok(Value::Object(figures))
+}
+
+/// A tile and its four tiles at the next zoom, joined.
+fn tile_and_children(tiles: &TileSet, tile: TileId) -> anyhow::Result<(RgbaImage, RgbaImage)> {
+    let parent = tiles.render(tile, Layer::Stylized)?;
+    let size = parent.width();
+    let mut children = Vec::with_capacity(4);
+    for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+        children.push(tiles.render(TileId::new(tile.z + 1, 2 * tile.x + dx, 2 * tile.y + dy)?, Layer::Stylized)?);
+    }
+    let joined = RgbaImage::from_fn(2 * size, 2 * size, |x, y| {
+        children[usize::from(y >= size) * 2 + usize::from(x >= size)].get(x % size, y % size)
+    });
+    Ok((parent, joined))
+}
+
+/// Zooming in (item 3): the tile of the base zoom over `child` against its four tiles at the
+/// next zoom, with the run's texture pyramid and with one level of textures for every zoom (the
+/// same first textures), at the tile's pixels and at half and a quarter of its scale.
+fn zoom_figures(run: &TilesRun, child: TileId, folder: &std::path::Path) -> anyhow::Result<Value> {
+    let params = run.tiles.params();
+    let parent = TileId::new(
+        params.base_zoom,
+        child.x >> (child.z - params.base_zoom),
+        child.y >> (child.z - params.base_zoom),
+    )?;
+    let (map, _) = motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?;
+    let legend = motif_io::read_legend(None, u64::MAX)?;
+    let one_level = params.clone().with_texture_levels(1);
+    let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
+    let (tile, pyramid) = tile_and_children(&run.tiles, parent)?;
+    let (same_tile, without) = tile_and_children(&flat, parent)?;
+    anyhow::ensure!(tile == same_tile, "the base zoom's tile differs between the two tile sets");
+    let errors =
+        |children: &RgbaImage| (0..3).map(|coarser| zoom_error(&tile, children, coarser)).collect::<Vec<f64>>();
+    Ok(json!({
+        "parent_tile": [parent.z, parent.x, parent.y],
+        "texture_levels": params.texture_levels,
+        "pyramid": errors(&pyramid),
+        "one_level": errors(&without),
+        "scales": ["tile pixels", "half", "quarter"],
+    }))
 }
 
 /// One GET to the server over HTTP/1.0 (a load generator's client): the status and body length.
