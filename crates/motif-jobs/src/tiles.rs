@@ -247,6 +247,12 @@ impl TilesRun {
     pub fn render(&self, tile: TileId, layer: Layer) -> Result<motif_core::RgbaImage, JobError> {
         self.tiles.render(tile, layer).map_err(maps_error)
     }
+
+    /// Makes every level of the texture pyramid now (`--texture-levels`), not when a tile first
+    /// needs it: the server does, before its first request.
+    pub fn make_texture_levels(&self) -> Result<(), JobError> {
+        self.tiles.make_texture_levels().map_err(maps_error)
+    }
 }
 
 impl Job for TilesJob {

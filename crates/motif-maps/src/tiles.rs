@@ -55,6 +55,11 @@ pub struct TileSetReport {
     pub textured_classes: Vec<&'static str>,
     /// Side of the pre-synthesized textures.
     pub texture_size: usize,
+    /// Levels of the texture pyramid (1: the same textures at every zoom); level `k` serves zoom
+    /// `base_zoom + k`, with textures `texture_size · 2^k` a side, made when first needed.
+    pub texture_levels: usize,
+    /// The zoom level of the first textures.
+    pub base_zoom: u8,
     /// The atlas the textures come from, `[width, height]`.
     pub atlas_size: [usize; 2],
     /// Milliseconds the presynthesis took (0 when the textures were given).
@@ -145,12 +150,24 @@ impl TileSet {
             margin_inferred: params.margin == 0,
             textured_classes: legend.textured().into_iter().map(MapClass::name).collect(),
             texture_size: params.texture_size,
+            texture_levels: params.texture_levels,
+            base_zoom: params.base_zoom,
             atlas_size: [styled.style.width(), styled.style.height()],
             presynth_ms: presynth_ms.unwrap_or(0.0),
             presynthesized: presynth_ms.is_some(),
             features: MapClass::ALL.iter().map(|class| (class.name(), map.class_counts()[class.index()])).collect(),
         };
         Self { map, params: params.clone(), styled, closer: Mutex::new(Vec::new()), report }
+    }
+
+    /// Makes every level of the texture pyramid now ([`Params::texture_levels`]), rather than
+    /// when a tile first needs it: a server does this before it listens, so that no request waits
+    /// for it. The same bytes either way.
+    pub fn make_texture_levels(&self) -> Result<(), Error> {
+        match self.params.texture_levels {
+            0 | 1 => Ok(()),
+            levels => self.closer_textures(levels - 1).map(|_| ()),
+        }
     }
 
     /// The pre-synthesized textures, one per class in class order (for [`TileSet::with_textures`]).
@@ -386,11 +403,13 @@ mod tests {
             let (with, without) = (zoom_error(&parent, &pyramid, coarser), zoom_error(&parent, &flat, coarser));
             assert!(with < 0.25 * without, "zoom error {with:.4} with a second level, {without:.4} without");
         }
-        // Zooms past the last level take the last; the levels are made once, in any order.
+        // Zooms past the last level take the last; the levels are made once, in any order, now
+        // or when a tile needs them.
         assert_eq!((two.params().texture_level(tile.z + 5), two.params().texture_level(0)), (1, 0));
-        let again = TileSet::new(small_map(), &legend, two.params(), &mut motif_core::NoProgress).unwrap();
+        let eager = TileSet::new(small_map(), &legend, two.params(), &mut motif_core::NoProgress).unwrap();
+        eager.make_texture_levels().unwrap();
         let child = TileId::new(tile.z + 1, 2 * tile.x + 1, 2 * tile.y).unwrap();
-        assert_eq!(again.render(child, Layer::Stylized).unwrap(), two.render(child, Layer::Stylized).unwrap());
+        assert_eq!(eager.render(child, Layer::Stylized).unwrap(), two.render(child, Layer::Stylized).unwrap());
     }
 
     #[test]

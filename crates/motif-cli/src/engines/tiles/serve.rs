@@ -55,6 +55,11 @@ pub(super) fn serve(args: &TilesArgs, key: String, run: TilesRun, context: &mut 
     motif_io::create_folder(&cache)?;
     let workers = args.workers.map_or(context.threads, usize::from).max(1);
     let info = info(&run);
+    // Every level of the texture pyramid before the first request, so that none waits for one.
+    context.progress().report("the texture pyramid's levels", 0.0);
+    let started = std::time::Instant::now();
+    run.make_texture_levels()?;
+    context.figure("texture_levels_ms", started.elapsed().as_secs_f64() * 1000.0);
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .max_blocking_threads(workers.max(2))

@@ -1,0 +1,44 @@
+//! The picture of `docs/maps.md`'s "Zooming in": a Helsinki tile at the base zoom (15), then its
+//! four tiles at zoom 16 with the texture pyramid (the default), then the same four with one
+//! level of textures for every zoom, side by side, each zoom-16 block shrunk to the tile's size
+//! by averaging 2 × 2 pixels. `cargo run --release -p motif-cli --example zoom_picture OUT.png`.
+
+use motif_core::RgbaImage;
+use motif_jobs::Job;
+use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob};
+
+fn main() -> anyhow::Result<()> {
+    let out = std::env::args().nth(1).ok_or_else(|| anyhow::anyhow!("usage: zoom_picture OUT.png"))?;
+    let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/maps");
+    let read = || -> anyhow::Result<_> {
+        Ok((motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?.0, motif_io::read_legend(None, u64::MAX)?))
+    };
+    let (map, legend) = read()?;
+    let run = TilesJob { seed: 1, zoom: Some([15, 16]), ..TilesJob::new() }
+        .run(TilesInputs { map, legend }, &mut motif_core::NoProgress)?;
+    let (map, legend) = read()?;
+    let one_level = run.tiles.params().clone().with_texture_levels(1);
+    let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
+    // The zoom-15 tile over the seam figure's block (16/37307/18967).
+    let parent = TileId::new(15, 18653, 9483)?;
+    let shrunk = |tiles: &TileSet| -> anyhow::Result<RgbaImage> {
+        let mut children = Vec::new();
+        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            children.push(tiles.render(TileId::new(16, 2 * parent.x + dx, 2 * parent.y + dy)?, Layer::Stylized)?);
+        }
+        let size = children[0].width();
+        Ok(RgbaImage::from_fn(size, size, |x, y| {
+            let pixel = |gx: usize, gy: usize| children[(gy / size) * 2 + gx / size].get(gx % size, gy % size);
+            let block = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| pixel(2 * x + dx, 2 * y + dy));
+            std::array::from_fn(|c| ((block.iter().map(|p| u32::from(p[c])).sum::<u32>() + 2) / 4) as u8)
+        }))
+    };
+    let panels = [run.tiles.render(parent, Layer::Stylized)?, shrunk(&run.tiles)?, shrunk(&flat)?];
+    let (size, gap) = (panels[0].width(), 8);
+    let picture = RgbaImage::from_fn(3 * size + 2 * gap, size, |x, y| {
+        let (panel, at) = (x / (size + gap), x % (size + gap));
+        if at >= size { [255, 255, 255, 255] } else { panels[panel].get(at, y) }
+    });
+    motif_io::write_png(std::path::Path::new(&out), &picture)?;
+    Ok(())
+}
