@@ -240,8 +240,8 @@ mod tests {
         total / (coarser.width() * coarser.height()) as f64
     }
 
-    /// Two segments (left and right halves of the style), each texture of the closer level keeps
-    /// the layout of its coarser one, and draws only from its own segment.
+    /// Two segments (left and right halves of the style): each texture of the closer level keeps
+    /// the layout of its coarser one, far closer than a texture of its size made without it.
     #[test]
     fn a_closer_level_keeps_the_coarser_layout() {
         let style = texture(48, 48, 3, 31);
