@@ -248,10 +248,11 @@ impl TilesRun {
         self.tiles.render(tile, layer).map_err(maps_error)
     }
 
-    /// Makes every level of the texture pyramid now (`--texture-levels`), not when a tile first
-    /// needs it: the server does, before its first request.
-    pub fn make_texture_levels(&self) -> Result<(), JobError> {
-        self.tiles.make_texture_levels().map_err(maps_error)
+    /// Makes the levels of the texture pyramid (`--texture-levels`) that tiles up to zoom
+    /// `up_to_zoom` take, now, not when a tile first needs them: the server makes them all before
+    /// its first request, a pyramid's render those of its zooms before its first tile.
+    pub fn make_texture_levels(&self, up_to_zoom: u8) -> Result<(), JobError> {
+        self.tiles.make_texture_levels(up_to_zoom).map_err(maps_error)
     }
 }
 

@@ -160,13 +160,14 @@ impl TileSet {
         Self { map, params: params.clone(), styled, closer: Mutex::new(Vec::new()), report }
     }
 
-    /// Makes every level of the texture pyramid now ([`Params::texture_levels`]), rather than
-    /// when a tile first needs it: a server does this before it listens, so that no request waits
-    /// for it. The same bytes either way.
-    pub fn make_texture_levels(&self) -> Result<(), Error> {
-        match self.params.texture_levels {
-            0 | 1 => Ok(()),
-            levels => self.closer_textures(levels - 1).map(|_| ()),
+    /// Makes the levels of the texture pyramid ([`Params::texture_levels`]) that tiles up to zoom
+    /// `up_to_zoom` take, now rather than when a tile first needs them: a server does this before
+    /// it listens (so that no request waits), a pyramid's render before its first tile (so that
+    /// its threads do not make the same level side by side). The same bytes either way.
+    pub fn make_texture_levels(&self, up_to_zoom: u8) -> Result<(), Error> {
+        match self.params.texture_level(up_to_zoom) {
+            0 => Ok(()),
+            level => self.closer_textures(level).map(|_| ()),
         }
     }
 
@@ -407,7 +408,7 @@ mod tests {
         // or when a tile needs them.
         assert_eq!((two.params().texture_level(tile.z + 5), two.params().texture_level(0)), (1, 0));
         let eager = TileSet::new(small_map(), &legend, two.params(), &mut motif_core::NoProgress).unwrap();
-        eager.make_texture_levels().unwrap();
+        eager.make_texture_levels(crate::MAX_ZOOM).unwrap();
         let child = TileId::new(tile.z + 1, 2 * tile.x + 1, 2 * tile.y).unwrap();
         assert_eq!(eager.render(child, Layer::Stylized).unwrap(), two.render(child, Layer::Stylized).unwrap());
     }

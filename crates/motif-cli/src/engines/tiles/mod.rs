@@ -136,6 +136,12 @@ fn render(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Contex
     let out = args.out.as_deref().context("no --out")?;
     let tiles = run.pyramid()?;
     let layer = Layer::from(args.layer);
+    // The texture pyramid's levels these zooms take, made once before the tiles (reported apart).
+    let levels_start = std::time::Instant::now();
+    if layer == Layer::Stylized {
+        run.make_texture_levels(run.zooms[1])?;
+    }
+    let levels_ms = levels_start.elapsed().as_secs_f64() * 1000.0;
     let start = std::time::Instant::now();
     // In chunks, so that progress is told between them (the bar lives on this thread).
     let mut rendered: Vec<(TileId, Vec<u8>)> = Vec::with_capacity(tiles.len());
@@ -160,10 +166,11 @@ fn render(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Contex
     context.figure("tiles", rendered.len());
     context.figure("layer", layer.name());
     context.figure("render_ms", ms);
+    context.figure("texture_levels_ms", levels_ms);
     context.figure("ms_per_tile", ms / rendered.len().max(1) as f64);
     context.figure("tile_bytes", bytes);
     context.summary(&format!(
-        "motif tiles: {} {} tiles of zoom {}-{} ({:.0} ms a tile on {} threads, margin {}{}) → {}",
+        "motif tiles: {} {} tiles of zoom {}-{} ({:.0} ms a tile on {} threads, margin {}{}{}) → {}",
         rendered.len(),
         layer.name(),
         run.zooms[0],
@@ -172,6 +179,11 @@ fn render(args: &TilesArgs, job: &TilesJob, run: &TilesRun, context: &mut Contex
         context.threads,
         run.tiles.report().margin,
         if run.tiles.report().margin_inferred { " (inferred)" } else { "" },
+        if levels_ms >= 1.0 {
+            format!("; texture pyramid made first, {:.1} s", levels_ms / 1000.0)
+        } else {
+            String::new()
+        },
         out.display()
     ));
     Ok(())

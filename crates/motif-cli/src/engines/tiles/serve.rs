@@ -58,7 +58,7 @@ pub(super) fn serve(args: &TilesArgs, key: String, run: TilesRun, context: &mut 
     // Every level of the texture pyramid before the first request, so that none waits for one.
     context.progress().report("the texture pyramid's levels", 0.0);
     let started = std::time::Instant::now();
-    run.make_texture_levels()?;
+    run.make_texture_levels(motif_jobs::tiles::MAX_ZOOM)?;
     context.figure("texture_levels_ms", started.elapsed().as_secs_f64() * 1000.0);
     let runtime = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
