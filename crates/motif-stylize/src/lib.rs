@@ -24,7 +24,8 @@
 //!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
-//! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7).
+//! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7), and
+//!   the same one zoom level closer, twice the side, guided by it magnified (§5.3's zoom guide).
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
