@@ -583,8 +583,8 @@ class TilesOptions(TypedDict, total=False):
     min_line_width: float
     #: Levels of the texture pyramid, so that zooming in keeps the textures' layout: the first textures serve
     #: --base-zoom and below; each next level, twice the side and synthesized under the one before magnified
-    #: twice, serves the next zoom (deeper zooms take the last). Made when a tile first needs them; 1 = the
-    #: same textures at every zoom. Allowed: 1–4. Default: 2.
+    #: twice, serves the next zoom (deeper zooms take the last). `serve` makes them before it listens, `render`
+    #: those of its zooms before the first tile; 1 = the same textures at every zoom. Allowed: 1–4. Default: 2.
     texture_levels: int
     #: Zoom level of the first textures of the pyramid (see --texture-levels). Allowed: 0–24. Default: 15.
     base_zoom: int

@@ -60,7 +60,8 @@ crate::declare_options! {
         /// Levels of the texture pyramid, so that zooming in keeps the textures' layout: the
         /// first textures serve --base-zoom and below; each next level, twice the side and
         /// synthesized under the one before magnified twice, serves the next zoom (deeper zooms
-        /// take the last). Made when a tile first needs them; 1 = the same textures at every zoom.
+        /// take the last). `serve` makes them before it listens, `render` those of its zooms before
+        /// the first tile; 1 = the same textures at every zoom.
         [value_name: "N", range: (1.0, 4.0)]
         texture_levels: usize = DEFAULTS.texture_levels,
         /// Zoom level of the first textures of the pyramid (see --texture-levels).
