@@ -33,6 +33,8 @@ mod registry;
 mod suite;
 
 use std::process::ExitCode;
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context as _, bail};
 use clap::{Parser, Subcommand};
@@ -67,6 +69,16 @@ pub enum Command {
     Bench(bench::BenchArgs),
 }
 
+/// How a command whose normal end is Ctrl-C (the tile server) stops gracefully: the first
+/// interrupt calls it (the command then ends as it does by itself, exit code 0), a second one
+/// exits at once as interrupted. Other commands register none: an interrupt stops them at once.
+static GRACEFUL_STOP: OnceLock<Box<dyn Fn() + Send + Sync>> = OnceLock::new();
+
+/// Makes Ctrl-C (and SIGTERM) call `stop` instead of ending the process (see [`GRACEFUL_STOP`]).
+pub(crate) fn stop_on_interrupt_with(stop: impl Fn() + Send + Sync + 'static) {
+    let _ = GRACEFUL_STOP.set(Box::new(stop));
+}
+
 fn main() -> ExitCode {
     // A panic is a bug in motif, never the user's fault: say so plainly instead of a backtrace.
     std::panic::set_hook(Box::new(|info| {
@@ -77,8 +89,16 @@ fn main() -> ExitCode {
     }));
     // Ctrl-C or SIGTERM: let a commit of the outputs in progress finish (a run's outputs replace
     // the previous files all together or not at all), remove the temporary files of writes in
-    // progress and of outputs not committed, and exit as interrupted.
+    // progress and of outputs not committed, and exit as interrupted. A server stops gracefully
+    // on the first one instead.
+    static INTERRUPTED_ONCE: AtomicBool = AtomicBool::new(false);
     let interrupted = ctrlc::set_handler(|| {
+        if let Some(stop) = GRACEFUL_STOP.get()
+            && !INTERRUPTED_ONCE.swap(true, Ordering::SeqCst)
+        {
+            stop();
+            return;
+        }
         motif_io::stop_outputs();
         #[allow(clippy::print_stderr, reason = "errors and warnings go to the terminal")]
         {

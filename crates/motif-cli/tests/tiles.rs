@@ -84,7 +84,7 @@ fn a_pyramid_is_packed_read_back_and_the_same_on_any_thread_count() {
     }
 }
 
-/// One HTTP/1.0 GET to the server (a test client; the server is `tiny_http`): status, headers
+/// One HTTP/1.0 GET to the server (a test client; the server is `axum`): status, headers
 /// (lower-case names) and body.
 fn get(address: &str, path: &str, headers: &[(&str, &str)]) -> (u16, Vec<(String, String)>, Vec<u8>) {
     let mut stream = TcpStream::connect(address).unwrap();
@@ -154,6 +154,37 @@ fn the_server_answers_tiles_with_etags_from_its_cache_and_matches_the_archive() 
     assert_eq!(get(&address, "/", &[]).0, 200);
     // The seventh request was the last: the server stops by itself.
     assert!(server.wait().unwrap().success());
+}
+
+/// Ctrl-C is how a server normally ends: the first SIGINT stops it gracefully, exit code 0, with
+/// its figures in the report and a summary of what it served (not "error: interrupted").
+#[cfg(unix)]
+#[test]
+fn ctrl_c_stops_the_server_gracefully() {
+    let dir = tempfile::tempdir().unwrap();
+    let map = helsinki();
+    let mut server = Command::new(env!("CARGO_BIN_EXE_motif"))
+        .current_dir(dir.path())
+        .args(["tiles", "serve", "--map", map.to_str().unwrap(), "--port", "0", "--texture-levels", "1"])
+        .args(["--cache-dir", "cache", "--report", "served.json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(server.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    let address = line.trim().trim_start_matches("http://").trim_end_matches('/').to_string();
+    assert_eq!(get(&address, "/tiles.json", &[]).0, 200);
+    let killed = Command::new("kill").arg("-INT").arg(server.id().to_string()).status().unwrap();
+    assert!(killed.success());
+    let output = server.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("stopped (interrupted) after 1 requests"), "{stderr}");
+    assert!(!stderr.contains("error"), "{stderr}");
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("served.json")).unwrap()).unwrap();
+    assert_eq!(report["requests"], 1, "{report}");
 }
 
 #[test]

@@ -8,7 +8,7 @@
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use anyhow::Context as _;
 use axum::extract::State;
@@ -49,7 +49,8 @@ impl Shared {
     }
 }
 
-/// Serves until `--max-requests` requests were answered (or until interrupted).
+/// Serves until `--max-requests` requests were answered or until Ctrl-C (or SIGTERM), which
+/// lets the requests in progress finish and ends with exit code 0 (a second one exits at once).
 pub(super) fn serve(args: &TilesArgs, key: String, run: TilesRun, context: &mut Context) -> anyhow::Result<()> {
     let cache = args.cache_dir.clone().unwrap_or_else(|| std::env::temp_dir().join("motif-tiles")).join(&key);
     motif_io::create_folder(&cache)?;
@@ -97,14 +98,25 @@ pub(super) fn serve(args: &TilesArgs, key: String, run: TilesRun, context: &mut 
         .route("/tiles.json", axum::routing::get(tiles_json))
         .fallback(tile)
         .with_state(shared.clone());
+    let interrupted = Arc::new(AtomicBool::new(false));
+    crate::stop_on_interrupt_with({
+        let (shared, interrupted) = (shared.clone(), interrupted.clone());
+        move || {
+            interrupted.store(true, Ordering::SeqCst);
+            shared.stop.notify_one();
+        }
+    });
     let stopping = shared.clone();
     runtime
         .block_on(async move {
             axum::serve(listener, app).with_graceful_shutdown(async move { stopping.stop.notified().await }).await
         })
         .context("the tile server stopped")?;
-    context.figure("requests", shared.served.load(Ordering::SeqCst));
-    context.figure("rendered", shared.rendered.load(Ordering::SeqCst));
+    let (served, rendered) = (shared.served.load(Ordering::SeqCst), shared.rendered.load(Ordering::SeqCst));
+    let why = if interrupted.load(Ordering::SeqCst) { "interrupted" } else { "--max-requests reached" };
+    context.summary(&format!("motif tiles: stopped ({why}) after {served} requests, {rendered} tiles rendered"));
+    context.figure("requests", served);
+    context.figure("rendered", rendered);
     Ok(())
 }
 
