@@ -9,12 +9,14 @@
 //! 1. piece lengths of [`PIECE_LENGTH_FACTORS`] × the guess, and half the pattern's period when
 //!    it has one (a length that divides the period keeps the motifs' phase from piece to piece),
 //!    at the guessed width;
-//! 2. widths of [`WIDTH_FACTORS`] × the guess, at the best piece length (a little narrower and
-//!    wider: the guess's 15 % margin is a rule of thumb, and every one of them still holds the
-//!    pattern's height);
+//! 2. at the best piece length, every whole width within [`NEAR_WIDTH`] of the guess, nearest
+//!    first, then [`WIDTH_FACTORS`] × the guess (a little narrower and wider: the guess's 15 %
+//!    margin is a rule of thumb, and every one of them still holds the pattern's height). The
+//!    output's fidelity moves by up to 7 % between widths one pixel apart, with no trend (measured
+//!    on the corpus, `docs/curve.md`), so the widths near the guess are all tried;
 //! 3. at the best width, the piece lengths halfway between the best length and its nearest tried
-//!    neighbours below and above (the output's fidelity is not smooth in the length, so the ladder
-//!    of step 1 alone misses good lengths between its rungs).
+//!    neighbours below and above, twice (a bisection: the output's fidelity is not smooth in the
+//!    length either, so the ladder of step 1 alone misses good lengths between its rungs).
 //!
 //! The score is the output's mean patch distance to the exemplar, raised by its share of broken
 //! patches ([`score`]). Each trial is a whole run with the job's own solver and seed, so the kept
@@ -31,8 +33,13 @@ use crate::JobError;
 
 /// Piece lengths tried, as multiples of the inferred one (the inferred one first).
 pub(crate) const PIECE_LENGTH_FACTORS: [f64; 6] = [1.0, 0.8, 1.25, 1.6, 2.0, 2.5];
-/// Widths tried after the piece length is settled, as multiples of the inferred one.
-pub(crate) const WIDTH_FACTORS: [f64; 4] = [0.95, 0.98, 1.05, 1.1];
+/// Widths tried after the piece length is settled, besides those near the guess
+/// ([`NEAR_WIDTH`]), as multiples of the inferred one.
+pub(crate) const WIDTH_FACTORS: [f64; 2] = [0.95, 1.1];
+/// Every whole width within this share of the inferred one is tried (step 2).
+pub(crate) const NEAR_WIDTH: f64 = 0.04;
+/// Rounds of step 3's bisection of the piece length.
+pub(crate) const LENGTH_BISECTIONS: usize = 2;
 /// Most position pairs (`Σ V_{i−1} V_i`, the dynamic program's size) the first trial may have for
 /// the others to run: the round chain on the heart has 1.8 × 10⁹, the dense chain 2.4 × 10⁹ (7
 /// trials: 17 s), the 600 × 250 chain with the exact solver about 3.5 × 10¹⁰ (over two minutes a
@@ -99,12 +106,10 @@ pub(crate) fn search(
     } else {
         vec![piece_length.value]
     };
-    let widths: Vec<f64> =
-        if width.inferred { candidates(width.value, &WIDTH_FACTORS, f64::ceil, f64::INFINITY) } else { Vec::new() };
-    // A factor that rounds back to the guess would repeat a trial of step 1.
-    let widths: Vec<f64> = widths.into_iter().filter(|&w| w != width.value).collect();
-    // Step 3 tries at most two lengths; the count is exact once step 1 has chosen.
-    let planned = lengths.len() + widths.len() + if piece_length.inferred { 2 } else { 0 };
+    let widths: Vec<f64> = if width.inferred { widths_around(width.value) } else { Vec::new() };
+    // Step 3 tries at most two lengths a round; the count is exact once step 1 has chosen.
+    let bisections = if piece_length.inferred { LENGTH_BISECTIONS } else { 0 };
+    let planned = lengths.len() + widths.len() + 2 * bisections;
     let mut state = Trials::new(planned, max_pairs.saturating_mul(SEARCH_BUDGET));
     state.attempt((width.value, lengths[0]), progress, &mut run)?;
     if too_large_to_search(state.best.as_mut().map(|b| &mut b.output), planned, max_pairs) {
@@ -114,14 +119,19 @@ pub(crate) fn search(
         state.attempt((width.value, l), progress, &mut run)?;
     }
     let best_length = state.best().piece_length;
-    let between = if piece_length.inferred { lengths_between(best_length, &lengths) } else { Vec::new() };
-    state.planned = lengths.len() + widths.len() + between.len();
     for &w in &widths {
         state.attempt((w, best_length), progress, &mut run)?;
     }
     let best_width = state.best().width;
-    for &l in &between {
-        state.attempt((best_width, l), progress, &mut run)?;
+    let mut tried = lengths;
+    for round in 0..bisections {
+        let between = lengths_between(state.best().piece_length, &tried);
+        // Rounds after this one may try two lengths each.
+        state.planned = state.trials.len() + state.skipped + between.len() + 2 * (bisections - round - 1);
+        for &l in &between {
+            state.attempt((best_width, l), progress, &mut run)?;
+        }
+        tried.extend(between);
     }
     Ok(state.finish(dimensions))
 }
@@ -261,6 +271,22 @@ fn candidates(value: f64, factors: &[f64], round: fn(f64) -> f64, max: f64) -> V
     values
 }
 
+/// The widths of step 2 around `guess`: every whole width within [`NEAR_WIDTH`] of it, nearest
+/// first (the narrower of two equally near), then [`WIDTH_FACTORS`] × the guess (rounded up);
+/// the guess itself and repeats left out.
+fn widths_around(guess: f64) -> Vec<f64> {
+    let (low, high) = ((guess * (1.0 - NEAR_WIDTH)).ceil(), (guess * (1.0 + NEAR_WIDTH)).floor());
+    let mut widths: Vec<f64> = (low as i64..=high as i64).map(|w| w as f64).collect();
+    widths.sort_by(|a, b| (a - guess).abs().total_cmp(&(b - guess).abs()).then(a.total_cmp(b)));
+    for far in candidates(guess, &WIDTH_FACTORS, f64::ceil, f64::INFINITY) {
+        if !widths.contains(&far) {
+            widths.push(far);
+        }
+    }
+    widths.retain(|&w| w != guess && w >= 1.0);
+    widths
+}
+
 /// Progress of one trial, its stages named with the trial's number.
 struct Labelled<'a> {
     inner: &'a mut dyn Progress,
@@ -299,7 +325,18 @@ mod tests {
         );
         assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 30.0), vec![20.0, 16.0, 25.0, 30.0]);
         assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0, 3.0]);
-        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![73.0, 75.0, 80.0, 84.0]);
+        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![73.0, 84.0]);
+    }
+
+    /// Step 2: every whole width within 4 % of the guess, nearest first, then the farther ones.
+    #[test]
+    fn widths_near_the_guess_come_first() {
+        assert_eq!(
+            widths_around(136.0),
+            vec![135.0, 137.0, 134.0, 138.0, 133.0, 139.0, 132.0, 140.0, 131.0, 141.0, 130.0, 150.0]
+        );
+        assert_eq!(widths_around(20.0), vec![19.0, 22.0]);
+        assert_eq!(widths_around(1.0), vec![2.0]);
     }
 
     /// Step 3's lengths lie halfway to the best length's neighbours, never on a tried one.
@@ -328,8 +365,9 @@ mod tests {
         };
         let mut searched = guess;
         let (best, all) = search(&mut searched, (1e9, 1.0, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
-        // Six lengths around the guess (half the rings' 16-pixel period among them), two wider
-        // ribbons (the narrower ones round back to the guess), two lengths next to the best one.
+        // Six lengths around the guess (half the rings' 16-pixel period among them), the wider
+        // ribbon (none is within 4 % of the guess's 19 pixels, and the narrower rounds back to
+        // it), then two rounds of the bisection: 15 and 18, then 17.
         assert_eq!(guess.period, Some(16));
         assert_eq!(all.len(), 10, "{all:?}");
         let tried: Vec<(f64, f64)> = all.iter().map(|t| (t.width, t.piece_length)).collect();
