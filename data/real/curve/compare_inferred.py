@@ -1,8 +1,9 @@
 """Runs every case of cases.json twice through `motif curve --fidelity`: with the hand-picked
 width and piece length, and with neither (inferred from the exemplar). Prints a Markdown table:
 both fidelity figures (mean patch distance, share of broken patches), the size search's score
-that combines them (distance × (1 + 4 × broken share)), and whether the inferred run is no worse
-on the score and on each figure.
+that combines them (distance × (1 + 4 × broken share)), whether the inferred run is no worse
+on the score and on each figure, and the seconds of both runs (the inferred one includes every
+trial of the size search).
 
     python compare_inferred.py MOTIF OUT_DIR [NAME ...]
 """
@@ -42,8 +43,9 @@ def main() -> None:
     here = Path(__file__).resolve().parent
     out.mkdir(parents=True, exist_ok=True)
     print("| case | hand-picked w / δ | inferred w / δ (period) | trials | score hand / inferred "
-          "| patch distance hand / inferred | broken hand / inferred | no worse: score / both figures |")
-    print("|---|---|---|---|---|---|---|---|")
+          "| patch distance hand / inferred | broken hand / inferred | no worse: score / both figures "
+          "| seconds hand / inferred |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for case in json.loads((here / "cases.json").read_text()):
         name = case["name"]
         if names and name not in names:
@@ -58,7 +60,8 @@ def main() -> None:
               f"{inferred['piece_length']:g} ({inferred['pattern_period']}) | {len(inferred['size_search'])} | "
               f"{sh:.5f} / {si:.5f} | {fh['mean_distance']:.4f} / "
               f"{fi['mean_distance']:.4f} | {fh['broken_fraction']:.3f} / {fi['broken_fraction']:.3f} | "
-              f"{'yes' if si <= sh else 'no'} / {'yes' if both else 'no'} |", flush=True)
+              f"{'yes' if si <= sh else 'no'} / {'yes' if both else 'no'} | "
+              f"{hand['total_ms'] / 1000:.1f} / {inferred['total_ms'] / 1000:.1f} |", flush=True)
 
 
 if __name__ == "__main__":
