@@ -35,7 +35,7 @@ use crate::JobError;
 pub(crate) const PIECE_LENGTH_FACTORS: [f64; 6] = [1.0, 0.8, 1.25, 1.6, 2.0, 2.5];
 /// Widths tried after the piece length is settled, besides those near the guess
 /// ([`NEAR_WIDTH`]), as multiples of the inferred one.
-pub(crate) const WIDTH_FACTORS: [f64; 2] = [0.95, 1.1];
+pub(crate) const WIDTH_FACTORS: [f64; 3] = [0.95, 1.05, 1.1];
 /// Every whole width within this share of the inferred one is tried (step 2).
 pub(crate) const NEAR_WIDTH: f64 = 0.04;
 /// Rounds of step 3's bisection of the piece length.
@@ -325,7 +325,7 @@ mod tests {
         );
         assert_eq!(candidates(20.0, &PIECE_LENGTH_FACTORS, f64::round, 30.0), vec![20.0, 16.0, 25.0, 30.0]);
         assert_eq!(candidates(1.0, &PIECE_LENGTH_FACTORS, f64::round, 100.0), vec![1.0, 2.0, 3.0]);
-        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![73.0, 84.0]);
+        assert_eq!(candidates(76.0, &WIDTH_FACTORS, f64::ceil, f64::INFINITY), vec![73.0, 80.0, 84.0]);
     }
 
     /// Step 2: every whole width within 4 % of the guess, nearest first, then the farther ones.
@@ -333,9 +333,9 @@ mod tests {
     fn widths_near_the_guess_come_first() {
         assert_eq!(
             widths_around(136.0),
-            vec![135.0, 137.0, 134.0, 138.0, 133.0, 139.0, 132.0, 140.0, 131.0, 141.0, 130.0, 150.0]
+            vec![135.0, 137.0, 134.0, 138.0, 133.0, 139.0, 132.0, 140.0, 131.0, 141.0, 130.0, 143.0, 150.0]
         );
-        assert_eq!(widths_around(20.0), vec![19.0, 22.0]);
+        assert_eq!(widths_around(20.0), vec![19.0, 21.0, 22.0]);
         assert_eq!(widths_around(1.0), vec![2.0]);
     }
 
@@ -365,11 +365,11 @@ mod tests {
         };
         let mut searched = guess;
         let (best, all) = search(&mut searched, (1e9, 1.0, u64::MAX), &mut motif_core::NoProgress, run).unwrap();
-        // Six lengths around the guess (half the rings' 16-pixel period among them), the wider
-        // ribbon (none is within 4 % of the guess's 19 pixels, and the narrower rounds back to
+        // Six lengths around the guess (half the rings' 16-pixel period among them), the two wider
+        // ribbons (none is within 4 % of the guess's 19 pixels, and the narrower rounds back to
         // it), then two rounds of the bisection: 15 and 18, then 17.
         assert_eq!(guess.period, Some(16));
-        assert_eq!(all.len(), 10, "{all:?}");
+        assert_eq!(all.len(), 11, "{all:?}");
         let tried: Vec<(f64, f64)> = all.iter().map(|t| (t.width, t.piece_length)).collect();
         let unique: std::collections::BTreeSet<(u64, u64)> =
             tried.iter().map(|&(w, l)| (w.to_bits(), l.to_bits())).collect();
@@ -397,7 +397,7 @@ mod tests {
             })
             .take_while(|&spent| spent < 4 * pairs)
             .count();
-        assert!(ran < 10, "the budget stops this search part way: {all:?}");
+        assert!(ran < 11, "the budget stops this search part way: {all:?}");
         let (best, trials) = search(&mut guess.clone(), (1e9, 1.0, pairs), &mut motif_core::NoProgress, run).unwrap();
         let figures = |t: &Trial| (t.width, t.piece_length, t.score, t.pairs);
         assert_eq!(trials.iter().map(figures).collect::<Vec<_>>(), all[..ran].iter().map(figures).collect::<Vec<_>>());
