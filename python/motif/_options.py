@@ -12,16 +12,16 @@ class CurveOptions(TypedDict, total=False):
     #: Ribbon width b in canvas pixels, > 0. Width × scale is the number of samples per piece edge (C) and
     #: should exceed the pattern's height in the exemplar. Default: inferred from the first exemplar, the
     #: pattern's height (rows with alpha above --cut-alpha) plus the clear row above and below, 15% wider,
-    #: divided by the scale; then ribbons 5% and 2% narrower and 5% and 10% wider are tried at the settled
-    #: piece length and the best-scoring output kept (report `size_search`).
+    #: divided by the scale; then every whole width within 4% of it, and 5% narrower, 5% and 10% wider, are
+    #: tried at the settled piece length and the best-scoring output kept (report `size_search`).
     width: float
     #: Piece length δ along the curve in canvas pixels, > 0 and at most the curve's length. Default: inferred
     #: from the first exemplar, 0.55 of the pattern's period along x (the first strong peak of the
     #: autocorrelation of its columns), kept between a quarter and 0.6 of the pattern's height, divided by the
     #: scale; 0.3 of the pattern's height when it has no period. That guess, 0.8, 1.25, 1.6, 2 and 2.5 times it
-    #: and half the period are each run, then the lengths halfway to the best one's neighbours, and the output
-    #: whose patches are closest to the exemplar's (fewest motifs cut) is kept; giving the value skips this
-    #: search.
+    #: and half the period are each run, then twice the lengths halfway to the best one's neighbours, and the
+    #: output whose patches are closest to the exemplar's (fewest motifs cut) is kept; giving the value skips
+    #: this search.
     piece_length: float
     #: Scale s: exemplar pixels per canvas pixel (2 draws the pattern at half size). Allowed: 0.05–20. Default: 1.
     scale: float
