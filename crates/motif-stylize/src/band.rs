@@ -17,17 +17,23 @@ pub(crate) fn band_mask(labels: &[u16], width: usize, height: usize, band: usize
     if band == 0 {
         return vec![false; width * height];
     }
-    let mut distance: Vec<f32> = (0..width * height)
+    let edges: Vec<bool> = (0..width * height)
         .map(|index| {
             let (x, y) = (index % width, index / width);
             let label = labels[index];
-            let differs = (x > 0 && labels[index - 1] != label)
+            (x > 0 && labels[index - 1] != label)
                 || (x + 1 < width && labels[index + 1] != label)
                 || (y > 0 && labels[index - width] != label)
-                || (y + 1 < height && labels[index + width] != label);
-            if differs { 0.0 } else { f32::INFINITY }
+                || (y + 1 < height && labels[index + width] != label)
         })
         .collect();
+    if band <= 3 {
+        // Offsets of squared length below band² are exactly those within band − 1 on both axes
+        // when band ≤ 3 ((band − 1)² · 2 < band², and an axis at band or more is too far): the
+        // band is the edges dilated by a square, much cheaper than the transform.
+        return crate::synthesis::dilate(&edges, width, height, band - 1);
+    }
+    let mut distance: Vec<f32> = edges.iter().map(|&edge| if edge { 0.0 } else { f32::INFINITY }).collect();
     squared_distance_transform(&mut distance, width, height);
     let limit = (band * band) as f32;
     distance.iter().map(|&d| d < limit).collect()
@@ -277,6 +283,38 @@ mod tests {
         // Shifted by one column in the plane: (0,0) takes texture pixel (1,0), (1,0) pixel (0,0).
         let shifted = Target { size: (3, 2), origin: (-1, 0) };
         assert_eq!(compose_field(&labels, shifted, &[Some(&first), Some(&second)], &[1, 0], 10)[..2], [17, 16]);
+    }
+
+    /// The band by its definition (distance to the nearest edge pixel below T), on a map of
+    /// irregular segments, for the narrow bands (a dilation) and the wider ones (the transform).
+    #[test]
+    fn band_matches_its_definition() {
+        let (w, h) = (31, 23);
+        let labels: Vec<u16> = (0..w * h)
+            .map(|i| {
+                let (x, y) = ((i % w) as i64, (i / w) as i64);
+                u16::from((x - 12).pow(2) + (y - 9).pow(2) < 40) + 2 * u16::from(x + 2 * y > 50)
+            })
+            .collect();
+        let edge = |i: usize| {
+            let (x, y) = (i % w, i / w);
+            (x > 0 && labels[i - 1] != labels[i])
+                || (x + 1 < w && labels[i + 1] != labels[i])
+                || (y > 0 && labels[i - w] != labels[i])
+                || (y + 1 < h && labels[i + w] != labels[i])
+        };
+        for t in 1..=6_usize {
+            let expected: Vec<bool> = (0..w * h)
+                .map(|i| {
+                    let (x, y) = ((i % w) as i64, (i / w) as i64);
+                    (0..w * h).filter(|&j| edge(j)).any(|j| {
+                        let (u, v) = ((j % w) as i64, (j / w) as i64);
+                        (u - x).pow(2) + (v - y).pow(2) < (t * t) as i64
+                    })
+                })
+                .collect();
+            assert_eq!(band_mask(&labels, w, h, t), expected, "T = {t}");
+        }
     }
 
     #[test]

@@ -247,13 +247,19 @@ fn far_segments(source: &FloatImage, target: &FloatImage, colours: &[Vec<f32>]) 
     if colours.is_empty() || colours.iter().any(|c| c.len() != channels) || source.channels() != channels {
         return Vec::new();
     }
-    let target_colours = histogram(target);
     // A target of segment colours only (map tiles, exact guides) has no far colour whatever the
-    // tolerance: the source's histogram, the larger one, is not needed.
+    // tolerance: no histogram is needed. Runs of one colour are checked once.
     let is_segment_colour = |key: &[u8; 4]| colours.iter().any(|c| squared(c, &unkey(key, channels)) == 0.0);
-    if target_colours.iter().all(|(key, _)| is_segment_colour(key)) {
+    let mut previous: Option<&[f32]> = None;
+    let only_segment_colours = target.data().chunks_exact(channels).all(|pixel| {
+        let known = previous == Some(pixel) || is_segment_colour(&key(pixel));
+        previous = Some(pixel);
+        known
+    });
+    if only_segment_colours {
         return Vec::new();
     }
+    let target_colours = histogram(target);
     let limit = tolerance(&histogram(source), channels, colours);
     let near = limit * limit;
     let mut bins: BTreeMap<[u8; 4], (usize, Vec<f64>)> = BTreeMap::new();

@@ -118,28 +118,51 @@ pub(crate) fn level_size(size: (usize, usize), level: usize) -> (usize, usize) {
 }
 
 /// Dilates a mask by `radius` (Chebyshev): the patch centres whose patch touches the mask.
+/// Separable, each pass a sliding count of the set pixels in the window (linear in the pixels,
+/// whatever the radius).
 pub(crate) fn dilate(mask: &[bool], width: usize, height: usize, radius: usize) -> Vec<bool> {
-    let mut horizontal = vec![false; mask.len()];
-    for y in 0..height {
-        for x in 0..width {
-            if mask[y * width + x] {
-                for xx in x.saturating_sub(radius)..(x + radius + 1).min(width) {
-                    horizontal[y * width + xx] = true;
-                }
-            }
-        }
+    if mask.is_empty() {
+        return Vec::new();
     }
+    let mut horizontal = vec![false; mask.len()];
+    for (row, out) in mask.chunks_exact(width).zip(horizontal.chunks_exact_mut(width)) {
+        dilate_line(width, radius, |i| row[i], |i, v| out[i] = v);
+    }
+    // Vertically, row by row: a count per column of the set pixels in the window.
+    let row = |y: usize| &horizontal[y * width..(y + 1) * width];
+    let add = |counts: &mut [u32], y: usize, step: i32| {
+        for (count, &set) in counts.iter_mut().zip(row(y)) {
+            *count = count.wrapping_add_signed(step * i32::from(set));
+        }
+    };
+    let mut counts = vec![0_u32; width];
+    (0..radius.min(height)).for_each(|y| add(&mut counts, y, 1));
     let mut out = vec![false; mask.len()];
-    for y in 0..height {
-        for x in 0..width {
-            if horizontal[y * width + x] {
-                for yy in y.saturating_sub(radius)..(y + radius + 1).min(height) {
-                    out[yy * width + x] = true;
-                }
-            }
+    for (y, out_row) in out.chunks_exact_mut(width).enumerate() {
+        if y + radius < height {
+            add(&mut counts, y + radius, 1);
+        }
+        out_row.iter_mut().zip(&counts).for_each(|(o, &c)| *o = c > 0);
+        if y >= radius {
+            add(&mut counts, y - radius, -1);
         }
     }
     out
+}
+
+/// One line of [`dilate`]: `set(i, any of get(i − radius ..= i + radius))` for `i` in `0..len`.
+#[inline(always)]
+fn dilate_line(len: usize, radius: usize, get: impl Fn(usize) -> bool, mut set: impl FnMut(usize, bool)) {
+    let mut count = (0..radius.min(len)).filter(|&i| get(i)).count();
+    for i in 0..len {
+        if i + radius < len && get(i + radius) {
+            count += 1;
+        }
+        set(i, count > 0);
+        if i >= radius && get(i - radius) {
+            count -= 1;
+        }
+    }
 }
 
 /// Runs the whole optimization.
@@ -381,7 +404,9 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             energies.push(field.mean_energy(&level, &occurrence));
             let changed = vote(&level, &field, image, true, params.stop_threshold);
             level.set_target_style(image, true);
-            converged = (params.stop_threshold > 0.0).then(|| converged_patches(&level, &changed));
+            // The last iteration's converged patches would serve no further search.
+            let more = iteration + 1 < params.search_vote_iterations;
+            converged = (params.stop_threshold > 0.0 && more).then(|| converged_patches(&level, &changed));
             progress.report(&stage, (iteration + 1) as f64 / params.search_vote_iterations as f64);
         }
         let ms = motif_core::timing::elapsed_ms(level_start);
@@ -494,6 +519,40 @@ impl Searcher<'_> {
                     occurrence.refresh(level, &field.matches);
                 }
                 exact_search(level, field, occurrence);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::dilate;
+
+    /// The sliding-count dilation against the definition, on masks of every density and
+    /// radii from none to wider than the image.
+    #[test]
+    fn dilation_matches_brute_force() {
+        let mut state = 7_u64;
+        for (width, height) in [(1, 1), (1, 9), (9, 1), (13, 7), (20, 20)] {
+            for density in [0, 10, 50, 90] {
+                let mask: Vec<bool> = (0..width * height)
+                    .map(|_| {
+                        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+                        (state >> 33) % 100 < density
+                    })
+                    .collect();
+                for radius in 0..5 {
+                    let expected: Vec<bool> = (0..width * height)
+                        .map(|i| {
+                            let (x, y) = ((i % width) as i64, (i / width) as i64);
+                            (0..width * height).any(|j| {
+                                let (u, v) = ((j % width) as i64, (j / width) as i64);
+                                mask[j] && (u - x).abs() <= radius as i64 && (v - y).abs() <= radius as i64
+                            })
+                        })
+                        .collect();
+                    assert_eq!(dilate(&mask, width, height, radius), expected, "{width}×{height} r{radius}");
+                }
             }
         }
     }
