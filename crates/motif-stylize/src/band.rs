@@ -317,6 +317,30 @@ mod tests {
         }
     }
 
+    /// Composition by runs and wrapped spans gives every pixel its texture pixel, for runs
+    /// longer than a texture row and origins on both sides of the plane's zero.
+    #[test]
+    fn composition_takes_each_pixel_from_its_texture_pixel() {
+        let texture = |w: usize, h: usize, base: f32| {
+            let data = (0..w * h * 2).map(|i| base + i as f32).collect();
+            FloatImage::from_data(w, h, 2, data).expect("sizes match")
+        };
+        let (a, b) = (texture(3, 2, 0.0), texture(5, 3, 100.0));
+        let (width, height) = (17, 4);
+        let labels: Vec<u16> = (0..width * height).map(|i| u16::from((i % width) / 6 == 1 || i / width == 2)).collect();
+        for origin in [(0, 0), (-7, 3), (11, -5)] {
+            let target = Target { size: (width, height), origin };
+            let out = compose(&labels, target, &[&a, &b], &[0, 1], 2);
+            for y in 0..height {
+                for x in 0..width {
+                    let texture = if labels[y * width + x] == 0 { &a } else { &b };
+                    let (tx, ty) = target.texture_pixel((x, y), (texture.width(), texture.height()));
+                    assert_eq!(out.pixel(x, y), texture.pixel(tx, ty), "({x}, {y}) at {origin:?}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn band_widens_with_t_and_is_empty_at_zero() {
         let (w, h) = (20, 10);
