@@ -564,7 +564,8 @@ class TilesOptions(TypedDict, total=False):
     #: Side of a tile in pixels (slippy maps use 256). Allowed: 64–1024. Default: 256.
     tile_size: int
     #: Pixels drawn and stylized around each tile and cut off, so the band's patches at a tile's edge see what
-    #: its neighbour's see; 0 = the band plus twice the patch size (the report's `margin`). Allowed: 0–256. Default: 0.
+    #: its neighbour's see; 0 = the band plus the patch size, the reach of a band pixel's result (the report's
+    #: `margin`). Allowed: 0–256. Default: 0.
     margin: int
     #: Band half-width T in pixels (Texler et al. §3.7): pixels farther than this from a class edge are copied
     #: from the class's pre-synthesized texture, only the band between is optimized; 0 = composition only.

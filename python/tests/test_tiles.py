@@ -37,7 +37,7 @@ def test_tiles_equal_the_servers(tmp_path):
         assert server.wait(timeout=120) == 0
     assert np.array_equal(motif.read_image(str(tmp_path / "tile.png")), stylized)
     report = __import__("json").loads(tiles.report())
-    assert report["margin"] == 3 + 2 * 5 and report["features"]["water"] > 0
+    assert report["margin"] == 3 + 5 and report["features"]["water"] > 0
 
 
 def test_a_pickled_tile_set_carries_its_textures():

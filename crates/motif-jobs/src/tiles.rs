@@ -32,8 +32,8 @@ crate::declare_options! {
         [value_name: "PX", range: (64.0, 1024.0)]
         tile_size: usize = DEFAULTS.tile_size,
         /// Pixels drawn and stylized around each tile and cut off, so the band's patches at a
-        /// tile's edge see what its neighbour's see; 0 = the band plus twice the patch size
-        /// (the report's `margin`).
+        /// tile's edge see what its neighbour's see; 0 = the band plus the patch size, the
+        /// reach of a band pixel's result (the report's `margin`).
         [value_name: "PX", range: (0.0, 256.0)]
         margin: usize = DEFAULTS.margin,
         /// Band half-width T in pixels (Texler et al. §3.7): pixels farther than this from a class

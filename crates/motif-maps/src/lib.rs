@@ -60,7 +60,7 @@ pub use mercator::{
     EARTH_CIRCUMFERENCE, MAX_LATITUDE, MAX_ZOOM, TileId, UnitPoint, metres_per_unit, project, tiles_covering, unproject,
 };
 pub use params::Params;
-pub use raster::{TileFrame, crop_margin, segment_map};
+pub use raster::{GUIDE_CLEARANCE, TileFrame, crop_margin, guide_map, segment_map};
 pub use seams::seam_error;
 pub use tiles::{Layer, TileSet, TileSetReport};
 pub use zoom::zoom_error;

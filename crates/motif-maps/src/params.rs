@@ -12,8 +12,8 @@ pub struct Params {
     /// Side of a tile in pixels. Range 64..=1024, default 256 (slippy maps' size).
     pub tile_size: usize,
     /// Pixels drawn and stylized around every tile and cut off, so that the band's patches at the
-    /// tile's edge see the same guide as its neighbour's. 0 = inferred: the band plus twice the
-    /// patch size ([`Params::resolved_margin`]). Range 0..=256, default 0.
+    /// tile's edge see the same guide as its neighbour's. 0 = inferred: the band plus the patch
+    /// size ([`Params::resolved_margin`]). Range 0..=256, default 0.
     pub margin: usize,
     /// Band half-width T in pixels (§3.7): pixels farther than this from a class edge are copied
     /// from the class's pre-synthesized texture, the band between is optimized. 0 = pure
@@ -115,8 +115,9 @@ impl Params {
         usize::from(zoom.saturating_sub(self.base_zoom)).min(self.texture_levels - 1)
     }
 
-    /// The margin drawn around each tile: the given one, or the band plus twice the patch size.
+    /// The margin drawn around each tile: the given one, or the band plus the patch size, the reach
+    /// of a band pixel's result (the band, two patch radii and one pixel of propagation).
     pub fn resolved_margin(&self) -> usize {
-        if self.margin > 0 { self.margin } else { self.band + 2 * self.patch_size }
+        if self.margin > 0 { self.margin } else { self.band + self.patch_size }
     }
 }

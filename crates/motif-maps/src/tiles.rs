@@ -19,7 +19,7 @@ use crate::class::MapClass;
 use crate::legend::Legend;
 use crate::map::MapData;
 use crate::mercator::TileId;
-use crate::raster::{TileFrame, crop_margin, segment_map};
+use crate::raster::{TileFrame, crop_margin, guide_map, segment_map};
 use crate::{Error, Params};
 
 /// Which picture of a tile.
@@ -208,7 +208,7 @@ impl TileSet {
         let width = self.params.min_line_width;
         let image = match layer {
             Layer::Plain => segment_map(&self.map, &frame, width, true),
-            Layer::Stylized => self.stylize(&frame, &segment_map(&self.map, &frame, width, false))?,
+            Layer::Stylized => self.stylize(&frame, &guide_map(&self.map, &frame, width))?,
         };
         Ok(crop_margin(&image, &frame))
     }
@@ -432,7 +432,7 @@ mod tests {
     /// Pixels of `frame`'s aliased segment map that differ from `block`'s at the same place of
     /// the zoom level, as positions in the zoom level.
     fn guide_differences(set: &TileSet, frame: &TileFrame, block: &TileFrame) -> Vec<(i64, i64)> {
-        let (a, b) = (segment_map(&set.map, frame, 1.0, false), segment_map(&set.map, block, 1.0, false));
+        let (a, b) = (guide_map(&set.map, frame, 1.0), guide_map(&set.map, block, 1.0));
         let ((ax, ay), (bx, by)) = (frame.global_origin(), block.global_origin());
         let mut out = Vec::new();
         for y in 0..a.height() {
