@@ -24,6 +24,25 @@ pub fn presynth_memory(
     estimate
 }
 
+/// The peak memory of [`presynthesize_closer`]: [`presynth_memory`]'s, each segment's synthesis
+/// also guided (the style blurred, as a source guide of the style's channels, and the coarser
+/// texture magnified twice, as the target guide), with the blurred style kept for them all.
+fn presynth_closer_memory(
+    style: (usize, usize, usize),
+    size: (usize, usize),
+    segments: usize,
+) -> motif_core::MemoryEstimate {
+    let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
+    let pixels = size.0.saturating_mul(size.1);
+    let mut estimate = memory_estimate(style_pixels, channels, channels, pixels, 4, style_pixels);
+    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0).add(
+        "blurred style",
+        style_pixels as f64,
+        channels as f64 * 4.0,
+    );
+    estimate
+}
+
 /// What [`presynthesize`] makes textures from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PresynthInput {
@@ -43,7 +62,7 @@ pub fn presynthesize(
     params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Vec<SegmentTexture>, Error> {
-    let segments = Segments::new(input, params)?;
+    let segments = Segments::new(input, params, presynth_memory)?;
     let labels = 0..segments.colours.len();
     labels.map(|label| segments.texture(input, label, None, params, progress)).collect()
 }
@@ -63,7 +82,7 @@ pub fn presynthesize_closer(
     params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Vec<SegmentTexture>, Error> {
-    let segments = Segments::new(input, params)?;
+    let segments = Segments::new(input, params, presynth_closer_memory)?;
     let (width, height) = input.size;
     let fits = |t: &SegmentTexture| {
         (2 * t.image.width(), 2 * t.image.height(), t.image.channels()) == (width, height, input.style.channels())
@@ -122,8 +141,13 @@ struct Segments {
 }
 
 impl Segments {
-    /// Checks `input` and `params` (images, sizes, work and memory) and finds the segments.
-    fn new(input: &PresynthInput, params: &Params) -> Result<Self, Error> {
+    /// Checks `input` and `params` (images, sizes, work and memory by `memory`) and finds the
+    /// segments.
+    fn new(
+        input: &PresynthInput,
+        params: &Params,
+        memory: fn((usize, usize, usize), (usize, usize), usize) -> motif_core::MemoryEstimate,
+    ) -> Result<Self, Error> {
         params.validate()?;
         check_image(&input.style, "style")?;
         check_image(&input.guide, "source guide")?;
@@ -160,7 +184,7 @@ impl Segments {
         let source_labels = label_image(&input.guide, &colours);
         check_work(width * height * colours.len(), params.max_pixels)?;
         let (sw, sh) = (input.style.width(), input.style.height());
-        presynth_memory((sw, sh, input.style.channels()), (width, height), colours.len())
+        memory((sw, sh, input.style.channels()), (width, height), colours.len())
             .check(params.max_memory, MEMORY_ADVICE)?;
         let r = patch / 2;
         for (label, colour) in colours.iter().enumerate() {
@@ -238,6 +262,19 @@ mod tests {
             }
         }
         total / (coarser.width() * coarser.height()) as f64
+    }
+
+    /// The closer level's memory bound counts its guides: the magnified coarser texture (the
+    /// target guide, with its coarser levels), the blurred style and its stacked channels. A
+    /// limit that a plain presynthesis of the same size fits refuses it.
+    #[test]
+    fn a_closer_level_counts_its_guides_against_the_memory_limit() {
+        let (style, size) = ((1024, 128, 3), (512, 512));
+        let (plain, closer) = (presynth_memory(style, size, 8), presynth_closer_memory(style, size, 8));
+        let target_guide = 512 * 512 * 3 * 4;
+        assert!(closer.total() >= plain.total() + target_guide, "{} against {}", closer.total(), plain.total());
+        let limit = plain.total() + target_guide / 2;
+        assert!(plain.check(limit, "").is_ok() && closer.check(limit, "").is_err());
     }
 
     /// Two segments (left and right halves of the style): each texture of the closer level keeps
