@@ -134,6 +134,10 @@ fn magnified_twice(image: &FloatImage) -> FloatImage {
     out
 }
 
+/// A presynthesis's peak memory from the style's `(width, height, channels)`, the texture size
+/// and the number of segments ([`presynth_memory`], [`presynth_closer_memory`]).
+type MemoryOf = fn((usize, usize, usize), (usize, usize), usize) -> motif_core::MemoryEstimate;
+
 /// The checked input of a presynthesis: its segment colours and the source's labels.
 struct Segments {
     colours: Vec<Vec<f32>>,
@@ -143,11 +147,7 @@ struct Segments {
 impl Segments {
     /// Checks `input` and `params` (images, sizes, work and memory by `memory`) and finds the
     /// segments.
-    fn new(
-        input: &PresynthInput,
-        params: &Params,
-        memory: fn((usize, usize, usize), (usize, usize), usize) -> motif_core::MemoryEstimate,
-    ) -> Result<Self, Error> {
+    fn new(input: &PresynthInput, params: &Params, memory: MemoryOf) -> Result<Self, Error> {
         params.validate()?;
         check_image(&input.style, "style")?;
         check_image(&input.guide, "source guide")?;
