@@ -77,7 +77,8 @@ impl Field {
         let width = level.target_width;
         let mut matches = vec![0_u32; level.target_len()];
         matches.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
-            let mut stream = streams.stream("init", y as u64);
+            // The row's stream, made at its first draw (with `plane`, draws use the pixel's own).
+            let mut row_stream = None;
             for (x, slot) in row.iter_mut().enumerate() {
                 let t = y * width + x;
                 let seed = seeds[t] as usize;
@@ -89,7 +90,8 @@ impl Field {
                     let mut own = streams.stream("init pixel", plane_key((x, y), origin));
                     random_centre(level, t, &mut own, (x0, x1, y0, y1))
                 } else {
-                    random_centre(level, t, &mut stream, (x0, x1, y0, y1))
+                    let stream = row_stream.get_or_insert_with(|| streams.stream("init", y as u64));
+                    random_centre(level, t, stream, (x0, x1, y0, y1))
                 };
             }
         });
