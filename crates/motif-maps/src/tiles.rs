@@ -201,6 +201,21 @@ impl TileSet {
         self.render_block(tile, 1, layer)
     }
 
+    /// Stylized tile `tile`, and its four tiles at the next zoom joined into one image twice its
+    /// side: what [`zoom_error`](crate::zoom_error) compares.
+    pub fn render_zooming_in(&self, tile: TileId) -> Result<(RgbaImage, RgbaImage), Error> {
+        let parent = self.render(tile, Layer::Stylized)?;
+        let size = parent.width();
+        let mut children = Vec::with_capacity(4);
+        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            children.push(self.render(TileId::new(tile.z + 1, 2 * tile.x + dx, 2 * tile.y + dy)?, Layer::Stylized)?);
+        }
+        let joined = RgbaImage::from_fn(2 * size, 2 * size, |x, y| {
+            children[usize::from(y >= size) * 2 + usize::from(x >= size)].get(x % size, y % size)
+        });
+        Ok((parent, joined))
+    }
+
     /// The `span × span` tiles from `tile` east and south rendered as one piece (the reference
     /// that tiles rendered apart are compared with), `span · tile_size` pixels a side.
     pub fn render_block(&self, tile: TileId, span: usize, layer: Layer) -> Result<RgbaImage, Error> {
@@ -363,19 +378,6 @@ mod tests {
         assert_eq!((plain.width(), plain.height()), (64, 64));
     }
 
-    /// A tile and its four tiles at the next zoom, joined.
-    fn tile_and_children(set: &TileSet, tile: TileId) -> (RgbaImage, RgbaImage) {
-        let parent = set.render(tile, Layer::Stylized).unwrap();
-        let child =
-            |dx, dy| set.render(TileId::new(tile.z + 1, 2 * tile.x + dx, 2 * tile.y + dy).unwrap(), Layer::Stylized);
-        let children = [child(0, 0).unwrap(), child(1, 0).unwrap(), child(0, 1).unwrap(), child(1, 1).unwrap()];
-        let size = parent.width();
-        let joined = RgbaImage::from_fn(2 * size, 2 * size, |x, y| {
-            children[usize::from(y >= size) * 2 + usize::from(x >= size)].get(x % size, y % size)
-        });
-        (parent, joined)
-    }
-
     /// With a second texture level at the next zoom, that zoom's tiles keep the layout of the
     /// tile they zoom into; with one level for all zooms they do not (a texture laid at twice
     /// the scale has nothing to do with its first place).
@@ -395,8 +397,8 @@ mod tests {
                 .unwrap();
         let two =
             TileSet::new(small_map(), &legend, &params.with_texture_levels(2), &mut motif_core::NoProgress).unwrap();
-        let (parent, flat) = tile_and_children(&one, tile);
-        let (same_parent, pyramid) = tile_and_children(&two, tile);
+        let (parent, flat) = one.render_zooming_in(tile).unwrap();
+        let (same_parent, pyramid) = two.render_zooming_in(tile).unwrap();
         // The base zoom's tiles are the same either way; only the next zoom differs.
         assert_eq!(parent, same_parent);
         // (0.0025 against 0.0475 at the tile's pixels when written.)

@@ -90,20 +90,6 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
     Ok(Value::Object(figures))
 }
 
-/// A tile and its four tiles at the next zoom, joined.
-fn tile_and_children(tiles: &TileSet, tile: TileId) -> anyhow::Result<(RgbaImage, RgbaImage)> {
-    let parent = tiles.render(tile, Layer::Stylized)?;
-    let size = parent.width();
-    let mut children = Vec::with_capacity(4);
-    for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-        children.push(tiles.render(TileId::new(tile.z + 1, 2 * tile.x + dx, 2 * tile.y + dy)?, Layer::Stylized)?);
-    }
-    let joined = RgbaImage::from_fn(2 * size, 2 * size, |x, y| {
-        children[usize::from(y >= size) * 2 + usize::from(x >= size)].get(x % size, y % size)
-    });
-    Ok((parent, joined))
-}
-
 /// Zooming in (item 3): the tile of the base zoom over `child` against its four tiles at the
 /// next zoom, with the run's texture pyramid and with one level of textures for every zoom (the
 /// same first textures), at the tile's pixels and at half and a quarter of its scale.
@@ -118,8 +104,8 @@ fn zoom_figures(run: &TilesRun, child: TileId, folder: &std::path::Path) -> anyh
     let legend = motif_io::read_legend(None, u64::MAX)?;
     let one_level = params.clone().with_texture_levels(1);
     let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
-    let (tile, pyramid) = tile_and_children(&run.tiles, parent)?;
-    let (same_tile, without) = tile_and_children(&flat, parent)?;
+    let (tile, pyramid) = run.tiles.render_zooming_in(parent)?;
+    let (same_tile, without) = flat.render_zooming_in(parent)?;
     anyhow::ensure!(tile == same_tile, "the base zoom's tile differs between the two tile sets");
     let errors =
         |children: &RgbaImage| (0..3).map(|coarser| zoom_error(&tile, children, coarser)).collect::<Vec<f64>>();
