@@ -5,7 +5,7 @@
 
 use motif_core::RgbaImage;
 use motif_jobs::Job;
-use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob};
+use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob, halved};
 
 fn main() -> anyhow::Result<()> {
     let out = std::env::args().nth(1).ok_or_else(|| anyhow::anyhow!("usage: zoom_picture OUT.png"))?;
@@ -21,18 +21,7 @@ fn main() -> anyhow::Result<()> {
     let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
     // The zoom-15 tile over the seam figure's block (16/37307/18967).
     let parent = TileId::new(15, 18653, 9483)?;
-    let shrunk = |tiles: &TileSet| -> anyhow::Result<RgbaImage> {
-        let mut children = Vec::new();
-        for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-            children.push(tiles.render(TileId::new(16, 2 * parent.x + dx, 2 * parent.y + dy)?, Layer::Stylized)?);
-        }
-        let size = children[0].width();
-        Ok(RgbaImage::from_fn(size, size, |x, y| {
-            let pixel = |gx: usize, gy: usize| children[(gy / size) * 2 + gx / size].get(gx % size, gy % size);
-            let block = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| pixel(2 * x + dx, 2 * y + dy));
-            std::array::from_fn(|c| ((block.iter().map(|p| u32::from(p[c])).sum::<u32>() + 2) / 4) as u8)
-        }))
-    };
+    let shrunk = |tiles: &TileSet| -> anyhow::Result<RgbaImage> { Ok(halved(&tiles.render_zooming_in(parent)?.1)) };
     let panels = [run.tiles.render(parent, Layer::Stylized)?, shrunk(&run.tiles)?, shrunk(&flat)?];
     let (size, gap) = (panels[0].width(), 8);
     let picture = RgbaImage::from_fn(3 * size + 2 * gap, size, |x, y| {

@@ -13,8 +13,8 @@ use crate::{Finished, Job, JobError};
 /// The map types tile inputs and runs are made of, named here so that front ends need no other
 /// crate.
 pub use motif_maps::{
-    Fill, Layer, Legend, MAX_ZOOM, MapBuilder, MapClass, MapData, TileId, TileSet, TileSetReport, project, seam_error,
-    tiles_covering, unproject, zoom_error,
+    Fill, Layer, Legend, MAX_ZOOM, MapBuilder, MapClass, MapData, TileId, TileSet, TileSetReport, halved, project,
+    seam_error, tiles_covering, unproject, zoom_error,
 };
 
 const DEFAULTS: motif_maps::Params = motif_maps::Params::DEFAULT;

@@ -63,4 +63,4 @@ pub use params::Params;
 pub use raster::{GUIDE_CLEARANCE, TileFrame, crop_margin, guide_map, segment_map};
 pub use seams::seam_error;
 pub use tiles::{Layer, TileSet, TileSetReport};
-pub use zoom::zoom_error;
+pub use zoom::{halved, zoom_error};

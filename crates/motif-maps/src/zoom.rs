@@ -33,8 +33,9 @@ pub fn zoom_error(parent: &RgbaImage, children: &RgbaImage, coarser: u32) -> f64
     total / (3 * width * height) as f64
 }
 
-/// `image` at half its size (rounded down), each pixel the mean of a 2 × 2 block (rounded).
-fn halved(image: &RgbaImage) -> RgbaImage {
+/// `image` at half its size (rounded down), each pixel the mean of a 2 × 2 block (rounded): a
+/// tile's four children seen from as far as the tile.
+pub fn halved(image: &RgbaImage) -> RgbaImage {
     RgbaImage::from_fn(image.width() / 2, image.height() / 2, |x, y| {
         let block = [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| image.get(2 * x + dx, 2 * y + dy));
         std::array::from_fn(|c| ((block.iter().map(|p| u32::from(p[c])).sum::<u32>() + 2) / 4) as u8)
