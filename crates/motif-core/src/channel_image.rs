@@ -48,7 +48,7 @@ impl ByteImage {
 
     /// A float image with values in `[0, 1]`, clamped and rounded to 8 bits.
     pub fn from_float(image: &FloatImage) -> ByteImage {
-        let data = image.data().iter().map(|&v| (v.clamp(0.0, 1.0) * 255.0).round() as u8).collect();
+        let data = image.data().iter().map(|&v| crate::math::unit_to_byte(v)).collect();
         ByteImage { width: image.width(), height: image.height(), channels: image.channels(), data }
     }
 
@@ -116,7 +116,7 @@ impl ByteImage {
                 }
             }
             for (out, sum) in data[y * out_w * c..(y + 1) * out_w * c].iter_mut().zip(&sums) {
-                *out = (sum.clamp(0.0, 1.0) * 255.0).round() as u8;
+                *out = crate::math::unit_to_byte(*sum);
             }
         }
         ByteImage { width: out_w, height: out_h, channels: c, data }

@@ -159,7 +159,7 @@ impl RgbaImage {
     /// Converts from a float image with values in `[0, 1]`: 1 channel is grey, 2 grey + alpha,
     /// 3 RGB, 4 RGBA; channels beyond 4 are ignored. Values are clamped and rounded.
     pub fn from_float(image: &FloatImage) -> RgbaImage {
-        let to_byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+        let to_byte = crate::math::unit_to_byte;
         let pixels = image
             .data
             .chunks_exact(image.channels.max(1))

@@ -17,7 +17,7 @@ use crate::search::Field;
 
 /// A patch's vote weight `1 / (1 + cost / area)` in 16 bits (at least 1: every patch votes).
 pub(crate) fn weight_code(cost: f32, area: f32) -> u16 {
-    ((1.0 / (1.0 + cost / area)) * 65535.0).round().clamp(1.0, 65535.0) as u16
+    motif_core::math::round_non_negative((1.0 / (1.0 + cost / area)) * 65535.0).clamp(1.0, 65535.0) as u16
 }
 
 /// The weight a [`weight_code`] stands for.
