@@ -128,10 +128,8 @@ fn the_server_answers_tiles_with_etags_from_its_cache_and_matches_the_archive() 
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let mut line = String::new();
-    BufReader::new(server.stdout.take().unwrap()).read_line(&mut line).unwrap();
-    let address = line.trim().trim_start_matches("http://").trim_end_matches('/').to_string();
-    assert!(address.starts_with("127.0.0.1:"), "{line}");
+    let address = served_address(&mut server);
+    assert!(address.starts_with("127.0.0.1:"), "{address}");
     let tile = format!("/{z}/{x}/{y}.png");
     let (status, headers, body) = get(&address, &tile, &[]);
     assert_eq!(status, 200);
@@ -156,6 +154,13 @@ fn the_server_answers_tiles_with_etags_from_its_cache_and_matches_the_archive() 
     assert!(server.wait().unwrap().success());
 }
 
+/// The `host:port` a starting `motif tiles serve` prints on its first line (`http://…/`).
+fn served_address(server: &mut std::process::Child) -> String {
+    let mut line = String::new();
+    BufReader::new(server.stdout.take().unwrap()).read_line(&mut line).unwrap();
+    line.trim().trim_start_matches("http://").trim_end_matches('/').to_string()
+}
+
 /// Ctrl-C is how a server normally ends: the first SIGINT stops it gracefully, exit code 0, with
 /// its figures in the report and a summary of what it served (not "error: interrupted").
 #[cfg(unix)]
@@ -171,9 +176,7 @@ fn ctrl_c_stops_the_server_gracefully() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let mut line = String::new();
-    BufReader::new(server.stdout.take().unwrap()).read_line(&mut line).unwrap();
-    let address = line.trim().trim_start_matches("http://").trim_end_matches('/').to_string();
+    let address = served_address(&mut server);
     assert_eq!(get(&address, "/tiles.json", &[]).0, 200);
     let killed = Command::new("kill").arg("-INT").arg(server.id().to_string()).status().unwrap();
     assert!(killed.success());

@@ -17,11 +17,7 @@ pub fn presynth_memory(
     size: (usize, usize),
     segments: usize,
 ) -> motif_core::MemoryEstimate {
-    let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
-    let pixels = size.0.saturating_mul(size.1);
-    let mut estimate = memory_estimate(style_pixels, channels, 0, pixels, 4, style_pixels);
-    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0);
-    estimate
+    segments_memory(style, size, segments, false)
 }
 
 /// The peak memory of [`presynthesize_closer`]: [`presynth_memory`]'s, each segment's synthesis
@@ -32,14 +28,24 @@ fn presynth_closer_memory(
     size: (usize, usize),
     segments: usize,
 ) -> motif_core::MemoryEstimate {
+    segments_memory(style, size, segments, true)
+}
+
+/// [`presynth_memory`], or with `guided` [`presynth_closer_memory`].
+fn segments_memory(
+    style: (usize, usize, usize),
+    size: (usize, usize),
+    segments: usize,
+    guided: bool,
+) -> motif_core::MemoryEstimate {
     let (style_pixels, channels) = (style.0.saturating_mul(style.1), style.2);
     let pixels = size.0.saturating_mul(size.1);
-    let mut estimate = memory_estimate(style_pixels, channels, channels, pixels, 4, style_pixels);
-    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0).add(
-        "blurred style",
-        style_pixels as f64,
-        channels as f64 * 4.0,
-    );
+    let guide_channels = if guided { channels } else { 0 };
+    let mut estimate = memory_estimate(style_pixels, channels, guide_channels, pixels, 4, style_pixels);
+    estimate.add("finished textures", (pixels as f64) * segments as f64, (channels + 3) as f64 * 4.0);
+    if guided {
+        estimate.add("blurred style", style_pixels as f64, channels as f64 * 4.0);
+    }
     estimate
 }
 
