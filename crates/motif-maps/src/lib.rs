@@ -10,14 +10,16 @@
 //! - `rings`: multipolygon rings joined from their ways, and the land that coastlines cut from
 //!   the map's rectangle.
 //! - `map`: [`MapBuilder`] and [`MapData`], the features in drawing order with an `rstar` index.
-//! - `raster`: a tile's segment map drawn with `tiny-skia`, anti-aliased, with a margin.
+//! - `raster`: a tile's segment map drawn with `tiny-skia`, anti-aliased, with a margin; the
+//!   stylized layer's aliased guide ([`guide_map`]), drawn a little beyond it.
 //! - `legend`: a [`Legend`] (a texture or a colour per class) and its atlas, the style exemplar.
 //! - `seams`: [`seam_error`], how visible the borders of tiles rendered apart are.
 //! - `tiles`: [`TileSet`]: the presynthesis (§3.7, once) and any tile rendered on demand, its
 //!   textures laid in the zoom level's coordinates so neighbouring tiles continue each other; a
 //!   pyramid of textures, each level twice the side and guided by the one before (§5.3's zoom,
 //!   [`Params::texture_levels`]), so that zooming in keeps the layout.
-//! - `zoom`: [`zoom_error`], how far a tile's four tiles at the next zoom stray from it.
+//! - `zoom`: [`zoom_error`], how far a tile's four tiles at the next zoom stray from it, seen
+//!   from as far ([`halved`]).
 //!
 //! The crate does no I/O (readers of `.osm.pbf` files live in `motif-io`) and builds for
 //! `wasm32`.
