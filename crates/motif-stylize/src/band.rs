@@ -317,8 +317,8 @@ mod tests {
         }
     }
 
-    /// Composition by runs and wrapped spans gives every pixel its texture pixel, for runs
-    /// longer than a texture row and origins on both sides of the plane's zero.
+    /// Composition gives every pixel its texture pixel, for runs of one label longer than a
+    /// texture row and origins on both sides of the plane's zero.
     #[test]
     fn composition_takes_each_pixel_from_its_texture_pixel() {
         let texture = |w: usize, h: usize, base: f32| {
