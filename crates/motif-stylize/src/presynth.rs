@@ -20,18 +20,9 @@ pub fn presynth_memory(
     segments_memory(style, size, segments, false)
 }
 
-/// The peak memory of [`presynthesize_closer`]: [`presynth_memory`]'s, each segment's synthesis
-/// also guided (the style blurred, as a source guide of the style's channels, and the coarser
-/// texture magnified twice, as the target guide), with the blurred style kept for them all.
-fn presynth_closer_memory(
-    style: (usize, usize, usize),
-    size: (usize, usize),
-    segments: usize,
-) -> motif_core::MemoryEstimate {
-    segments_memory(style, size, segments, true)
-}
-
-/// [`presynth_memory`], or with `guided` [`presynth_closer_memory`].
+/// [`presynth_memory`], or with `guided` that of [`presynthesize_closer`]: each segment's
+/// synthesis also guided (the style blurred, as a source guide of the style's channels, and the
+/// coarser texture magnified twice, as the target guide), with the blurred style kept for them all.
 fn segments_memory(
     style: (usize, usize, usize),
     size: (usize, usize),
@@ -68,7 +59,7 @@ pub fn presynthesize(
     params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Vec<SegmentTexture>, Error> {
-    let segments = Segments::new(input, params, presynth_memory)?;
+    let segments = Segments::new(input, params, false)?;
     let labels = 0..segments.colours.len();
     labels.map(|label| segments.texture(input, label, None, params, progress)).collect()
 }
@@ -88,7 +79,7 @@ pub fn presynthesize_closer(
     params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Vec<SegmentTexture>, Error> {
-    let segments = Segments::new(input, params, presynth_closer_memory)?;
+    let segments = Segments::new(input, params, true)?;
     let (width, height) = input.size;
     let fits = |t: &SegmentTexture| {
         (2 * t.image.width(), 2 * t.image.height(), t.image.channels()) == (width, height, input.style.channels())
@@ -140,10 +131,6 @@ fn magnified_twice(image: &FloatImage) -> FloatImage {
     out
 }
 
-/// A presynthesis's peak memory from the style's `(width, height, channels)`, the texture size
-/// and the number of segments ([`presynth_memory`], [`presynth_closer_memory`]).
-type MemoryOf = fn((usize, usize, usize), (usize, usize), usize) -> motif_core::MemoryEstimate;
-
 /// The checked input of a presynthesis: its segment colours and the source's labels.
 struct Segments {
     colours: Vec<Vec<f32>>,
@@ -151,9 +138,9 @@ struct Segments {
 }
 
 impl Segments {
-    /// Checks `input` and `params` (images, sizes, work and memory by `memory`) and finds the
-    /// segments.
-    fn new(input: &PresynthInput, params: &Params, memory: MemoryOf) -> Result<Self, Error> {
+    /// Checks `input` and `params` (images, sizes, work and memory, of a `guided` synthesis per
+    /// segment when making a closer level) and finds the segments.
+    fn new(input: &PresynthInput, params: &Params, guided: bool) -> Result<Self, Error> {
         params.validate()?;
         check_image(&input.style, "style")?;
         check_image(&input.guide, "source guide")?;
@@ -190,7 +177,7 @@ impl Segments {
         let source_labels = label_image(&input.guide, &colours);
         check_work(width * height * colours.len(), params.max_pixels)?;
         let (sw, sh) = (input.style.width(), input.style.height());
-        memory((sw, sh, input.style.channels()), (width, height), colours.len())
+        segments_memory((sw, sh, input.style.channels()), (width, height), colours.len(), guided)
             .check(params.max_memory, MEMORY_ADVICE)?;
         let r = patch / 2;
         for (label, colour) in colours.iter().enumerate() {
@@ -276,7 +263,7 @@ mod tests {
     #[test]
     fn a_closer_level_counts_its_guides_against_the_memory_limit() {
         let (style, size) = ((1024, 128, 3), (512, 512));
-        let (plain, closer) = (presynth_memory(style, size, 8), presynth_closer_memory(style, size, 8));
+        let (plain, closer) = (presynth_memory(style, size, 8), segments_memory(style, size, 8, true));
         let target_guide = 512 * 512 * 3 * 4;
         assert!(closer.total() >= plain.total() + target_guide, "{} against {}", closer.total(), plain.total());
         let limit = plain.total() + target_guide / 2;
