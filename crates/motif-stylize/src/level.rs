@@ -414,10 +414,18 @@ pub(crate) fn row_distance_n<const ROW: usize>(a: &[u8], b: &[u8]) -> u32 {
     let (a, b) = (&a[..ROW], &b[..ROW]);
     let mut sum = 0_u32;
     for i in 0..ROW {
-        let d = i32::from(a[i]) - i32::from(b[i]);
-        sum += (d * d) as u32;
+        sum += byte_square(a[i], b[i]);
     }
     sum
+}
+
+/// `(a − b)²` of two bytes. The square of a byte difference fits 16 bits (at most 255² = 65 025):
+/// squaring in 16-bit lanes does twice the pixels per vector step of 32-bit ones, and the
+/// compiler widens only the squares for the sum.
+#[inline(always)]
+fn byte_square(a: u8, b: u8) -> u32 {
+    let difference = u16::from(a.abs_diff(b));
+    u32::from(difference * difference)
 }
 
 /// Integer sum of squared differences of two equal-length 8-bit rows. Integer sums are
@@ -425,13 +433,7 @@ pub(crate) fn row_distance_n<const ROW: usize>(a: &[u8], b: &[u8]) -> u32 {
 /// Fits `u32` for rows up to 66 000 bytes (`patch × channels`, far beyond the 31 × 256 allowed).
 #[inline(always)]
 pub(crate) fn row_distance(a: &[u8], b: &[u8]) -> u32 {
-    a.iter()
-        .zip(b)
-        .map(|(&x, &y)| {
-            let d = i32::from(x) - i32::from(y);
-            (d * d) as u32
-        })
-        .sum()
+    a.iter().zip(b).map(|(&x, &y)| byte_square(x, y)).sum()
 }
 
 /// The first rows (byte offsets) and row steps of a source and a target patch.
