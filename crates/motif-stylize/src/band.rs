@@ -108,10 +108,30 @@ pub(crate) struct Target {
 impl Target {
     /// The pixel of a `width × height` texture that output pixel `(x, y)` takes: the textures
     /// tile the plane.
+    #[cfg(test)]
     fn texture_pixel(&self, (x, y): (usize, usize), (width, height): (usize, usize)) -> (usize, usize) {
-        let at = |v: usize, origin: i64, side: usize| (v as i64 + origin).rem_euclid(side as i64) as usize;
-        (at(x, self.origin.0, width), at(y, self.origin.1, height))
+        (wrap(x, self.origin.0, width), wrap(y, self.origin.1, height))
     }
+
+    /// [`texture_pixel`](Self::texture_pixel) of every output column and row for a `size`
+    /// texture, computed once per composition (not two divisions per pixel).
+    fn texture_axes(&self, (width, height): (usize, usize)) -> TextureAxes {
+        TextureAxes {
+            columns: (0..self.size.0).map(|x| wrap(x, self.origin.0, width)).collect(),
+            rows: (0..self.size.1).map(|y| wrap(y, self.origin.1, height)).collect(),
+        }
+    }
+}
+
+/// Output coordinate `v` shifted by `origin` in the plane, on a texture axis of `side` pixels.
+fn wrap(v: usize, origin: i64, side: usize) -> usize {
+    (v as i64 + origin).rem_euclid(side as i64) as usize
+}
+
+/// Per output column and row, the texture column and row it takes ([`Target::texture_axes`]).
+struct TextureAxes {
+    columns: Vec<usize>,
+    rows: Vec<usize>,
 }
 
 /// The target filled from the textures: pixel `(x, y)` of label `l` takes
@@ -124,12 +144,17 @@ pub(crate) fn compose(
     channels: usize,
 ) -> FloatImage {
     let (width, height) = target.size;
+    let axes: Vec<TextureAxes> = textures.iter().map(|t| target.texture_axes((t.width(), t.height()))).collect();
     let mut out = FloatImage::new(width, height, channels);
-    for y in 0..height {
-        for x in 0..width {
-            let texture = textures[texture_of[usize::from(labels[y * width + x])]];
-            let (tx, ty) = target.texture_pixel((x, y), (texture.width(), texture.height()));
-            out.pixel_mut(x, y).copy_from_slice(texture.pixel(tx, ty));
+    let rows = out.data_mut().chunks_exact_mut(width * channels).zip(labels.chunks_exact(width));
+    for (y, (row, row_labels)) in rows.enumerate() {
+        for (x, (pixel, &label)) in row.chunks_exact_mut(channels).zip(row_labels).enumerate() {
+            let index = texture_of[usize::from(label)];
+            let TextureAxes { columns, rows } = &axes[index];
+            // An element loop, not `copy_from_slice`: for 1–4 values a `memcpy` call costs more.
+            for (out, &value) in pixel.iter_mut().zip(textures[index].pixel(columns[x], rows[y])) {
+                *out = value;
+            }
         }
     }
     out
@@ -140,28 +165,39 @@ pub(crate) const NO_SEED: u32 = u32::MAX;
 
 /// The textures' fields composed like [`compose`]: the source centre (`y · source_width + x`) that
 /// the texture pixel of output pixel `(x, y)` came from, or [`NO_SEED`] where the texture has no
-/// field.
+/// field. A match outside the `source_width × source_height` style is an error (checked for the
+/// matches composed only: a tile reads a small part of its textures).
 pub(crate) fn compose_field(
     labels: &[u16],
     target: Target,
     fields: &[Option<&crate::NearestNeighbourField>],
     texture_of: &[usize],
-    source_width: usize,
-) -> Vec<u32> {
+    (source_width, source_height): (usize, usize),
+) -> Result<Vec<u32>, Error> {
     let (width, height) = target.size;
+    let axes: Vec<Option<TextureAxes>> =
+        fields.iter().map(|f| f.map(|f| target.texture_axes((f.width, f.height)))).collect();
     let mut out = vec![NO_SEED; width * height];
-    for y in 0..height {
-        for x in 0..width {
-            let index = y * width + x;
-            if let Some(field) = fields[texture_of[usize::from(labels[index])]] {
-                let (tx, ty) = target.texture_pixel((x, y), (field.width, field.height));
-                if let Some([sx, sy]) = field.matches[ty * field.width + tx] {
-                    out[index] = sy * source_width as u32 + sx;
+    let rows = out.chunks_exact_mut(width).zip(labels.chunks_exact(width));
+    for (y, (row, row_labels)) in rows.enumerate() {
+        for (x, (seed, &label)) in row.iter_mut().zip(row_labels).enumerate() {
+            let index = texture_of[usize::from(label)];
+            let (Some(field), Some(TextureAxes { columns, rows })) = (fields[index], &axes[index]) else {
+                continue;
+            };
+            if let Some([sx, sy]) = field.matches[rows[y] * field.width + columns[x]] {
+                if sx as usize >= source_width || sy as usize >= source_height {
+                    return Err(Error::Input(InputError::TextureFieldOutside {
+                        texture: index + 1,
+                        style_width: source_width,
+                        style_height: source_height,
+                    }));
                 }
+                *seed = sy * source_width as u32 + sx;
             }
         }
     }
-    out
+    Ok(out)
 }
 
 /// The composed target, the band, and (when the textures carry fields) the starting source centre
@@ -203,15 +239,6 @@ pub(crate) fn compose_textures(
                     height: th,
                 }));
             }
-            let outside =
-                |m: &Option<[u32; 2]>| m.is_some_and(|[x, y]| x as usize >= style_width || y as usize >= style_height);
-            if field.matches.iter().any(outside) {
-                return Err(Error::Input(InputError::TextureFieldOutside {
-                    texture: index + 1,
-                    style_width,
-                    style_height,
-                }));
-            }
             if field.source_width != style_width || field.source_height != style_height {
                 return Err(Error::Input(InputError::TextureFieldSource {
                     texture: index + 1,
@@ -231,10 +258,10 @@ pub(crate) fn compose_textures(
     let composed = compose(&labels.target, target, &images, &texture_of, channels);
     let domain = band_mask(&labels.target, width, height, band_width);
     let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
-    let seeds = fields
-        .iter()
-        .any(Option::is_some)
-        .then(|| compose_field(&labels.target, target, &fields, &texture_of, style_width));
+    let seeds = match fields.iter().any(Option::is_some) {
+        true => Some(compose_field(&labels.target, target, &fields, &texture_of, (style_width, style_height))?),
+        false => None,
+    };
     Ok((composed, domain, seeds))
 }
 
@@ -275,14 +302,15 @@ mod tests {
         let labels: Vec<u16> = vec![0, 0, 1, 1, 1, 0];
         // Label 0 takes texture 1, label 1 texture 0.
         let target = Target { size: (3, 2), origin: (0, 0) };
-        let out = compose_field(&labels, target, &[Some(&first), Some(&second)], &[1, 0], 10);
+        let out = compose_field(&labels, target, &[Some(&first), Some(&second)], &[1, 0], (10, 10)).unwrap();
         // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
         // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
         assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
-        assert_eq!(compose_field(&labels, target, &[None, Some(&second)], &[0, 0], 10), vec![NO_SEED; 6]);
+        assert_eq!(compose_field(&labels, target, &[None, Some(&second)], &[0, 0], (10, 10)).unwrap(), vec![NO_SEED; 6]);
         // Shifted by one column in the plane: (0,0) takes texture pixel (1,0), (1,0) pixel (0,0).
         let shifted = Target { size: (3, 2), origin: (-1, 0) };
-        assert_eq!(compose_field(&labels, shifted, &[Some(&first), Some(&second)], &[1, 0], 10)[..2], [17, 16]);
+        let out = compose_field(&labels, shifted, &[Some(&first), Some(&second)], &[1, 0], (10, 10)).unwrap();
+        assert_eq!(out[..2], [17, 16]);
     }
 
     /// The band by its definition (distance to the nearest edge pixel below T), on a map of

@@ -102,21 +102,17 @@ impl<'a> Level<'a> {
         let scales: Vec<f32> =
             weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
         let style_samples = spec.style.samples();
-        let source_guides: Vec<(Samples<'_>, usize)> =
-            spec.source_guides.iter().map(|g| (g.samples(), g.channels())).collect();
+        let source_images = std::iter::once((style_samples, style_channels))
+            .chain(spec.source_guides.iter().map(|g| (g.samples(), g.channels())));
+        let source_quantizers = Quantizer::consecutive(source_images, &scales);
         let mut source = vec![0_u8; source_width * source_height * channels];
         source.par_chunks_mut(source_width * channels).enumerate().for_each(|(y, row)| {
-            for x in 0..source_width {
+            for (x, out) in row.chunks_exact_mut(channels).enumerate() {
                 let index = y * source_width + x;
-                let out = &mut row[x * channels..(x + 1) * channels];
-                for (c, slot) in out[..style_channels].iter_mut().enumerate() {
-                    *slot = quantize(style_samples.value(index * style_channels + c), scales[c]);
-                }
-                let mut c = style_channels;
-                for (samples, guide_channels) in &source_guides {
-                    for k in 0..*guide_channels {
-                        out[c] = quantize(samples.value(index * guide_channels + k), scales[c]);
-                        c += 1;
+                let mut slots = out.iter_mut();
+                for image in &source_quantizers {
+                    for (k, slot) in (0..image.channels()).zip(&mut slots) {
+                        *slot = image.value(index, k);
                     }
                 }
             }
@@ -126,17 +122,16 @@ impl<'a> Level<'a> {
         let padded_height = target_height + 2 * radius;
         let mut target = vec![0_u8; padded_width * padded_height * channels];
         if guide_channels > 0 {
-            let guides: Vec<(Samples<'_>, usize)> =
-                spec.target_guides.iter().map(|g| (g.samples(), g.channels())).collect();
+            let target_images = spec.target_guides.iter().map(|g| (g.samples(), g.channels()));
+            let guides = Quantizer::consecutive(target_images, &scales[style_channels..]);
             target.par_chunks_mut(padded_width * channels).enumerate().for_each(|(py, row)| {
                 let y = unpadded(py, target_height, radius, spec.tileable);
-                for px in 0..padded_width {
+                for (px, out) in row.chunks_exact_mut(channels).enumerate() {
                     let index = y * target_width + unpadded(px, target_width, radius, spec.tileable);
-                    let mut c = style_channels;
-                    for (samples, guide_channels) in &guides {
-                        for k in 0..*guide_channels {
-                            row[px * channels + c] = quantize(samples.value(index * guide_channels + k), scales[c]);
-                            c += 1;
+                    let mut slots = out[style_channels..].iter_mut();
+                    for image in &guides {
+                        for (k, slot) in (0..image.channels()).zip(&mut slots) {
+                            *slot = image.value(index, k);
                         }
                     }
                 }
@@ -393,6 +388,53 @@ impl<'a> Level<'a> {
 fn unpadded(p: usize, size: usize, radius: usize, tileable: bool) -> usize {
     let v = p as isize - radius as isize;
     if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
+}
+
+/// The samples of one image stacked into a level, channel `k` quantized with `scales[k]`
+/// ([`quantize`]); 8-bit samples through a table per channel made by [`quantize`] itself (the
+/// same bytes, without float work per sample).
+struct Quantizer<'s> {
+    samples: Samples<'s>,
+    scales: &'s [f32],
+    tables: Vec<[u8; 256]>,
+}
+
+impl<'s> Quantizer<'s> {
+    fn new(samples: Samples<'s>, scales: &'s [f32]) -> Self {
+        let tables = match samples {
+            Samples::Byte(_) => scales
+                .iter()
+                .map(|&scale| std::array::from_fn(|byte| quantize(motif_core::channel_image::BYTE_VALUES[byte], scale)))
+                .collect(),
+            Samples::Float(_) => Vec::new(),
+        };
+        Self { samples, scales, tables }
+    }
+
+    /// One quantizer per image of `(samples, channels)`, taking their scales from `scales` in turn.
+    fn consecutive(images: impl Iterator<Item = (Samples<'s>, usize)>, scales: &'s [f32]) -> Vec<Self> {
+        let mut first = 0;
+        images
+            .map(|(samples, channels)| {
+                first += channels;
+                Self::new(samples, &scales[first - channels..first])
+            })
+            .collect()
+    }
+
+    fn channels(&self) -> usize {
+        self.scales.len()
+    }
+
+    /// Channel `k` of pixel `index`, quantized.
+    #[inline(always)]
+    fn value(&self, index: usize, k: usize) -> u8 {
+        let sample = index * self.scales.len() + k;
+        match self.samples {
+            Samples::Byte(values) => self.tables[k][usize::from(values[sample])],
+            Samples::Float(values) => quantize(values[sample], self.scales[k]),
+        }
+    }
 }
 
 /// A value in `[0, 1]` times `scale` (at most 255) as 8 bits, rounded.

@@ -3,7 +3,7 @@
 //! (`tests_synthesis`) share.
 
 use motif_core::random::Rng;
-use motif_core::{FloatImage, SeedStreams};
+use motif_core::{ChannelImage, FloatImage, SeedStreams};
 
 use crate::level::{Level, LevelSpec};
 use crate::occurrence::{Occurrence, OmegaDelta};
@@ -307,4 +307,33 @@ fn patchmatch_energy_never_increases_and_nears_exact() {
     exact_search(&level, &mut exact, &occurrence);
     let exact_energy = exact.mean_energy(&level, &occurrence);
     assert!(energies[8] <= 1.1 * exact_energy, "patchmatch {} vs exact {exact_energy}", energies[8]);
+}
+
+/// 8-bit images stack into a level through per-channel tables: the same bytes as their float
+/// values quantized one by one, for unequal channel weights (scales below 255) and guides on both
+/// sides.
+#[test]
+fn byte_images_stack_as_their_float_values() {
+    let floats = [texture(21, 17, 3, 31), texture(21, 17, 2, 32), texture(12, 9, 2, 33)];
+    let bytes = floats.clone().map(|image| motif_core::ByteImage::from_float(&image));
+    let as_floats = bytes.clone().map(|image| image.to_float_image().into_owned());
+    fn stack<I: ChannelImage>([style, source, target]: &[I; 3]) -> (Vec<u8>, Vec<u8>) {
+        let (weights, guide_weights) = ([0.5_f32, 0.2, 0.05], [0.3_f32, 0.011]);
+        let level = Level::new(LevelSpec {
+            patch: 3,
+            style,
+            style_weights: &weights,
+            source_guides: vec![source],
+            target_guides: vec![target],
+            guide_weights: &guide_weights,
+            target_size: (12, 9),
+            tileable: false,
+            source_labels: None,
+            target_labels: None,
+            label_count: 0,
+        });
+        assert!(level.channel_scales.iter().any(|&scale| scale < 200.0));
+        (level.source, level.target)
+    }
+    assert_eq!(stack(&bytes), stack(&as_floats));
 }

@@ -383,7 +383,8 @@ fn texture_fields_must_fit_their_texture_and_the_style() {
     let mut wrong_source = textures.clone();
     wrong_source[1].field.as_mut().unwrap().source_width = 40;
     let mut outside = textures.clone();
-    outside[0].field.as_mut().unwrap().matches[3] = Some([u32::MAX, 7]);
+    // Checked where the composition reads the field: every match of texture 1 is outside.
+    outside[0].field.as_mut().unwrap().matches.fill(Some([u32::MAX, 7]));
     for bad in [wrong_size, wrong_source, outside] {
         let mut banded = input.clone();
         banded.textures = Some(bad.into());
