@@ -32,7 +32,9 @@ pub(crate) fn weight_of_code(code: u16) -> f32 {
 pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weighted: bool, threshold: f32) -> Vec<bool> {
     let area = (level.patch * level.patch) as f32;
     let weights: Vec<f32> = if weighted {
-        field.costs.par_iter().map(|&cost| weight_of_code(weight_code(cost, area))).collect()
+        // Only searched patches vote: the others' weights are never read.
+        let weight = |(t, &cost)| if level.is_active(t) { weight_of_code(weight_code(cost, area)) } else { 0.0 };
+        field.costs.par_iter().enumerate().map(weight).collect()
     } else {
         vec![1.0; field.costs.len()]
     };
