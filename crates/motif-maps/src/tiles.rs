@@ -11,7 +11,7 @@
 //! seam, and nothing depends on the tiles rendered before it nor on the thread count.
 
 use motif_core::{ByteImage, Progress, RgbaImage};
-use motif_stylize::{Guide, Input, PresynthInput, SegmentTexture, Segmentation};
+use motif_stylize::{Guide, Input, PreparedStyle, PresynthInput, SegmentTexture, Segmentation};
 use serde::Serialize;
 use std::sync::{Arc, Mutex};
 
@@ -71,12 +71,29 @@ pub struct TileSetReport {
     pub features: Vec<(&'static str, usize)>,
 }
 
-/// The style side of a stylized tile set: the atlas, its guide and one texture per class.
+/// The style side of a stylized tile set: the atlas, its guide, one texture per class, and what
+/// every tile's band reads of them, made once ([`motif_stylize::prepare`]).
 #[derive(Debug)]
 struct Styled {
     style: ByteImage,
     guide: ByteImage,
     textures: Arc<[SegmentTexture]>,
+    prepared: Arc<PreparedStyle<ByteImage>>,
+}
+
+impl Styled {
+    fn new(
+        style: ByteImage,
+        guide: ByteImage,
+        textures: Arc<[SegmentTexture]>,
+        params: &Params,
+    ) -> Result<Self, Error> {
+        // Any target of the guide's colours serves: the guide itself.
+        let guides = vec![Guide { source: guide.clone(), target: guide.clone(), weight: None }];
+        let input = Input { textures: Some(textures.clone()), ..Input::guided(style.clone(), guides) };
+        let prepared = Arc::new(motif_stylize::prepare(&input, &band_params(params))?);
+        Ok(Self { style, guide, textures, prepared })
+    }
 }
 
 /// A map ready to render any of its tiles (see the module's documentation).
@@ -107,7 +124,8 @@ impl TileSet {
         // Presynthesis orders textures by its labels; tiles want them by class.
         textures.sort_by_key(|texture| class_of(&texture.colour).index());
         let presynth_ms = Some(motif_core::timing::elapsed_ms(start));
-        Ok(Self::assemble(map, legend, params, Styled { style, guide, textures: textures.into() }, presynth_ms))
+        let styled = Styled::new(style, guide, textures.into(), params)?;
+        Ok(Self::assemble(map, legend, params, styled, presynth_ms))
     }
 
     /// The tile set of `map` with textures pre-synthesized before by [`TileSet::new`] with the
@@ -139,7 +157,7 @@ impl TileSet {
                 motif_core::InvalidParameter::new("textures", format!("{} given", textures.len()), allowed).into()
             );
         }
-        Ok(Self::assemble(map, legend, params, Styled { style, guide, textures: textures.into() }, None))
+        Ok(Self::assemble(map, legend, params, Styled::new(style, guide, textures.into(), params)?, None))
     }
 
     /// The tile set and its report; `presynth_ms` when the textures were made here.
@@ -240,6 +258,7 @@ impl TileSet {
             level => self.closer_textures(level)?,
         });
         input.texture_origin = frame.global_origin();
+        input.prepared = Some(self.styled.prepared.clone());
         let params = band_params(&self.params);
         let output = motif_stylize::synthesize(&input, &params, &mut motif_core::NoProgress)?;
         Ok(RgbaImage::from_float(&output.image))

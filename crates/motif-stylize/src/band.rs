@@ -10,7 +10,7 @@
 use motif_core::FloatImage;
 
 use crate::InputError;
-use crate::{Error, NearestNeighbourField, SegmentLabels, SegmentTexture};
+use crate::{Error, NearestNeighbourField, SegmentTexture};
 
 /// Pixels closer than `band` to a segment edge (none when `band` is 0 or there is one segment).
 pub(crate) fn band_mask(labels: &[u16], width: usize, height: usize, band: usize) -> Vec<bool> {
@@ -208,7 +208,7 @@ pub(crate) type Composition = (FloatImage, Vec<bool>, Option<Vec<u32>>);
 /// labels are the textures' colours), and marks the band.
 pub(crate) fn compose_textures(
     textures: &[SegmentTexture],
-    labels: &SegmentLabels,
+    labels: &[u16],
     (style_width, style_height, channels): (usize, usize, usize),
     target: Target,
     band_width: usize,
@@ -252,14 +252,13 @@ pub(crate) fn compose_textures(
     }
     // The labels were made from the textures' colours ([`crate::label_by_colours`]): label `l` is
     // texture `l`.
-    debug_assert_eq!(labels.colours.len(), textures.len());
     let texture_of: Vec<usize> = (0..textures.len()).collect();
     let images: Vec<&FloatImage> = textures.iter().map(|t| &t.image).collect();
-    let composed = compose(&labels.target, target, &images, &texture_of, channels);
-    let domain = band_mask(&labels.target, width, height, band_width);
+    let composed = compose(labels, target, &images, &texture_of, channels);
+    let domain = band_mask(labels, width, height, band_width);
     let fields: Vec<Option<&NearestNeighbourField>> = textures.iter().map(|t| t.field.as_ref()).collect();
     let seeds = match fields.iter().any(Option::is_some) {
-        true => Some(compose_field(&labels.target, target, &fields, &texture_of, (style_width, style_height))?),
+        true => Some(compose_field(labels, target, &fields, &texture_of, (style_width, style_height))?),
         false => None,
     };
     Ok((composed, domain, seeds))
@@ -306,7 +305,10 @@ mod tests {
         // (0,0) label 0 → second at (0,0) = [6,1]; (2,0) label 1 → first at (0,0) = [1,1];
         // (0,1) label 1 → first at (0,1) = none; (2,1) label 0 → second at (0,1) = none.
         assert_eq!(out, vec![16, 17, 11, NO_SEED, 22, NO_SEED]);
-        assert_eq!(compose_field(&labels, target, &[None, Some(&second)], &[0, 0], (10, 10)).unwrap(), vec![NO_SEED; 6]);
+        assert_eq!(
+            compose_field(&labels, target, &[None, Some(&second)], &[0, 0], (10, 10)).unwrap(),
+            vec![NO_SEED; 6]
+        );
         // Shifted by one column in the plane: (0,0) takes texture pixel (1,0), (1,0) pixel (0,0).
         let shifted = Target { size: (3, 2), origin: (-1, 0) };
         let out = compose_field(&labels, shifted, &[Some(&first), Some(&second)], &[1, 0], (10, 10)).unwrap();

@@ -129,6 +129,13 @@ pub enum InputError {
     /// Segment guidance (or pre-synthesized textures) without a guide pair.
     #[error("segments: segment guidance needs a guide pair")]
     SegmentsWithoutGuide,
+    /// A prepared style was given with an input it was not made from.
+    #[error("prepared style: it was made for another {what}; prepare it again from this input")]
+    PreparedMismatch {
+        /// What differs: the style, the source guides, the textures' colours, the weights or the
+        /// patch size.
+        what: String,
+    },
     /// Band mode was asked for with an empty list of textures.
     #[error("pre-synthesized textures: no textures given")]
     NoTextures,

@@ -10,6 +10,8 @@
 //! The target buffer is padded by the patch radius (border clamped, or wrapped when tileable) so
 //! every target patch is in bounds too.
 
+use std::borrow::Cow;
+
 use motif_core::{ChannelImage, FloatImage, Samples};
 use rayon::prelude::*;
 
@@ -30,8 +32,9 @@ pub(crate) struct Level<'a> {
     pub source_width: usize,
     /// Source size.
     pub source_height: usize,
-    /// Stacked source, 8-bit: `source_width × source_height × channels`.
-    pub source: Vec<u8>,
+    /// Stacked source, 8-bit: `source_width × source_height × channels` (borrowed from a
+    /// [`crate::PreparedStyle`] when the run has one).
+    pub source: Cow<'a, [u8]>,
     /// The style at this level, unweighted (voting averages these values), borrowed from the
     /// pyramid: no copy of the largest level.
     pub style: Samples<'a>,
@@ -51,11 +54,11 @@ pub(crate) struct Level<'a> {
     /// Whether target patches wrap around the borders.
     pub tileable: bool,
     /// Segment label of every source pixel (when segments are on).
-    pub source_labels: Option<Vec<u16>>,
+    pub source_labels: Option<Cow<'a, [u16]>>,
     /// Per target pixel: the only source label its patch may match, or [`UNRESTRICTED`].
     pub target_restrict: Option<Vec<u16>>,
     /// Per label: the valid source patch centres with that label (for random candidates).
-    pub segment_centres: Vec<Vec<u32>>,
+    pub segment_centres: Cow<'a, [Vec<u32>]>,
     /// Which target patch centres are searched (all when `None`; the band in §3.7 mode).
     pub active: Option<Vec<bool>>,
     /// Which target pixels voting writes (all when `None`).
@@ -83,9 +86,11 @@ pub(crate) struct LevelSpec<'s, 'a, I> {
     pub guide_weights: &'s [f32],
     pub target_size: (usize, usize),
     pub tileable: bool,
-    pub source_labels: Option<Vec<u16>>,
+    pub source_labels: Option<Cow<'a, [u16]>>,
     pub target_labels: Option<Vec<u16>>,
     pub label_count: usize,
+    /// The style side made once for many runs, used when it fits this level's patch and weights.
+    pub prepared: Option<&'a crate::PreparedStyle<I>>,
 }
 
 impl<'a> Level<'a> {
@@ -97,25 +102,15 @@ impl<'a> Level<'a> {
         let guide_channels = spec.guide_weights.len();
         let channels = style_channels + guide_channels;
         let (source_width, source_height) = (spec.style.width(), spec.style.height());
-        let weights: Vec<f32> = spec.style_weights.iter().chain(spec.guide_weights).copied().collect();
-        let weight = weights.iter().copied().fold(0.0_f32, f32::max);
-        let scales: Vec<f32> =
-            weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
-        let style_samples = spec.style.samples();
-        let source_images = std::iter::once((style_samples, style_channels))
-            .chain(spec.source_guides.iter().map(|g| (g.samples(), g.channels())));
-        let source_quantizers = Quantizer::consecutive(source_images, &scales);
-        let mut source = vec![0_u8; source_width * source_height * channels];
-        source.par_chunks_mut(source_width * channels).enumerate().for_each(|(y, row)| {
-            for (x, out) in row.chunks_exact_mut(channels).enumerate() {
-                let index = y * source_width + x;
-                let mut slots = out.iter_mut();
-                for image in &source_quantizers {
-                    for (k, slot) in (0..image.channels()).zip(&mut slots) {
-                        *slot = image.value(index, k);
-                    }
-                }
-            }
+        let (weight, scales) = channel_scales(spec.style_weights, spec.guide_weights);
+        let prepared = spec.prepared.and_then(|prepared| prepared.source_side(patch, &scales));
+        let (source, segment_centres) = prepared.unwrap_or_else(|| {
+            let source = crate::prepared::stack_source(spec.style, &spec.source_guides, &scales);
+            let centres = spec.source_labels.as_deref().map_or_else(
+                || vec![Vec::new(); spec.label_count],
+                |labels| segment_centres(labels, (source_width, source_height), radius, spec.label_count),
+            );
+            (Cow::Owned(source), Cow::Owned(centres))
         });
         let (target_width, target_height) = spec.target_size;
         let padded_width = target_width + 2 * radius;
@@ -137,15 +132,6 @@ impl<'a> Level<'a> {
                 }
             });
         }
-        let mut segment_centres = vec![Vec::new(); spec.label_count];
-        if let Some(labels) = &spec.source_labels {
-            for y in radius..source_height - radius {
-                for x in radius..source_width - radius {
-                    let index = y * source_width + x;
-                    segment_centres[usize::from(labels[index])].push(index as u32);
-                }
-            }
-        }
         let target_restrict = spec.target_labels.map(|labels| {
             labels
                 .iter()
@@ -160,7 +146,7 @@ impl<'a> Level<'a> {
             source_width,
             source_height,
             source,
-            channel_scales: scales.clone(),
+            channel_scales: scales,
             weight,
             target_width,
             target_height,
@@ -174,7 +160,7 @@ impl<'a> Level<'a> {
             domain: None,
             search_radius: source_width.max(source_height),
             source_share_cap: None,
-            style: style_samples,
+            style: spec.style.samples(),
         }
     }
 
@@ -390,10 +376,37 @@ fn unpadded(p: usize, size: usize, radius: usize, tileable: bool) -> usize {
     if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
 }
 
+/// The largest channel weight `w_max` and each channel's 8-bit scale `255 · sqrt(w_c / w_max)`,
+/// style channels first, then the guides'.
+pub(crate) fn channel_scales(style_weights: &[f32], guide_weights: &[f32]) -> (f32, Vec<f32>) {
+    let weights: Vec<f32> = style_weights.iter().chain(guide_weights).copied().collect();
+    let weight = weights.iter().copied().fold(0.0_f32, f32::max);
+    let scales = weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
+    (weight, scales)
+}
+
+/// Per label, the valid patch centres (a `radius` from every border) of a `size` source with
+/// these pixel `labels`, in row order.
+pub(crate) fn segment_centres(
+    labels: &[u16],
+    (width, height): (usize, usize),
+    radius: usize,
+    count: usize,
+) -> Vec<Vec<u32>> {
+    let mut centres = vec![Vec::new(); count];
+    for y in radius..height - radius {
+        for x in radius..width - radius {
+            let index = y * width + x;
+            centres[usize::from(labels[index])].push(index as u32);
+        }
+    }
+    centres
+}
+
 /// The samples of one image stacked into a level, channel `k` quantized with `scales[k]`
 /// ([`quantize`]); 8-bit samples through a table per channel made by [`quantize`] itself (the
 /// same bytes, without float work per sample).
-struct Quantizer<'s> {
+pub(crate) struct Quantizer<'s> {
     samples: Samples<'s>,
     scales: &'s [f32],
     tables: Vec<[u8; 256]>,
@@ -412,7 +425,7 @@ impl<'s> Quantizer<'s> {
     }
 
     /// One quantizer per image of `(samples, channels)`, taking their scales from `scales` in turn.
-    fn consecutive(images: impl Iterator<Item = (Samples<'s>, usize)>, scales: &'s [f32]) -> Vec<Self> {
+    pub(crate) fn consecutive(images: impl Iterator<Item = (Samples<'s>, usize)>, scales: &'s [f32]) -> Vec<Self> {
         let mut first = 0;
         images
             .map(|(samples, channels)| {
@@ -422,13 +435,13 @@ impl<'s> Quantizer<'s> {
             .collect()
     }
 
-    fn channels(&self) -> usize {
+    pub(crate) fn channels(&self) -> usize {
         self.scales.len()
     }
 
     /// Channel `k` of pixel `index`, quantized.
     #[inline(always)]
-    fn value(&self, index: usize, k: usize) -> u8 {
+    pub(crate) fn value(&self, index: usize, k: usize) -> u8 {
         let sample = index * self.scales.len() + k;
         match self.samples {
             Samples::Byte(values) => self.tables[k][usize::from(values[sample])],

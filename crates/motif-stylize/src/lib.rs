@@ -82,6 +82,7 @@ mod native;
 mod occurrence;
 mod outcome;
 mod params;
+mod prepared;
 mod presynth;
 mod quilting;
 pub mod samples;
@@ -115,6 +116,7 @@ pub use mask::Mask;
 pub use motion::{MotionField, coordinate_guide, edge_guide, estimate_motion, flicker};
 pub use native::{LOCAL_SEARCH_RADIUS, LOCAL_SEARCH_RATIO};
 pub use params::{NnfMethod, Params, Segmentation};
+pub use prepared::{PreparedStyle, prepare};
 pub use presynth::{PresynthInput, presynth_memory, presynthesize, presynthesize_closer};
 pub use quilting::{inferred_coarse_patch_size, inferred_quilt_block};
 pub use segments::{BLEND_TOLERANCE, MAX_PALETTE, SegmentLabels, label_by_colours, label_guides};
@@ -177,18 +179,21 @@ pub struct Input<I = FloatImage> {
     /// ([`Params::band_local_search`]) keys its random draws by that position. Windows of one
     /// large picture (a slippy map's tiles) pass their own top-left; `(0, 0)` otherwise.
     pub texture_origin: (i64, i64),
+    /// With textures: their style side made once by [`prepare`] from an input with this style,
+    /// these source guides, weights and texture colours (checked; refused otherwise), so that a
+    /// run stacks and labels only its target. The same output as without it.
+    pub prepared: Option<std::sync::Arc<PreparedStyle<I>>>,
 }
 
 impl<I: ChannelImage> Input<I> {
     /// Guided stylization of the target guides' size.
     pub fn guided(style: I, guides: Vec<Guide<I>>) -> Self {
-        Self { style, guides, size: None, textures: None, mask: None, texture_origin: (0, 0) }
+        Self { style, guides, size: None, textures: None, mask: None, texture_origin: (0, 0), prepared: None }
     }
 
     /// Non-guided texture synthesis of `width × height` from `exemplar`.
     pub fn texture(exemplar: I, width: usize, height: usize) -> Self {
-        let size = Some((width, height));
-        Self { style: exemplar, guides: Vec::new(), size, textures: None, mask: None, texture_origin: (0, 0) }
+        Self { size: Some((width, height)), ..Self::guided(exemplar, Vec::new()) }
     }
 
     /// Inpainting: fills the `hole` of `image` (per pixel, row by row, `true` = fill) from the
@@ -196,7 +201,7 @@ impl<I: ChannelImage> Input<I> {
     pub fn inpaint(image: I, hole: Vec<bool>) -> Self {
         let size = Some((image.width(), image.height()));
         let mask = Mask { keep: image.clone(), hole, exclude_hole_from_style: true };
-        Self { style: image, guides: Vec::new(), size, textures: None, mask: Some(mask), texture_origin: (0, 0) }
+        Self { size, mask: Some(mask), ..Self::guided(image, Vec::new()) }
     }
 }
 
@@ -353,17 +358,21 @@ pub fn synthesize<I: ChannelImage>(
     check_work(target_size.0 * target_size.1, params.max_pixels)?;
     let estimated_memory_bytes = check_memory(input, params, target_size)?;
     let style = &input.style;
+    let prepared = input.prepared.as_deref();
+    if let Some(prepared) = prepared {
+        prepared.check(input, params)?;
+    }
     let (style_weights, guide_weights) = weights(input, params);
-    let labels = segment_labels(input, params)?;
-    let (composition, seeds) = match &input.textures {
-        Some(textures) => {
-            let labels = labels.as_ref().expect("textures imply segments");
+    let labels = segments::segment_labels(input, params)?;
+    let (composition, seeds) = match (&input.textures, &labels) {
+        (Some(textures), Some((_, target_labels, _))) => {
             let style_shape = (style.width(), style.height(), style.channels());
             let target = band::Target { size: target_size, origin: input.texture_origin };
-            let (composed, domain, seeds) = band::compose_textures(textures, labels, style_shape, target, params.band)?;
+            let (composed, domain, seeds) =
+                band::compose_textures(textures, target_labels, style_shape, target, params.band)?;
             (Some((composed, domain)), seeds)
         }
-        None => (None, None),
+        _ => (None, None),
     };
     if let Some(mask) = &input.mask {
         mask::check(mask, style, target_size, params.patch_size, input.textures.is_some())?;
@@ -395,16 +404,14 @@ pub fn synthesize<I: ChannelImage>(
         style_weights,
         guide_weights,
         target_size,
-        labels: labels.map(|l| {
-            let count = l.colours.len();
-            (l.source, l.target, count)
-        }),
+        labels,
         tileable: params.tileable,
         composition,
         seeds,
         origin: input.texture_origin,
         mask: input.mask.as_ref(),
         structure_weight: None,
+        prepared,
     };
     let mut output = synthesis::run(&problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
@@ -541,36 +548,6 @@ fn weights<I: ChannelImage>(input: &Input<I>, params: &Params) -> (Vec<f32>, Vec
         guide_weights.extend(channel_weights(weight, guide.source.channels()));
     }
     (style_weights, guide_weights)
-}
-
-/// Segment labels of the source and target (§3.6), when segments are asked for or textures are
-/// given: from the textures' colours, else found on the segment guide.
-fn segment_labels<I: ChannelImage>(input: &Input<I>, params: &Params) -> Result<Option<SegmentLabels>, Error> {
-    if params.segments.is_none() && input.textures.is_none() {
-        return Ok(None);
-    }
-    let guide_count = input.guides.len();
-    let guide = input.guides.get(params.segment_guide).ok_or_else(|| {
-        if guide_count == 0 {
-            Error::Input(InputError::SegmentsWithoutGuide)
-        } else {
-            InvalidParameter::new(
-                "segment-guide",
-                params.segment_guide + 1,
-                format!("must name one of the {guide_count} guides, counted from 1"),
-            )
-            .into()
-        }
-    })?;
-    let (source, target) = (guide.source.to_float_image(), guide.target.to_float_image());
-    let labels = match &input.textures {
-        // With a cache, its colours are the segments (whatever the mode, which chose them when
-        // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
-        // (Texler et al. §3.7).
-        Some(textures) => label_by_colours(&source, &target, textures.iter().map(|t| t.colour.clone()).collect())?,
-        None => label_guides(&source, &target, params.segments.unwrap_or(Segmentation::Palette), params.seed)?,
-    };
-    Ok(Some(labels))
 }
 
 /// The image quilt that starts texture optimization ([`Params::quilt_block`]), as a starting

@@ -55,7 +55,7 @@ impl Occurrence {
             (Some(source_labels), Some(restrict)) => {
                 let labels = level.segment_centres.len();
                 let mut source_sizes = vec![0usize; labels];
-                for &label in source_labels {
+                for &label in source_labels.iter() {
                     source_sizes[usize::from(label)] += 1;
                 }
                 let mut target_sizes = vec![0usize; labels];

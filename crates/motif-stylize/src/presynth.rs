@@ -213,13 +213,18 @@ impl Segments {
             style_weights,
             guide_weights,
             target_size: input.size,
-            labels: Some((self.source_labels.clone(), vec![label as u16; width * height], self.colours.len())),
+            labels: Some((
+                std::borrow::Cow::Borrowed(&self.source_labels[..]),
+                vec![label as u16; width * height],
+                self.colours.len(),
+            )),
             tileable: true,
             composition: None,
             seeds: None,
             origin: (0, 0),
             mask: None,
             structure_weight: None,
+            prepared: None,
         };
         let mut segment_params = params.clone();
         let seeds = motif_core::SeedStreams::new(params.seed);

@@ -4,13 +4,14 @@
 //! "the same segment" means "the same guide colour (cluster)" on both sides and an edge's blends
 //! join a segment; a target colour far from every segment colour and blend is set apart.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 
 use motif_core::random::Rng;
-use motif_core::{FloatImage, SeedStreams};
+use motif_core::{ChannelImage, FloatImage, SeedStreams};
 
 use crate::InputError;
-use crate::{Error, Segmentation};
+use crate::{Error, Guide, Input, InvalidParameter, Params, Segmentation};
 
 /// Most distinct colours the exact palette accepts; beyond it, k-means is the tool.
 pub const MAX_PALETTE: usize = 64;
@@ -120,6 +121,18 @@ pub fn label_by_colours(
     target: &FloatImage,
     colours: Vec<Vec<f32>>,
 ) -> Result<SegmentLabels, Error> {
+    let target = label_target_by_colours(source, target, &colours)?;
+    Ok(SegmentLabels { source: label_image(source, &colours), target, colours })
+}
+
+/// The target's labels of [`label_by_colours`], with its checks: the source is read only to
+/// judge a target colour far from every segment colour (not at all for a target of segment
+/// colours only, as map tiles are).
+pub(crate) fn label_target_by_colours<S: ChannelImage>(
+    source: &S,
+    target: &FloatImage,
+    colours: &[Vec<f32>],
+) -> Result<Vec<u16>, Error> {
     if colours.is_empty() {
         return Err(Error::Input(InputError::NoTextures));
     }
@@ -128,7 +141,7 @@ pub fn label_by_colours(
         let channels = colours[index].len();
         return Err(Error::Input(InputError::TextureColour { texture: index + 1, channels, guide_channels }));
     }
-    if let Some(far) = far_segments(source, target, &colours).into_iter().next() {
+    if let Some(far) = far_segments(source, target, colours).into_iter().next() {
         let textures: Vec<String> = colours.iter().map(|c| format!("#{}", hex(c))).collect();
         return Err(Error::Input(InputError::MissingTexture {
             colour: hex(&far.colour),
@@ -138,7 +151,68 @@ pub fn label_by_colours(
             tolerance: levels(far.tolerance),
         }));
     }
-    Ok(nearest_labels(source, target, colours))
+    Ok(label_image(target, colours))
+}
+
+/// The labels a run uses: the source's (borrowed from a [`crate::PreparedStyle`], else its own),
+/// the target's, and how many.
+pub(crate) type RunLabels<'a> = (Cow<'a, [u16]>, Vec<u16>, usize);
+
+/// The guide that segments are found on ([`crate::Params::segment_guide`]).
+pub(crate) fn segment_guide<'a, I: ChannelImage>(input: &'a Input<I>, params: &Params) -> Result<&'a Guide<I>, Error> {
+    let guide_count = input.guides.len();
+    input.guides.get(params.segment_guide).ok_or_else(|| {
+        if guide_count == 0 {
+            Error::Input(InputError::SegmentsWithoutGuide)
+        } else {
+            InvalidParameter::new(
+                "segment-guide",
+                params.segment_guide + 1,
+                format!("must name one of the {guide_count} guides, counted from 1"),
+            )
+            .into()
+        }
+    })
+}
+
+/// Segment labels of the source and target (§3.6), when segments are asked for or textures are
+/// given: from the textures' colours, else found on the segment guide. With a prepared style,
+/// the source's are its own and only the target is labelled.
+pub(crate) fn segment_labels<'a, I: ChannelImage>(
+    input: &'a Input<I>,
+    params: &Params,
+) -> Result<Option<RunLabels<'a>>, Error> {
+    if params.segments.is_none() && input.textures.is_none() {
+        return Ok(None);
+    }
+    let guide = segment_guide(input, params)?;
+    let target = guide.target.to_float_image();
+    let labels = match (&input.textures, &input.prepared) {
+        // With a cache, its colours are the segments (whatever the mode, which chose them when
+        // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
+        // (Texler et al. §3.7).
+        (Some(textures), prepared) => {
+            let colours: Vec<Vec<f32>> = textures.iter().map(|t| t.colour.clone()).collect();
+            let count = colours.len();
+            match prepared {
+                Some(prepared) => {
+                    let target = label_target_by_colours(&guide.source, &target, &colours)?;
+                    (Cow::Borrowed(prepared.labels()), target, count)
+                }
+                None => {
+                    let labels = label_by_colours(&guide.source.to_float_image(), &target, colours)?;
+                    (Cow::Owned(labels.source), labels.target, count)
+                }
+            }
+        }
+        (None, _) => {
+            let mode = params.segments.unwrap_or(Segmentation::Palette);
+            let labels = label_guides(&guide.source.to_float_image(), &target, mode, params.seed)?;
+            let count = labels.colours.len();
+            (Cow::Owned(labels.source), labels.target, count)
+        }
+    };
+    Ok(Some(labels))
 }
 
 /// A colour as hex digits, two per channel (`rrggbb` for RGB).
@@ -242,7 +316,7 @@ fn tolerance(source: &[([u8; 4], usize)], channels: usize, colours: &[Vec<f32>])
 /// The target's colours that lie farther than the tolerance from every segment colour and blend,
 /// grouped by 16-level bins; a bin of at least a patch of pixels (a thousandth of the target when
 /// more) is a segment. Largest first.
-fn far_segments(source: &FloatImage, target: &FloatImage, colours: &[Vec<f32>]) -> Vec<FarSegment> {
+fn far_segments<S: ChannelImage>(source: &S, target: &FloatImage, colours: &[Vec<f32>]) -> Vec<FarSegment> {
     let channels = target.channels();
     if colours.is_empty() || colours.iter().any(|c| c.len() != channels) || source.channels() != channels {
         return Vec::new();
@@ -260,7 +334,7 @@ fn far_segments(source: &FloatImage, target: &FloatImage, colours: &[Vec<f32>]) 
         return Vec::new();
     }
     let target_colours = histogram(target);
-    let limit = tolerance(&histogram(source), channels, colours);
+    let limit = tolerance(&histogram(&source.to_float_image()), channels, colours);
     let near = limit * limit;
     let mut bins: BTreeMap<[u8; 4], (usize, Vec<f64>)> = BTreeMap::new();
     for (key, count) in target_colours {

@@ -41,6 +41,7 @@ pub(crate) fn synthesize_with_structure(
         origin: (0, 0),
         mask: None,
         structure_weight: Some(params.structure_weight * colour_weight),
+        prepared: None,
     };
     let mut output = synthesis::run(&problem, params, progress)?;
     let channels = colours.channels();

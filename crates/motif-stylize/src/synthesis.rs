@@ -1,6 +1,8 @@
 //! Multi-resolution EM (Algorithm 1, §3.5): coarse to fine, N × (search, vote) per level, the
 //! field upsampled between levels; optionally a final 3×3 pass; the report figures.
 
+use std::borrow::Cow;
+
 use motif_core::timing::Clock;
 use motif_core::{ChannelImage, FloatImage, Progress, SeedStreams, StageTimer};
 
@@ -21,8 +23,11 @@ pub(crate) struct Problem<'a, I: ChannelImage = FloatImage> {
     pub style_weights: Vec<f32>,
     pub guide_weights: Vec<f32>,
     pub target_size: (usize, usize),
-    /// Source labels, target labels, label count.
-    pub labels: Option<(Vec<u16>, Vec<u16>, usize)>,
+    /// Source labels (borrowed from a prepared style, else the run's own), target labels, label
+    /// count.
+    pub labels: Option<(Cow<'a, [u16]>, Vec<u16>, usize)>,
+    /// The style side made once for many runs ([`crate::Input::prepared`], checked to fit).
+    pub prepared: Option<&'a crate::PreparedStyle<I>>,
     pub tileable: bool,
     /// Band mode (§3.7): the composed image and the band of pixels to optimize.
     pub composition: Option<(FloatImage, Vec<bool>)>,
@@ -312,10 +317,17 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             (_, Some(holes)) => {
                 let touched = dilate(&holes[level], target_size.0, target_size.1, patch / 2);
                 let source = touched.iter().map(|&t| u16::from(t)).collect();
-                (Some(source), Some(vec![0; target_size.0 * target_size.1]), 2)
+                (Some(Cow::Owned(source)), Some(vec![0; target_size.0 * target_size.1]), 2)
             }
+            // The finest level's labels are the run's own (borrowed, not copied).
             (Some((source, target, count)), None) => (
-                Some(segments::decimate(source, source_size.0, source_size.1, level_size(source_size, level), level)),
+                Some(match level {
+                    0 => Cow::Borrowed(&source[..]),
+                    _ => {
+                        let size = level_size(source_size, level);
+                        Cow::Owned(segments::decimate(source, source_size.0, source_size.1, size, level))
+                    }
+                }),
                 Some(segments::decimate(target, problem.target_size.0, problem.target_size.1, target_size, level)),
                 *count,
             ),
@@ -333,6 +345,8 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             source_labels,
             target_labels,
             label_count,
+            // Prepared for the style itself: the finest level's.
+            prepared: if level == 0 { problem.prepared } else { None },
         }
     }
 

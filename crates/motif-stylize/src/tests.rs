@@ -71,6 +71,7 @@ pub(crate) fn small_level(
         source_labels: None,
         target_labels: None,
         label_count: 0,
+        prepared: None,
     });
     let current = texture(11, 9, 3, 6);
     level.set_target_style(&current, false);
@@ -286,6 +287,7 @@ fn patchmatch_energy_never_increases_and_nears_exact() {
         source_labels: None,
         target_labels: None,
         label_count: 0,
+        prepared: None,
     };
     let mut level = Level::new(spec(5));
     level.set_target_style(&target_style, false);
@@ -331,9 +333,10 @@ fn byte_images_stack_as_their_float_values() {
             source_labels: None,
             target_labels: None,
             label_count: 0,
+            prepared: None,
         });
         assert!(level.channel_scales.iter().any(|&scale| scale < 200.0));
-        (level.source, level.target)
+        (level.source.into_owned(), level.target)
     }
     assert_eq!(stack(&bytes), stack(&as_floats));
 }

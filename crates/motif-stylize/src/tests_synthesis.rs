@@ -109,7 +109,7 @@ fn uniformity_raises_coverage_and_prevents_wash_out() {
     assert!(spread(&on.image, 3 * size / 4 - 4) > 0.5 * spread(&style, size / 2 - 4));
 }
 
-fn two_segment_case() -> Input {
+pub(crate) fn two_segment_case() -> Input {
     let size = 48;
     let red = texture(size, size, 3, 51);
     // Style: reddish on the left segment, bluish on the right (separable colours).
@@ -535,6 +535,7 @@ fn byte_and_float(input: &Input) -> (Input<ByteImage>, Input) {
         size: input.size,
         textures: None,
         texture_origin: input.texture_origin,
+        prepared: None,
         mask: byte_input.mask.as_ref().map(|m| Mask {
             keep: m.keep.to_float(),
             hole: m.hole.clone(),
