@@ -26,6 +26,8 @@
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7), and
 //!   the same one zoom level closer, twice the side, guided by it magnified (§5.3's zoom guide).
+//! - `prepared`: the style side of band mode made once for many targets (a slippy map's tiles):
+//!   [`prepare`] and [`Input::prepared`].
 //! - `band`: the edge band and texture composition of the pre-synthesized speed-up (§3.7), and
 //!   the composition of the textures' fields that starts the band's search.
 //! - `field`: the public nearest-neighbour field with the final vote's weights, its PNG encodings and
