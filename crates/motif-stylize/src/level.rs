@@ -105,7 +105,7 @@ impl<'a> Level<'a> {
         let (weight, scales) = channel_scales(spec.style_weights, spec.guide_weights);
         let prepared = spec.prepared.and_then(|prepared| prepared.source_side(patch, &scales));
         let (source, segment_centres) = prepared.unwrap_or_else(|| {
-            let source = crate::prepared::stack_source(spec.style, &spec.source_guides, &scales);
+            let source = stack_source(spec.style, &spec.source_guides, &scales);
             let centres = spec.source_labels.as_deref().map_or_else(
                 || vec![Vec::new(); spec.label_count],
                 |labels| segment_centres(labels, (source_width, source_height), radius, spec.label_count),
@@ -376,6 +376,28 @@ fn unpadded(p: usize, size: usize, radius: usize, tileable: bool) -> usize {
     if tileable { v.rem_euclid(size as isize) as usize } else { v.clamp(0, size as isize - 1) as usize }
 }
 
+/// The style and source guides stacked pixel by pixel, channel `c` quantized with `scales[c]`.
+pub(crate) fn stack_source<I: ChannelImage>(style: &I, source_guides: &[&I], scales: &[f32]) -> Vec<u8> {
+    let channels = scales.len();
+    let width = style.width();
+    let images = std::iter::once((style.samples(), style.channels()))
+        .chain(source_guides.iter().map(|g| (g.samples(), g.channels())));
+    let quantizers = Quantizer::consecutive(images, scales);
+    let mut source = vec![0_u8; width * style.height() * channels];
+    source.par_chunks_mut(width * channels).enumerate().for_each(|(y, row)| {
+        for (x, out) in row.chunks_exact_mut(channels).enumerate() {
+            let index = y * width + x;
+            let mut slots = out.iter_mut();
+            for image in &quantizers {
+                for (k, slot) in (0..image.channels()).zip(&mut slots) {
+                    *slot = image.value(index, k);
+                }
+            }
+        }
+    });
+    source
+}
+
 /// The largest channel weight `w_max` and each channel's 8-bit scale `255 · sqrt(w_c / w_max)`,
 /// style channels first, then the guides'.
 pub(crate) fn channel_scales(style_weights: &[f32], guide_weights: &[f32]) -> (f32, Vec<f32>) {
@@ -406,7 +428,7 @@ pub(crate) fn segment_centres(
 /// The samples of one image stacked into a level, channel `k` quantized with `scales[k]`
 /// ([`quantize`]); 8-bit samples through a table per channel made by [`quantize`] itself (the
 /// same bytes, without float work per sample).
-pub(crate) struct Quantizer<'s> {
+struct Quantizer<'s> {
     samples: Samples<'s>,
     scales: &'s [f32],
     tables: Vec<[u8; 256]>,
@@ -425,7 +447,7 @@ impl<'s> Quantizer<'s> {
     }
 
     /// One quantizer per image of `(samples, channels)`, taking their scales from `scales` in turn.
-    pub(crate) fn consecutive(images: impl Iterator<Item = (Samples<'s>, usize)>, scales: &'s [f32]) -> Vec<Self> {
+    fn consecutive(images: impl Iterator<Item = (Samples<'s>, usize)>, scales: &'s [f32]) -> Vec<Self> {
         let mut first = 0;
         images
             .map(|(samples, channels)| {
@@ -435,13 +457,13 @@ impl<'s> Quantizer<'s> {
             .collect()
     }
 
-    pub(crate) fn channels(&self) -> usize {
+    fn channels(&self) -> usize {
         self.scales.len()
     }
 
     /// Channel `k` of pixel `index`, quantized.
     #[inline(always)]
-    pub(crate) fn value(&self, index: usize, k: usize) -> u8 {
+    fn value(&self, index: usize, k: usize) -> u8 {
         let sample = index * self.scales.len() + k;
         match self.samples {
             Samples::Byte(values) => self.tables[k][usize::from(values[sample])],

@@ -11,7 +11,7 @@ use std::borrow::Cow;
 
 use motif_core::{ChannelImage, FloatImage};
 
-use crate::level::{Quantizer, channel_scales, segment_centres};
+use crate::level::{channel_scales, segment_centres, stack_source};
 use crate::{Error, Input, InputError, Params};
 
 /// A level's stacked source and its segments' patch centres, borrowed or the level's own.
@@ -45,12 +45,9 @@ pub fn prepare<I: ChannelImage>(input: &Input<I>, params: &Params) -> Result<Pre
     };
     let colours: Vec<Vec<f32>> = textures.iter().map(|t| t.colour.clone()).collect();
     let guide = crate::segments::segment_guide(input, params)?;
-    let labels = crate::segments::label_by_colours(
-        &guide.source.to_float_image(),
-        &guide.target.to_float_image(),
-        colours.clone(),
-    )?
-    .source;
+    // Only the source is labelled here: each run labels (and checks) its own target.
+    crate::segments::check_colours(&colours, guide.source.channels())?;
+    let labels = crate::segments::label_image(&guide.source.to_float_image(), &colours);
     let (style_weights, guide_weights) = crate::weights(input, params);
     let (_, scales) = channel_scales(&style_weights, &guide_weights);
     let source_guides: Vec<&I> = input.guides.iter().map(|g| &g.source).collect();
@@ -67,29 +64,6 @@ pub fn prepare<I: ChannelImage>(input: &Input<I>, params: &Params) -> Result<Pre
         labels,
         segment_centres,
     })
-}
-
-/// The style and source guides stacked pixel by pixel, channel `c` quantized with `scales[c]`.
-pub(crate) fn stack_source<I: ChannelImage>(style: &I, source_guides: &[&I], scales: &[f32]) -> Vec<u8> {
-    use rayon::prelude::*;
-    let channels = scales.len();
-    let width = style.width();
-    let images = std::iter::once((style.samples(), style.channels()))
-        .chain(source_guides.iter().map(|g| (g.samples(), g.channels())));
-    let quantizers = Quantizer::consecutive(images, scales);
-    let mut source = vec![0_u8; width * style.height() * channels];
-    source.par_chunks_mut(width * channels).enumerate().for_each(|(y, row)| {
-        for (x, out) in row.chunks_exact_mut(channels).enumerate() {
-            let index = y * width + x;
-            let mut slots = out.iter_mut();
-            for image in &quantizers {
-                for (k, slot) in (0..image.channels()).zip(&mut slots) {
-                    *slot = image.value(index, k);
-                }
-            }
-        }
-    });
-    source
 }
 
 impl<I: ChannelImage> PreparedStyle<I> {

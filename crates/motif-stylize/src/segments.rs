@@ -133,14 +133,7 @@ pub(crate) fn label_target_by_colours<S: ChannelImage>(
     target: &FloatImage,
     colours: &[Vec<f32>],
 ) -> Result<Vec<u16>, Error> {
-    if colours.is_empty() {
-        return Err(Error::Input(InputError::NoTextures));
-    }
-    let guide_channels = source.channels();
-    if let Some(index) = colours.iter().position(|c| c.len() != guide_channels) {
-        let channels = colours[index].len();
-        return Err(Error::Input(InputError::TextureColour { texture: index + 1, channels, guide_channels }));
-    }
+    check_colours(colours, source.channels())?;
     if let Some(far) = far_segments(source, target, colours).into_iter().next() {
         let textures: Vec<String> = colours.iter().map(|c| format!("#{}", hex(c))).collect();
         return Err(Error::Input(InputError::MissingTexture {
@@ -152,6 +145,18 @@ pub(crate) fn label_target_by_colours<S: ChannelImage>(
         }));
     }
     Ok(label_image(target, colours))
+}
+
+/// Refuses no segment colours, and colours of another channel count than the guide's.
+pub(crate) fn check_colours(colours: &[Vec<f32>], guide_channels: usize) -> Result<(), Error> {
+    if colours.is_empty() {
+        return Err(Error::Input(InputError::NoTextures));
+    }
+    if let Some(index) = colours.iter().position(|c| c.len() != guide_channels) {
+        let channels = colours[index].len();
+        return Err(Error::Input(InputError::TextureColour { texture: index + 1, channels, guide_channels }));
+    }
+    Ok(())
 }
 
 /// The labels a run uses: the source's (borrowed from a [`crate::PreparedStyle`], else its own),
