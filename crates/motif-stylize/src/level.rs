@@ -13,6 +13,8 @@
 use std::borrow::Cow;
 
 use motif_core::{ChannelImage, FloatImage, Samples};
+
+use crate::centres::{SegmentCentres, segment_centres};
 use rayon::prelude::*;
 
 /// Marks a target pixel whose segment has no source pixels: it may match anywhere.
@@ -58,7 +60,7 @@ pub(crate) struct Level<'a> {
     /// Per target pixel: the only source label its patch may match, or [`UNRESTRICTED`].
     pub target_restrict: Option<Vec<u16>>,
     /// Per label: the valid source patch centres with that label (for random candidates).
-    pub segment_centres: Cow<'a, [Vec<u32>]>,
+    pub segment_centres: Cow<'a, [SegmentCentres]>,
     /// Which target patch centres are searched (all when `None`; the band in §3.7 mode).
     pub active: Option<Vec<bool>>,
     /// Which target pixels voting writes (all when `None`).
@@ -107,7 +109,7 @@ impl<'a> Level<'a> {
         let (source, segment_centres) = prepared.unwrap_or_else(|| {
             let source = stack_source(spec.style, &spec.source_guides, &scales);
             let centres = spec.source_labels.as_deref().map_or_else(
-                || vec![Vec::new(); spec.label_count],
+                || vec![SegmentCentres::EMPTY; spec.label_count],
                 |labels| segment_centres(labels, (source_width, source_height), radius, spec.label_count),
             );
             (Cow::Owned(source), Cow::Owned(centres))
@@ -179,6 +181,13 @@ impl<'a> Level<'a> {
     #[inline]
     pub(crate) fn in_domain(&self, index: usize) -> bool {
         self.domain.as_ref().is_none_or(|domain| domain[index])
+    }
+
+    /// The centres that target pixel `t` may match when its segment restricts it (§3.6).
+    #[inline]
+    pub(crate) fn segment_of(&self, t: usize) -> Option<&SegmentCentres> {
+        let label = self.target_restrict.as_ref()?[t];
+        (label != UNRESTRICTED).then(|| &self.segment_centres[usize::from(label)])
     }
 
     /// Whether source centre `s` may serve target pixel `t` (segment restriction, §3.6).
@@ -405,24 +414,6 @@ pub(crate) fn channel_scales(style_weights: &[f32], guide_weights: &[f32]) -> (f
     let weight = weights.iter().copied().fold(0.0_f32, f32::max);
     let scales = weights.iter().map(|&w| if weight > 0.0 { 255.0 * (w / weight).sqrt() } else { 0.0 }).collect();
     (weight, scales)
-}
-
-/// Per label, the valid patch centres (a `radius` from every border) of a `size` source with
-/// these pixel `labels`, in row order.
-pub(crate) fn segment_centres(
-    labels: &[u16],
-    (width, height): (usize, usize),
-    radius: usize,
-    count: usize,
-) -> Vec<Vec<u32>> {
-    let mut centres = vec![Vec::new(); count];
-    for y in radius..height - radius {
-        for x in radius..width - radius {
-            let index = y * width + x;
-            centres[usize::from(labels[index])].push(index as u32);
-        }
-    }
-    centres
 }
 
 /// The samples of one image stacked into a level, channel `k` quantized with `scales[k]`

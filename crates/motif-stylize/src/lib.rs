@@ -75,6 +75,7 @@
 //! ```
 
 mod band;
+mod centres;
 mod error;
 mod field;
 mod level;

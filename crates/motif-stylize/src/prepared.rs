@@ -11,11 +11,12 @@ use std::borrow::Cow;
 
 use motif_core::{ChannelImage, FloatImage};
 
-use crate::level::{channel_scales, segment_centres, stack_source};
+use crate::centres::{SegmentCentres, segment_centres};
+use crate::level::{channel_scales, stack_source};
 use crate::{Error, Input, InputError, Params};
 
 /// A level's stacked source and its segments' patch centres, borrowed or the level's own.
-pub(crate) type SourceSide<'a> = (Cow<'a, [u8]>, Cow<'a, [Vec<u32>]>);
+pub(crate) type SourceSide<'a> = (Cow<'a, [u8]>, Cow<'a, [SegmentCentres]>);
 
 /// The style side of band mode prepared once ([`prepare`]) for every input that shares it (see
 /// [`Input::prepared`]).
@@ -32,7 +33,7 @@ pub struct PreparedStyle<I = FloatImage> {
     /// The source's segment labels, from the textures' colours.
     labels: Vec<u16>,
     /// Per label, its valid source patch centres (`Level::segment_centres`).
-    segment_centres: Vec<Vec<u32>>,
+    segment_centres: Vec<SegmentCentres>,
 }
 
 /// Prepares the style side of `input` (style, guides, textures; see [`PreparedStyle`]) for

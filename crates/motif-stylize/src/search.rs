@@ -175,8 +175,8 @@ fn random_centre(level: &Level, t: usize, stream: &mut impl Rng, bounds: (usize,
     if let (Some(restrict), true) = (&level.target_restrict, !level.segment_centres.is_empty()) {
         let label = restrict[t];
         if label != crate::level::UNRESTRICTED {
-            let list = &level.segment_centres[usize::from(label)];
-            return list[stream.random_range(0..list.len())];
+            let centres = &level.segment_centres[usize::from(label)];
+            return centres.get(stream.random_range(0..centres.len()));
         }
     }
     let (x0, x1, y0, y1) = bounds;
@@ -259,24 +259,23 @@ impl Candidates {
         let (y0, y1) = level.valid_y();
         let centre = best.centre as usize;
         let (sx, sy) = ((centre % level.source_width) as i64, (centre / level.source_width) as i64);
+        let segment = level.segment_of(t);
         let mut count = 0;
         let mut radius = level.search_radius as i64;
         while radius >= 1 {
             let bits = stream.next_u64();
-            let cx = (sx + offset(bits as u32, radius)).clamp(x0 as i64, x1 as i64 - 1);
-            let cy = (sy + offset((bits >> 32) as u32, radius)).clamp(y0 as i64, y1 as i64 - 1);
-            self.centres[count] = (cy as usize * level.source_width + cx as usize) as u32;
-            count += 1;
+            let cx = (sx + offset(bits as u32, radius)).clamp(x0 as i64, x1 as i64 - 1) as usize;
+            let cy = (sy + offset((bits >> 32) as u32, radius)).clamp(y0 as i64, y1 as i64 - 1) as usize;
+            self.centres[count] = (cy * level.source_width + cx) as u32;
+            // Outside the box of the segment's centres it cannot be one: dropped by position
+            // (the segment rule of pass 1 would drop it after reading its label).
+            count += usize::from(segment.is_none_or(|centres| centres.may_hold(cx, cy)));
             radius /= 2;
         }
-        if let Some(restrict) = &level.target_restrict {
-            let label = restrict[t];
-            if label != crate::level::UNRESTRICTED {
-                let list = &level.segment_centres[usize::from(label)];
-                let pick = (u64::from(stream.next_u32()) * list.len() as u64) >> 32;
-                self.centres[count] = list[pick as usize];
-                count += 1;
-            }
+        if let Some(centres) = segment {
+            let pick = (u64::from(stream.next_u32()) * centres.len() as u64) >> 32;
+            self.centres[count] = centres.get(pick as usize);
+            count += 1;
         }
         // Pass 1: drop the current match and candidates of other segments (the segment rule),
         // before any of their patch memory is read: far candidates mostly land in other segments.
