@@ -160,16 +160,14 @@ impl RgbaImage {
     /// 3 RGB, 4 RGBA; channels beyond 4 are ignored. Values are clamped and rounded.
     pub fn from_float(image: &FloatImage) -> RgbaImage {
         let to_byte = crate::math::unit_to_byte;
-        let pixels = image
-            .data
-            .chunks_exact(image.channels.max(1))
-            .map(|p| match p.len() {
-                1 => [to_byte(p[0]), to_byte(p[0]), to_byte(p[0]), 255],
-                2 => [to_byte(p[0]), to_byte(p[0]), to_byte(p[0]), to_byte(p[1])],
-                3 => [to_byte(p[0]), to_byte(p[1]), to_byte(p[2]), 255],
-                _ => [to_byte(p[0]), to_byte(p[1]), to_byte(p[2]), to_byte(p[3])],
-            })
-            .collect();
+        // One loop per channel count (the layout is decided once, not per pixel).
+        let samples = |channels| image.data.chunks_exact(channels);
+        let pixels = match image.channels.max(1) {
+            1 => samples(1).map(|p| [to_byte(p[0]), to_byte(p[0]), to_byte(p[0]), 255]).collect(),
+            2 => samples(2).map(|p| [to_byte(p[0]), to_byte(p[0]), to_byte(p[0]), to_byte(p[1])]).collect(),
+            3 => samples(3).map(|p| [to_byte(p[0]), to_byte(p[1]), to_byte(p[2]), 255]).collect(),
+            n => samples(n).map(|p| [to_byte(p[0]), to_byte(p[1]), to_byte(p[2]), to_byte(p[3])]).collect(),
+        };
         RgbaImage { width: image.width, height: image.height, pixels }
     }
 }

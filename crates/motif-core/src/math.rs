@@ -186,7 +186,8 @@ pub fn cos_f32(x: f32) -> f32 {
 #[inline]
 pub fn round_non_negative(x: f32) -> f32 {
     let truncated = x as u32 as f32;
-    if x - truncated >= 0.5 { truncated + 1.0 } else { truncated }
+    // Added, not branched on: a half is as likely as not, so a branch would mispredict often.
+    truncated + f32::from(u8::from(x - truncated >= 0.5))
 }
 
 /// `v` clamped to `[0, 1]` as a byte, `(v · 255).round()` ([`round_non_negative`]); NaN gives 0,

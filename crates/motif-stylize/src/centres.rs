@@ -63,6 +63,12 @@ impl SegmentCentres {
         }
     }
 
+    /// Whether the centres are every position of their box ([`Self::may_hold`] is then exact).
+    #[inline]
+    pub(crate) fn fills_box(&self) -> bool {
+        self.rectangle
+    }
+
     /// Whether source position `(x, y)` may be one of the centres (it lies in their box).
     #[inline]
     pub(crate) fn may_hold(&self, x: usize, y: usize) -> bool {
@@ -115,7 +121,11 @@ mod tests {
                 for y in 0..height {
                     for x in 0..width {
                         let centre = list.contains(&((y * width + x) as u32));
+                        let valid = (radius..width - radius).contains(&x) && (radius..height - radius).contains(&y);
                         assert!(!centre || segment.may_hold(x, y), "label {label}: ({x}, {y}) outside the box");
+                        if segment.fills_box() && valid {
+                            assert_eq!(centre, segment.may_hold(x, y), "label {label}: ({x}, {y})");
+                        }
                     }
                 }
             }

@@ -12,6 +12,7 @@ use motif_core::SeedStreams;
 use motif_core::random::{Rng, RngCore};
 use rayon::prelude::*;
 
+use crate::centres::SegmentCentres;
 use crate::level::Level;
 use crate::occurrence::{Occurrence, OmegaDelta};
 
@@ -279,10 +280,12 @@ impl Candidates {
         }
         // Pass 1: drop the current match and candidates of other segments (the segment rule),
         // before any of their patch memory is read: far candidates mostly land in other segments.
+        // In a segment that fills its box, a candidate inside the box is in the segment.
+        let inside_is_enough = segment.is_some_and(SegmentCentres::fills_box);
         let mut kept = 0;
         for index in 0..count {
             let candidate = self.centres[index];
-            if candidate != best.centre && level.allowed(t, candidate) {
+            if candidate != best.centre && (inside_is_enough || level.allowed(t, candidate)) {
                 self.centres[kept] = candidate;
                 kept += 1;
             }

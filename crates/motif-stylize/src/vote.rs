@@ -55,7 +55,8 @@ struct Gathered<'a> {
 }
 
 /// The vote's gather over style samples of type `T`, read as values by `value` (monomorphized
-/// per sample type: no branch per sample).
+/// per sample type: no branch per sample). Each output pixel sums its patches row by row, left
+/// to right, in that fixed order whatever the layout.
 fn gather<T: Copy + Sync>(
     level: &Level,
     field: &Field,
@@ -64,9 +65,16 @@ fn gather<T: Copy + Sync>(
     style: &[T],
     value: impl Fn(T) -> f32 + Sync,
 ) {
-    let (width, height, radius) = (level.target_width, level.target_height, level.radius as isize);
-    let channels = level.style_channels;
-    let source_width = level.source_width as isize;
+    let (width, channels) = (level.target_width, level.style_channels);
+    let all_active;
+    let active = match &level.active {
+        Some(active) => &active[..],
+        None => {
+            all_active = vec![true; level.target_len()];
+            &all_active[..]
+        }
+    };
+    let patches = Patches { level, matches: &field.matches, weights, active };
     let rows = output.data_mut().par_chunks_mut(width * channels).zip(changed.par_chunks_mut(width));
     rows.enumerate().for_each(|(y, (row, changed_row))| {
         // Up to 4 style channels, plus structure guidance's distance channel.
@@ -77,39 +85,12 @@ fn gather<T: Copy + Sync>(
             }
             sum[..channels].fill(0.0);
             let mut total_weight = 0.0;
-            for oy in -radius..=radius {
-                let py = y as isize + oy;
-                let py = if level.tileable {
-                    py.rem_euclid(height as isize)
-                } else if py < 0 || py >= height as isize {
-                    continue;
-                } else {
-                    py
-                } as usize;
-                for ox in -radius..=radius {
-                    let px = x as isize + ox;
-                    let px = if level.tileable {
-                        px.rem_euclid(width as isize)
-                    } else if px < 0 || px >= width as isize {
-                        continue;
-                    } else {
-                        px
-                    } as usize;
-                    let t = py * width + px;
-                    if !level.is_active(t) {
-                        continue;
-                    }
-                    // The source pixel at the same offset from the matched centre (a valid centre,
-                    // so the whole patch is inside): `s − oy · width − ox`, no division needed.
-                    let s = field.matches[t] as isize;
-                    let start = (s - oy * source_width - ox) as usize * channels;
-                    let weight = weights[t];
-                    for (acc, &sample) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
-                        *acc += weight * value(sample);
-                    }
-                    total_weight += weight;
+            patches.for_each((x, y), |start, weight| {
+                for (acc, &sample) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
+                    *acc += weight * value(sample);
                 }
-            }
+                total_weight += weight;
+            });
             if total_weight > 0.0 {
                 let out = &mut row[x * channels..(x + 1) * channels];
                 let mut largest = 0.0_f32;
@@ -122,4 +103,147 @@ fn gather<T: Copy + Sync>(
             }
         }
     });
+}
+
+/// The searched patches of a level, as the vote reads them.
+struct Patches<'a> {
+    level: &'a Level<'a>,
+    matches: &'a [u32],
+    weights: &'a [f32],
+    active: &'a [bool],
+}
+
+impl Patches<'_> {
+    /// Calls `vote(start, weight)` for each searched patch over target pixel `(x, y)`, row by
+    /// row from the top, left to right: `start` is the first style sample of the source pixel
+    /// that patch puts there. The source pixel lies at the same offset from the matched centre
+    /// (a valid centre, so the whole patch is inside): `s − oy · width − ox`, no division needed.
+    #[inline(always)]
+    fn for_each(&self, (x, y): (usize, usize), mut vote: impl FnMut(usize, f32)) {
+        let level = self.level;
+        let (width, height, radius) = (level.target_width, level.target_height, level.radius);
+        let (source_width, channels) = (level.source_width as isize, level.style_channels);
+        if level.tileable {
+            let r = radius as isize;
+            for oy in -r..=r {
+                let py = (y as isize + oy).rem_euclid(height as isize) as usize;
+                for ox in -r..=r {
+                    let t = py * width + (x as isize + ox).rem_euclid(width as isize) as usize;
+                    if self.active[t] {
+                        let start = (self.matches[t] as isize - oy * source_width - ox) as usize * channels;
+                        vote(start, self.weights[t]);
+                    }
+                }
+            }
+            return;
+        }
+        // Clipped at the borders: the rows and columns of patches that exist, as slices.
+        let (left, right) = (x.saturating_sub(radius), (x + radius).min(width - 1));
+        for py in y.saturating_sub(radius)..=(y + radius).min(height - 1) {
+            let oy = py as isize - y as isize;
+            let row = py * width + left..=py * width + right;
+            let patches = self.matches[row.clone()].iter().zip(&self.weights[row.clone()]).zip(&self.active[row]);
+            // The source pixel of the patch at column `px`: `s − oy · width − (px − x)`.
+            let shift = x as isize - oy * source_width - left as isize;
+            for (i, ((&s, &weight), &active)) in patches.enumerate() {
+                if active {
+                    vote((s as isize + shift - i as isize) as usize * channels, weight);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use motif_core::random::Rng;
+    use motif_core::{ByteImage, ChannelImage, FloatImage, SeedStreams};
+
+    use super::{vote, weight_code, weight_of_code};
+    use crate::level::{Level, LevelSpec};
+    use crate::search::Field;
+    use crate::tests::texture;
+
+    /// The vote written out: every patch over a pixel, by its offset, the source pixel found by
+    /// coordinates, summed in the gather's order (rows from the top, left to right).
+    fn reference(level: &Level, field: &Field, style: &FloatImage, output: &mut FloatImage) {
+        let (width, height, r) = (level.target_width as isize, level.target_height as isize, level.radius as isize);
+        let channels = style.channels();
+        let area = (level.patch * level.patch) as f32;
+        for y in 0..height {
+            for x in 0..width {
+                if !level.in_domain((y * width + x) as usize) {
+                    continue;
+                }
+                let (mut sum, mut total) = (vec![0.0_f32; channels], 0.0_f32);
+                for oy in -r..=r {
+                    for ox in -r..=r {
+                        let (mut px, mut py) = (x + ox, y + oy);
+                        if level.tileable {
+                            (px, py) = (px.rem_euclid(width), py.rem_euclid(height));
+                        } else if px < 0 || py < 0 || px >= width || py >= height {
+                            continue;
+                        }
+                        let t = (py * width + px) as usize;
+                        if !level.is_active(t) {
+                            continue;
+                        }
+                        let s = field.matches[t] as usize;
+                        let (sx, sy) = ((s % level.source_width) as isize - ox, (s / level.source_width) as isize - oy);
+                        let weight = weight_of_code(weight_code(field.costs[t], area));
+                        for (c, acc) in sum.iter_mut().enumerate() {
+                            *acc += weight * style.pixel(sx as usize, sy as usize)[c];
+                        }
+                        total += weight;
+                    }
+                }
+                if total > 0.0 {
+                    for (value, acc) in output.pixel_mut(x as usize, y as usize).iter_mut().zip(&sum) {
+                        *value = acc / total;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The gather against [`reference`], bit for bit: clipped and tileable, with searched and
+    /// voted masks, float and 8-bit styles, patches of 3 and 5.
+    #[test]
+    fn the_vote_is_the_written_out_weighted_mean() {
+        let float_style = texture(19, 15, 3, 41);
+        let byte_style = ByteImage::from_float(&float_style);
+        let byte_values = byte_style.to_float_image().into_owned();
+        for (patch, tileable) in [(3, false), (5, false), (5, true), (3, true)] {
+            check(&float_style, &float_style, patch, tileable);
+            check(&byte_style, &byte_values, patch, tileable);
+        }
+    }
+
+    /// One case of [`the_vote_is_the_written_out_weighted_mean`]: `style` read as `values`.
+    fn check<I: ChannelImage>(style: &I, values: &FloatImage, patch: usize, tileable: bool) {
+        let mut stream = SeedStreams::new(42).stream("masks", patch as u64);
+        let mut level = Level::new(LevelSpec {
+            patch,
+            style,
+            style_weights: &[1.0; 3],
+            source_guides: Vec::new(),
+            target_guides: Vec::new(),
+            guide_weights: &[],
+            target_size: (13, 11),
+            tileable,
+            source_labels: None,
+            target_labels: None,
+            label_count: 0,
+            prepared: None,
+        });
+        level.active = Some((0..13 * 11).map(|_| stream.random::<f32>() < 0.8).collect());
+        level.domain = Some((0..13 * 11).map(|_| stream.random::<f32>() < 0.9).collect());
+        let mut field = Field::random(&level, &SeedStreams::new(patch as u64));
+        field.costs = (0..13 * 11).map(|_| stream.random::<f32>() * 4000.0).collect();
+        let start = texture(13, 11, 3, 43);
+        let (mut gathered, mut expected) = (start.clone(), start);
+        vote(&level, &field, &mut gathered, true, 0.0);
+        reference(&level, &field, values, &mut expected);
+        assert_eq!(gathered, expected, "patch {patch}, tileable {tileable}");
+    }
 }
