@@ -80,6 +80,7 @@ impl RgbaImage {
     }
 
     /// The pixel at `(x, y)`; panics when out of bounds (callers index inside the image).
+    #[inline]
     pub fn get(&self, x: usize, y: usize) -> [u8; 4] {
         self.pixels[y * self.width + x]
     }
@@ -224,12 +225,14 @@ impl FloatImage {
     }
 
     /// The channels of pixel `(x, y)`.
+    #[inline]
     pub fn pixel(&self, x: usize, y: usize) -> &[f32] {
         let start = (y * self.width + x) * self.channels;
         &self.data[start..start + self.channels]
     }
 
     /// The channels of pixel `(x, y)`, mutable.
+    #[inline]
     pub fn pixel_mut(&mut self, x: usize, y: usize) -> &mut [f32] {
         let start = (y * self.width + x) * self.channels;
         &mut self.data[start..start + self.channels]

@@ -43,11 +43,13 @@ impl SegmentCentres {
     }
 
     /// How many centres the segment has.
+    #[inline]
     pub(crate) fn len(&self) -> usize {
         self.len
     }
 
     /// Whether the segment has no valid centre.
+    #[inline]
     pub(crate) fn is_empty(&self) -> bool {
         self.len == 0
     }

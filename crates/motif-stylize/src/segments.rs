@@ -29,6 +29,7 @@ pub struct SegmentLabels {
 }
 
 /// Quantized colour key: 8 bits per channel, up to 4 channels.
+#[inline]
 fn key(pixel: &[f32]) -> [u8; 4] {
     let mut key = [0; 4];
     for (slot, value) in key.iter_mut().zip(pixel) {
@@ -74,8 +75,13 @@ fn histogram(image: &FloatImage) -> Vec<([u8; 4], usize)> {
     histogram.into_iter().collect()
 }
 
-fn unkey(key: &[u8; 4], channels: usize) -> Vec<f32> {
-    key[..channels].iter().map(|&v| f32::from(v) / 255.0).collect()
+/// The colour a [`key`] stands for, in its first `channels` values (the others are 0).
+fn unkey(key: &[u8; 4], channels: usize) -> [f32; 4] {
+    let mut colour = [0.0; 4];
+    for (value, &v) in colour.iter_mut().zip(&key[..channels]) {
+        *value = f32::from(v) / 255.0;
+    }
+    colour
 }
 
 /// The segment colours of a source guide: its exact palette, or `k` k-means centres of its
@@ -88,7 +94,7 @@ pub(crate) fn segment_colours(source: &FloatImage, mode: Segmentation, seed: u64
             if unique.len() > MAX_PALETTE {
                 return Err(Error::Input(InputError::TooManyColours { colours: unique.len(), max: MAX_PALETTE }));
             }
-            Ok(unique.iter().map(|(key, _)| unkey(key, channels)).collect())
+            Ok(unique.iter().map(|(key, _)| unkey(key, channels)[..channels].to_vec()).collect())
         }
         Segmentation::KMeans(k) => Ok(kmeans(&unique, channels, k, seed)),
     }
@@ -262,6 +268,7 @@ pub(crate) fn label_image(image: &FloatImage, colours: &[Vec<f32>]) -> Vec<u16> 
         .collect()
 }
 
+#[inline]
 fn squared(a: &[f32], b: &[f32]) -> f32 {
     a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
 }
@@ -302,8 +309,10 @@ struct FarSegment {
 /// How far from the blends of `colours` the source guide's own pixels reach (all but its rarest
 /// strays), at least [`BLEND_TOLERANCE`].
 fn tolerance(source: &[([u8; 4], usize)], channels: usize, colours: &[Vec<f32>]) -> f32 {
-    let mut residuals: Vec<(f32, usize)> =
-        source.iter().map(|(key, count)| (blend_residual(&unkey(key, channels), colours), *count)).collect();
+    let mut residuals: Vec<(f32, usize)> = source
+        .iter()
+        .map(|(key, count)| (blend_residual(&unkey(key, channels)[..channels], colours), *count))
+        .collect();
     residuals.sort_by(|a, b| a.0.total_cmp(&b.0));
     let total: usize = residuals.iter().map(|r| r.1).sum();
     let mut seen = 0;
@@ -328,7 +337,8 @@ fn far_segments<S: ChannelImage>(source: &S, target: &FloatImage, colours: &[Vec
     }
     // A target of segment colours only (map tiles, exact guides) has no far colour whatever the
     // tolerance: no histogram is needed. Runs of one colour are checked once.
-    let is_segment_colour = |key: &[u8; 4]| colours.iter().any(|c| squared(c, &unkey(key, channels)) == 0.0);
+    let is_segment_colour =
+        |key: &[u8; 4]| colours.iter().any(|c| squared(c, &unkey(key, channels)[..channels]) == 0.0);
     let mut previous: Option<&[f32]> = None;
     let only_segment_colours = target.data().chunks_exact(channels).all(|pixel| {
         let known = previous == Some(pixel) || is_segment_colour(&key(pixel));
@@ -344,13 +354,14 @@ fn far_segments<S: ChannelImage>(source: &S, target: &FloatImage, colours: &[Vec
     let mut bins: BTreeMap<[u8; 4], (usize, Vec<f64>)> = BTreeMap::new();
     for (key, count) in target_colours {
         let colour = unkey(&key, channels);
-        let nearest = colours.iter().map(|c| squared(c, &colour)).fold(f32::INFINITY, f32::min);
-        if nearest <= near || blend_residual(&colour, colours) <= near {
+        let colour = &colour[..channels];
+        let nearest = colours.iter().map(|c| squared(c, colour)).fold(f32::INFINITY, f32::min);
+        if nearest <= near || blend_residual(colour, colours) <= near {
             continue;
         }
         let bin = bins.entry(key.map(|v| v >> 4)).or_insert_with(|| (0, vec![0.0; channels]));
         bin.0 += count;
-        for (sum, value) in bin.1.iter_mut().zip(&colour) {
+        for (sum, value) in bin.1.iter_mut().zip(colour) {
             *sum += count as f64 * f64::from(*value);
         }
     }
@@ -513,10 +524,14 @@ mod tests {
             // The segments are the source's two colours: no blend becomes a segment of its own.
             assert_eq!(labels.colours.len(), 2, "{mode:?}");
             for (index, pixel) in target.data().chunks_exact(3).enumerate() {
-                let near_blue = squared(pixel, &unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3))
-                    < squared(pixel, &unkey(&[SAND[0], SAND[1], SAND[2], 0], 3));
+                let near_blue = squared(pixel, &unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3)[..3])
+                    < squared(pixel, &unkey(&[SAND[0], SAND[1], SAND[2], 0], 3)[..3]);
                 let label = usize::from(labels.target[index]);
-                assert_eq!(labels.colours[label] == unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3), near_blue, "{index}");
+                assert_eq!(
+                    labels.colours[label] == unkey(&[BLUE[0], BLUE[1], BLUE[2], 0], 3)[..3],
+                    near_blue,
+                    "{index}"
+                );
             }
         }
         // k-means finds the colours on the source side: the target's shades do not move them.
