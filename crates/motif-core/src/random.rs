@@ -31,16 +31,35 @@ impl SeedStreams {
     ///
     /// The same `(seed, stage, index)` always gives the same sequence, on every platform.
     pub fn stream(&self, stage: &str, index: u64) -> Stream {
-        let stage_hash = fnv1a(stage.as_bytes());
-        let high = splitmix64(self.seed ^ splitmix64(stage_hash));
-        let low = splitmix64(high ^ splitmix64(index.wrapping_add(0x9e37_79b9_7f4a_7c15)));
-        Stream::from_seed(((u128::from(high) << 64) | u128::from(low)).to_le_bytes())
+        self.stage(stage).stream(index)
+    }
+
+    /// The streams of one `stage`, its name hashed once: for work that asks for many streams of
+    /// one stage (one per pixel), each the same as [`stream`](Self::stream) gives.
+    pub fn stage(&self, stage: &str) -> StageStreams {
+        StageStreams { high: splitmix64(self.seed ^ splitmix64(fnv1a(stage.as_bytes()))) }
     }
 
     /// A child root, for a sub-computation that fans out streams of its own (for example one
     /// synthesis level inside a multi-level loop).
     pub fn child(&self, stage: &str, index: u64) -> SeedStreams {
         SeedStreams::new(self.stream(stage, index).next_u64())
+    }
+}
+
+/// The streams of one stage of a [`SeedStreams`] ([`SeedStreams::stage`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct StageStreams {
+    /// The half of every stream's state that depends on the seed and the stage only.
+    high: u64,
+}
+
+impl StageStreams {
+    /// The stream of work item `index` of this stage.
+    #[inline]
+    pub fn stream(&self, index: u64) -> Stream {
+        let low = splitmix64(self.high ^ splitmix64(index.wrapping_add(0x9e37_79b9_7f4a_7c15)));
+        Stream::from_seed(((u128::from(self.high) << 64) | u128::from(low)).to_le_bytes())
     }
 }
 
@@ -55,6 +74,7 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 /// SplitMix64's finalizer: a bijective mixer with good avalanche.
+#[inline]
 fn splitmix64(value: u64) -> u64 {
     let mut z = value.wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -65,6 +85,9 @@ fn splitmix64(value: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The first value of stream `("stage", 3)` of seed 7.
+    const PINNED: u64 = 1_023_500_806_113_937_603;
 
     #[test]
     fn same_key_same_sequence_different_keys_differ() {
@@ -88,6 +111,18 @@ mod tests {
         assert_ne!(a[0], other_index.next_u64());
         assert_ne!(a[0], other_stage.next_u64());
         assert_ne!(a[0], other_seed.next_u64());
+    }
+
+    /// A stage's streams are the root's streams of that stage, and the values are pinned: a
+    /// changed derivation would change every seeded output.
+    #[test]
+    fn stage_streams_are_the_roots_and_pinned() {
+        let root = SeedStreams::new(7);
+        let stage = root.stage("pixel");
+        for index in [0, 1, 3, u64::MAX] {
+            assert_eq!(stage.stream(index).next_u64(), root.stream("pixel", index).next_u64());
+        }
+        assert_eq!(root.stream("stage", 3).next_u64(), PINNED);
     }
 
     #[test]

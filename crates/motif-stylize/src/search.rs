@@ -500,6 +500,7 @@ fn local_band_rows<const ROW: usize>(
     let (x0, x1) = level.valid_x();
     let (y0, y1) = level.valid_y();
     let source_width = level.source_width;
+    let pixel_streams = streams.stage("pixel");
     let rows = field.matches.par_chunks_mut(level.target_width).zip(field.costs.par_chunks_mut(level.target_width));
     rows.enumerate().for_each_init(
         || (OmegaDelta::new(level, None), Candidates::new()),
@@ -531,7 +532,7 @@ fn local_band_rows<const ROW: usize>(
                         best.consider::<ROW>(level, occurrence, delta, candidate, here);
                     }
                 }
-                let mut stream = streams.stream("pixel", plane_key((x, y), origin));
+                let mut stream = pixel_streams.stream(plane_key((x, y), origin));
                 scratch.random_search::<ROW, false>(level, occurrence, delta, &mut stream, &mut best, here);
                 matches[x] = best.centre;
                 costs[x] = best.distance;
