@@ -23,6 +23,8 @@
 //!   (reduced) exemplar and the finer ones refine the upsampled matches within a few pixels
 //!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
 //! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
+//! - `centres`: each segment's valid source centres and their box, where the random search draws
+//!   in-segment candidates and drops far ones by position (§3.6's restriction).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.
 //! - `presynth`: one seamless texture per segment of the source guide, made once (§3.7), and
 //!   the same one zoom level closer, twice the side, guided by it magnified (§5.3's zoom guide).
