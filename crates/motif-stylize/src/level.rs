@@ -13,9 +13,9 @@
 use std::borrow::Cow;
 
 use motif_core::{ChannelImage, FloatImage, Samples};
+use rayon::prelude::*;
 
 use crate::centres::{SegmentCentres, segment_centres};
-use rayon::prelude::*;
 
 /// Marks a target pixel whose segment has no source pixels: it may match anywhere.
 pub(crate) const UNRESTRICTED: u16 = u16::MAX;

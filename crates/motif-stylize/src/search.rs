@@ -173,12 +173,8 @@ impl Field {
 
 /// A random valid centre for target pixel `t`: from its segment's centres when restricted.
 fn random_centre(level: &Level, t: usize, stream: &mut impl Rng, bounds: (usize, usize, usize, usize)) -> u32 {
-    if let (Some(restrict), true) = (&level.target_restrict, !level.segment_centres.is_empty()) {
-        let label = restrict[t];
-        if label != crate::level::UNRESTRICTED {
-            let centres = &level.segment_centres[usize::from(label)];
-            return centres.get(stream.random_range(0..centres.len()));
-        }
+    if let Some(centres) = level.segment_of(t) {
+        return centres.get(stream.random_range(0..centres.len()));
     }
     let (x0, x1, y0, y1) = bounds;
     let x = stream.random_range(x0..x1);
