@@ -82,8 +82,7 @@ impl Field {
             let mut row_stream = None;
             for (x, slot) in row.iter_mut().enumerate() {
                 let t = y * width + x;
-                let seed = seeds[t] as usize;
-                let (sx, sy) = (seed % level.source_width, seed / level.source_width);
+                let (sx, sy) = level.source_xy(seeds[t]);
                 let valid = seeds[t] != crate::band::NO_SEED && (x0..x1).contains(&sx) && (y0..y1).contains(&sy);
                 *slot = if valid && level.allowed(t, seeds[t]) {
                     seeds[t]
@@ -254,8 +253,8 @@ impl Candidates {
     ) {
         let (x0, x1) = level.valid_x();
         let (y0, y1) = level.valid_y();
-        let centre = best.centre as usize;
-        let (sx, sy) = ((centre % level.source_width) as i64, (centre / level.source_width) as i64);
+        let (sx, sy) = level.source_xy(best.centre);
+        let (sx, sy) = (sx as i64, sy as i64);
         let segment = level.segment_of(t);
         let mut count = 0;
         let mut radius = level.search_radius as i64;
@@ -521,8 +520,8 @@ fn local_band_rows<const ROW: usize>(
                     if !level.is_active(n) {
                         continue;
                     }
-                    let s = previous[n] as usize;
-                    let (sx, sy) = ((s % source_width) as i64 - dx, (s / source_width) as i64 - dy);
+                    let (sx, sy) = level.source_xy(previous[n]);
+                    let (sx, sy) = (sx as i64 - dx, sy as i64 - dy);
                     if (x0 as i64..x1 as i64).contains(&sx) && (y0 as i64..y1 as i64).contains(&sy) {
                         let candidate = (sy as usize * source_width + sx as usize) as u32;
                         best.consider::<ROW>(level, occurrence, delta, candidate, here);
