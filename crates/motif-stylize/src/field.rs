@@ -5,10 +5,10 @@
 //! size ([`apply_field`]), e.g. to stylize a second layer of a map with exactly the same patch
 //! layout; applied to the style it was made with, it gives back the output.
 
-use motif_core::{ChannelImage, FloatImage, RgbaImage};
+use motif_core::{ChannelImage, FloatImage, RgbaImage, Samples};
 
 use crate::Error;
-use crate::vote::weight_of_code;
+use crate::vote::{ByteVotes, FloatVotes, Votes, weight_of_code};
 use crate::{InputError, LimitError};
 
 /// For each target pixel, the centre `[x, y]` of the source patch it was matched to (`None`
@@ -139,9 +139,10 @@ impl NearestNeighbourField {
 
 /// Re-applies a field to `style` (same size as the field's source): every pixel becomes the
 /// average of what the overlapping matched patches say, weighted by the field's vote weights as
-/// the synthesis weighed them (plain when the field has none), summed in the synthesis's order,
-/// so that the style the field was made with gives back the output bit for bit; unsearched pixels
-/// stay transparent (zero).
+/// the synthesis weighed them (plain when the field has none), summed as the synthesis sums them
+/// (in its order for a float style, exactly in integers for an 8-bit one), so that the style the
+/// field was made with gives back the output bit for bit; unsearched pixels stay transparent
+/// (zero). The style has 1, 3 or 4 channels, as a synthesis's.
 pub fn apply_field(field: &NearestNeighbourField, style: &impl ChannelImage) -> Result<FloatImage, Error> {
     if style.width() != field.source_width || style.height() != field.source_height {
         return Err(Error::Input(InputError::SizeMismatch {
@@ -152,16 +153,35 @@ pub fn apply_field(field: &NearestNeighbourField, style: &impl ChannelImage) -> 
             second_size: format!("{}×{}", style.width(), style.height()),
         }));
     }
-    let (w, h, r) = (field.width as isize, field.height as isize, (field.patch_size / 2) as isize);
+    crate::check_image(style, "style a field is applied to")?;
     let channels = style.channels();
-    let samples = style.samples();
     let mut out = FloatImage::new(field.width, field.height, channels);
-    let mut sum = vec![0.0_f32; channels];
-    let weight = |t: usize| field.weights.as_ref().map_or(1.0, |w| weight_of_code(w[t]));
+    match style.samples() {
+        Samples::Float(values) => {
+            let weight = |t: usize| field.weights.as_ref().map_or(1.0, |w| weight_of_code(w[t]));
+            reapply::<FloatVotes>(field, values, channels, weight, &mut out);
+        }
+        Samples::Byte(values) => {
+            let code = |t: usize| field.weights.as_ref().map_or(1, |w| w[t]);
+            reapply::<ByteVotes>(field, values, channels, code, &mut out);
+        }
+    }
+    Ok(out)
+}
+
+/// [`apply_field`] with the vote's accumulator `V` over the style's samples, patches weighed by
+/// `weight` of their centre.
+fn reapply<V: Votes>(
+    field: &NearestNeighbourField,
+    samples: &[V::Sample],
+    channels: usize,
+    weight: impl Fn(usize) -> V::Weight,
+    out: &mut FloatImage,
+) {
+    let (w, h, r) = (field.width as isize, field.height as isize, (field.patch_size / 2) as isize);
     for y in 0..h {
         for x in 0..w {
-            sum.fill(0.0);
-            let mut total_weight = 0.0;
+            let mut votes = V::default();
             for oy in -r..=r {
                 for ox in -r..=r {
                     let (px, py) = (x + ox, y + oy);
@@ -172,22 +192,13 @@ pub fn apply_field(field: &NearestNeighbourField, style: &impl ChannelImage) -> 
                     if let Some([sx, sy]) = field.matches[t] {
                         let (column, row) = ((sx as isize - ox) as usize, (sy as isize - oy) as usize);
                         let start = (row * field.source_width + column) * channels;
-                        let weight = weight(t);
-                        for (c, acc) in sum.iter_mut().enumerate() {
-                            *acc += weight * samples.value(start + c);
-                        }
-                        total_weight += weight;
+                        votes.add(&samples[start..start + channels], weight(t));
                     }
                 }
             }
-            if total_weight > 0.0 {
-                for (out, acc) in out.pixel_mut(x as usize, y as usize).iter_mut().zip(&sum) {
-                    *out = acc / total_weight;
-                }
-            }
+            votes.mean(out.pixel_mut(x as usize, y as usize));
         }
     }
-    Ok(out)
 }
 
 #[cfg(test)]

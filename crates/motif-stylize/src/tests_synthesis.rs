@@ -545,9 +545,11 @@ fn byte_and_float(input: &Input) -> (Input<ByteImage>, Input) {
     (byte_input, float_input)
 }
 
-/// 8-bit inputs read exactly the values of their float conversion: with one pyramid level the
-/// two runs give the same output and field; over a pyramid (whose coarser 8-bit levels are
-/// rounded) they reach the same energy. Guided stylization and inpainting.
+/// 8-bit inputs read the values of their float conversion: their votes sum exactly in integers
+/// where the float ones round (`crate::vote::ByteVotes`), a difference of the last float bit that
+/// can change which of the equally good matches a run settles on, not how good they are; with
+/// one pyramid level and over a pyramid (whose coarser 8-bit levels are rounded), guided
+/// stylization and inpainting.
 #[test]
 fn byte_inputs_read_the_values_of_their_float_conversion() {
     let guided = guided_input(48);
@@ -556,19 +558,15 @@ fn byte_inputs_read_the_values_of_their_float_conversion() {
     let inpaint = Input::inpaint(style, hole);
     for input in [guided, inpaint] {
         let (byte_input, float_input) = byte_and_float(&input);
-        let single = Params::default().with_pyramid_levels(1).with_seed(3);
-        let from_bytes = synthesize(&byte_input, &single, &mut NoProgress).unwrap();
-        let from_floats = synthesize(&float_input, &single, &mut NoProgress).unwrap();
-        assert_eq!(from_bytes.image, from_floats.image);
-        assert_eq!(from_bytes.field, from_floats.field);
+        for params in [Params::default().with_pyramid_levels(1).with_seed(3), Params::default().with_seed(3)] {
+            let from_bytes = synthesize(&byte_input, &params, &mut NoProgress).unwrap();
+            let from_floats = synthesize(&float_input, &params, &mut NoProgress).unwrap();
+            let (bytes_energy, floats_energy) = (from_bytes.report.energy.total, from_floats.report.energy.total);
+            assert!((bytes_energy / floats_energy - 1.0).abs() < 0.02, "energy {bytes_energy} against {floats_energy}");
+        }
         let pyramid = Params::default().with_seed(3);
         let from_bytes = synthesize(&byte_input, &pyramid, &mut NoProgress).unwrap();
-        let from_floats = synthesize(&float_input, &pyramid, &mut NoProgress).unwrap();
         assert!(from_bytes.report.levels.len() >= 2);
-        // A different rounding at the coarse levels changes which of the equally good matches a
-        // run settles on, not how good they are.
-        let (bytes_energy, floats_energy) = (from_bytes.report.energy.total, from_floats.report.energy.total);
-        assert!((bytes_energy / floats_energy - 1.0).abs() < 0.1, "energy {bytes_energy} against {floats_energy}");
         // The re-applied field gives back the output from the 8-bit style too (inpainting keeps
         // pixels the field does not cover).
         if input.mask.is_none() {

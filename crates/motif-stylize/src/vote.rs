@@ -8,7 +8,6 @@
 //! 16 bits ([`weight_code`]), so that a saved field carries the exact weights of the final vote and
 //! re-applying it reproduces the output (`crate::apply_field`).
 
-use motif_core::channel_image::BYTE_VALUES;
 use motif_core::{FloatImage, Samples};
 use rayon::prelude::*;
 
@@ -31,18 +30,25 @@ pub(crate) fn weight_of_code(code: u16) -> f32 {
 /// overwritten, so no copy of the image before the vote is needed.
 pub(crate) fn vote(level: &Level, field: &Field, output: &mut FloatImage, weighted: bool, threshold: f32) -> Vec<bool> {
     let area = (level.patch * level.patch) as f32;
-    let weights: Vec<f32> = if weighted {
-        // Only searched patches vote: the others' weights are never read.
-        let weight = |(t, &cost)| if level.is_active(t) { weight_of_code(weight_code(cost, area)) } else { 0.0 };
-        field.costs.par_iter().enumerate().map(weight).collect()
-    } else {
-        vec![1.0; field.costs.len()]
+    // Only searched patches vote: the others' weights are never read.
+    let code = |t: usize, cost: f32| match (weighted, level.is_active(t)) {
+        (true, true) => weight_code(cost, area),
+        (false, true) => 1,
+        (_, false) => 0,
     };
     let mut changed = vec![false; level.target_len()];
     let gathered = Gathered { output, changed: &mut changed, threshold };
     match level.style {
-        Samples::Float(style) => gather(level, field, &weights, gathered, style, |v| v),
-        Samples::Byte(style) => gather(level, field, &weights, gathered, style, |v| BYTE_VALUES[usize::from(v)]),
+        Samples::Float(style) => {
+            // Unweighted, every patch weighs 1 (not the code 1's 1 / 65535).
+            let weight = |(t, &cost)| if weighted { weight_of_code(code(t, cost)) } else { f32::from(code(t, cost)) };
+            let weights: Vec<f32> = field.costs.par_iter().enumerate().map(weight).collect();
+            gather::<FloatVotes>(level, field, &weights, gathered, style);
+        }
+        Samples::Byte(style) => {
+            let codes: Vec<u16> = field.costs.par_iter().enumerate().map(|(t, &cost)| code(t, cost)).collect();
+            gather::<ByteVotes>(level, field, &codes, gathered, style);
+        }
     }
     changed
 }
@@ -54,16 +60,94 @@ struct Gathered<'a> {
     threshold: f32,
 }
 
-/// The vote's gather over style samples of type `T`, read as values by `value` (monomorphized
-/// per sample type: no branch per sample). Each output pixel sums its patches row by row, left
-/// to right, in that fixed order whatever the layout.
-fn gather<T: Copy + Sync>(
+/// The votes one output pixel has gathered: per channel the weighted sum of its source samples,
+/// and the sum of the weights. Up to 4 style channels, plus structure guidance's distance channel.
+pub(crate) trait Votes: Default {
+    /// A style sample.
+    type Sample: Copy + Sync;
+    /// A patch's vote weight.
+    type Weight: Copy + Sync;
+    /// Adds one patch's samples of the pixel (one per channel) with the patch's weight.
+    fn add(&mut self, samples: &[Self::Sample], weight: Self::Weight);
+    /// The weighted mean of every channel into `out`, or `false` (and `out` untouched) when no
+    /// weight was gathered.
+    fn mean(&self, out: &mut [f32]) -> bool;
+}
+
+/// Votes of a float style, weighed by [`weight_of_code`]: summed in the gather's order.
+#[derive(Default)]
+pub(crate) struct FloatVotes {
+    sums: [f32; 5],
+    total: f32,
+}
+
+impl Votes for FloatVotes {
+    type Sample = f32;
+    type Weight = f32;
+
+    #[inline(always)]
+    fn add(&mut self, samples: &[f32], weight: f32) {
+        for (sum, &sample) in self.sums.iter_mut().zip(samples) {
+            *sum += weight * sample;
+        }
+        self.total += weight;
+    }
+
+    #[inline(always)]
+    fn mean(&self, out: &mut [f32]) -> bool {
+        if self.total <= 0.0 {
+            return false;
+        }
+        for (out, sum) in out.iter_mut().zip(&self.sums) {
+            *out = sum / self.total;
+        }
+        true
+    }
+}
+
+/// Votes of an 8-bit style, weighed by their [`weight_code`]s: exact integer sums (no lookup of
+/// the byte's value, no float rounding per vote, no dependence on the order), and the mean
+/// `Σ code · byte / (255 · Σ code)` divided once.
+#[derive(Default)]
+pub(crate) struct ByteVotes {
+    sums: [u64; 5],
+    total: u64,
+}
+
+impl Votes for ByteVotes {
+    type Sample = u8;
+    type Weight = u16;
+
+    #[inline(always)]
+    fn add(&mut self, samples: &[u8], code: u16) {
+        for (sum, &sample) in self.sums.iter_mut().zip(samples) {
+            *sum += u64::from(code) * u64::from(sample);
+        }
+        self.total += u64::from(code);
+    }
+
+    #[inline(always)]
+    fn mean(&self, out: &mut [f32]) -> bool {
+        if self.total == 0 {
+            return false;
+        }
+        let scale = 255.0 * self.total as f64;
+        for (out, &sum) in out.iter_mut().zip(&self.sums) {
+            *out = (sum as f64 / scale) as f32;
+        }
+        true
+    }
+}
+
+/// The vote's gather with the accumulator `V` (monomorphized per sample type: no branch per
+/// sample). Each output pixel sums its patches row by row, left to right, in that fixed order
+/// whatever the layout.
+fn gather<V: Votes>(
     level: &Level,
     field: &Field,
-    weights: &[f32],
+    weights: &[V::Weight],
     Gathered { output, changed, threshold }: Gathered<'_>,
-    style: &[T],
-    value: impl Fn(T) -> f32 + Sync,
+    style: &[V::Sample],
 ) {
     let (width, channels) = (level.target_width, level.style_channels);
     let all_active;
@@ -77,25 +161,17 @@ fn gather<T: Copy + Sync>(
     let patches = Patches { level, matches: &field.matches, weights, active };
     let rows = output.data_mut().par_chunks_mut(width * channels).zip(changed.par_chunks_mut(width));
     rows.enumerate().for_each(|(y, (row, changed_row))| {
-        // Up to 4 style channels, plus structure guidance's distance channel.
-        let mut sum = [0.0_f32; 5];
+        let mut mean = [0.0_f32; 5];
         for x in 0..width {
             if !level.in_domain(y * width + x) {
                 continue;
             }
-            sum[..channels].fill(0.0);
-            let mut total_weight = 0.0;
-            patches.for_each((x, y), |start, weight| {
-                for (acc, &sample) in sum[..channels].iter_mut().zip(&style[start..start + channels]) {
-                    *acc += weight * value(sample);
-                }
-                total_weight += weight;
-            });
-            if total_weight > 0.0 {
+            let mut votes = V::default();
+            patches.for_each((x, y), |start, weight| votes.add(&style[start..start + channels], weight));
+            if votes.mean(&mut mean[..channels]) {
                 let out = &mut row[x * channels..(x + 1) * channels];
                 let mut largest = 0.0_f32;
-                for (value, acc) in out.iter_mut().zip(&sum[..channels]) {
-                    let new = acc / total_weight;
+                for (value, &new) in out.iter_mut().zip(&mean[..channels]) {
                     largest = largest.max((new - *value).abs());
                     *value = new;
                 }
@@ -106,20 +182,20 @@ fn gather<T: Copy + Sync>(
 }
 
 /// The searched patches of a level, as the vote reads them.
-struct Patches<'a> {
+struct Patches<'a, W> {
     level: &'a Level<'a>,
     matches: &'a [u32],
-    weights: &'a [f32],
+    weights: &'a [W],
     active: &'a [bool],
 }
 
-impl Patches<'_> {
+impl<W: Copy> Patches<'_, W> {
     /// Calls `vote(start, weight)` for each searched patch over target pixel `(x, y)`, row by
     /// row from the top, left to right: `start` is the first style sample of the source pixel
     /// that patch puts there. The source pixel lies at the same offset from the matched centre
     /// (a valid centre, so the whole patch is inside): `s − oy · width − ox`, no division needed.
     #[inline(always)]
-    fn for_each(&self, (x, y): (usize, usize), mut vote: impl FnMut(usize, f32)) {
+    fn for_each(&self, (x, y): (usize, usize), mut vote: impl FnMut(usize, W)) {
         let level = self.level;
         let (width, height, radius) = (level.target_width, level.target_height, level.radius);
         let (source_width, channels) = (level.source_width as isize, level.style_channels);
@@ -165,8 +241,10 @@ mod tests {
     use crate::tests::texture;
 
     /// The vote written out: every patch over a pixel, by its offset, the source pixel found by
-    /// coordinates, summed in the gather's order (rows from the top, left to right).
-    fn reference(level: &Level, field: &Field, style: &FloatImage, output: &mut FloatImage) {
+    /// coordinates, summed in the gather's order (rows from the top, left to right). A float
+    /// style sums `weight · value` in f32; an 8-bit one (`bytes`) sums `code · byte` exactly (in
+    /// f64, exact below 2⁵³) and divides once.
+    fn reference(level: &Level, field: &Field, style: &FloatImage, bytes: Option<&ByteImage>, output: &mut FloatImage) {
         let (width, height, r) = (level.target_width as isize, level.target_height as isize, level.radius as isize);
         let channels = style.channels();
         let area = (level.patch * level.patch) as f32;
@@ -176,6 +254,7 @@ mod tests {
                     continue;
                 }
                 let (mut sum, mut total) = (vec![0.0_f32; channels], 0.0_f32);
+                let (mut exact, mut exact_total) = (vec![0.0_f64; channels], 0.0_f64);
                 for oy in -r..=r {
                     for ox in -r..=r {
                         let (mut px, mut py) = (x + ox, y + oy);
@@ -190,17 +269,34 @@ mod tests {
                         }
                         let s = field.matches[t] as usize;
                         let (sx, sy) = ((s % level.source_width) as isize - ox, (s / level.source_width) as isize - oy);
-                        let weight = weight_of_code(weight_code(field.costs[t], area));
+                        let code = weight_code(field.costs[t], area);
+                        let weight = weight_of_code(code);
                         for (c, acc) in sum.iter_mut().enumerate() {
                             *acc += weight * style.pixel(sx as usize, sy as usize)[c];
                         }
                         total += weight;
+                        if let Some(bytes) = bytes {
+                            let pixel = &bytes.data()[(sy as usize * bytes.width() + sx as usize) * channels..];
+                            for (c, acc) in exact.iter_mut().enumerate() {
+                                *acc += f64::from(code) * f64::from(pixel[c]);
+                            }
+                            exact_total += f64::from(code);
+                        }
                     }
                 }
-                if total > 0.0 {
-                    for (value, acc) in output.pixel_mut(x as usize, y as usize).iter_mut().zip(&sum) {
-                        *value = acc / total;
+                let out = output.pixel_mut(x as usize, y as usize);
+                match bytes {
+                    Some(_) if exact_total > 0.0 => {
+                        for (value, acc) in out.iter_mut().zip(&exact) {
+                            *value = (acc / (255.0 * exact_total)) as f32;
+                        }
                     }
+                    None if total > 0.0 => {
+                        for (value, acc) in out.iter_mut().zip(&sum) {
+                            *value = acc / total;
+                        }
+                    }
+                    _ => {}
                 }
             }
         }
@@ -214,13 +310,14 @@ mod tests {
         let byte_style = ByteImage::from_float(&float_style);
         let byte_values = byte_style.to_float_image().into_owned();
         for (patch, tileable) in [(3, false), (5, false), (5, true), (3, true)] {
-            check(&float_style, &float_style, patch, tileable);
-            check(&byte_style, &byte_values, patch, tileable);
+            check(&float_style, &float_style, None, patch, tileable);
+            check(&byte_style, &byte_values, Some(&byte_style), patch, tileable);
         }
     }
 
-    /// One case of [`the_vote_is_the_written_out_weighted_mean`]: `style` read as `values`.
-    fn check<I: ChannelImage>(style: &I, values: &FloatImage, patch: usize, tileable: bool) {
+    /// One case of [`the_vote_is_the_written_out_weighted_mean`]: `style` read as `values`, and
+    /// as `bytes` when it is an 8-bit one.
+    fn check<I: ChannelImage>(style: &I, values: &FloatImage, bytes: Option<&ByteImage>, patch: usize, tileable: bool) {
         let mut stream = SeedStreams::new(42).stream("masks", patch as u64);
         let mut level = Level::new(LevelSpec {
             patch,
@@ -243,7 +340,12 @@ mod tests {
         let start = texture(13, 11, 3, 43);
         let (mut gathered, mut expected) = (start.clone(), start);
         vote(&level, &field, &mut gathered, true, 0.0);
-        reference(&level, &field, values, &mut expected);
+        reference(&level, &field, values, bytes, &mut expected);
         assert_eq!(gathered, expected, "patch {patch}, tileable {tileable}");
+        // The exact 8-bit mean and the float one of the same values differ in the last bits only.
+        let mut rounded = expected.clone();
+        reference(&level, &field, values, None, &mut rounded);
+        let largest = expected.data().iter().zip(rounded.data()).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+        assert!(largest < 1e-6, "patch {patch}, tileable {tileable}: {largest}");
     }
 }
