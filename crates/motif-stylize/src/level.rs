@@ -17,6 +17,9 @@ use rayon::prelude::*;
 
 use crate::centres::{SegmentCentres, segment_centres};
 
+/// The largest patch side whose distances are summed whole, without early exit.
+pub(crate) const WHOLE_PATCH_SIDE: usize = 5;
+
 /// Marks a target pixel whose segment has no source pixels: it may match anywhere.
 pub(crate) const UNRESTRICTED: u16 = u16::MAX;
 
@@ -318,7 +321,7 @@ impl<'a> Level<'a> {
         partial: f32,
         limit: f32,
     ) -> f32 {
-        if self.patch > 3 {
+        if self.patch > WHOLE_PATCH_SIDE {
             return self.distance_from::<ROW>(s, x, y, first_row, partial, limit);
         }
         let PatchRows { row_len, source_stride, target_stride, source: source_offset, target: target_offset } =

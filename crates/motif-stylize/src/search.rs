@@ -13,7 +13,7 @@ use motif_core::random::{Rng, RngCore};
 use rayon::prelude::*;
 
 use crate::centres::SegmentCentres;
-use crate::level::Level;
+use crate::level::{Level, WHOLE_PATCH_SIDE};
 use crate::occurrence::{Occurrence, OmegaDelta};
 
 /// `$function::<ROW>` for the level's patch row length (`patch × channels` bytes) when it has a
@@ -235,6 +235,29 @@ impl Candidates {
         Self { centres: [0; 66], penalties: [0.0; 66], partials: [0.0; 66] }
     }
 
+    /// The band's propagated candidates of one pixel, for patches of at most
+    /// [`WHOLE_PATCH_SIDE`]: the allowed ones other than the current match, by
+    /// [`keep_best`](Self::keep_best) (the choice [`Best::consider`] makes one by one).
+    #[inline(always)]
+    fn propagate<const ROW: usize>(
+        &mut self,
+        level: &Level,
+        (occurrence, delta): (&Occurrence, &OmegaDelta),
+        propagated: impl Iterator<Item = u32>,
+        best: &mut Best,
+        (t, x, y): (usize, usize, usize),
+    ) {
+        let mut kept = 0;
+        for candidate in propagated {
+            if candidate != best.centre && level.allowed(t, candidate) {
+                self.centres[kept] = candidate;
+                self.penalties[kept] = occurrence.cost(candidate, delta);
+                kept += 1;
+            }
+        }
+        self.keep_best::<ROW>(level, kept, best, (x, y));
+    }
+
     /// Random search around the match after propagation, radius halving from the level's search
     /// radius (the source size, or a few pixels when the level refines upsampled matches) to 1
     /// (Barnes et al.), plus one candidate anywhere in the pixel's own segment so that small
@@ -242,7 +265,7 @@ impl Candidates {
     /// processed in passes with no data-dependent branch between their memory reads, so the cache
     /// misses of all of them overlap instead of queueing one after another.
     #[inline(always)]
-    fn random_search<const ROW: usize, const SMALL: bool>(
+    fn random_search<const ROW: usize>(
         &mut self,
         level: &Level,
         occurrence: &Occurrence,
@@ -285,36 +308,29 @@ impl Candidates {
                 kept += 1;
             }
         }
-        let centres = &self.centres[..kept];
         // Pass 2: penalties (independent loads, so their misses overlap).
-        for (penalty, &candidate) in self.penalties.iter_mut().zip(centres) {
+        for (penalty, &candidate) in self.penalties.iter_mut().zip(&self.centres[..kept]) {
             *penalty = occurrence.cost(candidate, delta);
         }
+        if level.patch <= WHOLE_PATCH_SIDE {
+            self.keep_best::<ROW>(level, kept, best, (x, y));
+            return;
+        }
+        let centres = &self.centres[..kept];
+        // Larger patches: first every row of every candidate whose penalty alone does not
+        // already lose is touched, so their many cache misses overlap (a software prefetch
+        // without `unsafe`).
+        let touched = centres
+            .iter()
+            .zip(&self.penalties)
+            .filter(|&(_, &penalty)| penalty < best.total)
+            .fold(0_u32, |sum, (&c, _)| sum.wrapping_add(level.touch(c)));
+        std::hint::black_box(touched);
         // Pass 3: first rows, skipped where the penalty alone already loses (it is most of the
         // energy once matches settle).
         let rows = self.partials.iter_mut().zip(&self.penalties).zip(centres);
-        if SMALL {
-            // 3×3 patches span a few cache lines: the first rows of all candidates are read at
-            // once, without waiting for the penalties, and nothing is prefetched (the other rows
-            // are read only for the third of candidates that get that far; touching them all
-            // costs more than it hides).
-            for ((partial, &penalty), &candidate) in rows {
-                let first = level.first_row::<ROW>(candidate, x, y);
-                *partial = if penalty < best.total { first } else { f32::INFINITY };
-            }
-        } else {
-            // Larger patches: first every row of every candidate whose penalty alone does not
-            // already lose is touched, so their many cache misses overlap (a software prefetch
-            // without `unsafe`).
-            let touched = centres
-                .iter()
-                .zip(&self.penalties)
-                .filter(|&(_, &penalty)| penalty < best.total)
-                .fold(0_u32, |sum, (&c, _)| sum.wrapping_add(level.touch(c)));
-            std::hint::black_box(touched);
-            for ((partial, &penalty), &candidate) in rows {
-                *partial = if penalty < best.total { level.first_row::<ROW>(candidate, x, y) } else { f32::INFINITY };
-            }
+        for ((partial, &penalty), &candidate) in rows {
+            *partial = if penalty < best.total { level.first_row::<ROW>(candidate, x, y) } else { f32::INFINITY };
         }
         // Pass 4: finish the survivors in order, with early exit against the best so far.
         for ((&partial, &penalty), &candidate) in self.partials.iter().zip(&self.penalties).zip(centres) {
@@ -324,6 +340,31 @@ impl Candidates {
             }
             let distance = level.distance_small::<ROW>(candidate, x, y, 1, partial, limit);
             if distance < limit {
+                best.centre = candidate;
+                best.distance = distance;
+                best.total = distance + penalty;
+            }
+        }
+    }
+
+    /// The first `count` candidates, their penalties given, for patches of at most
+    /// [`WHOLE_PATCH_SIDE`]: their whole distances are summed one candidate after another, with
+    /// no branch on the data between them (so their cache misses overlap), skipped where the
+    /// penalty alone already loses; then the best is kept in order. The same choice as
+    /// [`Best::consider`] taking them one by one: a whole distance at or above the limit loses
+    /// as a sum stopped early there does.
+    #[inline(always)]
+    fn keep_best<const ROW: usize>(&mut self, level: &Level, count: usize, best: &mut Best, (x, y): (usize, usize)) {
+        let centres = &self.centres[..count];
+        for ((distance, &penalty), &candidate) in self.partials.iter_mut().zip(&self.penalties).zip(centres) {
+            *distance = if penalty < best.total {
+                level.distance_small::<ROW>(candidate, x, y, 0, 0.0, f32::INFINITY)
+            } else {
+                f32::INFINITY
+            };
+        }
+        for ((&distance, &penalty), &candidate) in self.partials.iter().zip(&self.penalties).zip(centres) {
+            if candidate != best.centre && distance < best.total - penalty {
                 best.centre = candidate;
                 best.distance = distance;
                 best.total = distance + penalty;
@@ -352,25 +393,6 @@ pub(crate) fn patchmatch_iteration(
 
 /// [`patchmatch_iteration`] with the patch row length `ROW` (bytes) fixed at compile time, or 0.
 pub(crate) fn patchmatch_tiles<const ROW: usize>(
-    level: &Level,
-    field: &mut Field,
-    previous: &[u32],
-    occurrence: &Occurrence,
-    streams: &SeedStreams,
-    iteration: usize,
-    converged: Option<&[bool]>,
-) {
-    // 3×3 patches get their own copy of the loop: how their candidates are read differs (see
-    // `Candidates::random_search`), and a run-time switch inside the loop costs more than it.
-    if level.patch <= 3 {
-        patchmatch_tiles_with::<ROW, true>(level, field, previous, occurrence, streams, iteration, converged);
-    } else {
-        patchmatch_tiles_with::<ROW, false>(level, field, previous, occurrence, streams, iteration, converged);
-    }
-}
-
-/// [`patchmatch_tiles`] for 3×3 patches (`SMALL`) or larger ones.
-fn patchmatch_tiles_with<const ROW: usize, const SMALL: bool>(
     level: &Level,
     field: &mut Field,
     previous: &[u32],
@@ -439,7 +461,7 @@ fn patchmatch_tiles_with<const ROW: usize, const SMALL: bool>(
                                 best.consider::<ROW>(level, occurrence, delta, candidate as u32, here);
                             }
                         }
-                        scratch.random_search::<ROW, SMALL>(level, occurrence, delta, &mut stream, &mut best, here);
+                        scratch.random_search::<ROW>(level, occurrence, delta, &mut stream, &mut best, here);
                         if best.centre != start {
                             delta.moved(start, best.centre);
                             matches[local] = best.centre;
@@ -491,10 +513,6 @@ fn local_band_rows<const ROW: usize>(
     streams: &SeedStreams,
     (origin, converged): ((i64, i64), Option<&[bool]>),
 ) {
-    let (width, height) = (level.target_width as i64, level.target_height as i64);
-    let (x0, x1) = level.valid_x();
-    let (y0, y1) = level.valid_y();
-    let source_width = level.source_width;
     let pixel_streams = streams.stage("pixel");
     let rows = field.matches.par_chunks_mut(level.target_width).zip(field.costs.par_chunks_mut(level.target_width));
     rows.enumerate().for_each_init(
@@ -511,29 +529,45 @@ fn local_band_rows<const ROW: usize>(
                 let mut best =
                     Best { centre: start, distance: costs[x], total: costs[x] + occurrence.cost(start, delta) };
                 let here = (t, x, y);
-                for (dx, dy) in [(-1_i64, 0_i64), (1, 0), (0, -1), (0, 1)] {
-                    let (nx, ny) = (x as i64 + dx, y as i64 + dy);
-                    if nx < 0 || ny < 0 || nx >= width || ny >= height {
-                        continue;
-                    }
-                    let n = (ny * width + nx) as usize;
-                    if !level.is_active(n) {
-                        continue;
-                    }
-                    let (sx, sy) = level.source_xy(previous[n]);
-                    let (sx, sy) = (sx as i64 - dx, sy as i64 - dy);
-                    if (x0 as i64..x1 as i64).contains(&sx) && (y0 as i64..y1 as i64).contains(&sy) {
-                        let candidate = (sy as usize * source_width + sx as usize) as u32;
+                let propagated = propagated(level, previous, (x, y)).into_iter().flatten();
+                if level.patch <= WHOLE_PATCH_SIDE {
+                    scratch.propagate::<ROW>(level, (occurrence, delta), propagated, &mut best, here);
+                } else {
+                    for candidate in propagated {
                         best.consider::<ROW>(level, occurrence, delta, candidate, here);
                     }
                 }
                 let mut stream = pixel_streams.stream(plane_key((x, y), origin));
-                scratch.random_search::<ROW, false>(level, occurrence, delta, &mut stream, &mut best, here);
+                scratch.random_search::<ROW>(level, occurrence, delta, &mut stream, &mut best, here);
                 matches[x] = best.centre;
                 costs[x] = best.distance;
             }
         },
     );
+}
+
+/// The band's propagation candidates of target pixel `(x, y)`: the matches of its four
+/// neighbours in `previous` (left, right, above, below), each shifted back by the neighbour's
+/// offset, where the neighbour is searched and the shifted centre valid.
+#[inline(always)]
+fn propagated(level: &Level, previous: &[u32], (x, y): (usize, usize)) -> [Option<u32>; 4] {
+    let (width, height) = (level.target_width as i64, level.target_height as i64);
+    let (x0, x1) = level.valid_x();
+    let (y0, y1) = level.valid_y();
+    [(-1_i64, 0_i64), (1, 0), (0, -1), (0, 1)].map(|(dx, dy)| {
+        let (nx, ny) = (x as i64 + dx, y as i64 + dy);
+        if nx < 0 || ny < 0 || nx >= width || ny >= height {
+            return None;
+        }
+        let n = (ny * width + nx) as usize;
+        if !level.is_active(n) {
+            return None;
+        }
+        let (sx, sy) = level.source_xy(previous[n]);
+        let (sx, sy) = (sx as i64 - dx, sy as i64 - dy);
+        let valid = (x0 as i64..x1 as i64).contains(&sx) && (y0 as i64..y1 as i64).contains(&sy);
+        valid.then(|| (sy as usize * level.source_width + sx as usize) as u32)
+    })
 }
 
 /// Brute-force search: every target pixel tries every allowed valid source centre, with the
