@@ -7,6 +7,8 @@
 //! its texture pixel came from: next to the band's edge that is the true match, and propagation
 //! carries it inwards from the first PatchMatch iteration.
 
+use std::ops::Range;
+
 use motif_core::FloatImage;
 
 use crate::InputError;
@@ -113,12 +115,32 @@ impl Target {
         (wrap(x, self.origin.0, width), wrap(y, self.origin.1, height))
     }
 
-    /// [`texture_pixel`](Self::texture_pixel) of every output column and row for a `size`
-    /// texture, computed once per composition (not two divisions per pixel).
-    fn texture_axes(&self, (width, height): (usize, usize)) -> TextureAxes {
-        TextureAxes {
-            columns: (0..self.size.0).map(|x| wrap(x, self.origin.0, width)).collect(),
-            rows: (0..self.size.1).map(|y| wrap(y, self.origin.1, height)).collect(),
+    /// Calls `piece(texture, texture_row, columns, out)` for every piece of output row `y`
+    /// (labels `row_labels`) that one texture fills: a run of one label, split where its texture
+    /// wraps. `texture` is `texture_of[label]`, `columns` the texture's columns and `out` the
+    /// output's (as long). Textures of no size (`None` in `sizes`) are skipped.
+    fn for_each_piece(
+        &self,
+        (y, row_labels): (usize, &[u16]),
+        texture_of: &[usize],
+        sizes: &[Option<(usize, usize)>],
+        mut piece: impl FnMut(usize, usize, Range<usize>, Range<usize>),
+    ) {
+        let mut start = 0;
+        while start < row_labels.len() {
+            let label = row_labels[start];
+            let end = start + row_labels[start..].iter().take_while(|&&l| l == label).count();
+            let index = texture_of[usize::from(label)];
+            if let Some((width, height)) = sizes[index] {
+                let texture_row = wrap(y, self.origin.1, height);
+                let (mut x, mut column) = (start, wrap(start, self.origin.0, width));
+                while x < end {
+                    let n = (end - x).min(width - column);
+                    piece(index, texture_row, column..column + n, x..x + n);
+                    (x, column) = (x + n, 0);
+                }
+            }
+            start = end;
         }
     }
 }
@@ -128,14 +150,8 @@ fn wrap(v: usize, origin: i64, side: usize) -> usize {
     (v as i64 + origin).rem_euclid(side as i64) as usize
 }
 
-/// Per output column and row, the texture column and row it takes ([`Target::texture_axes`]).
-struct TextureAxes {
-    columns: Vec<usize>,
-    rows: Vec<usize>,
-}
-
 /// The target filled from the textures: pixel `(x, y)` of label `l` takes
-/// `textures[texture_of[l]]` at its [`Target::texture_pixel`].
+/// `textures[texture_of[l]]` at its [`Target::texture_pixel`], a run of one label at a time.
 pub(crate) fn compose(
     labels: &[u16],
     target: Target,
@@ -144,18 +160,20 @@ pub(crate) fn compose(
     channels: usize,
 ) -> FloatImage {
     let (width, height) = target.size;
-    let axes: Vec<TextureAxes> = textures.iter().map(|t| target.texture_axes((t.width(), t.height()))).collect();
+    let sizes: Vec<Option<(usize, usize)>> = textures.iter().map(|t| Some((t.width(), t.height()))).collect();
     let mut out = FloatImage::new(width, height, channels);
     let rows = out.data_mut().chunks_exact_mut(width * channels).zip(labels.chunks_exact(width));
     for (y, (row, row_labels)) in rows.enumerate() {
-        for (x, (pixel, &label)) in row.chunks_exact_mut(channels).zip(row_labels).enumerate() {
-            let index = texture_of[usize::from(label)];
-            let TextureAxes { columns, rows } = &axes[index];
-            // An element loop, not `copy_from_slice`: for 1–4 values a `memcpy` call costs more.
-            for (out, &value) in pixel.iter_mut().zip(textures[index].pixel(columns[x], rows[y])) {
+        target.for_each_piece((y, row_labels), texture_of, &sizes, |index, texture_row, columns, out| {
+            let texture = textures[index];
+            let texture_row = &texture.data()[texture_row * texture.width() * channels..];
+            let values = &texture_row[columns.start * channels..columns.end * channels];
+            // An element loop, not `copy_from_slice`: most runs are short, and a `memcpy` call
+            // costs more than copying them.
+            for (out, &value) in row[out.start * channels..out.end * channels].iter_mut().zip(values) {
                 *out = value;
             }
-        }
+        });
     }
     out
 }
@@ -175,26 +193,29 @@ pub(crate) fn compose_field(
     (source_width, source_height): (usize, usize),
 ) -> Result<Vec<u32>, Error> {
     let (width, height) = target.size;
-    let axes: Vec<Option<TextureAxes>> =
-        fields.iter().map(|f| f.map(|f| target.texture_axes((f.width, f.height)))).collect();
+    let sizes: Vec<Option<(usize, usize)>> = fields.iter().map(|f| f.map(|f| (f.width, f.height))).collect();
     let mut out = vec![NO_SEED; width * height];
+    let mut outside = None;
     let rows = out.chunks_exact_mut(width).zip(labels.chunks_exact(width));
     for (y, (row, row_labels)) in rows.enumerate() {
-        for (x, (seed, &label)) in row.iter_mut().zip(row_labels).enumerate() {
-            let index = texture_of[usize::from(label)];
-            let (Some(field), Some(TextureAxes { columns, rows })) = (fields[index], &axes[index]) else {
-                continue;
-            };
-            if let Some([sx, sy]) = field.matches[rows[y] * field.width + columns[x]] {
-                if sx as usize >= source_width || sy as usize >= source_height {
-                    return Err(Error::Input(InputError::TextureFieldOutside {
-                        texture: index + 1,
-                        style_width: source_width,
-                        style_height: source_height,
-                    }));
+        target.for_each_piece((y, row_labels), texture_of, &sizes, |index, texture_row, columns, out| {
+            let Some(field) = fields[index] else { return };
+            let matches = &field.matches[texture_row * field.width..][columns];
+            for (seed, texture_match) in row[out].iter_mut().zip(matches) {
+                if let Some([sx, sy]) = *texture_match {
+                    if sx as usize >= source_width || sy as usize >= source_height {
+                        outside.get_or_insert(index);
+                    }
+                    *seed = sy.wrapping_mul(source_width as u32).wrapping_add(sx);
                 }
-                *seed = sy * source_width as u32 + sx;
             }
+        });
+        if let Some(index) = outside {
+            return Err(Error::Input(InputError::TextureFieldOutside {
+                texture: index + 1,
+                style_width: source_width,
+                style_height: source_height,
+            }));
         }
     }
     Ok(out)
@@ -347,25 +368,42 @@ mod tests {
         }
     }
 
-    /// Composition gives every pixel its texture pixel, for runs of one label longer than a
-    /// texture row and origins on both sides of the plane's zero.
+    /// Composition gives every pixel its texture pixel, and the composed field its texture
+    /// pixel's match, for runs of one label longer than a texture row and origins on both sides
+    /// of the plane's zero.
     #[test]
     fn composition_takes_each_pixel_from_its_texture_pixel() {
         let texture = |w: usize, h: usize, base: f32| {
             let data = (0..w * h * 2).map(|i| base + i as f32).collect();
             FloatImage::from_data(w, h, 2, data).expect("sizes match")
         };
+        // Each texture's field: every third pixel unmatched, the others matched by their index.
+        let field = |w: usize, h: usize| crate::NearestNeighbourField {
+            width: w,
+            height: h,
+            source_width: 40,
+            source_height: 40,
+            patch_size: 3,
+            matches: (0..w * h).map(|i| (i % 3 != 0).then_some([i as u32 % 40, i as u32 / 2])).collect(),
+            weights: None,
+        };
         let (a, b) = (texture(3, 2, 0.0), texture(5, 3, 100.0));
+        let fields = [field(3, 2), field(5, 3)];
         let (width, height) = (17, 4);
         let labels: Vec<u16> = (0..width * height).map(|i| u16::from((i % width) / 6 == 1 || i / width == 2)).collect();
         for origin in [(0, 0), (-7, 3), (11, -5)] {
             let target = Target { size: (width, height), origin };
             let out = compose(&labels, target, &[&a, &b], &[0, 1], 2);
+            let seeds =
+                compose_field(&labels, target, &[Some(&fields[0]), Some(&fields[1])], &[0, 1], (40, 40)).unwrap();
             for y in 0..height {
                 for x in 0..width {
-                    let texture = if labels[y * width + x] == 0 { &a } else { &b };
+                    let label = usize::from(labels[y * width + x]);
+                    let (texture, field) = ([&a, &b][label], &fields[label]);
                     let (tx, ty) = target.texture_pixel((x, y), (texture.width(), texture.height()));
                     assert_eq!(out.pixel(x, y), texture.pixel(tx, ty), "({x}, {y}) at {origin:?}");
+                    let seed = field.matches[ty * field.width + tx].map_or(NO_SEED, |[sx, sy]| sy * 40 + sx);
+                    assert_eq!(seeds[y * width + x], seed, "({x}, {y}) at {origin:?}");
                 }
             }
         }
