@@ -417,9 +417,12 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             occurrence.refresh(&level, &field.matches);
             energies.push(field.mean_energy(&level, &occurrence));
             let changed = vote(&level, &field, image, true, params.stop_threshold);
-            level.set_target_style(image, true);
-            // The last iteration's converged patches would serve no further search.
+            // The last iteration's converged patches, and its target, would serve no further
+            // search; the final figures read the target.
             let more = iteration + 1 < params.search_vote_iterations;
+            if more || params.final_figures {
+                level.set_target_style(image, true);
+            }
             converged = (params.stop_threshold > 0.0 && more).then(|| converged_patches(&level, &changed));
             progress.report(&stage, (iteration + 1) as f64 / params.search_vote_iterations as f64);
         }
