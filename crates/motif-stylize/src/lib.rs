@@ -14,7 +14,8 @@
 //! - `occurrence`: the occurrence map Ω and penalty λ·Ω/ω_best of Eq. 5, ω_best global or
 //!   per segment (Eq. 6).
 //! - `search`: nearest-neighbour fields (Eq. 2): deterministic parallel PatchMatch and the
-//!   exact brute-force search of §4.2.
+//!   exact brute-force search of §4.2; `search::local_band`, the band's local search (§3.7),
+//!   keyed by the pixel's place in the textures' plane so that a map's tiles agree.
 //! - `vote`: voting, the E-step of §3.3 (patch weights rounded to 16 bits, so a saved field holds them).
 //! - `synthesis`: Algorithm 1, multi-resolution EM with Gaussian pyramids and field
 //!   upsampling (§3.5), the optional 3×3 pass, the report; `outcome`: the figures of the final
