@@ -227,16 +227,18 @@ impl Best {
     }
 }
 
-/// The random-search candidates of one pixel, on the stack (no allocation in the hot loop).
+/// The candidates of one pixel, on the stack (no allocation in the hot loop): their centres,
+/// penalties and distances (whole, or their first rows for patches above
+/// [`WHOLE_PATCH_SIDE`]).
 struct Candidates {
     centres: [u32; 66],
     penalties: [f32; 66],
-    partials: [f32; 66],
+    distances: [f32; 66],
 }
 
 impl Candidates {
     fn new() -> Self {
-        Self { centres: [0; 66], penalties: [0.0; 66], partials: [0.0; 66] }
+        Self { centres: [0; 66], penalties: [0.0; 66], distances: [0.0; 66] }
     }
 
     /// Random search around the match after propagation, radius halving from the level's search
@@ -309,12 +311,12 @@ impl Candidates {
         std::hint::black_box(touched);
         // Pass 3: first rows, skipped where the penalty alone already loses (it is most of the
         // energy once matches settle).
-        let rows = self.partials.iter_mut().zip(&self.penalties).zip(centres);
+        let rows = self.distances.iter_mut().zip(&self.penalties).zip(centres);
         for ((partial, &penalty), &candidate) in rows {
             *partial = if penalty < best.total { level.first_row::<ROW>(candidate, x, y) } else { f32::INFINITY };
         }
         // Pass 4: finish the survivors in order, with early exit against the best so far.
-        for ((&partial, &penalty), &candidate) in self.partials.iter().zip(&self.penalties).zip(centres) {
+        for ((&partial, &penalty), &candidate) in self.distances.iter().zip(&self.penalties).zip(centres) {
             let limit = best.total - penalty;
             if partial >= limit {
                 continue;
@@ -337,14 +339,14 @@ impl Candidates {
     #[inline(always)]
     fn keep_best<const ROW: usize>(&mut self, level: &Level, count: usize, best: &mut Best, (x, y): (usize, usize)) {
         let centres = &self.centres[..count];
-        for ((distance, &penalty), &candidate) in self.partials.iter_mut().zip(&self.penalties).zip(centres) {
+        for ((distance, &penalty), &candidate) in self.distances.iter_mut().zip(&self.penalties).zip(centres) {
             *distance = if penalty < best.total {
                 level.distance_small::<ROW>(candidate, x, y, 0, 0.0, f32::INFINITY)
             } else {
                 f32::INFINITY
             };
         }
-        for ((&distance, &penalty), &candidate) in self.partials.iter().zip(&self.penalties).zip(centres) {
+        for ((&distance, &penalty), &candidate) in self.distances.iter().zip(&self.penalties).zip(centres) {
             if candidate != best.centre && distance < best.total - penalty {
                 best.centre = candidate;
                 best.distance = distance;
