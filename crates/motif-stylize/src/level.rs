@@ -92,7 +92,7 @@ pub(crate) struct LevelSpec<'s, 'a, I> {
     pub target_size: (usize, usize),
     pub tileable: bool,
     pub source_labels: Option<Cow<'a, [u16]>>,
-    pub target_labels: Option<Vec<u16>>,
+    pub target_labels: Option<Cow<'s, [u16]>>,
     pub label_count: usize,
     /// The style side made once for many runs, used when it fits this level's patch and weights.
     pub prepared: Option<&'a crate::PreparedStyle<I>>,

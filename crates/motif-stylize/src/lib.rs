@@ -23,7 +23,8 @@
 //! - `native`: for an exemplar much larger than the output, the coarse levels search the whole
 //!   (reduced) exemplar and the finer ones refine the upsampled matches within a few pixels
 //!   ([`Params::local_search_above`]), so the time grows with the output, not the exemplar.
-//! - `segments`: segment labels from guide colours, exact palette or k-means (§3.6).
+//! - `segments`: segment labels from guide colours, exact palette or k-means (`segments/kmeans`)
+//!   (§3.6); an 8-bit target guide of segment colours only (a map tile's) is labelled on its bytes.
 //! - `centres`: each segment's valid source centres and their box, where the random search draws
 //!   in-segment candidates and drops far ones by position (§3.6's restriction).
 //! - `mask`: masks (ebsynth's) and inpainting: only the hole is synthesized, the rest kept.

@@ -7,8 +7,11 @@
 use std::borrow::Cow;
 use std::collections::BTreeMap;
 
-use motif_core::random::Rng;
-use motif_core::{ChannelImage, FloatImage, SeedStreams};
+use motif_core::{ChannelImage, FloatImage, Samples};
+
+mod kmeans;
+
+use kmeans::kmeans;
 
 use crate::InputError;
 use crate::{Error, Guide, Input, InvalidParameter, Params, Segmentation};
@@ -153,6 +156,63 @@ pub(crate) fn label_target_by_colours<S: ChannelImage>(
     Ok(label_image(target, colours))
 }
 
+/// [`label_target_by_colours`] for a target guide of either sample type: an 8-bit guide of
+/// segment colours only (a map tile's) is labelled on its bytes, one look-up per distinct colour
+/// and no float copy ([`segment_colour_labels`]); any other takes the float path.
+fn label_target_guide<S: ChannelImage, T: ChannelImage>(
+    source: &S,
+    target: &T,
+    colours: &[Vec<f32>],
+) -> Result<Vec<u16>, Error> {
+    check_colours(colours, source.channels())?;
+    if let Samples::Byte(bytes) = target.samples()
+        && target.channels() == source.channels()
+        && let Some(labels) = segment_colour_labels(bytes, target.channels(), colours)
+    {
+        return Ok(labels);
+    }
+    label_target_by_colours(source, &target.to_float_image(), colours)
+}
+
+/// The labels [`label_image`] gives an 8-bit image (`channels` of at most 4 per pixel) whose
+/// every pixel is exactly one of `colours`, or `None` as soon as one pixel is not: its colour may
+/// lie far from them all, which [`label_target_by_colours`] judges.
+fn segment_colour_labels(bytes: &[u8], channels: usize, colours: &[Vec<f32>]) -> Option<Vec<u16>> {
+    if channels == 0 || channels > 4 {
+        return None;
+    }
+    // The distinct colours met so far, with their labels (a map tile has a handful).
+    let mut known: Vec<([u8; 4], u16)> = Vec::new();
+    let mut previous: Option<(&[u8], u16)> = None;
+    let mut labels = Vec::with_capacity(bytes.len() / channels);
+    for pixel in bytes.chunks_exact(channels) {
+        let label = match previous {
+            Some((colour, label)) if colour == pixel => label,
+            _ => {
+                let mut key = [0; 4];
+                key[..channels].copy_from_slice(pixel);
+                let label = match known.iter().find(|(k, _)| *k == key) {
+                    Some(&(_, label)) => label,
+                    None => {
+                        let colour = unkey(&key, channels);
+                        let colour = &colour[..channels];
+                        if !colours.iter().any(|c| squared(c, colour) == 0.0) {
+                            return None;
+                        }
+                        let label = nearest_label(colour, colours);
+                        known.push((key, label));
+                        label
+                    }
+                };
+                previous = Some((pixel, label));
+                label
+            }
+        };
+        labels.push(label);
+    }
+    Some(labels)
+}
+
 /// Refuses no segment colours, and colours of another channel count than the guide's.
 pub(crate) fn check_colours(colours: &[Vec<f32>], guide_channels: usize) -> Result<(), Error> {
     if colours.is_empty() {
@@ -197,7 +257,6 @@ pub(crate) fn segment_labels<'a, I: ChannelImage>(
         return Ok(None);
     }
     let guide = segment_guide(input, params)?;
-    let target = guide.target.to_float_image();
     let labels = match (&input.textures, &input.prepared) {
         // With a cache, its colours are the segments (whatever the mode, which chose them when
         // it was made), and each pixel, anti-aliased edges included, belongs to the nearest
@@ -207,10 +266,11 @@ pub(crate) fn segment_labels<'a, I: ChannelImage>(
             let count = colours.len();
             match prepared {
                 Some(prepared) => {
-                    let target = label_target_by_colours(&guide.source, &target, &colours)?;
+                    let target = label_target_guide(&guide.source, &guide.target, &colours)?;
                     (Cow::Borrowed(prepared.labels()), target, count)
                 }
                 None => {
+                    let target = guide.target.to_float_image();
                     let labels = label_by_colours(&guide.source.to_float_image(), &target, colours)?;
                     (Cow::Owned(labels.source), labels.target, count)
                 }
@@ -218,6 +278,7 @@ pub(crate) fn segment_labels<'a, I: ChannelImage>(
         }
         (None, _) => {
             let mode = params.segments.unwrap_or(Segmentation::Palette);
+            let target = guide.target.to_float_image();
             let labels = label_guides(&guide.source.to_float_image(), &target, mode, params.seed)?;
             let count = labels.colours.len();
             (Cow::Owned(labels.source), labels.target, count)
@@ -242,16 +303,7 @@ fn nearest_labels(source: &FloatImage, target: &FloatImage, colours: Vec<Vec<f32
 
 /// The label of every pixel of `image`: the index of its nearest colour of `colours`.
 pub(crate) fn label_image(image: &FloatImage, colours: &[Vec<f32>]) -> Vec<u16> {
-    let label_of = |pixel: &[f32]| -> u16 {
-        let mut best = (f32::INFINITY, 0);
-        for (label, colour) in colours.iter().enumerate() {
-            let d = squared(colour, pixel);
-            if d < best.0 {
-                best = (d, label);
-            }
-        }
-        best.1 as u16
-    };
+    let label_of = |pixel: &[f32]| nearest_label(pixel, colours);
     // Runs of one colour share the label of their first pixel.
     let mut previous: Option<(&[f32], u16)> = None;
     image
@@ -266,6 +318,18 @@ pub(crate) fn label_image(image: &FloatImage, colours: &[Vec<f32>]) -> Vec<u16> 
             }
         })
         .collect()
+}
+
+/// The index of `pixel`'s nearest colour of `colours` (the first of equally near ones).
+fn nearest_label(pixel: &[f32], colours: &[Vec<f32>]) -> u16 {
+    let mut best = (f32::INFINITY, 0);
+    for (label, colour) in colours.iter().enumerate() {
+        let d = squared(colour, pixel);
+        if d < best.0 {
+            best = (d, label);
+        }
+    }
+    best.1 as u16
 }
 
 #[inline]
@@ -377,75 +441,6 @@ fn far_segments<S: ChannelImage>(source: &S, target: &FloatImage, colours: &[Vec
         .collect();
     far.sort_by_key(|segment| std::cmp::Reverse(segment.pixels));
     far
-}
-
-/// Weighted k-means over the distinct colours (k-means++ seeding from one seeded stream, then
-/// Lloyd iterations until stable); empty clusters are dropped.
-fn kmeans(unique: &[([u8; 4], usize)], channels: usize, k: usize, seed: u64) -> Vec<Vec<f32>> {
-    let points: Vec<Vec<f32>> =
-        unique.iter().map(|(key, _)| key[..channels].iter().map(|&v| f32::from(v) / 255.0).collect()).collect();
-    let weights: Vec<f64> = unique.iter().map(|&(_, count)| count as f64).collect();
-    let distance = |a: &[f32], b: &[f32]| -> f64 { a.iter().zip(b).map(|(x, y)| f64::from((x - y) * (x - y))).sum() };
-    if points.len() <= k {
-        return points;
-    }
-    let mut stream = SeedStreams::new(seed).stream("kmeans", 0);
-    let mut centres: Vec<Vec<f32>> = Vec::with_capacity(k);
-    // k-means++: the heaviest colour first, then colours drawn in proportion to weight × d².
-    let heaviest = (0..points.len()).max_by(|&a, &b| weights[a].total_cmp(&weights[b]).then(b.cmp(&a))).unwrap_or(0);
-    centres.push(points[heaviest].clone());
-    while centres.len() < k {
-        let scores: Vec<f64> = points
-            .iter()
-            .zip(&weights)
-            .map(|(p, w)| w * centres.iter().map(|c| distance(p, c)).fold(f64::INFINITY, f64::min))
-            .collect();
-        let total: f64 = scores.iter().sum();
-        if total <= 0.0 {
-            break;
-        }
-        let mut pick = stream.random::<f64>() * total;
-        let mut chosen = points.len() - 1;
-        for (index, score) in scores.iter().enumerate() {
-            if pick < *score {
-                chosen = index;
-                break;
-            }
-            pick -= score;
-        }
-        centres.push(points[chosen].clone());
-    }
-    let mut assignment = vec![usize::MAX; points.len()];
-    for _ in 0..100 {
-        let mut changed = false;
-        for (index, point) in points.iter().enumerate() {
-            let nearest = (0..centres.len())
-                .min_by(|&a, &b| distance(point, &centres[a]).total_cmp(&distance(point, &centres[b])))
-                .unwrap_or(0);
-            if assignment[index] != nearest {
-                assignment[index] = nearest;
-                changed = true;
-            }
-        }
-        if !changed {
-            break;
-        }
-        let mut sums = vec![vec![0.0_f64; channels]; centres.len()];
-        let mut mass = vec![0.0_f64; centres.len()];
-        for (index, point) in points.iter().enumerate() {
-            mass[assignment[index]] += weights[index];
-            for (sum, value) in sums[assignment[index]].iter_mut().zip(point) {
-                *sum += weights[index] * f64::from(*value);
-            }
-        }
-        for (centre, (sum, m)) in centres.iter_mut().zip(sums.iter().zip(&mass)) {
-            if *m > 0.0 {
-                *centre = sum.iter().map(|s| (s / m) as f32).collect();
-            }
-        }
-    }
-    let used: Vec<bool> = (0..centres.len()).map(|c| assignment.contains(&c)).collect();
-    centres.into_iter().zip(used).filter(|(_, used)| *used).map(|(c, _)| c).collect()
 }
 
 /// Labels of a pyramid level `level` (0 = finest): every `2^level`-th pixel, matching the
@@ -563,6 +558,23 @@ mod tests {
         let (_, mut target) = anti_aliased_pair();
         target.pixel_mut(3, 3).copy_from_slice(&[0.1, 0.8, 0.1]);
         assert_eq!(label_guides(&source, &target, Segmentation::Palette, 0).unwrap().colours.len(), 2);
+    }
+
+    /// An 8-bit guide of segment colours only is labelled on its bytes as its float conversion
+    /// is, a colour listed twice taking the first label; one other colour sends it to the float path.
+    #[test]
+    fn byte_guides_of_segment_colours_are_labelled_as_their_floats() {
+        let colours: Vec<Vec<f32>> =
+            [BLUE, SAND, BLUE, [0, 0, 0]].iter().map(|c| c.iter().map(|&v| f32::from(v) / 255.0).collect()).collect();
+        let pick = |x: usize, y: usize| [BLUE, SAND, [0, 0, 0]][(x / 3 + y * 7 + x * y) % 3];
+        let float = guide(23, 11, pick);
+        let bytes: Vec<u8> = (0..23 * 11).flat_map(|i| pick(i % 23, i / 23)).collect();
+        let labels = segment_colour_labels(&bytes, 3, &colours).unwrap();
+        assert_eq!(labels, label_target_by_colours(&float, &float, &colours).unwrap());
+        assert!(labels.contains(&0) && labels.contains(&1) && labels.contains(&3) && !labels.contains(&2));
+        let mut stray = bytes.clone();
+        stray[40] = 7;
+        assert_eq!(segment_colour_labels(&stray, 3, &colours), None);
     }
 
     #[test]

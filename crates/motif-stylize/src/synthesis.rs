@@ -317,7 +317,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             (_, Some(holes)) => {
                 let touched = dilate(&holes[level], target_size.0, target_size.1, patch / 2);
                 let source = touched.iter().map(|&t| u16::from(t)).collect();
-                (Some(Cow::Owned(source)), Some(vec![0; target_size.0 * target_size.1]), 2)
+                (Some(Cow::Owned(source)), Some(Cow::Owned(vec![0; target_size.0 * target_size.1])), 2)
             }
             // The finest level's labels are the run's own (borrowed, not copied).
             (Some((source, target, count)), None) => (
@@ -328,7 +328,16 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
                         Cow::Owned(segments::decimate(source, source_size.0, source_size.1, size, level))
                     }
                 }),
-                Some(segments::decimate(target, problem.target_size.0, problem.target_size.1, target_size, level)),
+                Some(match level {
+                    0 => Cow::Borrowed(&target[..]),
+                    _ => Cow::Owned(segments::decimate(
+                        target,
+                        problem.target_size.0,
+                        problem.target_size.1,
+                        target_size,
+                        level,
+                    )),
+                }),
                 *count,
             ),
             (None, None) => (None, None, 0),
