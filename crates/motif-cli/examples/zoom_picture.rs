@@ -10,15 +10,12 @@ use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob, halved};
 fn main() -> anyhow::Result<()> {
     let out = std::env::args().nth(1).ok_or_else(|| anyhow::anyhow!("usage: zoom_picture OUT.png"))?;
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/maps");
-    let read = || -> anyhow::Result<_> {
-        Ok((motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?.0, motif_io::read_legend(None, u64::MAX)?))
-    };
-    let (map, legend) = read()?;
+    let (map, _) = motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?;
+    let legend = motif_io::read_legend(None, u64::MAX)?;
     let run = TilesJob { seed: 1, zoom: Some([15, 16]), ..TilesJob::new() }
-        .run(TilesInputs { map, legend }, &mut motif_core::NoProgress)?;
-    let (map, legend) = read()?;
+        .run(TilesInputs { map, legend: legend.clone() }, &mut motif_core::NoProgress)?;
     let one_level = run.tiles.params().clone().with_texture_levels(1);
-    let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
+    let flat = TileSet::with_textures(run.tiles.map().clone(), &legend, &one_level, run.tiles.textures().to_vec())?;
     // The zoom-15 tile over the seam figure's block (16/37307/18967).
     let parent = TileId::new(15, 18653, 9483)?;
     let shrunk = |tiles: &TileSet| -> anyhow::Result<RgbaImage> { Ok(halved(&tiles.render_zooming_in(parent)?.1)) };

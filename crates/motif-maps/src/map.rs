@@ -132,7 +132,7 @@ impl MapBuilder {
 }
 
 /// A map ready for tiles: its features in drawing order and a spatial index of them.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct MapData {
     features: Vec<Feature>,
     index: RTree<GeomWithData<Rectangle<[f64; 2]>, usize>>,

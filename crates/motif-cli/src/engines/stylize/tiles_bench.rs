@@ -4,7 +4,7 @@
 
 use motif_core::RgbaImage;
 use motif_jobs::Job;
-use motif_jobs::tiles::{Layer, TileId, TileSet, TilesInputs, TilesJob, TilesRun, seam_error, zoom_error};
+use motif_jobs::tiles::{Layer, Legend, TileId, TileSet, TilesInputs, TilesJob, TilesRun, seam_error, zoom_error};
 use serde_json::{Value, json};
 
 use std::io::{BufRead, BufReader, Read, Write};
@@ -42,7 +42,8 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
     let (map, _) = motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?;
     let legend = motif_io::read_legend(None, u64::MAX)?;
     let job = TilesJob { seed: bench.seed, zoom: Some([16, 16]), ..TilesJob::new() };
-    let (run, presynth_ms) = timed(|| job.run(TilesInputs { map, legend }, &mut motif_core::NoProgress));
+    let inputs = TilesInputs { map, legend: legend.clone() };
+    let (run, presynth_ms) = timed(|| job.run(inputs, &mut motif_core::NoProgress));
     let run = run?;
     let mut tiles = run.pyramid()?;
     if bench.quick {
@@ -82,7 +83,7 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
             "pixels_differing_from_whole": differing as f64 / apart.pixels().len() as f64,
         }),
     );
-    figures.insert("zoom".into(), zoom_figures(&run, first, &folder)?);
+    figures.insert("zoom".into(), zoom_figures(&run, &legend, first)?);
     figures.insert("server".into(), server_throughput(&folder.join("Helsinki.osm.pbf"), bench)?);
     figures.insert("presynth_ms".into(), json!(presynth_ms));
     figures.insert("margin".into(), run.figures["margin"].clone());
@@ -93,17 +94,15 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
 /// Zooming in (item 3): the tile of the base zoom over `child` against its four tiles at the
 /// next zoom, with the run's texture pyramid and with one level of textures for every zoom (the
 /// same first textures), at the tile's pixels and at half and a quarter of its scale.
-fn zoom_figures(run: &TilesRun, child: TileId, folder: &std::path::Path) -> anyhow::Result<Value> {
+fn zoom_figures(run: &TilesRun, legend: &Legend, child: TileId) -> anyhow::Result<Value> {
     let params = run.tiles.params();
     let parent = TileId::new(
         params.base_zoom,
         child.x >> (child.z - params.base_zoom),
         child.y >> (child.z - params.base_zoom),
     )?;
-    let (map, _) = motif_io::read_osm(&folder.join("Helsinki.osm.pbf"), u64::MAX)?;
-    let legend = motif_io::read_legend(None, u64::MAX)?;
     let one_level = params.clone().with_texture_levels(1);
-    let flat = TileSet::with_textures(map, &legend, &one_level, run.tiles.textures().to_vec())?;
+    let flat = TileSet::with_textures(run.tiles.map().clone(), legend, &one_level, run.tiles.textures().to_vec())?;
     let (tile, pyramid) = run.tiles.render_zooming_in(parent)?;
     let (same_tile, without) = flat.render_zooming_in(parent)?;
     anyhow::ensure!(tile == same_tile, "the base zoom's tile differs between the two tile sets");
