@@ -7,7 +7,7 @@ use motif_jobs::Job;
 use motif_jobs::tiles::{Layer, Legend, TileId, TileSet, TilesInputs, TilesJob, TilesRun, seam_error, zoom_error};
 use serde_json::{Value, json};
 
-use std::io::{BufRead, BufReader, Read, Write};
+use std::io::{BufRead, BufReader};
 
 use crate::suite::Bench;
 
@@ -84,7 +84,8 @@ pub(super) fn tiles(bench: &Bench) -> anyhow::Result<Value> {
         }),
     );
     figures.insert("zoom".into(), zoom_figures(&run, &legend, first)?);
-    figures.insert("server".into(), server_throughput(&folder.join("Helsinki.osm.pbf"), bench)?);
+    let server = server_throughput(&folder.join("Helsinki.osm.pbf"), run.tiles.map().bounds(), bench)?;
+    figures.insert("server".into(), server);
     figures.insert("presynth_ms".into(), json!(presynth_ms));
     figures.insert("margin".into(), run.figures["margin"].clone());
     figures.insert("threads".into(), json!(1));
@@ -117,23 +118,28 @@ fn zoom_figures(run: &TilesRun, legend: &Legend, child: TileId) -> anyhow::Resul
     }))
 }
 
-/// One GET to the server over HTTP/1.0 (a load generator's client): the status and body length.
-fn get(address: &str, path: &str) -> anyhow::Result<(u16, usize)> {
-    let mut stream = std::net::TcpStream::connect(address)?;
-    stream.set_read_timeout(Some(std::time::Duration::from_secs(60)))?;
-    write!(stream, "GET {path} HTTP/1.0\r\nHost: {address}\r\n\r\n")?;
-    let mut response = Vec::new();
-    stream.read_to_end(&mut response)?;
-    let head = String::from_utf8_lossy(&response[..response.len().min(64)]).into_owned();
-    let status = head.split(' ').nth(1).and_then(|code| code.parse().ok()).unwrap_or(0);
-    Ok((status, response.len()))
+/// A load generator's client (`ureq`, one kept-alive connection per client): every request's
+/// whole answer waited for at most 60 s, a status other than 200 counted as a failure.
+fn client() -> ureq::Agent {
+    ureq::Agent::config_builder()
+        .timeout_global(Some(std::time::Duration::from_secs(60)))
+        .http_status_as_error(false)
+        .build()
+        .into()
+}
+
+/// One GET of `url` by `agent`, read to its end: whether it answered 200 with a body.
+fn fetched(agent: &ureq::Agent, url: &str) -> bool {
+    agent.get(url).call().is_ok_and(|mut response| {
+        response.status() == 200 && response.body_mut().read_to_vec().is_ok_and(|body| !body.is_empty())
+    })
 }
 
 /// `motif tiles serve` (this binary, 2 workers) under a bounded local load: 4 clients request
 /// the tiles of zoom 16 and 17 over the map (every one rendered: cold), then the same again (the
 /// disk cache: warm); tiles per second of each pass. Requests go to 127.0.0.1 only, each pass
 /// a fixed count, each request at most 60 s.
-fn server_throughput(map: &std::path::Path, bench: &Bench) -> anyhow::Result<Value> {
+fn server_throughput(map: &std::path::Path, bounds: [f64; 4], bench: &Bench) -> anyhow::Result<Value> {
     let cache = std::env::temp_dir().join(format!("motif-bench-tiles-{}", std::process::id()));
     let mut server = std::process::Command::new(std::env::current_exe()?)
         .args(["--quiet", "--seed", &bench.seed.to_string(), "tiles", "serve", "--port", "0", "--workers", "2"])
@@ -148,11 +154,10 @@ fn server_throughput(map: &std::path::Path, bench: &Bench) -> anyhow::Result<Val
         BufReader::new(server.stdout.take().ok_or_else(|| anyhow::anyhow!("no server output"))?)
             .read_line(&mut line)?;
         let address = line.trim().trim_start_matches("http://").trim_end_matches('/').to_string();
-        let (map_data, _) = motif_io::read_osm(map, u64::MAX)?;
         let zooms: &[u8] = if bench.quick { &[15] } else { &[16, 17] };
         let paths: Vec<String> = zooms
             .iter()
-            .flat_map(|&z| motif_jobs::tiles::tiles_covering(map_data.bounds(), z))
+            .flat_map(|&z| motif_jobs::tiles::tiles_covering(bounds, z))
             .map(|tile| format!("/{}/{}/{}.png", tile.z, tile.x, tile.y))
             .collect();
         let pass = |paths: &[String]| -> anyhow::Result<(f64, usize)> {
@@ -162,12 +167,9 @@ fn server_throughput(map: &std::path::Path, bench: &Bench) -> anyhow::Result<Val
                     .map(|k| {
                         let address = &address;
                         scope.spawn(move || {
-                            paths
-                                .iter()
-                                .skip(k)
-                                .step_by(4)
-                                .filter(|path| !matches!(get(address, path), Ok((200, _))))
-                                .count()
+                            let agent = client();
+                            let url = |path: &String| format!("http://{address}{path}");
+                            paths.iter().skip(k).step_by(4).filter(|path| !fetched(&agent, &url(path))).count()
                         })
                     })
                     .collect();
