@@ -194,6 +194,12 @@ impl<'a> Level<'a> {
         ((s % width) as usize, (s / width) as usize)
     }
 
+    /// The column of source centre `s` ([`Self::source_xy`]'s first half, where only it is needed).
+    #[inline]
+    pub(crate) fn source_x(&self, s: u32) -> usize {
+        (s % self.source_width as u32) as usize
+    }
+
     /// The centres that target pixel `t` may match when its segment restricts it (§3.6).
     #[inline]
     pub(crate) fn segment_of(&self, t: usize) -> Option<&SegmentCentres> {

@@ -420,11 +420,12 @@ pub(crate) fn patchmatch_tiles<const ROW: usize>(
                         // Propagation: the horizontal neighbour already visited this pass.
                         let nx = if forward { x.checked_sub(1) } else { Some(x + 1).filter(|&n| n < width) };
                         if let Some(nx) = nx.filter(|&nx| level.is_active(y * width + nx)) {
-                            let s = matches[local_y * width + nx] as usize;
-                            let sx = s % level.source_width;
+                            let s = matches[local_y * width + nx];
+                            let sx = level.source_x(s);
                             let shifted = if forward { sx + 1 } else { sx.wrapping_sub(1) };
                             if (x0..x1).contains(&shifted) {
-                                best.consider::<ROW>(level, occurrence, delta, (s - sx + shifted) as u32, here);
+                                let candidate = (s as usize - sx + shifted) as u32;
+                                best.consider::<ROW>(level, occurrence, delta, candidate, here);
                             }
                         }
                         // Propagation: the vertical neighbour (from the start-of-iteration field
@@ -436,11 +437,11 @@ pub(crate) fn patchmatch_tiles<const ROW: usize>(
                                 matches[(ny - first_row) * width + x]
                             } else {
                                 previous[ny * width + x]
-                            } as usize;
-                            let sy = s / level.source_width;
+                            };
+                            let (sx, sy) = level.source_xy(s);
                             let shifted = if forward { sy + 1 } else { sy.wrapping_sub(1) };
                             if (y0..y1).contains(&shifted) {
-                                let candidate = shifted * level.source_width + s % level.source_width;
+                                let candidate = shifted * level.source_width + sx;
                                 best.consider::<ROW>(level, occurrence, delta, candidate as u32, here);
                             }
                         }
