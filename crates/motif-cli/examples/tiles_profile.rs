@@ -8,10 +8,6 @@ use std::io::Write;
 use motif_jobs::Job;
 use motif_jobs::tiles::{Layer, TilesInputs, TilesJob};
 
-/// The `motif` binary's allocator, so that the tiles are timed as the command renders them.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> anyhow::Result<()> {
     let passes: usize = std::env::args().nth(1).map_or(Ok(5), |a| a.parse())?;
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/real/maps");

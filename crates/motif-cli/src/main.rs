@@ -44,13 +44,6 @@ use crate::context::Context;
 use crate::engines::{ENGINES, EngineCommand};
 use crate::options::GlobalArgs;
 
-/// The allocator: mimalloc, which keeps a thread's freed pages for its next allocations. With the
-/// system's, every map tile on a server or bench thread faulted in about 4 MB of fresh pages
-/// (the freed ones went back to the kernel between tiles): 2–3 ms of a 13–16 ms tile
-/// (`docs/performance.md`).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 /// Grow new, non-repeating patterns from small examples: along curves, inside regions, or under
 /// the control of guide images.
 #[derive(Parser, Debug)]
