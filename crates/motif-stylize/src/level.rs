@@ -124,17 +124,11 @@ impl<'a> Level<'a> {
         if guide_channels > 0 {
             let target_images = spec.target_guides.iter().map(|g| (g.samples(), g.channels()));
             let guides = Quantizer::consecutive(target_images, &scales[style_channels..]);
+            let columns: Vec<usize> =
+                (0..padded_width).map(|px| unpadded(px, target_width, radius, spec.tileable)).collect();
             target.par_chunks_mut(padded_width * channels).enumerate().for_each(|(py, row)| {
-                let y = unpadded(py, target_height, radius, spec.tileable);
-                for (px, out) in row.chunks_exact_mut(channels).enumerate() {
-                    let index = y * target_width + unpadded(px, target_width, radius, spec.tileable);
-                    let mut slots = out[style_channels..].iter_mut();
-                    for image in &guides {
-                        for (k, slot) in (0..image.channels()).zip(&mut slots) {
-                            *slot = image.value(index, k);
-                        }
-                    }
-                }
+                let first = unpadded(py, target_height, radius, spec.tileable) * target_width;
+                stack_row(&guides, (first, &columns), row, (channels, style_channels));
             });
         }
         let target_restrict = spec.target_labels.map(|labels| {
@@ -412,18 +406,26 @@ pub(crate) fn stack_source<I: ChannelImage>(style: &I, source_guides: &[&I], sca
         .chain(source_guides.iter().map(|g| (g.samples(), g.channels())));
     let quantizers = Quantizer::consecutive(images, scales);
     let mut source = vec![0_u8; width * style.height() * channels];
+    let columns: Vec<usize> = (0..width).collect();
     source.par_chunks_mut(width * channels).enumerate().for_each(|(y, row)| {
-        for (x, out) in row.chunks_exact_mut(channels).enumerate() {
-            let index = y * width + x;
-            let mut slots = out.iter_mut();
-            for image in &quantizers {
-                for (k, slot) in (0..image.channels()).zip(&mut slots) {
-                    *slot = image.value(index, k);
-                }
-            }
-        }
+        stack_row(&quantizers, (y * width, &columns), row, (channels, 0));
     });
     source
+}
+
+/// One stacked row: pixel `i` of `row` (`stride` bytes each) takes, from byte `offset` on, the
+/// quantized samples of pixel `first + columns[i]` of every image of `quantizers` in turn.
+fn stack_row(
+    quantizers: &[Quantizer<'_>],
+    (first, columns): (usize, &[usize]),
+    row: &mut [u8],
+    (stride, offset): (usize, usize),
+) {
+    let mut offset = offset;
+    for image in quantizers {
+        image.stack_row((first, columns), row, (stride, offset));
+        offset += image.channels();
+    }
 }
 
 /// The largest channel weight `w_max` and each channel's 8-bit scale `255 · sqrt(w_c / w_max)`,
@@ -471,13 +473,32 @@ impl<'s> Quantizer<'s> {
         self.scales.len()
     }
 
-    /// Channel `k` of pixel `index`, quantized.
-    #[inline(always)]
-    fn value(&self, index: usize, k: usize) -> u8 {
-        let sample = index * self.scales.len() + k;
+    /// This image's part of [`stack_row`]: its channels of pixel `first + columns[i]`, quantized,
+    /// into bytes `offset..` of pixel `i` of `row` (`stride` bytes a pixel). The sample type is
+    /// matched once a row, not once a value.
+    fn stack_row(&self, (first, columns): (usize, &[usize]), row: &mut [u8], (stride, offset): (usize, usize)) {
+        let n = self.scales.len();
+        let pixels =
+            row.chunks_exact_mut(stride).zip(columns).map(|(out, &x)| (&mut out[offset..offset + n], first + x));
         match self.samples {
-            Samples::Byte(values) => self.tables[k][usize::from(values[sample])],
-            Samples::Float(values) => quantize(values[sample], self.scales[k]),
+            Samples::Byte(values) => {
+                for (out, index) in pixels {
+                    for ((slot, &value), table) in
+                        out.iter_mut().zip(&values[index * n..(index + 1) * n]).zip(&self.tables)
+                    {
+                        *slot = table[usize::from(value)];
+                    }
+                }
+            }
+            Samples::Float(values) => {
+                for (out, index) in pixels {
+                    for ((slot, &value), &scale) in
+                        out.iter_mut().zip(&values[index * n..(index + 1) * n]).zip(self.scales)
+                    {
+                        *slot = quantize(value, scale);
+                    }
+                }
+            }
         }
     }
 }
