@@ -420,7 +420,7 @@ pub fn synthesize<I: ChannelImage>(
         structure_weight: None,
         prepared,
     };
-    let mut output = synthesis::run(&problem, params, progress)?;
+    let mut output = synthesis::run(problem, params, progress)?;
     output.report.estimated_memory_bytes = estimated_memory_bytes;
     if let Some(ms) = quilting_ms {
         output.report.stages_ms.insert(0, ("quilting".to_string(), ms));

@@ -237,7 +237,7 @@ impl Segments {
         let mut report = |stage: &str, fraction: f64| {
             progress.report(&format!("segment {} of {segments}: {stage}", label + 1), fraction)
         };
-        let output = synthesis::run(&problem, &segment_params, &mut report)?;
+        let output = synthesis::run(problem, &segment_params, &mut report)?;
         Ok(SegmentTexture { colour: self.colours[label].clone(), image: output.image, field: Some(output.field) })
     }
 }

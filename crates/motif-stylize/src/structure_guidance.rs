@@ -43,7 +43,7 @@ pub(crate) fn synthesize_with_structure(
         structure_weight: Some(params.structure_weight * colour_weight),
         prepared: None,
     };
-    let mut output = synthesis::run(&problem, params, progress)?;
+    let mut output = synthesis::run(problem, params, progress)?;
     let channels = colours.channels();
     let image = &output.image;
     let data = image.data().chunks_exact(channels + 1).flat_map(|pixel| pixel[..channels].iter().copied()).collect();

@@ -172,13 +172,13 @@ fn dilate_line(len: usize, radius: usize, get: impl Fn(usize) -> bool, mut set: 
 
 /// Runs the whole optimization.
 pub(crate) fn run<I: ChannelImage>(
-    problem: &Problem<'_, I>,
+    mut problem: Problem<'_, I>,
     params: &Params,
     progress: &mut dyn Progress,
 ) -> Result<Output, Error> {
     let start = Clock::now();
-    let params = &band_params(problem, params);
-    let levels = level_count(problem, params);
+    let params = &band_params(&problem, params);
+    let levels = level_count(&problem, params);
     let source_size = (problem.style.width(), problem.style.height());
     if let Some((composed, domain)) = &problem.composition
         && !domain.iter().any(|&inside| inside)
@@ -186,11 +186,15 @@ pub(crate) fn run<I: ChannelImage>(
         // Band 0 (or a single segment): the pure bitmap composition of §3.7, nothing to optimize.
         return Ok(composition_only(composed, source_size, params.patch_size, start));
     }
-    let em = Em::new(problem, params, levels);
+    // Band mode (one level) starts from the composed textures: moved into the output, not copied.
+    let mut image = match problem.composition.as_mut() {
+        Some((composed, _)) => std::mem::replace(composed, FloatImage::new(0, 0, 1)),
+        None => FloatImage::new(0, 0, 1),
+    };
+    let em = Em::new(&problem, params, levels);
     let mut timer = StageTimer::new();
     let mut reports = Vec::with_capacity(levels + 1);
     let mut previous: Option<(Field, Level)> = None;
-    let mut image = FloatImage::new(0, 0, 1);
     let mut scratch = Vec::new();
     for level_index in (0..levels).rev() {
         // The coarser level is dropped once its field is upsampled.
@@ -409,7 +413,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
             (None, None) => Field::random(&level, &streams),
             (Some((coarse, coarse_level)), _) => Field::upsample(&coarse, &coarse_level, &level, &streams),
         };
-        *image = self.start_image(&level, index, &field);
+        self.start_image(&level, index, &field, image);
         level.set_target_style(image, false);
         // A level that refines upsampled matches searches a few pixels around each: no patch can
         // gather many target patches, and Ω over the whole exemplar would cost what it saves.
@@ -442,11 +446,12 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
         (field, level, report)
     }
 
-    /// The output at the start of level `index`: the composed textures in band mode, else the
-    /// vote of the starting field (over the kept pixels of this level when there is a mask).
-    fn start_image(&self, level: &Level, index: usize, field: &Field) -> FloatImage {
-        match (&self.problem.composition, &self.keep) {
-            (Some((composed, _)), _) => composed.clone(),
+    /// The output at the start of level `index` into `image`: the composed textures in band mode
+    /// (already there: [`run`] moved them in), else the vote of the starting field (over the kept
+    /// pixels of this level when there is a mask).
+    fn start_image(&self, level: &Level, index: usize, field: &Field, image: &mut FloatImage) {
+        *image = match (&self.problem.composition, &self.keep) {
+            (Some(_), _) => return,
             (None, Some(keep)) => {
                 // The kept pixels of this level; the hole from the field (random or upsampled).
                 let mut fresh = keep.level(index).to_float_image().into_owned();
@@ -458,7 +463,7 @@ impl<'p, 'a, I: ChannelImage> Em<'p, 'a, I> {
                 vote(level, field, &mut fresh, false, 0.0);
                 fresh
             }
-        }
+        };
     }
 
     /// The optional final pass with 3×3 patches at the finest level, without the occurrence
