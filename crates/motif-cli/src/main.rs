@@ -84,9 +84,9 @@ pub(crate) fn stop_on_interrupt_with(stop: impl Fn() + Send + Sync + 'static) {
 /// top stay there. glibc moves its own thresholds towards these values only once the process has
 /// freed a large block; until then it handed every freed top over 128 KiB back to the kernel,
 /// so a tile server's or the bench's thread faulted its whole working set in again for every
-/// map tile (about 4.5 MB: 169 000 page faults over 6 passes of 24 tiles, against 13 000 with
-/// these values), 2–3 ms of a 13–16 ms tile. The peak resident size of a 2048 × 1536 texture
-/// moved by 1 % (`docs/maps.md`, "Speed").
+/// map tile (about 4.5 MB; `motif bench --engine stylize --case tiles` took 237 000 page faults,
+/// 40 500 with these values), 2–3 ms of a 13–16 ms tile. The peak resident size of a
+/// 2048 × 1536 texture moved by 1 % (`docs/maps.md`, "Speed").
 #[cfg(all(target_os = "linux", target_env = "gnu"))]
 fn tune_allocator() {
     const MMAP_THRESHOLD: i32 = 32 << 20;
